@@ -1,0 +1,23 @@
+# Every dependency comes from a Debian bookworm package; scripts/setup installs them.
+find_package(Eigen3 3.4 REQUIRED NO_MODULE)
+find_package(Ceres REQUIRED)
+find_package(OpenCV REQUIRED COMPONENTS core calib3d imgproc imgcodecs)
+find_package(nlohmann_json 3.10 REQUIRED)
+find_package(CLI11 REQUIRED)
+find_package(apriltag REQUIRED)
+find_package(Threads REQUIRED)
+
+# libmrcal 2.2 ships neither CMake nor pkg-config files, and its headers have no
+# extern "C" guards: include them inside extern "C" { } (see lib/vstcal/io/mrcal_c.h).
+find_library(MRCAL_LIBRARY NAMES mrcal REQUIRED)
+find_path(MRCAL_INCLUDE_DIR NAMES mrcal/mrcal.h REQUIRED)
+add_library(vstcal_mrcal INTERFACE)
+target_link_libraries(vstcal_mrcal INTERFACE ${MRCAL_LIBRARY})
+target_include_directories(vstcal_mrcal SYSTEM INTERFACE ${MRCAL_INCLUDE_DIR})
+
+if(VSTCAL_BUILD_TESTS)
+  find_package(GTest REQUIRED)
+endif()
+if(VSTCAL_BUILD_BENCH)
+  find_package(benchmark REQUIRED)
+endif()

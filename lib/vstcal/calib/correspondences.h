@@ -1,0 +1,54 @@
+// 3-D ↔ 2-D correspondences: the content of a vstcal/correspondences@1 file (docs/formats.md).
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "vstcal/camera/camera.h"
+#include "vstcal/core/units.h"
+
+namespace vstcal {
+
+enum class Rig {
+  kVolume,       // all points in one world frame, one camera pose; DLT applies
+  kPlanarViews,  // each view in its own board frame (Z = 0), one pose per view
+};
+
+// One measured point: `point` in the rig's frame (world for a volume, board for planar views,
+// in the file's length unit) and the pixel where it was detected.
+struct Observation {
+  Eigen::Vector3d point;
+  Eigen::Vector2d pixel;
+};
+
+struct View {
+  std::string name;
+  std::string image;                  // source image, may be empty
+  std::optional<double> plane_offset;  // template offset along its normal, length unit
+  std::vector<Observation> observations;
+};
+
+// A point never used in a solve: it measures registration error (seed 000 §4.2).
+struct TestPoint {
+  std::string name;
+  Eigen::Vector3d point_in_world;
+  std::optional<Eigen::Vector2d> pixel;  // where it was detected, when measured
+};
+
+struct Correspondences {
+  std::string camera;  // e.g. "left"
+  ImageSize image_size;
+  LengthUnit length_unit = LengthUnit::kMillimetre;
+  Rig rig = Rig::kVolume;
+  std::vector<View> views;
+  std::vector<TestPoint> test_points;
+};
+
+size_t NumObservations(const Correspondences& c);
+// All observations of all views in order, for solvers of a single pose.
+std::vector<Observation> AllObservations(const Correspondences& c);
+
+}  // namespace vstcal

@@ -1,0 +1,54 @@
+// Residuals of a calibrated camera against correspondences: per point, per view, overall, and at
+// the test points (registration error, seed 000 §4.2). Residual = predicted − measured, px.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "vstcal/calib/correspondences.h"
+#include "vstcal/camera/camera.h"
+#include "vstcal/geometry/rigid3.h"
+
+namespace vstcal {
+
+struct ResidualStats {
+  double rms_px = 0;  // sqrt(mean(|r|²)) over points
+  double max_px = 0;  // max |r|
+  size_t n_points = 0;
+};
+
+struct ViewFit {
+  std::string name;
+  ResidualStats stats;
+  std::vector<Eigen::Vector2d> residuals_px;  // one per observation, in file order
+};
+
+struct TestPointFit {
+  std::string name;
+  Eigen::Vector3d point_in_world;
+  std::optional<Eigen::Vector2d> predicted;  // nullopt when the point is behind the camera
+  std::optional<Eigen::Vector2d> measured;
+  bool inside_volume = false;  // inside the axis-aligned bounding box of the calibration points
+
+  std::optional<double> error_px() const {
+    if (!predicted || !measured) return std::nullopt;
+    return (*predicted - *measured).norm();
+  }
+};
+
+struct Fit {
+  ResidualStats overall;
+  std::vector<ViewFit> views;
+  std::vector<TestPointFit> test_points;
+  size_t n_behind_camera = 0;  // observations that project behind the camera (not in stats)
+};
+
+// Residuals of `camera` posed by `camera_from_world` for a volume rig (one pose for all views).
+Fit ComputeVolumeFit(const Camera& camera, const Rigid3d& camera_from_world, const Correspondences& c);
+
+ResidualStats Summarize(const std::vector<Eigen::Vector2d>& residuals_px);
+
+}  // namespace vstcal

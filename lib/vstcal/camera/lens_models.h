@@ -1,0 +1,117 @@
+// The one projection (DESIGN.md "One projection"): every solver, Ceres cost function, Monte Carlo
+// engine and report projects through these templates, with double or ceres::Jet.
+//
+// Parameter layout shared by every model: [fx, fy, cx, cy, s, <distortion in the model's order>],
+// pixels, with K = [[fx, s, cx], [0, fy, cy], [0, 0, 1]] (docs/conventions.md#intrinsics).
+// A model is a struct with kName, kNumParams, kParamNames and a templated Distort(); Project()
+// and Unproject() come from LensModel<Model> and are written once.
+#pragma once
+
+#include <array>
+#include <cmath>
+#include <optional>
+#include <string_view>
+
+#include <Eigen/Core>
+#include <ceres/jet.h>
+
+namespace vstcal {
+
+inline constexpr int kNumIntrinsicParams = 5;  // fx, fy, cx, cy, s
+
+template <typename Model>
+struct LensModel {
+  // Projects p_cam (camera frame, any length unit) to pixels. Returns false, leaving px
+  // untouched, when the point is not in front of the camera (z ≤ 0): callers count such
+  // failures, they never turn them into zero residuals.
+  template <typename T>
+  static bool Project(const T* params, const T* p_cam, T* px) {
+    if (!(p_cam[2] > T(0))) return false;
+    const T x = p_cam[0] / p_cam[2];
+    const T y = p_cam[1] / p_cam[2];
+    T xd, yd;
+    Model::Distort(params + kNumIntrinsicParams, x, y, &xd, &yd);
+    px[0] = params[0] * xd + params[4] * yd + params[2];
+    px[1] = params[1] * yd + params[3];
+    return true;
+  }
+
+  // Inverse of Project in double: the ray (x, y, 1) in the camera frame whose projection is px.
+  // The distortion is inverted by Newton's method with the Jacobian of Model::Distort taken by
+  // ceres::Jet (the same code as the forward model). Returns nullopt where Newton does not
+  // converge or the distortion folds over (Jacobian determinant ≤ 0): outside the model's
+  // valid domain there is no unique ray.
+  static std::optional<Eigen::Vector3d> Unproject(const double* params, const Eigen::Vector2d& px) {
+    const double fx = params[0], fy = params[1], cx = params[2], cy = params[3], s = params[4];
+    const double yd = (px.y() - cy) / fy;
+    const double xd = (px.x() - cx - s * yd) / fx;
+    if constexpr (Model::kNumParams == kNumIntrinsicParams) {
+      return Eigen::Vector3d(xd, yd, 1.0);
+    } else {
+      return UndistortNewton(params + kNumIntrinsicParams, xd, yd);
+    }
+  }
+
+ private:
+  static std::optional<Eigen::Vector3d> UndistortNewton(const double* distortion, double xd, double yd) {
+    using Jet2 = ceres::Jet<double, 2>;
+    std::array<Jet2, Model::kNumParams - kNumIntrinsicParams> dist;
+    for (size_t i = 0; i < dist.size(); ++i) dist[i] = Jet2(distortion[i]);
+    double x = xd, y = yd;
+    for (int iteration = 0; iteration < 50; ++iteration) {
+      Jet2 jx, jy;
+      Model::Distort(dist.data(), Jet2(x, 0), Jet2(y, 1), &jx, &jy);
+      const double ex = jx.a - xd, ey = jy.a - yd;
+      const double a = jx.v[0], b = jx.v[1], c = jy.v[0], d = jy.v[1];
+      const double det = a * d - b * c;
+      if (!(det > 0)) return std::nullopt;
+      const double dx = (d * ex - b * ey) / det;
+      const double dy = (a * ey - c * ex) / det;
+      x -= dx;
+      y -= dy;
+      if (std::abs(dx) + std::abs(dy) <= 1e-15 * (1.0 + std::abs(x) + std::abs(y))) {
+        return Eigen::Vector3d(x, y, 1.0);
+      }
+    }
+    return std::nullopt;
+  }
+};
+
+// Pure pinhole: no distortion. Name "none" in files.
+struct PinholeModel : LensModel<PinholeModel> {
+  static constexpr std::string_view kName = "none";
+  static constexpr int kNumParams = kNumIntrinsicParams;
+  static constexpr std::array<std::string_view, kNumParams> kParamNames = {"fx", "fy", "cx", "cy", "s"};
+
+  template <typename T>
+  static void Distort(const T* /*distortion*/, const T& x, const T& y, T* xd, T* yd) {
+    *xd = x;
+    *yd = y;
+  }
+};
+
+// Brown–Conrady radial–tangential on normalized coordinates, OpenCV's coefficient order
+// (k1, k2, p1, p2, k3); mrcal's LENSMODEL_OPENCV5. Seed 001 Eq. 15–17 in Heikkilä's notation is
+// the same model in other units: docs/math/camera-model.md.
+struct RadialTangentialModel : LensModel<RadialTangentialModel> {
+  static constexpr std::string_view kName = "radial-tangential";
+  static constexpr int kNumParams = kNumIntrinsicParams + 5;
+  static constexpr std::array<std::string_view, kNumParams> kParamNames = {
+      "fx", "fy", "cx", "cy", "s", "k1", "k2", "p1", "p2", "k3"};
+
+  template <typename T>
+  static void Distort(const T* d, const T& x, const T& y, T* xd, T* yd) {
+    const T& k1 = d[0];
+    const T& k2 = d[1];
+    const T& p1 = d[2];
+    const T& p2 = d[3];
+    const T& k3 = d[4];
+    const T r2 = x * x + y * y;
+    const T radial = T(1) + r2 * (k1 + r2 * (k2 + r2 * k3));
+    const T xy = x * y;
+    *xd = x * radial + T(2) * p1 * xy + p2 * (r2 + T(2) * x * x);
+    *yd = y * radial + p1 * (r2 + T(2) * y * y) + T(2) * p2 * xy;
+  }
+};
+
+}  // namespace vstcal

@@ -1,0 +1,167 @@
+#include "vstcal/io/camera_io.h"
+
+#include <cmath>
+
+#include "vstcal/camera/intrinsics.h"
+#include "vstcal/io/correspondences_io.h"
+#include "vstcal/io/format_check.h"
+
+namespace vstcal::io {
+namespace {
+
+constexpr std::string_view kFormat = "vstcal/camera@1";
+constexpr double kAgreement = 1e-6;  // relative agreement required between redundant fields
+
+bool Agrees(double a, double b, double scale) { return std::abs(a - b) <= kAgreement * std::max(1.0, scale); }
+
+Eigen::Matrix3d ReadK(const JsonNode& node) {
+  const Eigen::Matrix3d K = node.Matrix<3, 3>();
+  if (K(1, 0) != 0 || K(2, 0) != 0 || K(2, 1) != 0 || K(2, 2) != 1) {
+    node.Fail("K must be upper triangular with K[2][2] = 1", "write K as [[fx, s, cx], [0, fy, cy], [0, 0, 1]]");
+  }
+  if (!(K(0, 0) > 0) || !(K(1, 1) > 0)) node.Fail("fx and fy must be positive", "check the signs of K[0][0] and K[1][1]");
+  return K;
+}
+
+void CheckIntrinsicsAgree(const JsonNode& node, const Eigen::Matrix3d& K) {
+  SkewForm f;
+  f.fu = node.at("fu").PositiveNumber();
+  f.fv = node.at("fv").PositiveNumber();
+  f.u0 = node.at("u0").Number();
+  f.v0 = node.at("v0").Number();
+  const double theta_deg = node.at("skew_angle_deg").Number();
+  if (!(theta_deg > 0 && theta_deg < 180)) node.at("skew_angle_deg").Fail("must lie in (0, 180)", "90 means no skew");
+  f.theta_rad = DegToRad(theta_deg);
+  const Eigen::Matrix3d K2 = KFromSkewForm(f);
+  const double scale = K.cwiseAbs().maxCoeff();
+  for (int r = 0; r < 2; ++r) {
+    for (int c = 0; c < 3; ++c) {
+      if (!Agrees(K(r, c), K2(r, c), scale)) {
+        node.Fail("disagrees with K (K is authoritative)", "delete \"intrinsics\" or make it match K");
+      }
+    }
+  }
+}
+
+std::vector<double> ReadDistortion(const JsonNode& node, AnyLensModel* model) {
+  node.ExpectObject();
+  const JsonNode name = node.at("model");
+  const auto found = LensModelFromName(name.String());
+  if (!found) name.Fail("unknown distortion model \"" + name.String() + "\"", "use one of " + KnownLensModelNames());
+  *model = *found;
+  const auto names = LensModelParamNames(*model);
+  std::vector<double> coefficients;
+  for (size_t i = kNumIntrinsicParams; i < names.size(); ++i) coefficients.push_back(node.at(names[i]).Number());
+  return coefficients;
+}
+
+Rigid3d ReadRigid(const JsonNode& node) {
+  Rigid3d pose;
+  const JsonNode R = node.at("R");
+  pose.R = R.Matrix<3, 3>();
+  if (!IsRotation(pose.R, 1e-6)) {
+    R.Fail("not a rotation matrix (RᵀR ≠ I or det R < 0, tolerance 1e-6)", "write R with at least 7 significant digits");
+  }
+  pose.R = NearestRotation(pose.R);
+  pose.t = node.at("t").Vector<3>();
+  return pose;
+}
+
+}  // namespace
+
+Camera ReadCameraIntrinsics(const JsonNode& node) {
+  const ImageSize size = ReadImageSize(node.at("image_size"));
+  const Eigen::Matrix3d K = ReadK(node.at("K"));
+  if (auto intrinsics = node.find("intrinsics")) CheckIntrinsicsAgree(*intrinsics, K);
+  AnyLensModel model;
+  const std::vector<double> coefficients = ReadDistortion(node.at("distortion"), &model);
+  return Camera::FromK(K, size, model, coefficients);
+}
+
+CalibratedCamera CameraFromJson(const JsonDocument& doc) {
+  const JsonNode root = doc.root();
+  root.ExpectObject();
+  CheckFormat(root, kFormat);
+  CalibratedCamera c;
+  if (auto name = root.find("camera")) c.name = name->String();
+  c.length_unit = ReadLengthUnit(root.at("length_unit"));
+  c.method = root.at("method").String();
+  c.camera = ReadCameraIntrinsics(root);
+  if (auto pose = root.find("camera_from_world")) c.camera_from_world = ReadRigid(*pose);
+  if (auto P = root.find("P")) {
+    Matrix34d m = P->Matrix<3, 4>();
+    if (!(m.row(2).head<3>().norm() > 0)) P->Fail("the third row's first three entries are zero", "write a valid projection matrix");
+    m = NormalizeProjectionScale(m);
+    if (c.camera_from_world) {
+      const Matrix34d expected = ProjectionMatrix(c.camera.K(), *c.camera_from_world);
+      // The sign of a stored P is free; compare up to it.
+      const double scale = expected.cwiseAbs().maxCoeff();
+      const double diff = std::min((m - expected).cwiseAbs().maxCoeff(), (m + expected).cwiseAbs().maxCoeff());
+      if (diff > kAgreement * scale) P->Fail("disagrees with K [R | t]", "delete \"P\" or make it match K and camera_from_world");
+    }
+    c.P = m;
+  }
+  return c;
+}
+
+CalibratedCamera ReadCamera(const std::filesystem::path& path) { return CameraFromJson(JsonDocument::Load(path)); }
+
+OrderedJson DistortionToJson(const Camera& camera) {
+  OrderedJson d;
+  d["model"] = LensModelName(camera.model);
+  const auto names = LensModelParamNames(camera.model);
+  for (size_t i = kNumIntrinsicParams; i < names.size(); ++i) d[std::string(names[i])] = camera.params[i];
+  return d;
+}
+
+OrderedJson FitToJson(const Fit& fit) {
+  OrderedJson j;
+  j["rms_px"] = fit.overall.rms_px;
+  j["max_px"] = fit.overall.max_px;
+  j["n_points"] = fit.overall.n_points;
+  j["n_behind_camera"] = fit.n_behind_camera;
+  OrderedJson views = OrderedJson::array();
+  for (const ViewFit& v : fit.views) {
+    views.push_back({{"name", v.name}, {"rms_px", v.stats.rms_px}, {"max_px", v.stats.max_px}, {"n_points", v.stats.n_points}});
+  }
+  j["views"] = std::move(views);
+  OrderedJson tests = OrderedJson::array();
+  for (const TestPointFit& t : fit.test_points) {
+    OrderedJson jt;
+    jt["name"] = t.name;
+    jt["world"] = MatrixToJson(t.point_in_world);
+    jt["predicted"] = t.predicted ? MatrixToJson(*t.predicted) : OrderedJson(nullptr);
+    jt["measured"] = t.measured ? MatrixToJson(*t.measured) : OrderedJson(nullptr);
+    const auto error = t.error_px();
+    jt["error_px"] = error ? OrderedJson(*error) : OrderedJson(nullptr);
+    jt["inside_volume"] = t.inside_volume;
+    tests.push_back(std::move(jt));
+  }
+  j["test_points"] = std::move(tests);
+  return j;
+}
+
+OrderedJson CameraToJson(const CalibratedCamera& c, const Provenance& provenance, const OrderedJson& extra) {
+  OrderedJson j;
+  j["format"] = kFormat;
+  if (!c.name.empty()) j["camera"] = c.name;
+  j["image_size"] = {c.camera.image_size.width, c.camera.image_size.height};
+  j["length_unit"] = LengthUnitName(c.length_unit);
+  j["method"] = c.method;
+  const Eigen::Matrix3d K = c.camera.K();
+  j["K"] = MatrixToJson(K);
+  const SkewForm f = SkewFormFromK(K);
+  j["intrinsics"] = {{"fu", f.fu}, {"fv", f.fv}, {"u0", f.u0}, {"v0", f.v0},
+                     {"skew_angle_deg", RadToDeg(f.theta_rad)}};
+  j["distortion"] = DistortionToJson(c.camera);
+  if (c.camera_from_world) {
+    j["camera_from_world"] = RigidToJson(*c.camera_from_world);
+    j["P"] = MatrixToJson(c.P ? *c.P : ProjectionMatrix(K, *c.camera_from_world));
+  }
+  if (c.fit) j["fit"] = FitToJson(*c.fit);
+  for (const auto& [key, value] : extra.items()) j[key] = value;
+  j["provenance"] = ProvenanceToJson(provenance);
+  return j;
+}
+
+}  // namespace vstcal::io

@@ -1,0 +1,29 @@
+// vstcal/camera@1 reader and writer (docs/formats.md#camera).
+#pragma once
+
+#include <filesystem>
+
+#include "vstcal/calib/calibrated_camera.h"
+#include "vstcal/io/json_reader.h"
+#include "vstcal/io/json_writer.h"
+#include "vstcal/io/provenance.h"
+
+namespace vstcal::io {
+
+// Reads and validates a camera file. K is authoritative; `intrinsics` and `P`, when present, must
+// agree with it (relative 1e-6); R must be a rotation to 1e-6 (it is then re-orthonormalized).
+CalibratedCamera ReadCamera(const std::filesystem::path& path);
+CalibratedCamera CameraFromJson(const JsonDocument& doc);
+
+// The camera@1 object. The members of `extra` (e.g. a solver's diagnostics) are inserted before
+// the closing provenance.
+OrderedJson CameraToJson(const CalibratedCamera& camera, const Provenance& provenance,
+                         const OrderedJson& extra = OrderedJson::object());
+OrderedJson FitToJson(const Fit& fit);
+
+// The "distortion" object alone, and a Camera (K, distortion, image size) from a JSON object that
+// has image_size, K and distortion (used by other formats that embed a camera).
+OrderedJson DistortionToJson(const Camera& camera);
+Camera ReadCameraIntrinsics(const JsonNode& node);
+
+}  // namespace vstcal::io

@@ -1,0 +1,134 @@
+#include "vstcal/io/correspondences_io.h"
+
+#include <set>
+
+#include "vstcal/io/format_check.h"
+
+namespace vstcal::io {
+namespace {
+
+constexpr std::string_view kFormat = "vstcal/correspondences@1";
+
+std::string_view RigName(Rig rig) { return rig == Rig::kVolume ? "volume" : "planar-views"; }
+
+Observation ReadPoint(const JsonNode& node, const Correspondences& c) {
+  if (!node.json().is_array()) node.Fail("expected [X, Y, Z, u, v], got a non-array", "write each point as [X, Y, Z, u, v]");
+  if (node.json().size() != 5) {
+    node.Fail("expected 5 numbers [X, Y, Z, u, v], got " + std::to_string(node.json().size()),
+              "write each point as [X, Y, Z, u, v]");
+  }
+  Observation o;
+  for (int i = 0; i < 3; ++i) o.point(i) = node.at(i).Number();
+  for (int i = 0; i < 2; ++i) o.pixel(i) = node.at(3 + i).Number();
+  const ImageSize& s = c.image_size;
+  if (o.pixel.x() < -0.5 || o.pixel.y() < -0.5 || o.pixel.x() > s.width - 0.5 || o.pixel.y() > s.height - 0.5) {
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "pixel (%.6g, %.6g) lies outside the %d×%d image", o.pixel.x(), o.pixel.y(), s.width,
+                  s.height);
+    node.Fail(buf, "check image_size and that the columns are X, Y, Z, u, v");
+  }
+  if (c.rig == Rig::kPlanarViews && o.point.z() != 0.0) {
+    node.at(2).Fail("planar-views points lie on their board (Z = 0), got Z = " + node.at(2).json().dump(),
+                    "use \"rig\": \"volume\" for 3-D points in one world frame");
+  }
+  return o;
+}
+
+}  // namespace
+
+ImageSize ReadImageSize(const JsonNode& node) {
+  node.ArraySize(2);
+  return ImageSize{node.at(0).PositiveInteger(), node.at(1).PositiveInteger()};
+}
+
+LengthUnit ReadLengthUnit(const JsonNode& node) {
+  return *LengthUnitFromName(node.OneOf({"mm", "cm", "m"}));
+}
+
+Correspondences CorrespondencesFromJson(const JsonDocument& doc) {
+  const JsonNode root = doc.root();
+  root.ExpectObject();
+  CheckFormat(root, kFormat);
+  Correspondences c;
+  if (auto camera = root.find("camera")) c.camera = camera->String();
+  c.image_size = ReadImageSize(root.at("image_size"));
+  c.length_unit = ReadLengthUnit(root.at("length_unit"));
+  c.rig = root.at("rig").OneOf({"volume", "planar-views"}) == "volume" ? Rig::kVolume : Rig::kPlanarViews;
+
+  const JsonNode views = root.at("views");
+  const size_t n_views = views.ArraySize();
+  if (n_views == 0) views.Fail("no views", "add at least one view with points");
+  std::set<std::string> names;
+  for (size_t i = 0; i < n_views; ++i) {
+    const JsonNode v = views.at(i);
+    View view;
+    view.name = v.at("name").String();
+    if (view.name.empty()) v.at("name").Fail("empty view name", "give every view a unique name");
+    if (!names.insert(view.name).second) v.at("name").Fail("duplicate view name \"" + view.name + "\"", "give every view a unique name");
+    if (auto image = v.find("image")) view.image = image->String();
+    if (auto offset = v.find("plane_offset")) view.plane_offset = offset->Number();
+    const JsonNode points = v.at("points");
+    const size_t n = points.ArraySize();
+    if (n == 0) points.Fail("the view has no points", "remove the view or add its points");
+    view.observations.reserve(n);
+    for (size_t k = 0; k < n; ++k) view.observations.push_back(ReadPoint(points.at(k), c));
+    c.views.push_back(std::move(view));
+  }
+
+  if (auto tests = root.find("test_points")) {
+    const size_t n = tests->ArraySize();
+    std::set<std::string> test_names;
+    for (size_t i = 0; i < n; ++i) {
+      const JsonNode t = tests->at(i);
+      TestPoint tp;
+      tp.name = t.at("name").String();
+      if (!test_names.insert(tp.name).second) t.at("name").Fail("duplicate test point name \"" + tp.name + "\"", "give every test point a unique name");
+      tp.point_in_world = t.at("world").Vector<3>();
+      if (auto px = t.find("pixel")) tp.pixel = px->Vector<2>();
+      c.test_points.push_back(std::move(tp));
+    }
+  }
+  return c;
+}
+
+Correspondences ReadCorrespondences(const std::filesystem::path& path) {
+  return CorrespondencesFromJson(JsonDocument::Load(path));
+}
+
+OrderedJson CorrespondencesToJson(const Correspondences& c, const Provenance& provenance) {
+  OrderedJson j;
+  j["format"] = kFormat;
+  if (!c.camera.empty()) j["camera"] = c.camera;
+  j["image_size"] = {c.image_size.width, c.image_size.height};
+  j["length_unit"] = LengthUnitName(c.length_unit);
+  j["rig"] = RigName(c.rig);
+  OrderedJson views = OrderedJson::array();
+  for (const View& v : c.views) {
+    OrderedJson jv;
+    jv["name"] = v.name;
+    if (!v.image.empty()) jv["image"] = v.image;
+    if (v.plane_offset) jv["plane_offset"] = *v.plane_offset;
+    OrderedJson points = OrderedJson::array();
+    for (const Observation& o : v.observations) {
+      points.push_back({o.point.x(), o.point.y(), o.point.z(), o.pixel.x(), o.pixel.y()});
+    }
+    jv["points"] = std::move(points);
+    views.push_back(std::move(jv));
+  }
+  j["views"] = std::move(views);
+  if (!c.test_points.empty()) {
+    OrderedJson tests = OrderedJson::array();
+    for (const TestPoint& t : c.test_points) {
+      OrderedJson jt;
+      jt["name"] = t.name;
+      jt["world"] = MatrixToJson(t.point_in_world);
+      if (t.pixel) jt["pixel"] = MatrixToJson(*t.pixel);
+      tests.push_back(std::move(jt));
+    }
+    j["test_points"] = std::move(tests);
+  }
+  j["provenance"] = ProvenanceToJson(provenance);
+  return j;
+}
+
+}  // namespace vstcal::io

@@ -1,0 +1,25 @@
+// vstcal/correspondences@1 reader and writer (docs/formats.md#correspondences).
+#pragma once
+
+#include <filesystem>
+
+#include "vstcal/calib/correspondences.h"
+#include "vstcal/io/json_reader.h"
+#include "vstcal/io/json_writer.h"
+#include "vstcal/io/provenance.h"
+
+namespace vstcal::io {
+
+// Reads and validates every field; throws InputError naming file, field and fix. Checks beyond
+// types: pixels inside the image, Z = 0 for planar views, unique view names, non-empty views.
+Correspondences ReadCorrespondences(const std::filesystem::path& path);
+Correspondences CorrespondencesFromJson(const JsonDocument& doc);
+
+OrderedJson CorrespondencesToJson(const Correspondences& c, const Provenance& provenance);
+
+// Parses image_size [width, height] (positive integers).
+ImageSize ReadImageSize(const JsonNode& node);
+// Parses length_unit.
+LengthUnit ReadLengthUnit(const JsonNode& node);
+
+}  // namespace vstcal::io

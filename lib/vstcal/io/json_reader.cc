@@ -1,0 +1,193 @@
+#include "vstcal/io/json_reader.h"
+
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+
+#include "vstcal/core/error.h"
+
+namespace vstcal::io {
+namespace {
+
+std::pair<size_t, size_t> LineAndColumn(const std::string& text, size_t byte) {
+  size_t line = 1, column = 1;
+  for (size_t i = 0; i < byte && i < text.size(); ++i) {
+    if (text[i] == '\n') {
+      ++line;
+      column = 1;
+    } else {
+      ++column;
+    }
+  }
+  return {line, column};
+}
+
+// nlohmann reports the byte after the offending token; walk back to the token's start.
+std::string TokenNear(const std::string& text, size_t byte) {
+  size_t end = std::min(byte, text.size());
+  size_t begin = end;
+  while (begin > 0 && (std::isalnum(static_cast<unsigned char>(text[begin - 1])) || text[begin - 1] == '-' ||
+                       text[begin - 1] == '+' || text[begin - 1] == '.')) {
+    --begin;
+  }
+  while (end < text.size() && std::isalnum(static_cast<unsigned char>(text[end]))) ++end;
+  return text.substr(begin, end - begin);
+}
+
+bool IsNonFiniteToken(const std::string& token) {
+  for (const char* word : {"NaN", "nan", "Infinity", "-Infinity", "inf", "-inf", "Inf", "-Inf", "-NaN", "-nan"}) {
+    if (token == word) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+JsonDocument JsonDocument::Load(const std::filesystem::path& path) {
+  const std::string name = path.string();
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) {
+    throw InputError(name + ": no such file; check the path");
+  }
+  if (std::filesystem::is_directory(path, ec)) {
+    throw InputError(name + ": is a directory, not a JSON file; give the file's path");
+  }
+  std::ifstream in(path, std::ios::binary);
+  if (!in) {
+    throw InputError(name + ": cannot open (" + std::strerror(errno) + "); check its permissions");
+  }
+  std::ostringstream buffer;
+  buffer << in.rdbuf();
+  return Parse(buffer.str(), name);
+}
+
+JsonDocument JsonDocument::Parse(const std::string& text, std::string name) {
+  JsonDocument doc;
+  doc.name_ = std::move(name);
+  if (text.find_first_not_of(" \t\r\n") == std::string::npos) {
+    throw InputError(doc.name_ + ": the file is empty; expected a JSON object");
+  }
+  try {
+    doc.json_ = nlohmann::json::parse(text);
+  } catch (const nlohmann::json::parse_error& e) {
+    const auto [line, column] = LineAndColumn(text, e.byte > 0 ? e.byte - 1 : 0);
+    const std::string token = TokenNear(text, e.byte > 0 ? e.byte - 1 : 0);
+    const std::string where = doc.name_ + ": line " + std::to_string(line) + ", column " + std::to_string(column);
+    if (IsNonFiniteToken(token)) {
+      throw InputError(where + ": '" + token +
+                       "' is not a JSON number; every value must be a finite number (remove or fix the point)");
+    }
+    throw InputError(where + ": not valid JSON; fix the syntax there");
+  }
+  return doc;
+}
+
+JsonNode JsonDocument::root() const { return JsonNode(&json_, "", &name_); }
+
+JsonNode JsonNode::at(std::string_view key) const {
+  ExpectObject();
+  const std::string child = path_.empty() ? std::string(key) : path_ + "." + std::string(key);
+  auto it = value_->find(key);
+  if (it == value_->end()) {
+    JsonNode(value_, child, file_).Fail("missing field", "add \"" + std::string(key) + "\"");
+  }
+  return JsonNode(&*it, child, file_);
+}
+
+std::optional<JsonNode> JsonNode::find(std::string_view key) const {
+  ExpectObject();
+  auto it = value_->find(key);
+  if (it == value_->end()) return std::nullopt;
+  return JsonNode(&*it, path_.empty() ? std::string(key) : path_ + "." + std::string(key), file_);
+}
+
+JsonNode JsonNode::at(size_t index) const {
+  const size_t n = ArraySize();
+  if (index >= n) Fail("has " + std::to_string(n) + " items, expected at least " + std::to_string(index + 1), "add the missing items");
+  return JsonNode(&(*value_)[index], path_ + "[" + std::to_string(index) + "]", file_);
+}
+
+size_t JsonNode::ArraySize(std::optional<size_t> expected) const {
+  if (!value_->is_array()) Fail("expected an array, got " + Describe(), "write it as a JSON array");
+  const size_t n = value_->size();
+  if (expected && n != *expected) {
+    Fail("expected " + std::to_string(*expected) + " items, got " + std::to_string(n),
+         "give exactly " + std::to_string(*expected));
+  }
+  return n;
+}
+
+void JsonNode::ExpectObject() const {
+  if (!value_->is_object()) Fail("expected an object, got " + Describe(), "write it as a JSON object { ... }");
+}
+
+double JsonNode::Number() const {
+  if (!value_->is_number()) Fail("expected a number, got " + Describe(), "write a finite number");
+  const double v = value_->get<double>();
+  if (!std::isfinite(v)) Fail("the number is not finite", "write a finite number");
+  return v;
+}
+
+double JsonNode::PositiveNumber() const {
+  const double v = Number();
+  if (!(v > 0)) Fail("must be positive, got " + value_->dump(), "give a value > 0");
+  return v;
+}
+
+double JsonNode::NonNegativeNumber() const {
+  const double v = Number();
+  if (v < 0) Fail("must not be negative, got " + value_->dump(), "give a value ≥ 0");
+  return v;
+}
+
+int JsonNode::Integer() const {
+  const double v = Number();
+  if (v != std::floor(v) || std::abs(v) > 2147483647.0) Fail("expected an integer, got " + value_->dump(), "write a whole number");
+  return static_cast<int>(v);
+}
+
+int JsonNode::PositiveInteger() const {
+  const int v = Integer();
+  if (v <= 0) Fail("must be a positive integer, got " + value_->dump(), "give a whole number > 0");
+  return v;
+}
+
+bool JsonNode::Boolean() const {
+  if (!value_->is_boolean()) Fail("expected true or false, got " + Describe(), "write true or false");
+  return value_->get<bool>();
+}
+
+std::string JsonNode::String() const {
+  if (!value_->is_string()) Fail("expected a string, got " + Describe(), "write it in double quotes");
+  return value_->get<std::string>();
+}
+
+std::string JsonNode::OneOf(std::initializer_list<std::string_view> allowed) const {
+  const std::string s = String();
+  std::string list;
+  for (std::string_view a : allowed) {
+    if (a == s) return s;
+    list += (list.empty() ? "\"" : ", \"") + std::string(a) + "\"";
+  }
+  Fail("unknown value \"" + s + "\"", "use one of " + list);
+}
+
+void JsonNode::Fail(std::string_view reason, std::string_view fix) const {
+  throw InputError(*file_ + ": " + (path_.empty() ? std::string("(top level)") : path_) + ": " + std::string(reason) +
+                   "; " + std::string(fix));
+}
+
+std::string JsonNode::Describe() const {
+  switch (value_->type()) {
+    case nlohmann::json::value_t::null: return "null";
+    case nlohmann::json::value_t::object: return "an object";
+    case nlohmann::json::value_t::array: return "an array of " + std::to_string(value_->size());
+    case nlohmann::json::value_t::string: return "the string " + value_->dump();
+    case nlohmann::json::value_t::boolean: return value_->dump();
+    default: return "the number " + value_->dump();
+  }
+}
+
+}  // namespace vstcal::io

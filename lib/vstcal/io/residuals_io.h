@@ -1,0 +1,15 @@
+// vstcal/residuals@1: per-point residuals of a fit, for plots and reports (docs/formats.md).
+#pragma once
+
+#include "vstcal/calib/correspondences.h"
+#include "vstcal/calib/fit.h"
+#include "vstcal/io/json_writer.h"
+#include "vstcal/io/provenance.h"
+
+namespace vstcal::io {
+
+// Each view's points as [X, Y, Z, u, v, du, dv] with (du, dv) = predicted − measured (null
+// when the point projects behind the camera), plus the test points.
+OrderedJson ResidualsToJson(const Correspondences& c, const Fit& fit, const Provenance& provenance);
+
+}  // namespace vstcal::io

@@ -1,0 +1,28 @@
+#include "support/scenes.h"
+
+#include "vstcal/random/philox.h"
+
+namespace vstcal::testing {
+
+Scene RandomVolumeScene(size_t n, double noise_px, uint64_t seed) {
+  Scene s;
+  Eigen::Matrix3d K;
+  K << 1700, 0.8, 652.3, 0, 1695, 498.1, 0, 0, 1;
+  s.camera = Camera::FromK(K, ImageSize{1280, 1024});
+  s.camera_from_world = Rigid3d::FromRotvec(Eigen::Vector3d(0.05, -0.2, 0.03), Eigen::Vector3d(-120, 80, 2600));
+  const CounterRng points(seed, 0), noise(seed, 1);
+  size_t index = 0;
+  while (s.observations.size() < n) {
+    const auto a = points.Uniform2(index, 0), b = points.Uniform2(index, 1);
+    ++index;
+    const Eigen::Vector3d p((a[0] - 0.5) * 1200, (a[1] - 0.5) * 900, b[0] * 2000);
+    const auto px = s.camera.Project(s.camera_from_world * p);
+    if (!px || !s.camera.InImage(*px)) continue;
+    const auto e = noise.Normal2(s.observations.size(), 0);
+    s.true_pixels.push_back(*px);
+    s.observations.push_back({p, *px + noise_px * Eigen::Vector2d(e[0], e[1])});
+  }
+  return s;
+}
+
+}  // namespace vstcal::testing
