@@ -10,7 +10,7 @@
 namespace vstcal {
 
 struct ProjectionDecomposition {
-  Eigen::Matrix3d K;  // upper triangular, fx, fy > 0, K(2,2) = 1, skew kept
+  Eigen::Matrix3d K = Eigen::Matrix3d::Identity();  // upper triangular, fx, fy > 0, K(2,2) = 1, skew kept
   Rigid3d camera_from_world;
 };
 

@@ -237,6 +237,10 @@ DltResult Fail(DltResult r, DltStatus status, std::string message) {
   return r;
 }
 
+// Below this relative thickness a cloud is coplanar to the precision of the moments (the
+// smallest eigenvalue of M₀'s 3×3 carries absolute rounding ~1e-16·λ_max, so √ of it ~1e-8).
+constexpr double kCoplanarAtRounding = 1e-6;
+
 // Degeneracy of the point cloud from the principal extents of the normalized points (the centred
 // second moments are M₀'s top-left 3×3 over N). Returns the failing status, or kOk.
 DltStatus CheckExtents(const Eigen::Matrix4d& M0, size_t count, const DltOptions& options, DltResult* r) {
@@ -251,7 +255,7 @@ DltStatus CheckExtents(const Eigen::Matrix4d& M0, size_t count, const DltOptions
     return DltStatus::kCollinear;
   }
   if (thickness < options.min_extent_ratio) {
-    r->message = std::string(thickness < 1e-9 ? "the points are coplanar" : "the points are nearly coplanar") +
+    r->message = std::string(thickness < kCoplanarAtRounding ? "the points are coplanar" : "the points are nearly coplanar") +
                  Format(" (thickness/extent of the point cloud %.3g < %.3g): DLT needs a 3-D volume; for a planar "
                         "target use calib-tsai with rig \"planar-views\", or move the template between a near and "
                         "a far plane (docs/math/dlt.md#degeneracy)",

@@ -1,0 +1,49 @@
+#include "vstcal/calib/compare.h"
+
+#include <cmath>
+
+#include "vstcal/core/error.h"
+
+namespace vstcal {
+
+CameraComparison CompareCameras(const CalibratedCamera& a, const CalibratedCamera& b, std::optional<double> depth) {
+  if (!(a.camera.image_size == b.camera.image_size)) {
+    throw InputError("the cameras have different image sizes; compare cameras of the same sensor");
+  }
+  if (a.length_unit != b.length_unit) {
+    throw InputError("the cameras use different length units; convert one of them first");
+  }
+  CameraComparison out;
+  out.K_difference = b.camera.K() - a.camera.K();
+  out.fx_relative = out.K_difference(0, 0) / a.camera.K()(0, 0);
+  const bool posed = a.camera_from_world && b.camera_from_world;
+  if (posed) {
+    out.rotation_deg = RadToDeg(AngleBetween(a.camera_from_world->R, b.camera_from_world->R));
+    out.centre_distance = (a.camera_from_world->inverse().t - b.camera_from_world->inverse().t).norm();
+  }
+  out.depth = depth.value_or(posed ? a.camera_from_world->t.z() : 1000.0);
+  if (!(out.depth > 0)) throw InputError("--depth: must be positive (a point in front of the camera)");
+
+  // Without poses both cameras sit at the same place: compare the intrinsics alone.
+  const Rigid3d world_from_a = posed ? a.camera_from_world->inverse() : Rigid3d::Identity();
+  const Rigid3d b_from_world = posed ? *b.camera_from_world : Rigid3d::Identity();
+  std::vector<Eigen::Vector2d> differences;
+  const ImageSize& size = a.camera.image_size;
+  for (int i = 0; i < 9; ++i) {
+    for (int j = 0; j < 9; ++j) {
+      const Eigen::Vector2d px(-0.5 + size.width * (i + 0.5) / 9.0, -0.5 + size.height * (j + 0.5) / 9.0);
+      const auto ray = a.camera.Unproject(px);
+      if (!ray) continue;
+      const auto q = b.camera.Project(b_from_world * (world_from_a * (*ray * out.depth)));
+      if (!q) continue;
+      const double d = (*q - px).norm();
+      out.rms_px += d * d;
+      out.max_px = std::max(out.max_px, d);
+      ++out.n_points;
+    }
+  }
+  out.rms_px = out.n_points ? std::sqrt(out.rms_px / static_cast<double>(out.n_points)) : 0.0;
+  return out;
+}
+
+}  // namespace vstcal

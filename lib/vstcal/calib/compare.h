@@ -1,0 +1,30 @@
+// How far apart two cameras are: intrinsic differences, pose differences and what they mean in
+// pixels (used to compare an estimate with ground truth or two solvers with each other).
+#pragma once
+
+#include <optional>
+
+#include "vstcal/calib/calibrated_camera.h"
+
+namespace vstcal {
+
+struct CameraComparison {
+  Eigen::Matrix3d K_difference;       // b.K − a.K, px
+  double fx_relative = 0;             // (b.fx − a.fx) / a.fx
+  std::optional<double> rotation_deg;  // angle of b.R · a.Rᵀ (both posed)
+  std::optional<double> centre_distance;  // distance between camera centres, length unit
+  // Pixel disagreement over a 9×9 grid of a's image at `depth` in front of a: each grid pixel is
+  // unprojected by a to a world point at that depth, then projected by b.
+  double depth = 0;
+  double rms_px = 0;
+  double max_px = 0;
+  size_t n_points = 0;
+};
+
+// `depth` defaults to the depth of the world origin in a's camera frame when both cameras are
+// posed (a volume calibration), else 1000 length units. Throws InputError when the cameras
+// differ in image size or length unit.
+CameraComparison CompareCameras(const CalibratedCamera& a, const CalibratedCamera& b,
+                                std::optional<double> depth = std::nullopt);
+
+}  // namespace vstcal

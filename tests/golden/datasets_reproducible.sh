@@ -1,0 +1,16 @@
+#!/usr/bin/env bash
+# Regenerates the shipped datasets into a temporary directory and compares every byte.
+set -euo pipefail
+root=$1
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+"$root/scripts/make-datasets" "$tmp" 2>/dev/null
+status=0
+for f in seed000/clean.json seed000/clean.truth.json seed000/noisy.json seed000/noisy.truth.json \
+         zedmini/clean.json zedmini/clean.truth.json zedmini/noisy.json zedmini/noisy.truth.json; do
+  if ! cmp -s "$tmp/$f" "$root/datasets/$f"; then
+    echo "datasets/$f differs from what scripts/make-datasets writes" >&2
+    status=1
+  fi
+done
+exit $status

@@ -1,0 +1,114 @@
+// Readers and writers: exact round trips, and the library-level checks that are not about a
+// single malformed field (those are covered by tests/cli).
+#include <gtest/gtest.h>
+
+#include "vstcal/capture/synthetic_volume.h"
+#include "vstcal/core/error.h"
+#include "vstcal/io/camera_io.h"
+#include "vstcal/io/correspondences_io.h"
+
+namespace vstcal {
+namespace {
+
+CalibratedCamera SampleCamera() {
+  Eigen::Matrix3d K;
+  K << 1234.5678901234567, -0.123456789, 640.1, 0, 1230.000000001, 359.9, 0, 0, 1;
+  const double d[5] = {-0.1, 0.01, 1e-9, -2.5e-12, 3e-5};  // tiny values must survive
+  CalibratedCamera c;
+  c.name = "left";
+  c.camera = Camera::FromK(K, ImageSize{1280, 720}, RadialTangentialModel{}, d);
+  c.method = "dlt";
+  c.camera_from_world = Rigid3d::FromRotvec(Eigen::Vector3d(0.1, -0.2, 0.3), Eigen::Vector3d(10.5, -20.25, 3000.125));
+  return c;
+}
+
+io::Provenance TestProvenance() { return io::Provenance{"io_test", {"--flag", "value"}, 7}; }
+
+TEST(CameraIo, RoundTripIsExact) {
+  const CalibratedCamera c = SampleCamera();
+  const std::string text = io::DumpJson(io::CameraToJson(c, TestProvenance()));
+  const CalibratedCamera back = io::CameraFromJson(io::JsonDocument::Parse(text, "mem.json"));
+  EXPECT_EQ(back.camera.params, c.camera.params);
+  EXPECT_EQ(LensModelName(back.camera.model), "radial-tangential");
+  EXPECT_EQ(back.camera.image_size, c.camera.image_size);
+  EXPECT_EQ(back.name, "left");
+  EXPECT_EQ(back.method, "dlt");
+  // R is re-orthonormalized on read: equal to rounding, not bit for bit.
+  EXPECT_LT((back.camera_from_world->R - c.camera_from_world->R).norm(), 1e-15);
+  EXPECT_EQ(back.camera_from_world->t, c.camera_from_world->t);
+  // Written again, the file is the same bytes.
+  CalibratedCamera again = back;
+  again.camera_from_world->R = c.camera_from_world->R;
+  again.P.reset();
+  EXPECT_EQ(io::DumpJson(io::CameraToJson(again, TestProvenance())), text);
+}
+
+TEST(CameraIo, WritesProvenanceAndEq5Intrinsics) {
+  const io::OrderedJson j = io::CameraToJson(SampleCamera(), TestProvenance());
+  EXPECT_EQ(j["format"], "vstcal/camera@1");
+  EXPECT_EQ(j["provenance"]["tool"], "io_test");
+  EXPECT_EQ(j["provenance"]["seed"], 7);
+  EXPECT_EQ(j["provenance"]["args"][1], "value");
+  EXPECT_EQ(j.items().begin().key(), "format");
+  std::string last;
+  for (const auto& item : j.items()) last = item.key();
+  EXPECT_EQ(last, "provenance");
+  const double theta = j["intrinsics"]["skew_angle_deg"];
+  EXPECT_NEAR(theta, RadToDeg(std::atan2(1234.5678901234567, 0.123456789)), 1e-12);
+  EXPECT_NEAR(j["P"][2][0].get<double>() * j["P"][2][0].get<double>() + j["P"][2][1].get<double>() * j["P"][2][1].get<double>() +
+                  j["P"][2][2].get<double>() * j["P"][2][2].get<double>(),
+              1.0, 1e-15);
+}
+
+TEST(CameraIo, RedundantFieldsMustAgreeWithK) {
+  io::OrderedJson j = io::CameraToJson(SampleCamera(), TestProvenance());
+  j["intrinsics"]["fu"] = 1300.0;
+  try {
+    io::CameraFromJson(io::JsonDocument::Parse(j.dump(), "cam.json"));
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("cam.json: intrinsics: disagrees with K"), std::string::npos) << e.what();
+  }
+  j = io::CameraToJson(SampleCamera(), TestProvenance());
+  j["P"][0][3] = j["P"][0][3].get<double>() * (1 + 1e-5);
+  EXPECT_THROW(io::CameraFromJson(io::JsonDocument::Parse(j.dump(), "cam.json")), InputError);
+  j = io::CameraToJson(SampleCamera(), TestProvenance());
+  j["camera_from_world"]["R"][0][0] = 2.0;
+  EXPECT_THROW(io::CameraFromJson(io::JsonDocument::Parse(j.dump(), "cam.json")), InputError);
+  j = io::CameraToJson(SampleCamera(), TestProvenance());
+  j["distortion"]["model"] = "fisheye";
+  try {
+    io::CameraFromJson(io::JsonDocument::Parse(j.dump(), "cam.json"));
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("\"none\", \"radial-tangential\""), std::string::npos) << e.what();
+  }
+}
+
+TEST(CorrespondencesIo, RoundTripIsExact) {
+  VolumeSpec spec;
+  spec.noise_px = 0.3;
+  spec.camera_name = "right";
+  Eigen::Matrix3d K;
+  K << 1500, 0, 639.5, 0, 1500, 511.5, 0, 0, 1;
+  const auto v = SynthesizeVolume(Camera::FromK(K, ImageSize{1280, 1024}), spec, Seed000TestPoints(spec));
+  const std::string text = io::DumpJson(io::CorrespondencesToJson(v.correspondences, TestProvenance()));
+  const Correspondences back = io::CorrespondencesFromJson(io::JsonDocument::Parse(text, "c.json"));
+  EXPECT_EQ(back.camera, "right");
+  ASSERT_EQ(back.views.size(), v.correspondences.views.size());
+  for (size_t i = 0; i < back.views.size(); ++i) {
+    EXPECT_EQ(back.views[i].name, v.correspondences.views[i].name);
+    EXPECT_EQ(back.views[i].plane_offset, v.correspondences.views[i].plane_offset);
+    ASSERT_EQ(back.views[i].observations.size(), v.correspondences.views[i].observations.size());
+    for (size_t k = 0; k < back.views[i].observations.size(); ++k) {
+      EXPECT_EQ(back.views[i].observations[k].point, v.correspondences.views[i].observations[k].point);
+      EXPECT_EQ(back.views[i].observations[k].pixel, v.correspondences.views[i].observations[k].pixel);
+    }
+  }
+  ASSERT_EQ(back.test_points.size(), 5u);
+  EXPECT_EQ(back.test_points[3].pixel, v.correspondences.test_points[3].pixel);
+  EXPECT_EQ(io::DumpJson(io::CorrespondencesToJson(back, TestProvenance())), text);
+}
+
+}  // namespace
+}  // namespace vstcal
