@@ -158,6 +158,24 @@ TEST(Dlt, RefusesNonFinite) {
   auto scene = RandomVolumeScene(50, 0.0, 1);
   scene.observations[7].point.y() = NAN;
   EXPECT_EQ(SolveDlt(scene.observations).status, DltStatus::kNonFinite);
+  // Finite, but the squared spread overflows: say so instead of "coincide".
+  auto huge = RandomVolumeScene(50, 0.0, 1);
+  for (auto& o : huge.observations) o.point *= 1e160;
+  const DltResult r = SolveDlt(huge.observations);
+  EXPECT_EQ(r.status, DltStatus::kNonFinite);
+  EXPECT_NE(r.message.find("another length unit"), std::string::npos) << r.message;
+  auto tiny = RandomVolumeScene(50, 0.0, 1);
+  for (auto& o : tiny.observations) o.point *= 1e-200;  // underflow: the spread squares to 0
+  EXPECT_EQ(SolveDlt(tiny.observations).status, DltStatus::kNonFinite);
+}
+
+// Depth exactly 0 (a point in the camera's principal plane) counts as not in front.
+TEST(Dlt, PointInThePrincipalPlaneIsRefused) {
+  auto scene = RandomVolumeScene(60, 0.0, 4);
+  const Rigid3d world_from_camera = scene.camera_from_world.inverse();
+  scene.observations[3].point = world_from_camera * Eigen::Vector3d(400, -200, 0);
+  const DltResult r = SolveDlt(scene.observations);
+  EXPECT_EQ(r.status, DltStatus::kPointsBehind) << r.message;
 }
 
 TEST(Dlt, RefusesCoplanarAndNearlyCoplanar) {
@@ -189,7 +207,10 @@ TEST(Dlt, RefusesCollinear) {
   EXPECT_EQ(r.status, DltStatus::kCollinear);
   EXPECT_NE(r.message.find("collinear"), std::string::npos);
   std::vector<Observation> same(10, Observation{Eigen::Vector3d(1, 2, 3), Eigen::Vector2d(100, 100)});
-  EXPECT_EQ(SolveDlt(same).status, DltStatus::kCollinear);
+  const DltResult coincident = SolveDlt(same);
+  EXPECT_EQ(coincident.status, DltStatus::kCoincident);
+  EXPECT_NE(coincident.message.find("the same 3-D point"), std::string::npos);
+  EXPECT_EQ(DltStatusExitCode(coincident.status), ExitCode::kDegenerate);
 }
 
 // Hartley & Zisserman §7.1.3: points on a plane π plus points on a line through the camera
@@ -219,7 +240,7 @@ TEST(Dlt, RefusesPointsBehindTheCamera) {
   const DltResult r = SolveDlt(scene.observations);
   EXPECT_EQ(r.status, DltStatus::kPointsBehind);
   EXPECT_EQ(r.n_behind, 1u);
-  EXPECT_EQ(r.first_behind, 42u);
+  EXPECT_EQ(r.deepest_behind, 42u);
   EXPECT_EQ(DltStatusExitCode(r.status), ExitCode::kBadInput);
 }
 

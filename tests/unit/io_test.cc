@@ -85,6 +85,31 @@ TEST(CameraIo, RedundantFieldsMustAgreeWithK) {
   }
 }
 
+// P's sign is free; its 3×3 block is checked at its own scale; without a pose its intrinsic part
+// must still match K.
+TEST(CameraIo, ProjectionMatrixChecks) {
+  io::OrderedJson j = io::CameraToJson(SampleCamera(), TestProvenance());
+  for (auto& row : j["P"]) {
+    for (auto& v : row) v = -v.get<double>();
+  }
+  const CalibratedCamera negated = io::CameraFromJson(io::JsonDocument::Parse(j.dump(), "cam.json"));
+  EXPECT_GT(negated.P->leftCols<3>().determinant(), 0);
+  j = io::CameraToJson(SampleCamera(), TestProvenance());
+  j["P"][0][0] = j["P"][0][0].get<double>() + 0.5;  // 0.5 px in K R: tiny next to the translation column
+  EXPECT_THROW(io::CameraFromJson(io::JsonDocument::Parse(j.dump(), "cam.json")), InputError);
+  j = io::CameraToJson(SampleCamera(), TestProvenance());
+  j.erase("camera_from_world");
+  EXPECT_NO_THROW(io::CameraFromJson(io::JsonDocument::Parse(j.dump(), "cam.json")));
+  j["K"][0][0] = 1300.0;
+  j.erase("intrinsics");
+  try {
+    io::CameraFromJson(io::JsonDocument::Parse(j.dump(), "cam.json"));
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("cam.json: P: its intrinsic part disagrees with K"), std::string::npos) << e.what();
+  }
+}
+
 TEST(CorrespondencesIo, RoundTripIsExact) {
   VolumeSpec spec;
   spec.noise_px = 0.3;

@@ -5,6 +5,7 @@
 
 #include "common/run_tool.h"
 #include "vstcal/calib/compare.h"
+#include "vstcal/core/error.h"
 #include "vstcal/io/camera_io.h"
 
 int main(int argc, char** argv) {
@@ -17,11 +18,18 @@ int main(int argc, char** argv) {
   std::optional<double> depth;
   app.add_option("REFERENCE", reference, "camera@1 file taken as reference")->required();
   app.add_option("OTHER", other, "camera@1 file compared with it")->required();
-  app.add_option("--depth", depth, "depth of the comparison grid (length unit; default: world origin's depth)");
+  app.add_option("--depth", depth, "depth of the comparison grid (length unit; default: world origin's depth)")
+      ->check(CLI::PositiveNumber);
   return vstcal::tools::RunTool(app, argc, argv, [&] {
     using namespace vstcal;
     const CalibratedCamera a = io::ReadCamera(reference), b = io::ReadCamera(other);
-    const CameraComparison c = CompareCameras(a, b, depth);
+    const CameraComparison c = [&] {
+      try {
+        return CompareCameras(a, b, depth);
+      } catch (const InputError& e) {
+        throw InputError(other + " vs " + reference + ": " + e.what());  // name the files
+      }
+    }();
     const Eigen::Matrix3d Ka = a.camera.K(), Kb = b.camera.K();
     const char* names[5] = {"fx", "fy", "cx", "cy", "skew"};
     const int rows[5] = {0, 1, 0, 1, 0}, cols[5] = {0, 1, 2, 2, 1};

@@ -2,12 +2,14 @@
 #include <iostream>
 
 #include "common/run_tool.h"
+#include "common/validators.h"
 #include "vstcal/calib/dlt_calibration.h"
 #include "vstcal/io/camera_io.h"
 #include "vstcal/io/correspondences_io.h"
 #include "vstcal/io/dlt_io.h"
 #include "vstcal/io/residuals_io.h"
 #include "vstcal/report/fit_summary.h"
+
 
 int main(int argc, char** argv) {
   CLI::App app{
@@ -21,20 +23,21 @@ int main(int argc, char** argv) {
   std::string solver = "normal-equations";
   vstcal::DltOptions options;
   bool quiet = false;
-  app.add_option("CORNERS", input, "vstcal/correspondences@1 file (rig \"volume\")")->required();
-  app.add_option("-o,--output", output, "camera file to write (vstcal/camera@1)")->required();
-  app.add_option("--residuals", residuals, "also write per-point residuals (vstcal/residuals@1)");
+  app.add_option("CORNERS", input, "vstcal/correspondences@1 file (rig \"volume\")")->required()->check(vstcal::tools::kNonEmpty);
+  app.add_option("-o,--output", output, "camera file to write (vstcal/camera@1)")->required()->check(vstcal::tools::kNonEmpty);
+  app.add_option("--residuals", residuals, "also write per-point residuals (vstcal/residuals@1)")
+      ->check(vstcal::tools::kNonEmpty);
   app.add_option("--solver", solver, "normal-equations (fast, default) or svd (2N×12 SVD, reference)")
       ->check(CLI::IsMember({"normal-equations", "svd"}));
   app.add_option("--min-extent-ratio", options.min_extent_ratio,
                  "refuse point clouds thinner than this along a principal axis (coplanar/collinear)")
-      ->check(CLI::PositiveNumber)
+      ->check(vstcal::tools::kPositiveFinite)
       ->capture_default_str();
   app.add_option("--min-conditioning", options.min_conditioning,
-                 "refuse when sigma11/sigma1 of the normalized system is below this")
-      ->check(CLI::PositiveNumber)
+                 "refuse when sigma11/||A||_F of the normalized system is below this (critical configuration)")
+      ->check(vstcal::tools::kPositiveFinite)
       ->capture_default_str();
-  app.add_flag("-q,--quiet", quiet, "print nothing but errors");
+  app.add_flag("-q,--quiet", quiet, "print only warnings and errors");
 
   return vstcal::tools::RunTool(app, argc, argv, [&] {
     using namespace vstcal;

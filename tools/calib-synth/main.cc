@@ -1,8 +1,11 @@
 // calib-synth: synthetic calibration volumes with ground truth (docs/tools/calib-synth.md).
+#include <cmath>
+#include <cstdio>
 #include <iostream>
 #include <optional>
 
 #include "common/run_tool.h"
+#include "common/validators.h"
 #include "vstcal/camera/intrinsics.h"
 #include "vstcal/capture/synthetic_volume.h"
 #include "vstcal/core/error.h"
@@ -12,16 +15,10 @@
 namespace {
 
 using vstcal::InputError;
-
-// "1280x720" → {1280, 720}.
-std::pair<int, int> ParsePair(const std::string& text, const std::string& flag) {
-  int a = 0, b = 0;
-  char x = 0, extra = 0;
-  if (std::sscanf(text.c_str(), "%d%c%d%c", &a, &x, &b, &extra) != 3 || (x != 'x' && x != 'X') || a <= 0 || b <= 0) {
-    throw InputError(flag + ": expected two positive integers as WxH (e.g. 1280x720), got \"" + text + "\"");
-  }
-  return {a, b};
-}
+using vstcal::tools::kFinite;
+using vstcal::tools::kNonEmpty;
+using vstcal::tools::kSeed;
+using vstcal::tools::ParseSize;
 
 struct CameraFlags {
   std::string file, image_size, distortion;
@@ -33,8 +30,13 @@ vstcal::Camera MakeCamera(const CameraFlags& f) {
   using namespace vstcal;
   if (!f.file.empty()) return io::ReadCamera(f.file).camera;
   if (f.image_size.empty()) throw InputError("--image-size: required without --camera (e.g. --image-size 1280x720)");
-  const auto [w, h] = ParsePair(f.image_size, "--image-size");
+  const auto [w, h] = ParseSize(f.image_size, "--image-size", "WxH (e.g. 1280x720)");
   if (f.fx.has_value() == f.hfov_deg.has_value()) throw InputError("--fx/--hfov-deg: give exactly one of them");
+  if (f.hfov_deg && !(*f.hfov_deg > 0 && *f.hfov_deg < 180)) {
+    char got[40];
+    std::snprintf(got, sizeof got, "%.6g", *f.hfov_deg);
+    throw InputError(std::string("--hfov-deg: must lie in (0, 180) degrees for a pinhole camera, got ") + got);
+  }
   if (!(f.skew_deg > 0 && f.skew_deg < 180)) throw InputError("--skew-deg: must lie in (0, 180); 90 means no skew");
   const double fx = f.fx ? *f.fx : FocalFromHorizontalFov(w, DegToRad(*f.hfov_deg));
   if (!(fx > 0) || !(f.fy.value_or(fx) > 0)) throw InputError("--fx/--fy/--hfov-deg: focal lengths must be positive");
@@ -47,11 +49,13 @@ vstcal::Camera MakeCamera(const CameraFlags& f) {
   if (!f.distortion.empty()) {
     model = RadialTangentialModel{};
     for (const std::string& item : CLI::detail::split(f.distortion, ',')) {
-      try {
-        coefficients.push_back(std::stod(item));
-      } catch (const std::exception&) {
-        throw InputError("--distortion: \"" + item + "\" is not a number; give k1,k2,p1,p2,k3");
+      // The whole item must be one finite number: std::stod alone would take "0.1x" as 0.1.
+      char* end = nullptr;
+      const double v = std::strtod(item.c_str(), &end);
+      if (item.empty() || end != item.c_str() + item.size() || !std::isfinite(v)) {
+        throw InputError("--distortion: \"" + item + "\" is not a finite number; give k1,k2,p1,p2,k3");
       }
+      coefficients.push_back(v);
     }
     if (coefficients.size() != 5) throw InputError("--distortion: expected 5 numbers k1,k2,p1,p2,k3");
   }
@@ -72,37 +76,48 @@ int main(int argc, char** argv) {
   vstcal::VolumeSpec spec;
   std::string unit = "mm";
   bool no_test_points = false;
-  app.add_option("-o,--output", output, "correspondences file to write")->required();
-  app.add_option("--truth", truth, "ground-truth camera file (default: OUTPUT with .truth.json)");
-  auto* camera_file = app.add_option("--camera", cam.file, "take K, distortion and image size from a camera@1 file");
-  for (auto* o : {app.add_option("--image-size", cam.image_size, "WxH in px, e.g. 1280x720"),
-                  app.add_option("--fx", cam.fx, "K's fx, px"), app.add_option("--fy", cam.fy, "K's fy, px (default fx)"),
-                  app.add_option("--hfov-deg", cam.hfov_deg, "horizontal field of view instead of --fx"),
-                  app.add_option("--cx", cam.cx, "principal point u, px (default image centre)"),
-                  app.add_option("--cy", cam.cy, "principal point v, px (default image centre)"),
-                  app.add_option("--skew-deg", cam.skew_deg, "angle between pixel axes, 90 = no skew")->capture_default_str(),
-                  app.add_option("--distortion", cam.distortion, "k1,k2,p1,p2,k3 (radial-tangential)")}) {
+  app.add_option("-o,--output", output, "correspondences file to write")->required()->check(kNonEmpty);
+  app.add_option("--truth", truth, "ground-truth camera file (default: OUTPUT with .truth.json)")->check(kNonEmpty);
+  auto* camera_file = app.add_option("--camera", cam.file, "take K, distortion and image size from a camera@1 file")
+                          ->check(kNonEmpty);
+  for (auto* o : {app.add_option("--image-size", cam.image_size, "WxH in px, e.g. 1280x720")->check(kNonEmpty),
+                  app.add_option("--fx", cam.fx, "K's fx, px")->check(kFinite),
+                  app.add_option("--fy", cam.fy, "K's fy, px (default fx)")->check(kFinite),
+                  app.add_option("--hfov-deg", cam.hfov_deg, "horizontal field of view instead of --fx")
+                      ->check(kFinite),
+                  app.add_option("--cx", cam.cx, "principal point u, px (default image centre)")->check(kFinite),
+                  app.add_option("--cy", cam.cy, "principal point v, px (default image centre)")->check(kFinite),
+                  app.add_option("--skew-deg", cam.skew_deg, "angle between pixel axes, 90 = no skew")
+                      ->check(kFinite)
+                      ->capture_default_str(),
+                  app.add_option("--distortion", cam.distortion, "k1,k2,p1,p2,k3 (radial-tangential)")
+                      ->check(kNonEmpty)}) {
     o->excludes(camera_file);
   }
   app.add_option("--grid", grid, "template corners COLSxROWS")->capture_default_str();
-  app.add_option("--spacing", spec.spacing, "corner spacing")->capture_default_str();
-  app.add_option("--near", spec.near, "first template offset (world Z)")->capture_default_str();
-  app.add_option("--far", spec.far, "last template offset")->capture_default_str();
-  app.add_option("--interval", spec.interval, "step between template positions")->capture_default_str();
-  app.add_option("--camera-distance", spec.camera_distance, "camera to near plane at zero tilt")->capture_default_str();
-  app.add_option("--tilt-deg", spec.tilt_deg, "optical axis vs template normal")->capture_default_str();
-  app.add_option("--tilt-direction-deg", spec.tilt_direction_deg, "0 = camera moves towards +X, 90 = +Y")
+  app.add_option("--spacing", spec.spacing, "corner spacing")->check(kFinite)->capture_default_str();
+  app.add_option("--near", spec.near, "first template offset (world Z)")->check(kFinite)->capture_default_str();
+  app.add_option("--far", spec.far, "last template offset")->check(kFinite)->capture_default_str();
+  app.add_option("--interval", spec.interval, "step between template positions")->check(kFinite)->capture_default_str();
+  app.add_option("--camera-distance", spec.camera_distance, "camera to near plane at zero tilt")
+      ->check(kFinite)
       ->capture_default_str();
-  app.add_option("--roll-deg", spec.roll_deg, "camera roll about its optical axis")->capture_default_str();
-  app.add_option("--noise", spec.noise_px, "pixel noise sigma, px")->capture_default_str();
-  app.add_option("--seed", spec.seed, "noise seed")->capture_default_str();
+  app.add_option("--tilt-deg", spec.tilt_deg, "optical axis vs template normal")->check(kFinite)->capture_default_str();
+  app.add_option("--tilt-direction-deg", spec.tilt_direction_deg, "0 = camera moves towards +X, 90 = +Y")
+      ->check(kFinite)
+      ->capture_default_str();
+  app.add_option("--roll-deg", spec.roll_deg, "camera roll about its optical axis")
+      ->check(kFinite)
+      ->capture_default_str();
+  app.add_option("--noise", spec.noise_px, "pixel noise sigma, px")->check(kFinite)->capture_default_str();
+  app.add_option("--seed", spec.seed, "noise seed")->check(kSeed)->capture_default_str();
   app.add_option("--length-unit", unit, "mm, cm or m")->check(CLI::IsMember({"mm", "cm", "m"}))->capture_default_str();
   app.add_option("--camera-name", spec.camera_name, "the \"camera\" field, e.g. left");
   app.add_flag("--no-test-points", no_test_points, "omit seed 000's five test points");
 
   return vstcal::tools::RunTool(app, argc, argv, [&] {
     using namespace vstcal;
-    std::tie(spec.grid_cols, spec.grid_rows) = ParsePair(grid, "--grid");
+    std::tie(spec.grid_cols, spec.grid_rows) = ParseSize(grid, "--grid", "COLSxROWS (e.g. 13x9)");
     spec.length_unit = *LengthUnitFromName(unit);
     const Camera camera = MakeCamera(cam);
     const SyntheticVolume volume =

@@ -1,13 +1,44 @@
 #include "common/run_tool.h"
 
+#include <cstdio>
 #include <iostream>
+#include <string_view>
 
 #include "vstcal/core/error.h"
+#include "vstcal/core/version.h"
 
 namespace vstcal::tools {
+namespace {
+
+// Messages quote file names and values from the input (a view name, a "format" string), which may
+// hold a newline; escape control characters so that a message is always exactly one line.
+std::string OneLine(std::string_view message) {
+  std::string out;
+  out.reserve(message.size());
+  for (const char c : message) {
+    const auto u = static_cast<unsigned char>(c);
+    if (c == '\n') {
+      out += "\\n";
+    } else if (c == '\r') {
+      out += "\\r";
+    } else if (c == '\t') {
+      out += "\\t";
+    } else if (u < 0x20 || u == 0x7f) {
+      char buf[8];
+      std::snprintf(buf, sizeof buf, "\\x%02x", u);
+      out += buf;
+    } else {
+      out += c;
+    }
+  }
+  return out;
+}
+
+}  // namespace
 
 int RunTool(CLI::App& app, int argc, char** argv, const std::function<int()>& body) {
   const std::string tool = app.get_name();
+  app.set_version_flag("--version", tool + " " + kVersion, "print the version and exit");
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp&) {
@@ -17,16 +48,20 @@ int RunTool(CLI::App& app, int argc, char** argv, const std::function<int()>& bo
     std::cout << e.what() << "\n";
     return 0;
   } catch (const CLI::ParseError& e) {
-    std::cerr << tool << ": error: " << e.what() << "; see " << tool << " --help\n";
+    std::cerr << tool << ": error: " << OneLine(e.what()) << "; see " << tool << " --help\n";
     return static_cast<int>(ExitCode::kBadInput);
   }
   try {
     return body();
   } catch (const Error& e) {
-    std::cerr << tool << ": error: " << e.what() << "\n";
+    if (e.code() == ExitCode::kInternal) {
+      std::cerr << tool << ": internal error: " << OneLine(e.what()) << " (please report this)\n";
+    } else {
+      std::cerr << tool << ": error: " << OneLine(e.what()) << "\n";
+    }
     return static_cast<int>(e.code());
   } catch (const std::exception& e) {
-    std::cerr << tool << ": internal error: " << e.what() << " (please report this)\n";
+    std::cerr << tool << ": internal error: " << OneLine(e.what()) << " (please report this)\n";
     return static_cast<int>(ExitCode::kInternal);
   }
 }

@@ -8,10 +8,13 @@ namespace vstcal {
 
 CameraComparison CompareCameras(const CalibratedCamera& a, const CalibratedCamera& b, std::optional<double> depth) {
   if (!(a.camera.image_size == b.camera.image_size)) {
-    throw InputError("the cameras have different image sizes; compare cameras of the same sensor");
+    throw InputError("image_size: " + std::to_string(a.camera.image_size.width) + "x" +
+                     std::to_string(a.camera.image_size.height) + " vs " + std::to_string(b.camera.image_size.width) +
+                     "x" + std::to_string(b.camera.image_size.height) + "; compare cameras of the same sensor");
   }
   if (a.length_unit != b.length_unit) {
-    throw InputError("the cameras use different length units; convert one of them first");
+    throw InputError("length_unit: \"" + std::string(LengthUnitName(a.length_unit)) + "\" vs \"" +
+                     std::string(LengthUnitName(b.length_unit)) + "\"; convert one of them first");
   }
   CameraComparison out;
   out.K_difference = b.camera.K() - a.camera.K();

@@ -237,6 +237,29 @@ DltResult Fail(DltResult r, DltStatus status, std::string message) {
   return r;
 }
 
+// Normalization fails when every point (or pixel) is the same, or when the coordinates are so large
+// or small that their squared spread overflows or underflows double precision; say which.
+DltResult FailNormalization(DltResult r, std::span<const Observation> obs) {
+  bool same_point = true, same_pixel = true;
+  double largest = 0;
+  for (const Observation& o : obs) {
+    same_point = same_point && o.point == obs[0].point;
+    same_pixel = same_pixel && o.pixel == obs[0].pixel;
+    largest = std::max({largest, o.point.cwiseAbs().maxCoeff(), o.pixel.cwiseAbs().maxCoeff()});
+  }
+  if (same_point || same_pixel) {
+    return Fail(r, DltStatus::kCoincident,
+                std::string(same_point ? "all points are the same 3-D point" : "all points project to the same pixel") +
+                    "; DLT needs points spread over a volume (docs/math/dlt.md#degeneracy)");
+  }
+  char buf[200];
+  std::snprintf(buf, sizeof buf,
+                "the coordinates' spread cannot be squared in double precision (largest |coordinate| %.3g); express "
+                "them in another length unit",
+                largest);
+  return Fail(r, DltStatus::kNonFinite, buf);
+}
+
 // Below this relative thickness a cloud is coplanar to the precision of the moments (the
 // smallest eigenvalue of M₀'s 3×3 carries absolute rounding ~1e-16·λ_max, so √ of it ~1e-8).
 constexpr double kCoplanarAtRounding = 1e-6;
@@ -297,9 +320,7 @@ DltResult SolveDlt(std::span<const Observation> obs, const DltOptions& options) 
   } else {
     moments = MomentsOnePass(obs, &n);
   }
-  if (!n.valid) {
-    return Fail(r, DltStatus::kCollinear, "all points (or all pixels) coincide; DLT needs points spread over a volume");
-  }
+  if (!n.valid) return FailNormalization(r, obs);
   if (const DltStatus s = CheckExtents(moments.M0, obs.size(), options, &r); s != DltStatus::kOk) {
     r.status = s;
     return r;
@@ -335,9 +356,9 @@ DltResult SolveDlt(std::span<const Observation> obs, const DltOptions& options) 
   r.conditioning = r.sigma_11 / r.frobenius;
   if (r.conditioning < options.min_conditioning) {
     return Fail(r, DltStatus::kIllConditioned,
-                Format("the DLT system is ill-conditioned (sigma11/|A| = %.3g < %.3g): the points and the camera are "
-                       "in a critical configuration; add points at other depths and positions "
-                       "(docs/math/dlt.md#degeneracy)",
+                Format("the DLT system is ill-conditioned (sigma11/|A|_F = %.3g < %.3g): the points and the camera "
+                       "are in a critical configuration, or the volume is too thin; add points at other depths and "
+                       "positions (docs/math/dlt.md#degeneracy)",
                        r.conditioning, options.min_conditioning));
   }
 
@@ -346,17 +367,24 @@ DltResult SolveDlt(std::span<const Observation> obs, const DltOptions& options) 
   Matrix34d P = NormalizeProjectionScale(Denormalize(m, n));
   const Eigen::Vector3d depth_dir = P.block<1, 3>(2, 0).transpose();
   const double depth_offset = P(2, 3);
-  size_t not_positive = 0;
-  for (const Observation& o : obs) not_positive += !(depth_dir.dot(o.point) + depth_offset > 0);
-  if (2 * not_positive > obs.size()) P = -P;
+  size_t positive = 0, negative = 0;
+  for (const Observation& o : obs) {
+    const double depth = depth_dir.dot(o.point) + depth_offset;
+    positive += depth > 0;
+    negative += depth < 0;
+  }
+  if (negative > positive) {
+    P = -P;
+    std::swap(positive, negative);
+  }
   r.P = P;
-  if (not_positive != 0 && not_positive != obs.size()) {
+  if (positive != obs.size()) {  // some points at or behind the camera plane
     double deepest = INFINITY;
     for (size_t i = 0; i < obs.size(); ++i) {
       const double depth = P.block<1, 3>(2, 0).dot(obs[i].point.transpose()) + P(2, 3);
       if (depth > 0) continue;
       ++r.n_behind;
-      if (depth < deepest) deepest = depth, r.first_behind = i;
+      if (depth < deepest) deepest = depth, r.deepest_behind = i;
     }
     return Fail(r, DltStatus::kPointsBehind,
                 std::to_string(r.n_behind) + " of " + std::to_string(obs.size()) +
@@ -373,6 +401,7 @@ DltResult SolveDlt(std::span<const Observation> obs, const DltOptions& options) 
 ExitCode DltStatusExitCode(DltStatus status) {
   switch (status) {
     case DltStatus::kOk: return ExitCode::kOk;
+    case DltStatus::kCoincident:
     case DltStatus::kCollinear:
     case DltStatus::kCoplanar:
     case DltStatus::kIllConditioned: return ExitCode::kDegenerate;

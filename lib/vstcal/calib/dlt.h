@@ -42,7 +42,8 @@ struct DltOptions {
 enum class DltStatus {
   kOk,
   kTooFewPoints,    // fewer than 6 correspondences
-  kNonFinite,       // NaN or infinite coordinates
+  kNonFinite,       // NaN or infinite coordinates, or so large that their squares overflow
+  kCoincident,      // all points (or all pixels) at one place
   kCollinear,       // points on (or near) a line
   kCoplanar,        // points on (or near) a plane
   kIllConditioned,  // the normalized system has a multi-dimensional near-null space
@@ -65,8 +66,8 @@ struct DltResult {
   double conditioning = 0;   // σ₁₁ / ‖A‖_F (NaN when σ₁₁ was not computed)
   std::array<double, 3> extents{};  // RMS extent of the normalized points along principal axes, descending
   size_t n_points = 0;
-  size_t n_behind = 0;        // points with negative depth under P
-  size_t first_behind = 0;    // index of the deepest point behind, when n_behind > 0
+  size_t n_behind = 0;        // points with depth ≤ 0 under P
+  size_t deepest_behind = 0;  // index of the deepest point behind the camera, when n_behind > 0
 };
 
 // Solves P from the observations (points in one world frame). Never throws on bad geometry: the

@@ -25,10 +25,10 @@ DltCalibration CalibrateDlt(const Correspondences& c, const DltOptions& options)
   const std::vector<Observation> obs = AllObservations(c);
   out.dlt = SolveDlt(obs, options);
   if (out.dlt.status == DltStatus::kPointsBehind) {
-    const Observation& o = obs[out.dlt.first_behind];
+    const Observation& o = obs[out.dlt.deepest_behind];
     char buf[200];
     std::snprintf(buf, sizeof buf, " (e.g. %s at (%.6g, %.6g, %.6g), depth %.4g %s)",
-                  Locate(c, out.dlt.first_behind).c_str(), o.point.x(), o.point.y(), o.point.z(),
+                  Locate(c, out.dlt.deepest_behind).c_str(), o.point.x(), o.point.y(), o.point.z(),
                   out.dlt.P.row(2).dot(o.point.homogeneous()), std::string(LengthUnitName(c.length_unit)).c_str());
     out.dlt.message += buf;
   }

@@ -111,10 +111,11 @@ SyntheticVolume SynthesizeVolume(const Camera& camera, const VolumeSpec& spec, s
   for (size_t i = 0; i < test_points.size(); ++i) {
     TestPoint& t = test_points[i];
     const auto px = camera.Project(out.camera_from_world * t.point_in_world);
-    Require(px && camera.InImage(*px), "test point \"" + t.name +
-                                           "\" is not visible (behind the camera or outside the image); move it or "
-                                           "widen the field of view");
     const auto noise = test_rng.Normal2(i, 0);
+    const bool visible = px && camera.InImage(*px + spec.noise_px * Eigen::Vector2d(noise[0], noise[1]));
+    Require(visible, "test point \"" + t.name +
+                         "\" is not visible (behind the camera or outside the image); widen the field of view, move "
+                         "the camera back, or use --no-test-points");
     t.pixel = *px + spec.noise_px * Eigen::Vector2d(noise[0], noise[1]);
   }
   c.test_points = std::move(test_points);

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "vstcal/calib/decompose.h"
 #include "vstcal/camera/intrinsics.h"
 #include "vstcal/io/correspondences_io.h"
 #include "vstcal/io/format_check.h"
@@ -90,14 +91,26 @@ CalibratedCamera CameraFromJson(const JsonDocument& doc) {
   if (auto pose = root.find("camera_from_world")) c.camera_from_world = ReadRigid(*pose);
   if (auto P = root.find("P")) {
     Matrix34d m = P->Matrix<3, 4>();
-    if (!(m.row(2).head<3>().norm() > 0)) P->Fail("the third row's first three entries are zero", "write a valid projection matrix");
-    m = NormalizeProjectionScale(m);
-    if (c.camera_from_world) {
-      const Matrix34d expected = ProjectionMatrix(c.camera.K(), *c.camera_from_world);
-      // The sign of a stored P is free; compare up to it.
-      const double scale = expected.cwiseAbs().maxCoeff();
-      const double diff = std::min((m - expected).cwiseAbs().maxCoeff(), (m + expected).cwiseAbs().maxCoeff());
-      if (diff > kAgreement * scale) P->Fail("disagrees with K [R | t]", "delete \"P\" or make it match K and camera_from_world");
+    const double det = m.leftCols<3>().determinant();
+    if (!(std::abs(det) > 0) || !(m.row(2).head<3>().norm() > 0)) {
+      P->Fail("P(:, 0:3) is singular", "write a valid projection matrix K [R | t]");
+    }
+    // The overall sign of a stored P is free: the canonical one has det P(:, 0:3) > 0.
+    m = NormalizeProjectionScale(m, det > 0 ? 1.0 : -1.0);
+    const auto decomposed = DecomposeProjection(m);
+    const Matrix34d expected = c.camera_from_world ? ProjectionMatrix(c.camera.K(), *c.camera_from_world)
+                                                   : decomposed ? ProjectionMatrix(decomposed->K, decomposed->camera_from_world)
+                                                                : m;
+    // The 3×3 block (≈ K R, px) and the last column (≈ K t, px·length) have different scales:
+    // compare each against its own.
+    const double block_scale = expected.leftCols<3>().cwiseAbs().maxCoeff();
+    const double column_scale = std::max(block_scale, expected.col(3).cwiseAbs().maxCoeff());
+    if ((m.leftCols<3>() - expected.leftCols<3>()).cwiseAbs().maxCoeff() > kAgreement * block_scale ||
+        (m.col(3) - expected.col(3)).cwiseAbs().maxCoeff() > kAgreement * column_scale) {
+      P->Fail("disagrees with K [R | t]", "delete \"P\" or make it match K and camera_from_world");
+    }
+    if (!c.camera_from_world && decomposed && !(decomposed->K - c.camera.K()).isZero(kAgreement * block_scale)) {
+      P->Fail("its intrinsic part disagrees with K", "delete \"P\" or make it match K");
     }
     c.P = m;
   }

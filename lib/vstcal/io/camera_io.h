@@ -11,7 +11,8 @@
 namespace vstcal::io {
 
 // Reads and validates a camera file. K is authoritative; `intrinsics` and `P`, when present, must
-// agree with it (relative 1e-6); R must be a rotation to 1e-6 (it is then re-orthonormalized).
+// agree with it (relative 1e-6; P's 3×3 block and last column each against their own scale, up
+// to P's free sign); R must be a rotation to 1e-6 (it is then re-orthonormalized).
 CalibratedCamera ReadCamera(const std::filesystem::path& path);
 CalibratedCamera CameraFromJson(const JsonDocument& doc);
 

@@ -11,6 +11,15 @@ constexpr std::string_view kFormat = "vstcal/correspondences@1";
 
 std::string_view RigName(Rig rig) { return rig == Rig::kVolume ? "volume" : "planar-views"; }
 
+// A detected pixel lies on the sensor: u ∈ [−0.5, W − 0.5], v ∈ [−0.5, H − 0.5].
+void CheckInImage(const JsonNode& node, const Eigen::Vector2d& px, const ImageSize& s, std::string_view fix) {
+  if (px.x() < -0.5 || px.y() < -0.5 || px.x() > s.width - 0.5 || px.y() > s.height - 0.5) {
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "pixel (%.6g, %.6g) lies outside the %d×%d image", px.x(), px.y(), s.width, s.height);
+    node.Fail(buf, fix);
+  }
+}
+
 Observation ReadPoint(const JsonNode& node, const Correspondences& c) {
   if (!node.json().is_array()) node.Fail("expected [X, Y, Z, u, v], got a non-array", "write each point as [X, Y, Z, u, v]");
   if (node.json().size() != 5) {
@@ -20,13 +29,7 @@ Observation ReadPoint(const JsonNode& node, const Correspondences& c) {
   Observation o;
   for (int i = 0; i < 3; ++i) o.point(i) = node.at(i).Number();
   for (int i = 0; i < 2; ++i) o.pixel(i) = node.at(3 + i).Number();
-  const ImageSize& s = c.image_size;
-  if (o.pixel.x() < -0.5 || o.pixel.y() < -0.5 || o.pixel.x() > s.width - 0.5 || o.pixel.y() > s.height - 0.5) {
-    char buf[160];
-    std::snprintf(buf, sizeof buf, "pixel (%.6g, %.6g) lies outside the %d×%d image", o.pixel.x(), o.pixel.y(), s.width,
-                  s.height);
-    node.Fail(buf, "check image_size and that the columns are X, Y, Z, u, v");
-  }
+  CheckInImage(node, o.pixel, c.image_size, "check image_size and that the columns are X, Y, Z, u, v");
   if (c.rig == Rig::kPlanarViews && o.point.z() != 0.0) {
     node.at(2).Fail("planar-views points lie on their board (Z = 0), got Z = " + node.at(2).json().dump(),
                     "use \"rig\": \"volume\" for 3-D points in one world frame");
@@ -84,7 +87,10 @@ Correspondences CorrespondencesFromJson(const JsonDocument& doc) {
       tp.name = t.at("name").String();
       if (!test_names.insert(tp.name).second) t.at("name").Fail("duplicate test point name \"" + tp.name + "\"", "give every test point a unique name");
       tp.point_in_world = t.at("world").Vector<3>();
-      if (auto px = t.find("pixel")) tp.pixel = px->Vector<2>();
+      if (auto px = t.find("pixel")) {
+        tp.pixel = px->Vector<2>();
+        CheckInImage(*px, *tp.pixel, c.image_size, "check image_size, or omit \"pixel\" if the point was not seen");
+      }
       c.test_points.push_back(std::move(tp));
     }
   }

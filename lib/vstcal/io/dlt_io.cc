@@ -13,11 +13,13 @@ OrderedJson DltDiagnosticsToJson(const DltCalibration& cal, const DltOptions& op
   j["normalized_system"] = {{"sigma_11", d.sigma_11}, {"sigma_12", d.sigma_12}, {"frobenius_norm", d.frobenius},
                             {"conditioning", d.conditioning}};
   j["normalized_extents"] = d.extents;
-  j["thresholds"] = {{"min_extent_ratio", options.min_extent_ratio}, {"min_conditioning", options.min_conditioning}};
+  j["thresholds"] = {{"min_extent_ratio", options.min_extent_ratio},
+                     {"warn_extent_ratio", options.warn_extent_ratio},
+                     {"min_conditioning", options.min_conditioning}};
   if (cal.eq13) {
     const SkewForm& f = cal.eq13->intrinsics;
     j["seed001_eq13"] = {{"rho", cal.eq13->rho}, {"fu", f.fu}, {"fv", f.fv}, {"u0", f.u0}, {"v0", f.v0},
-                         {"theta_deg", RadToDeg(f.theta_rad)}};
+                         {"skew_angle_deg", RadToDeg(f.theta_rad)}};
   }
   return j;
 }

@@ -1,5 +1,6 @@
 #include "vstcal/io/json_reader.h"
 
+#include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstring>
@@ -24,17 +25,52 @@ std::pair<size_t, size_t> LineAndColumn(const std::string& text, size_t byte) {
   return {line, column};
 }
 
-// nlohmann reports the byte after the offending token; walk back to the token's start.
-std::string TokenNear(const std::string& text, size_t byte) {
-  size_t end = std::min(byte, text.size());
-  size_t begin = end;
-  while (begin > 0 && (std::isalnum(static_cast<unsigned char>(text[begin - 1])) || text[begin - 1] == '-' ||
-                       text[begin - 1] == '+' || text[begin - 1] == '.')) {
-    --begin;
-  }
-  while (end < text.size() && std::isalnum(static_cast<unsigned char>(text[end]))) ++end;
-  return text.substr(begin, end - begin);
+bool IsTokenChar(char c) {
+  return std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '+' || c == '.';
 }
+
+// The token around byte `last` (the last byte nlohmann read, its reported position minus one):
+// walks back to the token's start and forward to its end. Returns the token and its first byte.
+std::pair<std::string, size_t> TokenNear(const std::string& text, size_t last) {
+  if (last >= text.size()) return {"", text.size()};
+  size_t begin = last, end = last;
+  if (IsTokenChar(text[last])) {
+    while (begin > 0 && IsTokenChar(text[begin - 1])) --begin;
+    while (end < text.size() && IsTokenChar(text[end])) ++end;
+  }
+  return {text.substr(begin, end - begin), begin};
+}
+
+// A token quoted for a message: long ones (a 400-digit number) are shortened.
+std::string Quote(const std::string& token) {
+  return "'" + (token.size() <= 24 ? token : token.substr(0, 20) + "...") + "'";
+}
+
+// A SAX handler that builds nothing and only records where parsing failed. Used to find the
+// position of a number overflow, which nlohmann reports without one (out_of_range.406).
+class ErrorLocator : public nlohmann::json_sax<nlohmann::json> {
+ public:
+  bool null() override { return true; }
+  bool boolean(bool) override { return true; }
+  bool number_integer(number_integer_t) override { return true; }
+  bool number_unsigned(number_unsigned_t) override { return true; }
+  bool number_float(number_float_t, const string_t&) override { return true; }
+  bool string(string_t&) override { return true; }
+  bool binary(binary_t&) override { return true; }
+  bool start_object(std::size_t) override { return true; }
+  bool key(string_t&) override { return true; }
+  bool end_object() override { return true; }
+  bool start_array(std::size_t) override { return true; }
+  bool end_array() override { return true; }
+  bool parse_error(std::size_t position, const std::string&, const nlohmann::json::exception&) override {
+    position_ = position;
+    return false;
+  }
+  size_t position() const { return position_; }
+
+ private:
+  size_t position_ = 0;
+};
 
 bool IsNonFiniteToken(const std::string& token) {
   for (const char* word : {"NaN", "nan", "Infinity", "-Infinity", "inf", "-inf", "Inf", "-Inf", "-NaN", "-nan"}) {
@@ -69,17 +105,28 @@ JsonDocument JsonDocument::Parse(const std::string& text, std::string name) {
   if (text.find_first_not_of(" \t\r\n") == std::string::npos) {
     throw InputError(doc.name_ + ": the file is empty; expected a JSON object");
   }
+  // nlohmann reports the byte after the offending token; `where` names the token's first byte.
+  auto where = [&](size_t position) {
+    const auto [token, begin] = TokenNear(text, position > 0 ? position - 1 : 0);
+    const auto [line, column] = LineAndColumn(text, begin);
+    return std::make_pair(token, doc.name_ + ": line " + std::to_string(line) + ", column " + std::to_string(column));
+  };
   try {
     doc.json_ = nlohmann::json::parse(text);
   } catch (const nlohmann::json::parse_error& e) {
-    const auto [line, column] = LineAndColumn(text, e.byte > 0 ? e.byte - 1 : 0);
-    const std::string token = TokenNear(text, e.byte > 0 ? e.byte - 1 : 0);
-    const std::string where = doc.name_ + ": line " + std::to_string(line) + ", column " + std::to_string(column);
+    const auto [token, at] = where(e.byte);
     if (IsNonFiniteToken(token)) {
-      throw InputError(where + ": '" + token +
-                       "' is not a JSON number; every value must be a finite number (remove or fix the point)");
+      throw InputError(at + ": " + Quote(token) +
+                       " is not a JSON number; every value must be a finite number (remove or fix the point)");
     }
-    throw InputError(where + ": not valid JSON; fix the syntax there");
+    throw InputError(at + ": not valid JSON; fix the syntax there");
+  } catch (const nlohmann::json::out_of_range&) {
+    // A number too large for a double (1e999): parse again to find where.
+    ErrorLocator locator;
+    nlohmann::json::sax_parse(text, &locator);
+    const auto [token, at] = where(locator.position());
+    throw InputError(at + ": " + Quote(token) +
+                     " is too large for a double; every value must be a finite number (remove or fix the point)");
   }
   return doc;
 }

@@ -69,6 +69,23 @@ std::string WriteTemporary(const std::filesystem::path& path, const std::string&
 }  // namespace
 
 void WriteFilesAtomically(const std::vector<std::pair<std::filesystem::path, std::string>>& files) {
+  // Refuse before writing anything: an empty name, or one file given for two outputs (the second
+  // rename would silently replace the first output).
+  std::vector<std::filesystem::path> resolved;
+  for (const auto& [path, text] : files) {
+    if (path.empty()) throw InputError("an output file name is empty; give a file name");
+    std::error_code ec;
+    std::filesystem::path p = std::filesystem::absolute(path, ec);
+    if (!ec) p = std::filesystem::weakly_canonical(p, ec);
+    if (ec) p = path.lexically_normal();
+    for (size_t i = 0; i < resolved.size(); ++i) {
+      if (resolved[i] == p) {
+        throw InputError(path.string() + ": the same file is given for two outputs (" + files[i].first.string() +
+                         " and " + path.string() + "); give each output its own file name");
+      }
+    }
+    resolved.push_back(std::move(p));
+  }
   std::vector<std::string> temporaries;
   try {
     for (const auto& [path, text] : files) temporaries.push_back(WriteTemporary(path, text));
@@ -80,6 +97,8 @@ void WriteFilesAtomically(const std::vector<std::pair<std::filesystem::path, std
     if (std::rename(temporaries[i].c_str(), files[i].first.c_str()) != 0) {
       const int err = errno;
       for (size_t k = i; k < files.size(); ++k) std::remove(temporaries[k].c_str());
+      // Outputs already in place would be a partial set: remove them too.
+      for (size_t k = 0; k < i; ++k) std::remove(files[k].first.c_str());
       throw InputError(files[i].first.string() + ": cannot write (" + std::strerror(err) + "); check the path");
     }
   }

@@ -44,7 +44,9 @@ std::string DumpJson(const OrderedJson& json);
 void WriteFileAtomically(const std::filesystem::path& path, const std::string& text);
 
 // Writes several files all-or-nothing: every text goes to a temporary file first; only when all
-// are written are they renamed into place, so a failure leaves none of the outputs behind.
+// are written are they renamed into place, so a failure leaves none of the outputs behind (if a
+// rename fails midway, the outputs already renamed are removed). Refuses, before writing, an
+// empty name or one file named for two outputs.
 void WriteFilesAtomically(const std::vector<std::pair<std::filesystem::path, std::string>>& files);
 
 inline void WriteJsonFile(const std::filesystem::path& path, const OrderedJson& json) {

@@ -1,0 +1,61 @@
+#include "common/validators.h"
+
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+
+#include "vstcal/core/error.h"
+
+namespace vstcal::tools {
+namespace {
+
+// True when the whole text is one number; its value in *v.
+bool ParseNumber(const std::string& text, double* v) {
+  char* end = nullptr;
+  *v = std::strtod(text.c_str(), &end);
+  return !text.empty() && end == text.c_str() + text.size();
+}
+
+}  // namespace
+
+const CLI::Validator kNonEmpty([](std::string& text) -> std::string { return text.empty() ? "must not be empty" : ""; },
+                               "NONEMPTY");
+
+const CLI::Validator kFinite(
+    [](std::string& text) -> std::string {
+      double v = 0;
+      if (ParseNumber(text, &v) && !std::isfinite(v)) return "must be a finite number, got " + text;
+      return "";  // anything else is for CLI11's own conversion to judge
+    },
+    "FINITE");
+
+const CLI::Validator kPositiveFinite(
+    [](std::string& text) -> std::string {
+      double v = 0;
+      if (!ParseNumber(text, &v) || !std::isfinite(v) || !(v > 0)) return "expected a positive number, got \"" + text + "\"";
+      return "";
+    },
+    "POSITIVE");
+
+const CLI::Validator kSeed(
+    [](std::string& text) -> std::string {
+      uint64_t v = 0;
+      const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+      if (text.empty() || ec != std::errc() || end != text.data() + text.size()) {
+        return "expected a whole number from 0 to 18446744073709551615, got \"" + text + "\"";
+      }
+      return "";
+    },
+    "UINT64");
+
+std::pair<int, int> ParseSize(const std::string& text, const std::string& flag, const std::string& example) {
+  int a = 0, b = 0;
+  char x = 0, extra = 0;
+  if (std::sscanf(text.c_str(), "%d%c%d%c", &a, &x, &b, &extra) != 3 || (x != 'x' && x != 'X') || a <= 0 || b <= 0) {
+    throw InputError(flag + ": expected two positive integers as " + example + ", got \"" + text + "\"");
+  }
+  return {a, b};
+}
+
+}  // namespace vstcal::tools

@@ -1,0 +1,17 @@
+// CLI11 validators shared by the tools. CLI11 alone reads "nan"/"inf" as doubles, wraps "-1" into
+// unsigned integers and quotes DBL_MAX in its range messages; these say what is wanted instead.
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+namespace vstcal::tools {
+
+extern const CLI::Validator kNonEmpty;       // a string flag given as ""
+extern const CLI::Validator kFinite;         // a number flag: no nan/inf
+extern const CLI::Validator kPositiveFinite;  // a number flag > 0, finite
+extern const CLI::Validator kSeed;           // a whole number in [0, 2^64)
+
+// "1280x720" → {1280, 720}; throws InputError naming `flag` and showing `example` otherwise.
+std::pair<int, int> ParseSize(const std::string& text, const std::string& flag, const std::string& example);
+
+}  // namespace vstcal::tools
