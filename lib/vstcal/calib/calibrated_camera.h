@@ -3,6 +3,8 @@
 
 #include <optional>
 #include <string>
+#include <string_view>
+#include <vector>
 
 #include <Eigen/Core>
 
@@ -15,6 +17,25 @@ namespace vstcal {
 
 using Matrix34d = Eigen::Matrix<double, 3, 4>;
 
+// Covariance of estimated parameters, named in order (docs/conventions.md#poses-in-optimisation):
+// intrinsics by their lens-model names ("fx", "k1", …); a pose's tangent as
+// "<pose>.rx", ".ry", ".rz" (left-perturbation rotation ω, radians) and ".tx", ".ty", ".tz" (ρ,
+// length unit), e.g. "camera_from_world.rx" or "views[3].camera_from_board.tz".
+struct ParameterCovariance {
+  std::vector<std::string> parameters;
+  Eigen::MatrixXd matrix;
+
+  // Index of a parameter by name, or nullopt.
+  std::optional<size_t> Find(std::string_view name) const;
+};
+
+// One view of a planar-views calibration: the board's pose and how well it fits.
+struct ViewPose {
+  std::string name;
+  Rigid3d camera_from_board;
+  double rms_px = 0;
+};
+
 struct CalibratedCamera {
   std::string name;  // which camera of a rig ("left"), may be empty
   Camera camera;
@@ -23,6 +44,8 @@ struct CalibratedCamera {
   std::optional<Rigid3d> camera_from_world;  // volume rigs
   std::optional<Matrix34d> P;                // as solved (DLT); else K[R|t] is written
   std::optional<Fit> fit;
+  std::vector<ViewPose> views;                   // planar-views rigs
+  std::optional<ParameterCovariance> covariance;  // when a solver estimated uncertainty
 };
 
 // P = K [R | t], scaled as docs/conventions.md#projection-matrix states.

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "vstcal/core/error.h"
+
 namespace vstcal {
 
 ResidualStats Summarize(const std::vector<Eigen::Vector2d>& residuals_px) {
@@ -18,18 +20,17 @@ ResidualStats Summarize(const std::vector<Eigen::Vector2d>& residuals_px) {
   return s;
 }
 
-Fit ComputeVolumeFit(const Camera& camera, const Rigid3d& camera_from_world, const Correspondences& c) {
+Fit ComputeViewsFit(const Camera& camera, std::span<const Rigid3d> camera_from_view, const Correspondences& c) {
+  VSTCAL_CHECK(camera_from_view.size() == c.views.size(), "one pose per view");
   Fit fit;
   std::vector<Eigen::Vector2d> all;
-  Eigen::Vector3d lo = Eigen::Vector3d::Constant(INFINITY), hi = Eigen::Vector3d::Constant(-INFINITY);
-  for (const View& view : c.views) {
+  for (size_t v = 0; v < c.views.size(); ++v) {
+    const View& view = c.views[v];
     ViewFit vf;
     vf.name = view.name;
     vf.residuals_px.reserve(view.observations.size());
     for (const Observation& o : view.observations) {
-      lo = lo.cwiseMin(o.point);
-      hi = hi.cwiseMax(o.point);
-      const auto predicted = camera.Project(camera_from_world * o.point);
+      const auto predicted = camera.Project(camera_from_view[v] * o.point);
       if (!predicted) {
         ++fit.n_behind_camera;
         vf.residuals_px.push_back(Eigen::Vector2d::Constant(NAN));  // kept in place, excluded from stats
@@ -42,6 +43,19 @@ Fit ComputeVolumeFit(const Camera& camera, const Rigid3d& camera_from_world, con
     fit.views.push_back(std::move(vf));
   }
   fit.overall = Summarize(all);
+  return fit;
+}
+
+Fit ComputeVolumeFit(const Camera& camera, const Rigid3d& camera_from_world, const Correspondences& c) {
+  const std::vector<Rigid3d> same_pose(c.views.size(), camera_from_world);
+  Fit fit = ComputeViewsFit(camera, same_pose, c);
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(INFINITY), hi = Eigen::Vector3d::Constant(-INFINITY);
+  for (const View& view : c.views) {
+    for (const Observation& o : view.observations) {
+      lo = lo.cwiseMin(o.point);
+      hi = hi.cwiseMax(o.point);
+    }
+  }
   for (const TestPoint& t : c.test_points) {
     TestPointFit tf;
     tf.name = t.name;

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -46,8 +47,13 @@ struct Fit {
   size_t n_behind_camera = 0;  // observations that project behind the camera (not in stats)
 };
 
-// Residuals of `camera` posed by `camera_from_world` for a volume rig (one pose for all views).
+// Residuals of `camera` posed by `camera_from_world` for a volume rig (one pose for all views),
+// with the test points.
 Fit ComputeVolumeFit(const Camera& camera, const Rigid3d& camera_from_world, const Correspondences& c);
+
+// Residuals with one pose per view: camera_from_view[i] maps view i's frame (its board for
+// planar views) to the camera. No test points: they need a world frame.
+Fit ComputeViewsFit(const Camera& camera, std::span<const Rigid3d> camera_from_view, const Correspondences& c);
 
 ResidualStats Summarize(const std::vector<Eigen::Vector2d>& residuals_px);
 

@@ -1,0 +1,255 @@
+#include "vstcal/calib/refine.h"
+
+#include <ceres/ceres.h>
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+
+#include "vstcal/calib/reprojection_cost.h"
+#include "vstcal/core/error.h"
+
+namespace vstcal {
+namespace {
+
+// χ²₂ quantile: P(χ²₂ > x) = e^{−x/2}.
+double ChiSquare2Quantile(double tail_probability) { return -2.0 * std::log(tail_probability); }
+
+// The model to refine: promoted to radial-tangential when distortion terms are asked for.
+AnyLensModel RefinedModel(const AnyLensModel& initial, const RefineOptions& options) {
+  if (!options.free_distortion.empty() && LensModelNumParams(initial) == kNumIntrinsicParams) {
+    return RadialTangentialModel{};
+  }
+  return initial;
+}
+
+std::vector<double> PromoteParams(const Camera& initial, const AnyLensModel& model) {
+  std::vector<double> params(LensModelNumParams(model), 0.0);
+  std::copy(initial.params.begin(), initial.params.end(), params.begin());
+  return params;
+}
+
+std::string PoseName(const Correspondences& c, size_t pose) {
+  return c.rig == Rig::kVolume ? "camera_from_world" : "views[" + std::to_string(pose) + "].camera_from_board";
+}
+
+// Everything the templated solve needs, independent of the model type.
+struct Problem {
+  const Correspondences* c;
+  std::vector<double> intrinsics;
+  std::vector<int> free_intrinsics;  // indices into intrinsics
+  std::vector<Rigid3d> reference;    // pose per rig (volume: 1) or per view
+  std::vector<std::array<double, 6>> delta;
+};
+
+template <typename Model>
+void AddResiduals(ceres::Problem* problem, Problem* p, const RefineOptions& options) {
+  const bool volume = p->c->rig == Rig::kVolume;
+  for (size_t v = 0; v < p->c->views.size(); ++v) {
+    const size_t pose = volume ? 0 : v;
+    const View& view = p->c->views[v];
+    double* delta = p->delta[pose].data();
+    if (options.loss == RefineOptions::Loss::kNone) {
+      problem->AddResidualBlock(ViewReprojectionCost<Model>::Create(view.observations, p->reference[pose]), nullptr,
+                                p->intrinsics.data(), delta);
+      continue;
+    }
+    for (const Observation& o : view.observations) {
+      ceres::LossFunction* loss = options.loss == RefineOptions::Loss::kHuber
+                                      ? static_cast<ceres::LossFunction*>(new ceres::HuberLoss(options.loss_scale_px))
+                                      : new ceres::CauchyLoss(options.loss_scale_px);
+      problem->AddResidualBlock(PointReprojectionCost<Model>::Create(o, p->reference[pose]), loss,
+                                p->intrinsics.data(), delta);
+    }
+  }
+}
+
+// Moves the optimum into the reference poses, so the tangent of each pose is again at δ = 0.
+void Recentre(Problem* p) {
+  for (size_t i = 0; i < p->reference.size(); ++i) {
+    const auto& d = p->delta[i];
+    p->reference[i] = PerturbLeft(p->reference[i], Eigen::Vector3d(d[0], d[1], d[2]), Eigen::Vector3d(d[3], d[4], d[5]));
+    p->delta[i].fill(0.0);
+  }
+}
+
+// Builds the Ceres problem for the current reference poses (ownership of cost functions and
+// manifolds stays with the problem).
+template <typename Model>
+std::unique_ptr<ceres::Problem> BuildProblem(Problem* p, const RefineOptions& options) {
+  auto problem = std::make_unique<ceres::Problem>();
+  AddResiduals<Model>(problem.get(), p, options);
+  std::vector<int> fixed;
+  for (int i = 0; i < Model::kNumParams; ++i) {
+    if (std::find(p->free_intrinsics.begin(), p->free_intrinsics.end(), i) == p->free_intrinsics.end()) fixed.push_back(i);
+  }
+  if (fixed.size() == static_cast<size_t>(Model::kNumParams)) {
+    problem->SetParameterBlockConstant(p->intrinsics.data());
+  } else if (!fixed.empty()) {
+    problem->SetManifold(p->intrinsics.data(), new ceres::SubsetManifold(Model::kNumParams, fixed));
+  }
+  return problem;
+}
+
+// σ̂² (JᵀJ)⁻¹ over the free parameters at δ = 0, or an empty matrix when JᵀJ is singular.
+Eigen::MatrixXd Covariance(ceres::Problem* problem, Problem* p, double sigma2, std::string* message) {
+  ceres::Problem::EvaluateOptions eval;
+  if (!problem->IsParameterBlockConstant(p->intrinsics.data())) eval.parameter_blocks.push_back(p->intrinsics.data());
+  for (auto& d : p->delta) eval.parameter_blocks.push_back(d.data());
+  eval.apply_loss_function = true;  // with a robust loss: the reweighted (IRLS) information
+  ceres::CRSMatrix crs;
+  problem->Evaluate(eval, nullptr, nullptr, nullptr, &crs);
+  // JᵀJ from the sparse rows (each touches the intrinsics and one pose): Σ over rows of the
+  // outer product of its non-zeros, far cheaper than a dense product for many views.
+  Eigen::MatrixXd information = Eigen::MatrixXd::Zero(crs.num_cols, crs.num_cols);
+  for (int r = 0; r < crs.num_rows; ++r) {
+    for (int a = crs.rows[r]; a < crs.rows[r + 1]; ++a) {
+      for (int b = crs.rows[r]; b < crs.rows[r + 1]; ++b) information(crs.cols[a], crs.cols[b]) += crs.values[a] * crs.values[b];
+    }
+  }
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(information);
+  const double largest = eig.eigenvalues().maxCoeff();
+  if (!(eig.eigenvalues().minCoeff() > 1e-13 * largest)) {
+    *message = "the information matrix is singular: some free parameter is not observable from these points "
+               "(e.g. skew or a distortion term without coverage); fix it or add views";
+    return {};
+  }
+  const Eigen::VectorXd inverse = eig.eigenvalues().cwiseInverse();
+  return sigma2 * eig.eigenvectors() * inverse.asDiagonal() * eig.eigenvectors().transpose();
+}
+
+template <typename Model>
+Refinement RefineWith(const Correspondences& c, Problem* p, const RefineOptions& options) {
+  Refinement out;
+  out.camera.image_size = c.image_size;
+  out.camera.model = Model{};
+
+  std::unique_ptr<ceres::Problem> problem = BuildProblem<Model>(p, options);
+  ceres::Solver::Options solver;
+  solver.linear_solver_type = c.rig == Rig::kVolume ? ceres::DENSE_QR : ceres::DENSE_SCHUR;
+  solver.max_num_iterations = options.max_iterations;
+  solver.function_tolerance = 1e-12;
+  solver.parameter_tolerance = 1e-12;
+  solver.gradient_tolerance = 1e-14;
+  solver.num_threads = 1;  // deterministic
+  solver.logging_type = ceres::SILENT;
+  ceres::Solver::Summary summary;
+  ceres::Solve(solver, problem.get(), &summary);
+  out.iterations = static_cast<int>(summary.iterations.size()) - 1;
+  const size_t n = NumObservations(c);
+  out.initial_rms_px = std::sqrt(2 * summary.initial_cost / static_cast<double>(n));
+  if (summary.termination_type == ceres::FAILURE || !summary.IsSolutionUsable()) {
+    out.status = RefineStatus::kFailed;
+    out.message = "the refinement failed: " + summary.message +
+                  "; check the initial camera (points behind it?) or the correspondences";
+    return out;
+  }
+  out.status = summary.termination_type == ceres::CONVERGENCE ? RefineStatus::kConverged : RefineStatus::kNotConverged;
+  if (out.status == RefineStatus::kNotConverged) {
+    out.message = "no convergence in " + std::to_string(options.max_iterations) +
+                  " iterations (" + summary.message + "); raise --max-iterations or start from a better camera";
+  }
+
+  Recentre(p);
+  out.camera.params = p->intrinsics;
+  out.poses = p->reference;
+  const std::vector<Rigid3d> per_view =
+      c.rig == Rig::kVolume ? std::vector<Rigid3d>(c.views.size(), p->reference[0]) : p->reference;
+  out.fit = c.rig == Rig::kVolume ? ComputeVolumeFit(out.camera, p->reference[0], c)
+                                  : ComputeViewsFit(out.camera, per_view, c);
+
+  // Degrees of freedom and noise estimate (docs/math/uncertainty.md).
+  const int free = static_cast<int>(p->free_intrinsics.size()) + 6 * static_cast<int>(p->reference.size());
+  out.dof = 2 * static_cast<int>(out.fit.overall.n_points) - free;
+  double rss = 0;
+  std::vector<double> norms;
+  for (const ViewFit& v : out.fit.views) {
+    for (const Eigen::Vector2d& r : v.residuals_px) {
+      if (!r.allFinite()) continue;
+      rss += r.squaredNorm();
+      norms.push_back(r.norm());
+    }
+  }
+  if (out.dof <= 0) {
+    out.status = RefineStatus::kFailed;
+    out.message = "more free parameters (" + std::to_string(free) + ") than residuals (" +
+                  std::to_string(2 * out.fit.overall.n_points) + "); free fewer parameters or add points";
+    return out;
+  }
+  out.sigma_px = std::sqrt(rss / out.dof);
+  std::nth_element(norms.begin(), norms.begin() + norms.size() / 2, norms.end());
+  out.robust_sigma_px = norms[norms.size() / 2] / std::sqrt(2 * std::log(2.0));
+  const double threshold = ChiSquare2Quantile(options.outlier_false_alarm / static_cast<double>(norms.size()));
+  for (size_t v = 0; v < out.fit.views.size(); ++v) {
+    const auto& residuals = out.fit.views[v].residuals_px;
+    for (size_t k = 0; k < residuals.size(); ++k) {
+      const double z2 = residuals[k].squaredNorm() / (out.robust_sigma_px * out.robust_sigma_px);
+      if (residuals[k].allFinite() && z2 > threshold) out.outliers.push_back({v, k, residuals[k], std::sqrt(z2)});
+    }
+  }
+
+  // Covariance at the optimum: a fresh problem linearized at δ = 0 around the refined poses.
+  problem = BuildProblem<Model>(p, options);
+  std::string singular;
+  out.covariance.matrix = Covariance(problem.get(), p, out.sigma_px * out.sigma_px, &singular);
+  if (out.covariance.matrix.size() == 0) {
+    out.message += (out.message.empty() ? "" : "; ") + singular;
+  } else {
+    const auto names = LensModelParamNames(out.camera.model);
+    if (!problem->IsParameterBlockConstant(p->intrinsics.data())) {
+      for (int i : p->free_intrinsics) out.covariance.parameters.emplace_back(names[i]);
+    }
+    for (size_t i = 0; i < p->reference.size(); ++i) {
+      for (const char* axis : {"rx", "ry", "rz", "tx", "ty", "tz"}) {
+        out.covariance.parameters.push_back(PoseName(c, i) + "." + axis);
+      }
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+std::vector<std::string> FreeIntrinsicNames(const AnyLensModel& model, const RefineOptions& options) {
+  const auto names = LensModelParamNames(model);
+  std::vector<std::string> free;
+  auto add = [&](std::string_view name) { free.emplace_back(name); };
+  if (options.free_focal) add("fx"), add("fy");
+  if (options.free_principal_point) add("cx"), add("cy");
+  if (options.free_skew) add("s");
+  for (size_t i = kNumIntrinsicParams; i < names.size(); ++i) {
+    if (std::find(options.free_distortion.begin(), options.free_distortion.end(), names[i]) !=
+        options.free_distortion.end()) {
+      add(names[i]);
+    }
+  }
+  return free;
+}
+
+Refinement Refine(const Correspondences& c, const Camera& initial, const std::vector<Rigid3d>& initial_poses,
+                  const RefineOptions& options) {
+  const size_t expected_poses = c.rig == Rig::kVolume ? 1 : c.views.size();
+  VSTCAL_CHECK(initial_poses.size() == expected_poses, "one initial pose per rig (volume) or per view");
+  const AnyLensModel model = RefinedModel(initial.model, options);
+  const auto names = LensModelParamNames(model);
+  for (const std::string& term : options.free_distortion) {
+    const auto it = std::find(names.begin() + kNumIntrinsicParams, names.end(), term);
+    if (it == names.end()) {
+      std::string known;
+      for (size_t i = kNumIntrinsicParams; i < names.size(); ++i) known += (known.empty() ? "" : ", ") + std::string(names[i]);
+      throw InputError("--distortion: unknown term \"" + term + "\" for the " + std::string(LensModelName(model)) +
+                       " model; use some of " + known + ", or none");
+    }
+  }
+  Problem p;
+  p.c = &c;
+  p.intrinsics = PromoteParams(initial, model);
+  for (const std::string& name : FreeIntrinsicNames(model, options)) {
+    p.free_intrinsics.push_back(static_cast<int>(std::find(names.begin(), names.end(), name) - names.begin()));
+  }
+  p.reference = initial_poses;
+  p.delta.assign(initial_poses.size(), std::array<double, 6>{});
+  return std::visit([&](auto m) { return RefineWith<decltype(m)>(c, &p, options); }, model);
+}
+
+}  // namespace vstcal

@@ -1,0 +1,271 @@
+// Maximum-likelihood refinement: recovery of a distorted camera from planar views (Zhang init)
+// and from a volume (DLT init), agreement with OpenCV's calibrateCamera on the same data (the
+// same objective, so the same optimum), outliers, and refusals.
+#include <gtest/gtest.h>
+
+#include <opencv2/calib3d.hpp>
+
+#include <algorithm>
+
+#include "support/scenes.h"
+#include "vstcal/calib/decompose.h"
+#include "vstcal/calib/dlt.h"
+#include "vstcal/calib/refine.h"
+#include "vstcal/calib/zhang.h"
+#include "vstcal/capture/synthetic_views.h"
+#include "vstcal/capture/synthetic_volume.h"
+#include "vstcal/core/error.h"
+
+namespace vstcal {
+namespace {
+
+Camera DistortedCamera() {
+  Eigen::Matrix3d K;
+  K << 700.2, 0, 641.3, 0, 698.4, 361.7, 0, 0, 1;
+  const double d[5] = {-0.171, 0.028, 0.0007, -0.0004, 0.0};
+  return Camera::FromK(K, ImageSize{1280, 720}, RadialTangentialModel{}, d);
+}
+
+SyntheticViews PlanarData(double noise, uint64_t seed, int views = 15) {
+  PlanarViewsSpec spec;
+  spec.noise_px = noise;
+  spec.seed = seed;
+  spec.num_views = views;
+  return SynthesizePlanarViews(DistortedCamera(), spec);
+}
+
+// cv::calibrateCamera takes float32 points: the comparisons give both solvers the same rounded data.
+void RoundToFloat(Correspondences* c) {
+  for (View& v : c->views) {
+    for (Observation& o : v.observations) {
+      o.point = o.point.cast<float>().cast<double>();
+      o.pixel = o.pixel.cast<float>().cast<double>();
+    }
+  }
+}
+
+struct OpenCvData {
+  std::vector<std::vector<cv::Point3f>> object;
+  std::vector<std::vector<cv::Point2f>> image;
+};
+
+// One OpenCV "view" per planar view; a volume rig is one view of all its points.
+OpenCvData ToOpenCv(const Correspondences& c) {
+  OpenCvData d;
+  for (const View& v : c.views) {
+    if (d.object.empty() || c.rig == Rig::kPlanarViews) {
+      d.object.emplace_back();
+      d.image.emplace_back();
+    }
+    for (const Observation& o : v.observations) {
+      d.object.back().emplace_back(static_cast<float>(o.point.x()), static_cast<float>(o.point.y()),
+                                   static_cast<float>(o.point.z()));
+      d.image.back().emplace_back(static_cast<float>(o.pixel.x()), static_cast<float>(o.pixel.y()));
+    }
+  }
+  return d;
+}
+
+// fx, fy, cx, cy, k1, k2, p1, p2 of OpenCV's result against ours, within 1 % of our σ.
+void ExpectSameOptimum(const Refinement& r, const cv::Mat& K, const cv::Mat& dist) {
+  const double opencv[8] = {K.at<double>(0, 0), K.at<double>(1, 1), K.at<double>(0, 2), K.at<double>(1, 2),
+                            dist.at<double>(0), dist.at<double>(1), dist.at<double>(2), dist.at<double>(3)};
+  const int ours[8] = {0, 1, 2, 3, 5, 6, 7, 8};
+  for (int i = 0; i < 8; ++i) {
+    const double sigma = std::sqrt(r.covariance.matrix(i, i));
+    EXPECT_LT(std::abs(r.camera.params[ours[i]] - opencv[i]), 0.01 * sigma) << i;
+  }
+}
+
+Refinement RefinePlanar(const Correspondences& c, const RefineOptions& options = {}) {
+  const ZhangResult init = ZhangInitialization(c);
+  EXPECT_TRUE(init.ok) << init.message;
+  return Refine(c, init.camera, init.camera_from_board, options);
+}
+
+// Every free intrinsic within 5σ of the truth, σ from the refinement's own covariance: a test of
+// the estimate and of the covariance together.
+void ExpectWithinSigma(const Refinement& r, const Camera& truth, double k = 5.0) {
+  const auto names = LensModelParamNames(r.camera.model);
+  ASSERT_FALSE(r.covariance.parameters.empty()) << r.message;
+  for (size_t i = 0; i < names.size(); ++i) {
+    const auto index = r.covariance.Find(names[i]);
+    if (!index) continue;
+    const double sigma = std::sqrt(r.covariance.matrix(*index, *index));
+    EXPECT_LT(std::abs(r.camera.params[i] - truth.params[i]), k * sigma) << names[i] << " σ=" << sigma;
+  }
+}
+
+TEST(Refine, NoiseFreePlanarViewsRecoverTheDistortedCameraExactly) {
+  const SyntheticViews data = PlanarData(0.0, 1);
+  const Refinement r = RefinePlanar(data.correspondences);
+  ASSERT_EQ(r.status, RefineStatus::kConverged) << r.message;
+  const Camera truth = DistortedCamera();
+  for (size_t i = 0; i < truth.params.size(); ++i) EXPECT_NEAR(r.camera.params[i], truth.params[i], 1e-7 * (1 + std::abs(truth.params[i]))) << i;
+  EXPECT_LT(r.fit.overall.max_px, 1e-7);
+  for (size_t v = 0; v < r.poses.size(); ++v) {
+    EXPECT_LT(AngleBetween(r.poses[v].R, data.camera_from_board[v].R), 1e-9);
+    EXPECT_LT((r.poses[v].t - data.camera_from_board[v].t).norm(), 1e-6);
+  }
+}
+
+TEST(Refine, NoisyPlanarViewsWithinTheirOwnUncertainty) {
+  const SyntheticViews data = PlanarData(0.3, 2);
+  const Refinement r = RefinePlanar(data.correspondences);
+  ASSERT_EQ(r.status, RefineStatus::kConverged) << r.message;
+  ExpectWithinSigma(r, DistortedCamera());
+  // σ̂ estimates the per-coordinate noise with 2N − p degrees of freedom.
+  EXPECT_NEAR(r.sigma_px, 0.3, 5 * 0.3 / std::sqrt(2.0 * r.dof));
+  EXPECT_EQ(r.covariance.parameters.size(), 8u + 6 * data.correspondences.views.size());
+  EXPECT_EQ(r.covariance.parameters[0], "fx");
+  EXPECT_EQ(r.covariance.parameters[7], "p2");
+  EXPECT_EQ(r.covariance.parameters[8], "views[0].camera_from_board.rx");
+  EXPECT_TRUE(r.outliers.empty());
+}
+
+// Peer: OpenCV's calibrateCamera minimizes the same reprojection error over the same model (k3
+// fixed as vstcal's default); both must land on the same optimum. The tolerance is 1 % of the
+// parameter's own standard deviation: far below anything statistically meaningful, far above the
+// two solvers' convergence tolerances.
+TEST(Refine, PlanarViewsAgreeWithOpenCvCalibrateCamera) {
+  SyntheticViews data = PlanarData(0.3, 3);
+  RoundToFloat(&data.correspondences);
+  const Refinement r = RefinePlanar(data.correspondences);
+  ASSERT_EQ(r.status, RefineStatus::kConverged);
+  const OpenCvData d = ToOpenCv(data.correspondences);
+  cv::Mat K, dist;
+  std::vector<cv::Mat> rvecs, tvecs;
+  const double rms = cv::calibrateCamera(d.object, d.image, cv::Size(1280, 720), K, dist, rvecs, tvecs, cv::CALIB_FIX_K3,
+                                         cv::TermCriteria(cv::TermCriteria::COUNT + cv::TermCriteria::EPS, 200, 1e-15));
+  EXPECT_NEAR(rms, r.fit.overall.rms_px, 1e-6);
+  ExpectSameOptimum(r, K, dist);
+}
+
+// A volume rig: DLT start, then refinement with distortion. OpenCV accepts non-planar points only
+// with CALIB_USE_INTRINSIC_GUESS; given vstcal's DLT K it must reach the same optimum.
+TEST(Refine, VolumeFromDltAgreesWithOpenCvIntrinsicGuess) {
+  VolumeSpec spec;
+  spec.grid_cols = 15;
+  spec.grid_rows = 9;
+  spec.spacing = 60;
+  spec.far = 1000;
+  spec.interval = 100;
+  spec.camera_distance = 500;
+  spec.tilt_deg = 8;
+  spec.noise_px = 0.2;
+  spec.seed = 4;
+  const Camera truth = DistortedCamera();
+  SyntheticVolume volume = SynthesizeVolume(truth, spec, {});
+  RoundToFloat(&volume.correspondences);
+  const Correspondences& c = volume.correspondences;
+  const DltResult dlt = SolveDlt(AllObservations(c));
+  ASSERT_EQ(dlt.status, DltStatus::kOk) << dlt.message;
+  const auto init = *DecomposeProjection(dlt.P);
+  Camera start = Camera::FromK(init.K, c.image_size);
+  start.params[4] = 0;  // OpenCV has no skew: start both from the same zero-skew K
+  const Refinement r = Refine(c, start, {init.camera_from_world}, RefineOptions{});
+  ASSERT_EQ(r.status, RefineStatus::kConverged) << r.message;
+  ExpectWithinSigma(r, truth);
+
+  const OpenCvData d = ToOpenCv(c);
+  cv::Mat K = (cv::Mat_<double>(3, 3) << start.params[0], 0, start.params[2], 0, start.params[1], start.params[3], 0, 0, 1);
+  cv::Mat dist = cv::Mat::zeros(5, 1, CV_64F);
+  std::vector<cv::Mat> rvecs, tvecs;
+  const double rms = cv::calibrateCamera(d.object, d.image, cv::Size(1280, 720), K, dist, rvecs, tvecs,
+                                         cv::CALIB_USE_INTRINSIC_GUESS | cv::CALIB_FIX_K3,
+                                         cv::TermCriteria(cv::TermCriteria::COUNT + cv::TermCriteria::EPS, 500, 1e-15));
+  EXPECT_NEAR(rms, r.fit.overall.rms_px, 1e-6);
+  ExpectSameOptimum(r, K, dist);
+}
+
+// Gross errors on a few corners: listed as outliers (never dropped), and a robust loss keeps the
+// estimate where the clean data put it.
+TEST(Refine, OutliersAreListedAndRobustLossResistsThem) {
+  SyntheticViews data = PlanarData(0.2, 5);
+  Correspondences& c = data.correspondences;
+  const std::vector<std::pair<size_t, size_t>> corrupted = {{1, 7}, {4, 20}, {9, 33}};
+  for (const auto& [v, k] : corrupted) c.views[v].observations[k].pixel += Eigen::Vector2d(15, -12);
+  const Refinement plain = RefinePlanar(c);
+  RefineOptions robust_options;
+  robust_options.loss = RefineOptions::Loss::kCauchy;
+  robust_options.loss_scale_px = 1.0;
+  const Refinement robust = RefinePlanar(c, robust_options);
+  // The robust fit ignores the gross errors: exactly they are listed. Least squares is dragged by
+  // them, so a few honest neighbours may exceed the threshold too, but the corrupted ones are
+  // listed and stand out most.
+  ASSERT_EQ(robust.status, RefineStatus::kConverged) << robust.message;
+  ASSERT_EQ(robust.outliers.size(), corrupted.size());
+  for (size_t i = 0; i < corrupted.size(); ++i) {
+    EXPECT_EQ(robust.outliers[i].view, corrupted[i].first);
+    EXPECT_EQ(robust.outliers[i].point, corrupted[i].second);
+    EXPECT_GT(robust.outliers[i].normalized, 20);
+  }
+  ASSERT_EQ(plain.status, RefineStatus::kConverged) << plain.message;
+  std::vector<Outlier> worst = plain.outliers;
+  std::sort(worst.begin(), worst.end(), [](const Outlier& a, const Outlier& b) { return a.normalized > b.normalized; });
+  ASSERT_GE(worst.size(), corrupted.size());
+  for (size_t i = 0; i < corrupted.size(); ++i) {
+    EXPECT_NE(std::find_if(corrupted.begin(), corrupted.end(),
+                           [&](const auto& bad) { return bad.first == worst[i].view && bad.second == worst[i].point; }),
+              corrupted.end());
+  }
+  for (const Refinement* r : {&plain, &robust}) EXPECT_EQ(r->fit.overall.n_points, NumObservations(c));  // nothing dropped
+  const Camera truth = DistortedCamera();
+  EXPECT_LT(std::abs(robust.camera.params[0] - truth.params[0]), std::abs(plain.camera.params[0] - truth.params[0]) + 0.05);
+  ExpectWithinSigma(robust, truth);
+}
+
+TEST(Refine, SelectedTermsOnlyAndUnknownNamesRefused) {
+  const SyntheticViews data = PlanarData(0.2, 6);
+  RefineOptions options;
+  options.free_distortion = {"k1"};
+  const Refinement r = RefinePlanar(data.correspondences, options);
+  ASSERT_EQ(r.status, RefineStatus::kConverged);
+  EXPECT_EQ(r.camera.params[6], 0.0);  // k2 held at its start
+  EXPECT_FALSE(r.covariance.Find("k2").has_value());
+  EXPECT_TRUE(r.covariance.Find("k1").has_value());
+  options.free_distortion = {"k1", "k7"};
+  try {
+    RefinePlanar(data.correspondences, options);
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("unknown term \"k7\""), std::string::npos) << e.what();
+  }
+}
+
+TEST(Refine, MoreParametersThanResidualsFails) {
+  auto scene = testing::RandomVolumeScene(7, 0.1, 1);  // 14 residuals < 8 intrinsics + 6 pose + …
+  Correspondences c;
+  c.image_size = scene.camera.image_size;
+  c.views.push_back(View{"v", "", std::nullopt, scene.observations});
+  RefineOptions options;
+  options.free_distortion = {"k1", "k2", "p1", "p2", "k3"};
+  options.free_skew = true;
+  const Refinement r = Refine(c, scene.camera, {scene.camera_from_world}, options);
+  EXPECT_EQ(r.status, RefineStatus::kFailed);
+  EXPECT_NE(r.message.find("more free parameters"), std::string::npos) << r.message;
+}
+
+TEST(Zhang, RefusesParallelBoardsAndTooFewViews) {
+  SyntheticViews data = PlanarData(0.0, 7, 3);
+  Correspondences one = data.correspondences;
+  one.views.resize(1);
+  const ZhangResult r1 = ZhangInitialization(one);
+  EXPECT_FALSE(r1.ok);
+  EXPECT_NE(r1.message.find("at least 2 views"), std::string::npos);
+  // Two copies of one view: parallel boards do not constrain K.
+  Correspondences parallel = data.correspondences;
+  parallel.views.resize(2);
+  parallel.views[1] = parallel.views[0];
+  const ZhangResult r2 = ZhangInitialization(parallel);
+  EXPECT_FALSE(r2.ok);
+  Correspondences sparse = data.correspondences;
+  sparse.views[1].observations.resize(4);
+  const auto warnings = DropSparseViews(&sparse, kMinPointsPerPlanarView);
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_NE(warnings[0].find("view-01"), std::string::npos);
+  EXPECT_EQ(sparse.views.size(), 2u);
+}
+
+}  // namespace
+}  // namespace vstcal
