@@ -58,4 +58,13 @@ std::pair<int, int> ParseSize(const std::string& text, const std::string& flag, 
   return {a, b};
 }
 
+Eigen::Vector2d ParsePoint2(const std::string& text, const std::string& flag) {
+  const auto items = CLI::detail::split(text, ',');
+  Eigen::Vector2d p;
+  bool ok = items.size() == 2;
+  for (size_t i = 0; ok && i < 2; ++i) ok = ParseNumber(items[i], &p(i)) && std::isfinite(p(i));
+  if (!ok) throw InputError(flag + ": expected two numbers U,V (e.g. 640.5,360), got \"" + text + "\"");
+  return p;
+}
+
 }  // namespace vstcal::tools

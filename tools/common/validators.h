@@ -3,6 +3,7 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <Eigen/Core>
 
 namespace vstcal::tools {
 
@@ -13,5 +14,8 @@ extern const CLI::Validator kSeed;           // a whole number in [0, 2^64)
 
 // "1280x720" → {1280, 720}; throws InputError naming `flag` and showing `example` otherwise.
 std::pair<int, int> ParseSize(const std::string& text, const std::string& flag, const std::string& example);
+
+// "640.5,360" → (640.5, 360); throws InputError naming `flag` otherwise.
+Eigen::Vector2d ParsePoint2(const std::string& text, const std::string& flag);
 
 }  // namespace vstcal::tools

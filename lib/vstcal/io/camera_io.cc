@@ -1,5 +1,6 @@
 #include "vstcal/io/camera_io.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "vstcal/calib/decompose.h"
@@ -68,6 +69,40 @@ Rigid3d ReadRigid(const JsonNode& node) {
   return pose;
 }
 
+// Parameter names must be the model's intrinsics or pose tangents the file has; the matrix square,
+// symmetric and with a non-negative diagonal.
+ParameterCovariance ReadCovariance(const JsonNode& node, const CalibratedCamera& c) {
+  ParameterCovariance cov;
+  const JsonNode names = node.at("parameters");
+  const size_t n = names.ArraySize();
+  if (n == 0) names.Fail("no parameters", "list the parameters the matrix refers to");
+  const auto intrinsics = LensModelParamNames(c.camera.model);
+  for (size_t i = 0; i < n; ++i) {
+    const std::string name = names.at(i).String();
+    const bool intrinsic = std::find(intrinsics.begin(), intrinsics.end(), name) != intrinsics.end();
+    const bool pose = name.rfind("camera_from_world.", 0) == 0 || name.rfind("views[", 0) == 0;
+    if (!intrinsic && !pose) {
+      names.at(i).Fail("unknown parameter \"" + name + "\"", "use the lens model's names or a pose tangent (docs/formats.md#camera)");
+    }
+    if (cov.Find(name)) names.at(i).Fail("duplicate parameter \"" + name + "\"", "list each parameter once");
+    cov.parameters.push_back(name);
+  }
+  const JsonNode m = node.at("matrix");
+  m.ArraySize(n);
+  cov.matrix.resize(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(n));
+  for (size_t r = 0; r < n; ++r) {
+    const JsonNode row = m.at(r);
+    row.ArraySize(n);
+    for (size_t k = 0; k < n; ++k) cov.matrix(r, k) = row.at(k).Number();
+  }
+  const double scale = cov.matrix.cwiseAbs().maxCoeff();
+  if (!(cov.matrix - cov.matrix.transpose()).isZero(1e-9 * std::max(scale, 1e-300))) {
+    m.Fail("not symmetric", "write a symmetric covariance matrix");
+  }
+  if ((cov.matrix.diagonal().array() < 0).any()) m.Fail("a variance on the diagonal is negative", "fix the matrix");
+  return cov;
+}
+
 }  // namespace
 
 Camera ReadCameraIntrinsics(const JsonNode& node) {
@@ -89,6 +124,18 @@ CalibratedCamera CameraFromJson(const JsonDocument& doc) {
   c.method = root.at("method").String();
   c.camera = ReadCameraIntrinsics(root);
   if (auto pose = root.find("camera_from_world")) c.camera_from_world = ReadRigid(*pose);
+  if (auto views = root.find("views")) {
+    const size_t n = views->ArraySize();
+    for (size_t i = 0; i < n; ++i) {
+      const JsonNode v = views->at(i);
+      ViewPose pose;
+      pose.name = v.at("name").String();
+      pose.camera_from_board = ReadRigid(v.at("camera_from_board"));
+      if (auto rms = v.find("rms_px")) pose.rms_px = rms->NonNegativeNumber();
+      c.views.push_back(std::move(pose));
+    }
+  }
+  if (auto cov = root.find("covariance")) c.covariance = ReadCovariance(*cov, c);
   if (auto P = root.find("P")) {
     Matrix34d m = P->Matrix<3, 4>();
     const double det = m.leftCols<3>().determinant();
@@ -171,7 +218,17 @@ OrderedJson CameraToJson(const CalibratedCamera& c, const Provenance& provenance
     j["camera_from_world"] = RigidToJson(*c.camera_from_world);
     j["P"] = MatrixToJson(c.P ? *c.P : ProjectionMatrix(K, *c.camera_from_world));
   }
+  if (!c.views.empty()) {
+    OrderedJson views = OrderedJson::array();
+    for (const ViewPose& v : c.views) {
+      views.push_back({{"name", v.name}, {"camera_from_board", RigidToJson(v.camera_from_board)}, {"rms_px", v.rms_px}});
+    }
+    j["views"] = std::move(views);
+  }
   if (c.fit) j["fit"] = FitToJson(*c.fit);
+  if (c.covariance) {
+    j["covariance"] = {{"parameters", c.covariance->parameters}, {"matrix", MatrixToJson(c.covariance->matrix)}};
+  }
   for (const auto& [key, value] : extra.items()) j[key] = value;
   j["provenance"] = ProvenanceToJson(provenance);
   return j;

@@ -1,0 +1,30 @@
+// The solver blocks calib-dlt and calib-tsai add to their vstcal/camera@1 output ("dlt", "tsai",
+// "refinement", "projection_uncertainty"): docs/formats.md#camera.
+#pragma once
+
+#include <optional>
+#include <vector>
+
+#include "vstcal/calib/pipeline.h"
+#include "vstcal/calib/uncertainty.h"
+#include "vstcal/io/json_writer.h"
+
+namespace vstcal::io {
+
+// "dlt" (when DLT ran), "tsai" (when Tsai ran), "refinement" (when refined).
+OrderedJson CalibrationBlocksToJson(const CalibrationResult& result, const CalibrationOptions& options);
+
+// Where the user wants the projection's 1-σ ellipse, besides the test points.
+struct UncertaintyRequest {
+  std::vector<Eigen::Vector3d> world_points;  // volume rigs
+  std::vector<Eigen::Vector3d> pixel_depths;  // (u, v, depth)
+  std::optional<double> grid_depth;
+  int grid_cols = 16;
+  int grid_rows = 9;
+};
+
+// "projection_uncertainty": ellipses at the test points (volume rigs), the requested points and
+// pixels, and the grid; null when the camera has no covariance.
+OrderedJson UncertaintyToJson(const CalibratedCamera& camera, const UncertaintyRequest& request);
+
+}  // namespace vstcal::io

@@ -1,0 +1,50 @@
+// calib-tsai: camera by Tsai's two-stage method (volumes) or Zhang's method (planar views), refined
+// to maximum likelihood with covariance and projection uncertainty (docs/tools/calib-tsai.md).
+#include "common/calibration_flags.h"
+#include "common/run_tool.h"
+#include "common/validators.h"
+#include "vstcal/io/correspondences_io.h"
+
+int main(int argc, char** argv) {
+  CLI::App app{
+      "Calibrates a camera from vstcal/correspondences@1. Rig \"volume\": Tsai's two-stage method (non-coplanar "
+      "or coplanar, chosen from the points' planarity unless --variant says), Tsai's kappa1 kept and converted to "
+      "k1, k2, k3. Rig \"planar-views\": Zhang's closed form from per-view homographies. Then (unless "
+      "--no-refine) the maximum-likelihood refinement: distortion terms by name (OpenCV's default k1,k2,p1,p2), "
+      "optional skew and robust loss, outliers listed, parameter covariance, projection uncertainty. Output: "
+      "vstcal/camera@1.\n"
+      "Exit codes: 0 ok, 1 internal error, 2 bad usage or input (too few points or views), 3 degenerate data "
+      "(coplanar data forced into the non-coplanar variant, a plane parallel to the image, parallel boards) or "
+      "no convergence.",
+      "calib-tsai"};
+  std::string input, output, variant = "auto";
+  std::optional<std::string> principal_point;
+  bool no_refine = false;
+  vstcal::CalibrationOptions options;
+  vstcal::tools::CalibrationFlags flags;
+  app.add_option("CORNERS", input, "vstcal/correspondences@1 file")->required()->check(vstcal::tools::kNonEmpty);
+  app.add_option("-o,--output", output, "camera file to write (vstcal/camera@1)")->required()->check(vstcal::tools::kNonEmpty);
+  app.add_option("--variant", variant, "Tsai's variant for volumes: auto, coplanar or non-coplanar")
+      ->check(CLI::IsMember({"auto", "coplanar", "non-coplanar"}))
+      ->capture_default_str();
+  app.add_option("--principal-point", principal_point, "U,V in px for Tsai's stages (default: the image centre)");
+  app.add_option("--sx", options.tsai.sx, "the coplanar variant's fixed horizontal scale factor")
+      ->check(vstcal::tools::kPositiveFinite)
+      ->capture_default_str();
+  CLI::Option* raw = app.add_flag("--no-refine", no_refine, "write the closed-form camera without refinement");
+  for (CLI::Option* o : flags.AddRefinement(app)) o->excludes(raw);
+  for (CLI::Option* o : flags.AddUncertainty(app)) o->excludes(raw);
+  flags.AddOutput(app);
+
+  return vstcal::tools::RunTool(app, argc, argv, [&] {
+    using namespace vstcal;
+    options.refine = !no_refine;
+    options.refinement = flags.Refinement();
+    options.tsai.variant = variant == "coplanar"       ? TsaiOptions::Variant::kCoplanar
+                           : variant == "non-coplanar" ? TsaiOptions::Variant::kNonCoplanar
+                                                       : TsaiOptions::Variant::kAuto;
+    if (principal_point) options.tsai.principal_point = tools::ParsePoint2(*principal_point, "--principal-point");
+    const CalibrationResult result = Calibrate(io::ReadCorrespondences(input), options);
+    return tools::FinishCalibration("calib-tsai", input, output, result, options, flags, argc, argv);
+  });
+}

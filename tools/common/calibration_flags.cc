@@ -1,0 +1,130 @@
+#include "common/calibration_flags.h"
+
+#include <cstdio>
+#include <iostream>
+
+#include "common/validators.h"
+#include "vstcal/io/camera_io.h"
+#include "vstcal/io/residuals_io.h"
+#include "vstcal/report/fit_summary.h"
+
+namespace vstcal::tools {
+namespace {
+
+// "1,2,3" → the numbers, exactly `count` of them, finite; else an InputError naming the flag.
+std::vector<double> ParseNumbers(const std::string& text, size_t count, const std::string& flag, const std::string& form) {
+  std::vector<double> values;
+  for (const std::string& item : CLI::detail::split(text, ',')) {
+    char* end = nullptr;
+    const double v = std::strtod(item.c_str(), &end);
+    if (item.empty() || end != item.c_str() + item.size() || !std::isfinite(v)) {
+      throw InputError(flag + ": \"" + text + "\" is not " + form);
+    }
+    values.push_back(v);
+  }
+  if (values.size() != count) throw InputError(flag + ": \"" + text + "\" is not " + form);
+  return values;
+}
+
+}  // namespace
+
+std::vector<CLI::Option*> CalibrationFlags::AddRefinement(CLI::App& app) {
+  return {
+      app.add_option("--distortion", distortion,
+                     "distortion terms to estimate, comma-separated names (k1,k2,p1,p2,k3) or \"none\"")
+          ->capture_default_str(),
+      app.add_flag("--skew", skew, "also estimate the skew s (K[0][1])"),
+      app.add_option("--loss", loss, "robust loss: none, huber or cauchy")
+          ->check(CLI::IsMember({"none", "huber", "cauchy"}))
+          ->capture_default_str(),
+      app.add_option("--loss-scale", loss_scale_px, "where the robust loss departs from the square, px")
+          ->check(kPositiveFinite)
+          ->capture_default_str(),
+      app.add_option("--max-iterations", max_iterations, "refinement iteration limit")
+          ->check(CLI::Range(1, 100000))
+          ->capture_default_str()};
+}
+
+std::vector<CLI::Option*> CalibrationFlags::AddUncertainty(CLI::App& app) {
+  return {
+      app.add_option("--uncertainty-grid", grid_depth,
+                     "report the projection's 1-sigma ellipse over a grid of the image at this depth (length unit)")
+          ->check(kPositiveFinite),
+      app.add_option("--grid-size", grid_size, "COLSxROWS of --uncertainty-grid")->capture_default_str(),
+      app.add_option("--uncertainty-at", at_world, "report the ellipse at world point X,Y,Z (repeatable)"),
+      app.add_option("--uncertainty-pixel", at_pixel, "report the ellipse at pixel U,V and depth D: U,V,D (repeatable)")};
+}
+
+void CalibrationFlags::AddOutput(CLI::App& app) {
+  app.add_option("--residuals", residuals, "also write per-point residuals (vstcal/residuals@1)")->check(kNonEmpty);
+  app.add_flag("-q,--quiet", quiet, "print only warnings and errors");
+}
+
+RefineOptions CalibrationFlags::Refinement() const {
+  RefineOptions o;
+  o.free_distortion.clear();
+  if (distortion != "none") {
+    for (const std::string& term : CLI::detail::split(distortion, ',')) {
+      if (term.empty()) throw InputError("--distortion: empty term in \"" + distortion + "\"; give names like k1,k2,p1,p2 or none");
+      o.free_distortion.push_back(term);
+    }
+  }
+  o.free_skew = skew;
+  o.loss = loss == "huber" ? RefineOptions::Loss::kHuber : loss == "cauchy" ? RefineOptions::Loss::kCauchy : RefineOptions::Loss::kNone;
+  o.loss_scale_px = loss_scale_px;
+  o.max_iterations = max_iterations;
+  return o;
+}
+
+io::UncertaintyRequest CalibrationFlags::Uncertainty() const {
+  io::UncertaintyRequest r;
+  r.grid_depth = grid_depth;
+  std::tie(r.grid_cols, r.grid_rows) = ParseSize(grid_size, "--grid-size", "COLSxROWS (e.g. 16x9)");
+  for (const std::string& p : at_world) {
+    const auto v = ParseNumbers(p, 3, "--uncertainty-at", "three numbers X,Y,Z");
+    r.world_points.emplace_back(v[0], v[1], v[2]);
+  }
+  for (const std::string& p : at_pixel) {
+    const auto v = ParseNumbers(p, 3, "--uncertainty-pixel", "three numbers U,V,DEPTH");
+    if (!(v[2] > 0)) throw InputError("--uncertainty-pixel: the depth in \"" + p + "\" must be positive");
+    r.pixel_depths.emplace_back(v[0], v[1], v[2]);
+  }
+  return r;
+}
+
+int FinishCalibration(const std::string& tool, const std::string& input, const std::string& output,
+                      const CalibrationResult& result, const CalibrationOptions& options, const CalibrationFlags& flags,
+                      int argc, char** argv) {
+  for (const std::string& w : result.warnings) std::cerr << tool << ": warning: " << w << "\n";
+  if (result.exit_code != ExitCode::kOk) throw Error(result.exit_code, input + ": " + result.message);
+  const io::UncertaintyRequest request = flags.Uncertainty();
+  if (!request.world_points.empty() && !result.camera.camera_from_world) {
+    throw InputError("--uncertainty-at: planar views have no world frame; use --uncertainty-pixel");
+  }
+
+  const io::Provenance provenance = io::MakeProvenance(tool, argc, argv);
+  io::OrderedJson blocks = io::CalibrationBlocksToJson(result, options);
+  if (result.camera.covariance) blocks["projection_uncertainty"] = io::UncertaintyToJson(result.camera, request);
+  std::vector<std::pair<std::filesystem::path, std::string>> outputs;
+  outputs.emplace_back(output, io::DumpJson(io::CameraToJson(result.camera, provenance, blocks)));
+  if (!flags.residuals.empty()) {
+    outputs.emplace_back(flags.residuals, io::DumpJson(io::ResidualsToJson(result.used, *result.camera.fit, provenance)));
+  }
+  io::WriteFilesAtomically(outputs);
+  if (!flags.quiet) {
+    std::cerr << tool << ": " << input << ": " << NumObservations(result.used) << " points in " << result.used.views.size()
+              << " views, method " << result.camera.method << "\n"
+              << FitSummaryText(result.camera);
+    if (result.refinement) {
+      const Refinement& r = *result.refinement;
+      char buf[200];
+      std::snprintf(buf, sizeof buf, "  refinement: %d iterations, sigma %.4f px (%d dof), %zu outliers\n", r.iterations,
+                    r.sigma_px, r.dof, r.outliers.size());
+      std::cerr << buf;
+    }
+    std::cerr << "  wrote " << output << (flags.residuals.empty() ? "" : " and " + flags.residuals) << "\n";
+  }
+  return 0;
+}
+
+}  // namespace vstcal::tools

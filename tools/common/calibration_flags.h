@@ -1,0 +1,48 @@
+// Flags and output shared by the calibration tools (calib-dlt, calib-tsai): the refinement's
+// options, where to report projection uncertainty, and writing the camera file with its solver
+// blocks, atomically, plus the stderr summary.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "vstcal/calib/pipeline.h"
+#include "vstcal/io/calibration_io.h"
+
+namespace vstcal::tools {
+
+struct CalibrationFlags {
+  std::string distortion = "k1,k2,p1,p2";
+  bool skew = false;
+  std::string loss = "none";
+  double loss_scale_px = 1.0;
+  int max_iterations = 100;
+
+  std::optional<double> grid_depth;
+  std::string grid_size = "16x9";
+  std::vector<std::string> at_world;  // "X,Y,Z"
+  std::vector<std::string> at_pixel;  // "U,V,DEPTH"
+
+  std::string residuals;
+  bool quiet = false;
+
+  // Add the refinement and the uncertainty flags; return them so a tool can tie them to its own
+  // switch (calib-dlt: they need --refine; calib-tsai: they exclude --no-refine).
+  std::vector<CLI::Option*> AddRefinement(CLI::App& app);
+  std::vector<CLI::Option*> AddUncertainty(CLI::App& app);
+  void AddOutput(CLI::App& app);
+
+  RefineOptions Refinement() const;
+  io::UncertaintyRequest Uncertainty() const;  // throws InputError naming the flag for bad values
+};
+
+// Turns a failed result into the documented exit code and message (throws vstcal::Error), or
+// writes OUTPUT (and --residuals) all-or-nothing and prints warnings and the summary on stderr.
+int FinishCalibration(const std::string& tool, const std::string& input, const std::string& output,
+                      const CalibrationResult& result, const CalibrationOptions& options, const CalibrationFlags& flags,
+                      int argc, char** argv);
+
+}  // namespace vstcal::tools
