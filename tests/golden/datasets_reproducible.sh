@@ -6,8 +6,7 @@ tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 "$root/scripts/make-datasets" "$tmp" 2>/dev/null
 status=0
-for f in seed000/clean.json seed000/clean.truth.json seed000/noisy.json seed000/noisy.truth.json \
-         zedmini/clean.json zedmini/clean.truth.json zedmini/noisy.json zedmini/noisy.truth.json; do
+for f in $(cd "$root/datasets" && ls seed000/*.json zedmini/*.json); do
   if ! cmp -s "$tmp/$f" "$root/datasets/$f"; then
     echo "datasets/$f differs from what scripts/make-datasets writes" >&2
     status=1

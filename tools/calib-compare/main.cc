@@ -7,6 +7,7 @@
 #include "vstcal/calib/compare.h"
 #include "vstcal/core/error.h"
 #include "vstcal/io/camera_io.h"
+#include "vstcal/io/correspondences_io.h"
 
 int main(int argc, char** argv) {
   CLI::App app{
@@ -18,6 +19,9 @@ int main(int argc, char** argv) {
   std::optional<double> depth;
   app.add_option("REFERENCE", reference, "camera@1 file taken as reference")->required();
   app.add_option("OTHER", other, "camera@1 file compared with it")->required();
+  std::string points_file;
+  app.add_option("--test-points", points_file,
+                 "also compare the projections of this correspondences file's test points (registration error)");
   app.add_option("--depth", depth, "depth of the comparison grid (length unit; default: world origin's depth)")
       ->check(CLI::PositiveNumber);
   return vstcal::tools::RunTool(app, argc, argv, [&] {
@@ -43,6 +47,26 @@ int main(int argc, char** argv) {
     if (c.centre_distance) std::printf("camera centre distance   %.6f %s\n", *c.centre_distance, unit.c_str());
     std::printf("pixel disagreement at depth %.1f %s: RMS %.4f px, max %.4f px over %zu grid points\n", c.depth,
                 unit.c_str(), c.rms_px, c.max_px, c.n_points);
+    if (!points_file.empty()) {
+      const Correspondences corners = io::ReadCorrespondences(points_file);
+      if (corners.test_points.empty()) throw InputError(points_file + ": test_points: none; give a file with test points");
+      std::vector<PointDisagreement> d;
+      try {
+        d = CompareAtTestPoints(a, b, corners.test_points);
+      } catch (const InputError& e) {
+        throw InputError(other + " vs " + reference + ": " + e.what());
+      }
+      std::printf("%-14s %-8s %s\n", "test point", "volume", "disagreement px");
+      const Fit fit = ComputeVolumeFit(a.camera, *a.camera_from_world, corners);  // inside/outside the volume
+      for (size_t i = 0; i < d.size(); ++i) {
+        const char* where = fit.test_points[i].inside_volume ? "inside" : "outside";
+        if (d[i].pixel_distance) {
+          std::printf("%-14s %-8s %.4f\n", d[i].name.c_str(), where, *d[i].pixel_distance);
+        } else {
+          std::printf("%-14s %-8s (behind a camera)\n", d[i].name.c_str(), where);
+        }
+      }
+    }
     return 0;
   });
 }

@@ -7,6 +7,7 @@
 #include "common/run_tool.h"
 #include "common/validators.h"
 #include "vstcal/camera/intrinsics.h"
+#include "vstcal/capture/synthetic_views.h"
 #include "vstcal/capture/synthetic_volume.h"
 #include "vstcal/core/error.h"
 #include "vstcal/io/camera_io.h"
@@ -66,9 +67,10 @@ vstcal::Camera MakeCamera(const CameraFlags& f) {
 
 int main(int argc, char** argv) {
   CLI::App app{
-      "Writes a synthetic calibration volume (vstcal/correspondences@1): a planar grid template moved along its "
-      "normal from --near to --far every --interval, seen by a known camera with Gaussian pixel noise, plus seed "
-      "000's five test points. The ground truth camera (vstcal/camera@1, method \"synthetic\") goes beside it.\n"
+      "Writes synthetic correspondences (vstcal/correspondences@1) with the ground-truth camera (vstcal/camera@1, "
+      "method \"synthetic\") beside them. --rig volume (default): a planar grid template moved along its normal "
+      "from --near to --far every --interval, plus seed 000's five test points. --rig planar-views: a board shown at "
+      "--views poses spread over the field of view. Gaussian pixel noise from a counter-based stream.\n"
       "Exit codes: 0 ok, 1 internal error, 2 bad usage or input.",
       "calib-synth"};
   std::string output, truth, grid = "13x9";
@@ -94,6 +96,11 @@ int main(int argc, char** argv) {
                       ->check(kNonEmpty)}) {
     o->excludes(camera_file);
   }
+  std::string rig = "volume";
+  vstcal::PlanarViewsSpec views;
+  app.add_option("--rig", rig, "volume (a template moved between planes) or planar-views (a board waved about)")
+      ->check(CLI::IsMember({"volume", "planar-views"}))
+      ->capture_default_str();
   app.add_option("--grid", grid, "template corners COLSxROWS")->capture_default_str();
   app.add_option("--spacing", spec.spacing, "corner spacing")->check(kFinite)->capture_default_str();
   app.add_option("--near", spec.near, "first template offset (world Z)")->check(kFinite)->capture_default_str();
@@ -114,33 +121,66 @@ int main(int argc, char** argv) {
   app.add_option("--length-unit", unit, "mm, cm or m")->check(CLI::IsMember({"mm", "cm", "m"}))->capture_default_str();
   app.add_option("--camera-name", spec.camera_name, "the \"camera\" field, e.g. left");
   app.add_flag("--no-test-points", no_test_points, "omit seed 000's five test points");
+  const std::vector<std::string> volume_only = {"--near", "--far", "--interval", "--camera-distance", "--tilt-deg",
+                                                "--tilt-direction-deg", "--roll-deg", "--no-test-points"};
+  app.add_option("--views", views.num_views, "planar views: number of board poses")->capture_default_str();
+  app.add_option("--distance", views.distance, "planar views: typical board depth")->check(kFinite)->capture_default_str();
+  app.add_option("--max-tilt-deg", views.max_tilt_deg, "planar views: largest board tilt")
+      ->check(kFinite)
+      ->capture_default_str();
+  const std::vector<std::string> planar_only = {"--views", "--distance", "--max-tilt-deg"};
 
   return vstcal::tools::RunTool(app, argc, argv, [&] {
     using namespace vstcal;
+    const bool planar = rig == "planar-views";
+    for (const std::string& flag : planar ? volume_only : planar_only) {
+      if (app.count(flag) > 0) {
+        throw InputError(flag + ": applies to --rig " + (planar ? "volume" : "planar-views") + " only; remove it or change --rig");
+      }
+    }
     std::tie(spec.grid_cols, spec.grid_rows) = ParseSize(grid, "--grid", "COLSxROWS (e.g. 13x9)");
     spec.length_unit = *LengthUnitFromName(unit);
     const Camera camera = MakeCamera(cam);
-    const SyntheticVolume volume =
-        SynthesizeVolume(camera, spec, no_test_points ? std::vector<TestPoint>{} : Seed000TestPoints(spec));
 
     CalibratedCamera truth_camera;
     truth_camera.name = spec.camera_name;
     truth_camera.camera = camera;
     truth_camera.length_unit = spec.length_unit;
     truth_camera.method = "synthetic";
-    truth_camera.camera_from_world = volume.camera_from_world;
-    truth_camera.fit = ComputeVolumeFit(camera, volume.camera_from_world, volume.correspondences);
+    Correspondences corners;
+    if (planar) {
+      views.grid_cols = spec.grid_cols;
+      views.grid_rows = spec.grid_rows;
+      views.spacing = spec.spacing;
+      views.noise_px = spec.noise_px;
+      views.seed = spec.seed;
+      views.length_unit = spec.length_unit;
+      views.camera_name = spec.camera_name;
+      const SyntheticViews synthetic = SynthesizePlanarViews(camera, views);
+      for (const std::string& w : synthetic.warnings) std::cerr << "calib-synth: warning: " << w << "\n";
+      corners = synthetic.correspondences;
+      for (size_t v = 0; v < corners.views.size(); ++v) {
+        truth_camera.views.push_back({corners.views[v].name, synthetic.camera_from_board[v], 0});
+      }
+      truth_camera.fit = ComputeViewsFit(camera, synthetic.camera_from_board, corners);
+      for (size_t v = 0; v < corners.views.size(); ++v) truth_camera.views[v].rms_px = truth_camera.fit->views[v].stats.rms_px;
+    } else {
+      const SyntheticVolume volume =
+          SynthesizeVolume(camera, spec, no_test_points ? std::vector<TestPoint>{} : Seed000TestPoints(spec));
+      corners = volume.correspondences;
+      truth_camera.camera_from_world = volume.camera_from_world;
+      truth_camera.fit = ComputeVolumeFit(camera, volume.camera_from_world, corners);
+    }
 
     if (truth.empty()) {
       const std::filesystem::path p(output);
       truth = (p.parent_path() / (p.stem().string() + ".truth.json")).string();
     }
     const io::Provenance provenance = io::MakeProvenance("calib-synth", argc, argv, spec.seed);
-    io::WriteFilesAtomically({{output, io::DumpJson(io::CorrespondencesToJson(volume.correspondences, provenance))},
+    io::WriteFilesAtomically({{output, io::DumpJson(io::CorrespondencesToJson(corners, provenance))},
                               {truth, io::DumpJson(io::CameraToJson(truth_camera, provenance))}});
-    std::cerr << "calib-synth: " << NumObservations(volume.correspondences) << " points in "
-              << volume.correspondences.views.size() << " views, " << volume.correspondences.test_points.size()
-              << " test points; wrote " << output << " and " << truth << "\n";
+    std::cerr << "calib-synth: " << NumObservations(corners) << " points in " << corners.views.size() << " views, "
+              << corners.test_points.size() << " test points; wrote " << output << " and " << truth << "\n";
     return 0;
   });
 }

@@ -49,4 +49,20 @@ CameraComparison CompareCameras(const CalibratedCamera& a, const CalibratedCamer
   return out;
 }
 
+std::vector<PointDisagreement> CompareAtTestPoints(const CalibratedCamera& a, const CalibratedCamera& b,
+                                                   const std::vector<TestPoint>& points) {
+  if (!a.camera_from_world || !b.camera_from_world) {
+    throw InputError("camera_from_world: comparing at world points needs both cameras posed in the world (volume rigs)");
+  }
+  std::vector<PointDisagreement> out;
+  for (const TestPoint& t : points) {
+    PointDisagreement d{t.name, t.point_in_world, std::nullopt};
+    const auto qa = a.camera.Project(*a.camera_from_world * t.point_in_world);
+    const auto qb = b.camera.Project(*b.camera_from_world * t.point_in_world);
+    if (qa && qb) d.pixel_distance = (*qa - *qb).norm();
+    out.push_back(std::move(d));
+  }
+  return out;
+}
+
 }  // namespace vstcal

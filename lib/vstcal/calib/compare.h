@@ -5,6 +5,7 @@
 #include <optional>
 
 #include "vstcal/calib/calibrated_camera.h"
+#include "vstcal/calib/correspondences.h"
 
 namespace vstcal {
 
@@ -20,6 +21,16 @@ struct CameraComparison {
   double max_px = 0;
   size_t n_points = 0;
 };
+
+// Registration disagreement at world points (e.g. a dataset's test points): each point projected
+// by both posed cameras; nullopt where either sees it behind. Both cameras need camera_from_world.
+struct PointDisagreement {
+  std::string name;
+  Eigen::Vector3d point_in_world;
+  std::optional<double> pixel_distance;
+};
+std::vector<PointDisagreement> CompareAtTestPoints(const CalibratedCamera& a, const CalibratedCamera& b,
+                                                   const std::vector<TestPoint>& points);
 
 // `depth` defaults to the depth of the world origin in a's camera frame when both cameras are
 // posed (a volume calibration), else 1000 length units. Throws InputError when the cameras

@@ -33,6 +33,14 @@ std::string PoseName(const Correspondences& c, size_t pose) {
   return c.rig == Rig::kVolume ? "camera_from_world" : "views[" + std::to_string(pose) + "].camera_from_board";
 }
 
+std::unique_ptr<ceres::LossFunction> MakeLoss(const RefineOptions& options) {
+  switch (options.loss) {
+    case RefineOptions::Loss::kHuber: return std::make_unique<ceres::HuberLoss>(options.loss_scale_px);
+    case RefineOptions::Loss::kCauchy: return std::make_unique<ceres::CauchyLoss>(options.loss_scale_px);
+    default: return nullptr;
+  }
+}
+
 // Everything the templated solve needs, independent of the model type.
 struct Problem {
   const Correspondences* c;
@@ -47,19 +55,15 @@ void AddResiduals(ceres::Problem* problem, Problem* p, const RefineOptions& opti
   const bool volume = p->c->rig == Rig::kVolume;
   for (size_t v = 0; v < p->c->views.size(); ++v) {
     const size_t pose = volume ? 0 : v;
-    const View& view = p->c->views[v];
+    const std::vector<Observation>& obs = p->c->views[v].observations;
     double* delta = p->delta[pose].data();
     if (options.loss == RefineOptions::Loss::kNone) {
-      problem->AddResidualBlock(ViewReprojectionCost<Model>::Create(view.observations, p->reference[pose]), nullptr,
-                                p->intrinsics.data(), delta);
+      problem->AddResidualBlock(new ReprojectionCost<Model>(obs, p->reference[pose]), nullptr, p->intrinsics.data(), delta);
       continue;
     }
-    for (const Observation& o : view.observations) {
-      ceres::LossFunction* loss = options.loss == RefineOptions::Loss::kHuber
-                                      ? static_cast<ceres::LossFunction*>(new ceres::HuberLoss(options.loss_scale_px))
-                                      : new ceres::CauchyLoss(options.loss_scale_px);
-      problem->AddResidualBlock(PointReprojectionCost<Model>::Create(o, p->reference[pose]), loss,
-                                p->intrinsics.data(), delta);
+    for (const Observation& o : obs) {
+      problem->AddResidualBlock(new ReprojectionCost<Model>(std::span<const Observation>(&o, 1), p->reference[pose]),
+                                MakeLoss(options).release(), p->intrinsics.data(), delta);
     }
   }
 }
@@ -91,21 +95,52 @@ std::unique_ptr<ceres::Problem> BuildProblem(Problem* p, const RefineOptions& op
   return problem;
 }
 
-// σ̂² (JᵀJ)⁻¹ over the free parameters at δ = 0, or an empty matrix when JᵀJ is singular.
-Eigen::MatrixXd Covariance(ceres::Problem* problem, Problem* p, double sigma2, std::string* message) {
-  ceres::Problem::EvaluateOptions eval;
-  if (!problem->IsParameterBlockConstant(p->intrinsics.data())) eval.parameter_blocks.push_back(p->intrinsics.data());
-  for (auto& d : p->delta) eval.parameter_blocks.push_back(d.data());
-  eval.apply_loss_function = true;  // with a robust loss: the reweighted (IRLS) information
-  ceres::CRSMatrix crs;
-  problem->Evaluate(eval, nullptr, nullptr, nullptr, &crs);
-  // JᵀJ from the sparse rows (each touches the intrinsics and one pose): Σ over rows of the
-  // outer product of its non-zeros, far cheaper than a dense product for many views.
-  Eigen::MatrixXd information = Eigen::MatrixXd::Zero(crs.num_cols, crs.num_cols);
-  for (int r = 0; r < crs.num_rows; ++r) {
-    for (int a = crs.rows[r]; a < crs.rows[r + 1]; ++a) {
-      for (int b = crs.rows[r]; b < crs.rows[r + 1]; ++b) information(crs.cols[a], crs.cols[b]) += crs.values[a] * crs.values[b];
+// σ̂² (JᵀJ)⁻¹ over the free parameters at δ = 0 (the poses recentred on the optimum), or an
+// empty matrix when JᵀJ is singular. Columns: the free intrinsics, then 6 per pose. With a robust
+// loss each point's rows are weighted by ρ′(‖r‖²) (the IRLS information).
+template <typename Model>
+Eigen::MatrixXd Covariance(const Problem& p, const RefineOptions& options, double sigma2, std::string* message) {
+  const int free = static_cast<int>(p.free_intrinsics.size());
+  const int n = free + 6 * static_cast<int>(p.reference.size());
+  Eigen::MatrixXd information = Eigen::MatrixXd::Zero(n, n);
+  const std::unique_ptr<ceres::LossFunction> loss = MakeLoss(options);
+  const double zero[6] = {};
+  const bool volume = p.c->rig == Rig::kVolume;
+  for (size_t v = 0; v < p.c->views.size(); ++v) {
+    const size_t pose = volume ? 0 : v;
+    const std::vector<Observation>& obs = p.c->views[v].observations;
+    const ReprojectionCost<Model> cost(obs, p.reference[pose]);
+    std::vector<double> r(2 * obs.size()), Ji(2 * obs.size() * Model::kNumParams), Jp(2 * obs.size() * 6);
+    const double* params[2] = {p.intrinsics.data(), zero};
+    double* jacobians[2] = {Ji.data(), Jp.data()};
+    if (!cost.Evaluate(params, r.data(), jacobians)) continue;  // cannot happen at a converged optimum
+    // Each point's rows touch the free intrinsics and one pose: accumulate their small Gram
+    // matrix and scatter it, instead of multiplying full-width rows.
+    const int m = free + 6;
+    Eigen::Matrix<double, 2, Eigen::Dynamic, Eigen::RowMajor, 2, 6 + Model::kNumParams> J(2, m);
+    Eigen::MatrixXd gram = Eigen::MatrixXd::Zero(m, m);
+    for (size_t k = 0; k < obs.size(); ++k) {
+      for (int row = 0; row < 2; ++row) {
+        for (int f = 0; f < free; ++f) J(row, f) = Ji[(2 * k + row) * Model::kNumParams + p.free_intrinsics[f]];
+        for (int c = 0; c < 6; ++c) J(row, free + c) = Jp[(2 * k + row) * 6 + c];
+      }
+      double weight = 1.0;
+      if (loss) {
+        double rho[3];
+        loss->Evaluate(r[2 * k] * r[2 * k] + r[2 * k + 1] * r[2 * k + 1], rho);
+        weight = rho[1];
+      }
+      for (int a = 0; a < m; ++a) {
+        const double wa0 = weight * J(0, a), wa1 = weight * J(1, a);
+        for (int b = a; b < m; ++b) gram(a, b) += wa0 * J(0, b) + wa1 * J(1, b);
+      }
     }
+    gram = gram.selfadjointView<Eigen::Upper>();
+    const int pose_column = free + 6 * static_cast<int>(pose);
+    information.topLeftCorner(free, free) += gram.topLeftCorner(free, free);
+    information.block(0, pose_column, free, 6) += gram.topRightCorner(free, 6);
+    information.block(pose_column, 0, 6, free) += gram.bottomLeftCorner(6, free);
+    information.block(pose_column, pose_column, 6, 6) += gram.bottomRightCorner(6, 6);
   }
   Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(information);
   const double largest = eig.eigenvalues().maxCoeff();
@@ -126,10 +161,12 @@ Refinement RefineWith(const Correspondences& c, Problem* p, const RefineOptions&
 
   std::unique_ptr<ceres::Problem> problem = BuildProblem<Model>(p, options);
   ceres::Solver::Options solver;
-  solver.linear_solver_type = c.rig == Rig::kVolume ? ceres::DENSE_QR : ceres::DENSE_SCHUR;
+  solver.linear_solver_type = c.rig == Rig::kVolume ? ceres::DENSE_NORMAL_CHOLESKY : ceres::DENSE_SCHUR;
   solver.max_num_iterations = options.max_iterations;
-  solver.function_tolerance = 1e-12;
-  solver.parameter_tolerance = 1e-12;
+  // Stop when a step changes the cost by less than 1e-10 of itself: parameter changes are then a
+  // few 1e-6 of their standard deviations, far below anything a covariance or a test can see.
+  solver.function_tolerance = 1e-10;
+  solver.parameter_tolerance = 1e-10;
   solver.gradient_tolerance = 1e-14;
   solver.num_threads = 1;  // deterministic
   solver.logging_type = ceres::SILENT;
@@ -188,17 +225,14 @@ Refinement RefineWith(const Correspondences& c, Problem* p, const RefineOptions&
     }
   }
 
-  // Covariance at the optimum: a fresh problem linearized at δ = 0 around the refined poses.
-  problem = BuildProblem<Model>(p, options);
+  // Covariance at the optimum, linearized at δ = 0 around the refined poses.
   std::string singular;
-  out.covariance.matrix = Covariance(problem.get(), p, out.sigma_px * out.sigma_px, &singular);
+  out.covariance.matrix = Covariance<Model>(*p, options, out.sigma_px * out.sigma_px, &singular);
   if (out.covariance.matrix.size() == 0) {
     out.message += (out.message.empty() ? "" : "; ") + singular;
   } else {
     const auto names = LensModelParamNames(out.camera.model);
-    if (!problem->IsParameterBlockConstant(p->intrinsics.data())) {
-      for (int i : p->free_intrinsics) out.covariance.parameters.emplace_back(names[i]);
-    }
+    for (int i : p->free_intrinsics) out.covariance.parameters.emplace_back(names[i]);
     for (size_t i = 0; i < p->reference.size(); ++i) {
       for (const char* axis : {"rx", "ry", "rz", "tx", "ty", "tz"}) {
         out.covariance.parameters.push_back(PoseName(c, i) + "." + axis);

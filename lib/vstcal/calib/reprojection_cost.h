@@ -1,6 +1,5 @@
-// Reprojection residuals for Ceres (the Ceres pattern: plain structs holding their observations,
-// a templated operator(), a static Create()). The objective, over every observation (X, q) of a
-// view whose frame is posed by camera_from_view:
+// Reprojection residuals for Ceres. The objective, over every observation (X, q) of a view whose
+// frame is posed by the reference camera_from_view:
 //
 //   Σ ‖ project(θ, δT · camera_from_view_ref · X) − q ‖²,   δT = (Exp(ω), ρ)
 //
@@ -9,75 +8,68 @@
 //       fixed are kept so by a ceres::SubsetManifold;
 //   [1] δ = (ω, ρ) ∈ ℝ⁶: a left perturbation of the view's reference pose
 //       (docs/conventions.md#poses-in-optimisation), starting at 0.
-// A point that falls behind the camera makes operator() return false: Ceres rejects the step.
-// It is never turned into a zero residual.
+// Jacobians: ∂q/∂θ and ∂q/∂p from the lens model's ProjectWithJacobians (the one projection,
+// its distortion differentiated by Jets), and with p = Exp(ω) y + ρ, y = camera_from_view_ref · X,
+//   ∂p/∂ω = −[Exp(ω) y]× J_l(ω),  ∂p/∂ρ = I.
+// A point that falls behind the camera makes Evaluate return false: Ceres rejects the step. It is
+// never turned into a zero residual.
 #pragma once
 
-#include <ceres/autodiff_cost_function.h>
+#include <span>
+#include <vector>
+
+#include <ceres/cost_function.h>
 
 #include "vstcal/calib/correspondences.h"
 #include "vstcal/geometry/rigid3.h"
 
 namespace vstcal {
 
-// Residual (predicted − measured) of one point under one pose; false behind the camera.
-template <typename Model, typename T>
-bool ReprojectionResidual(const T* intrinsics, const Rigid3<T>& camera_from_view, const Observation& o, T* residual) {
-  // R·X with X in double: Jet × double avoids promoting X to Jets.
-  T p_cam[3];
-  for (int i = 0; i < 3; ++i) {
-    p_cam[i] = camera_from_view.R(i, 0) * o.point.x() + camera_from_view.R(i, 1) * o.point.y() +
-               camera_from_view.R(i, 2) * o.point.z() + camera_from_view.t(i);
-  }
-  T px[2];
-  if (!Model::Project(intrinsics, p_cam, px)) return false;
-  residual[0] = px[0] - o.pixel.x();
-  residual[1] = px[1] - o.pixel.y();
-  return true;
-}
-
-template <typename T>
-Rigid3<T> PerturbedPose(const Rigid3d& reference, const T* delta) {
-  return PerturbLeft(reference.cast<T>(), Vec3<T>(delta[0], delta[1], delta[2]), Vec3<T>(delta[3], delta[4], delta[5]));
-}
-
-// All observations of one view under one pose: the pose is built once per evaluation. Used when
-// no robust loss is asked for (a Ceres loss applies to a whole residual block).
 template <typename Model>
-struct ViewReprojectionCost {
-  const std::vector<Observation>* observations;
-  Rigid3d reference;
+class ReprojectionCost final : public ceres::CostFunction {
+ public:
+  // One residual block for all `observations` (no robust loss: a Ceres loss applies to a whole
+  // block), or for a single observation (robust losses, point by point).
+  ReprojectionCost(std::span<const Observation> observations, const Rigid3d& camera_from_view_ref) {
+    for (const Observation& o : observations) {
+      y_.push_back(camera_from_view_ref * o.point);
+      pixels_.push_back(o.pixel);
+    }
+    set_num_residuals(2 * static_cast<int>(observations.size()));
+    mutable_parameter_block_sizes()->push_back(Model::kNumParams);
+    mutable_parameter_block_sizes()->push_back(6);
+  }
 
-  template <typename T>
-  bool operator()(const T* intrinsics, const T* delta, T* residuals) const {
-    const Rigid3<T> pose = PerturbedPose(reference, delta);
-    for (size_t i = 0; i < observations->size(); ++i) {
-      if (!ReprojectionResidual<Model>(intrinsics, pose, (*observations)[i], residuals + 2 * i)) return false;
+  bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override {
+    const double* params = parameters[0];
+    const Eigen::Map<const Eigen::Matrix<double, 6, 1>> delta(parameters[1]);
+    const Eigen::Vector3d omega = delta.head<3>(), rho = delta.tail<3>();
+    const Eigen::Matrix3d E = RotationFromRotvec(omega);
+    const bool want_intrinsics = jacobians && jacobians[0];
+    const bool want_pose = jacobians && jacobians[1];
+    const Eigen::Matrix3d Jl = want_pose ? LeftJacobianSO3(omega) : Eigen::Matrix3d::Identity();
+    using RowMajor2x3 = Eigen::Matrix<double, 2, 3, Eigen::RowMajor>;
+    for (size_t i = 0; i < y_.size(); ++i) {
+      const Eigen::Vector3d e = E * y_[i];
+      const Eigen::Vector3d p = e + rho;
+      double q[2];
+      RowMajor2x3 d_q_d_p;
+      double* d_params = want_intrinsics ? jacobians[0] + 2 * i * Model::kNumParams : nullptr;
+      if (!Model::ProjectWithJacobians(params, p.data(), q, d_params, want_pose ? d_q_d_p.data() : nullptr)) return false;
+      residuals[2 * i] = q[0] - pixels_[i].x();
+      residuals[2 * i + 1] = q[1] - pixels_[i].y();
+      if (want_pose) {
+        Eigen::Map<Eigen::Matrix<double, 2, 6, Eigen::RowMajor>> d_pose(jacobians[1] + 12 * i);
+        d_pose.leftCols<3>() = -d_q_d_p * Hat(e) * Jl;
+        d_pose.rightCols<3>() = d_q_d_p;
+      }
     }
     return true;
   }
 
-  static ceres::CostFunction* Create(const std::vector<Observation>& observations, const Rigid3d& reference) {
-    return new ceres::AutoDiffCostFunction<ViewReprojectionCost, ceres::DYNAMIC, Model::kNumParams, 6>(
-        new ViewReprojectionCost{&observations, reference}, 2 * static_cast<int>(observations.size()));
-  }
-};
-
-// One observation: a residual block per point, so that a robust loss applies point by point.
-template <typename Model>
-struct PointReprojectionCost {
-  Observation observation;
-  Rigid3d reference;
-
-  template <typename T>
-  bool operator()(const T* intrinsics, const T* delta, T* residual) const {
-    return ReprojectionResidual<Model>(intrinsics, PerturbedPose(reference, delta), observation, residual);
-  }
-
-  static ceres::CostFunction* Create(const Observation& observation, const Rigid3d& reference) {
-    return new ceres::AutoDiffCostFunction<PointReprojectionCost, 2, Model::kNumParams, 6>(
-        new PointReprojectionCost{observation, reference});
-  }
+ private:
+  std::vector<Eigen::Vector3d> y_;  // camera_from_view_ref · X
+  std::vector<Eigen::Vector2d> pixels_;
 };
 
 }  // namespace vstcal

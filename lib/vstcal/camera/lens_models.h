@@ -36,6 +36,45 @@ struct LensModel {
     return true;
   }
 
+  // Project with its Jacobians, in double (Basalt's pattern): d_px_d_params is 2 × kNumParams and
+  // d_px_d_p is 2 × 3, both row-major, either may be null. The distortion is differentiated by
+  // ceres::Jet through the same Model::Distort (dimension 2 + number of distortion terms); the
+  // rest (division by z, K) analytically. Returns false, writing nothing, when z ≤ 0.
+  static bool ProjectWithJacobians(const double* params, const double* p_cam, double* px, double* d_px_d_params,
+                                   double* d_px_d_p) {
+    if (!d_px_d_params && !d_px_d_p) return Project(params, p_cam, px);  // no Jets needed
+    if (!(p_cam[2] > 0)) return false;
+    constexpr int kDistortion = Model::kNumParams - kNumIntrinsicParams;
+    using Jet = ceres::Jet<double, 2 + kDistortion>;
+    const double inv_z = 1.0 / p_cam[2];
+    const double x = p_cam[0] * inv_z, y = p_cam[1] * inv_z;
+    Jet d[kDistortion > 0 ? kDistortion : 1];
+    for (int i = 0; i < kDistortion; ++i) d[i] = Jet(params[kNumIntrinsicParams + i], 2 + i);
+    Jet xd, yd;
+    Model::Distort(d, Jet(x, 0), Jet(y, 1), &xd, &yd);
+    const double fx = params[0], fy = params[1], s = params[4];
+    px[0] = fx * xd.a + s * yd.a + params[2];
+    px[1] = fy * yd.a + params[3];
+    if (d_px_d_params) {
+      double* du = d_px_d_params;
+      double* dv = d_px_d_params + Model::kNumParams;
+      du[0] = xd.a, du[1] = 0, du[2] = 1, du[3] = 0, du[4] = yd.a;
+      dv[0] = 0, dv[1] = yd.a, dv[2] = 0, dv[3] = 1, dv[4] = 0;
+      for (int i = 0; i < kDistortion; ++i) {
+        du[kNumIntrinsicParams + i] = fx * xd.v[2 + i] + s * yd.v[2 + i];
+        dv[kNumIntrinsicParams + i] = fy * yd.v[2 + i];
+      }
+    }
+    if (d_px_d_p) {
+      // ∂(u, v)/∂(x, y), then ∂(x, y)/∂p = [[1/z, 0, −x/z], [0, 1/z, −y/z]].
+      const double ux = fx * xd.v[0] + s * yd.v[0], uy = fx * xd.v[1] + s * yd.v[1];
+      const double vx = fy * yd.v[0], vy = fy * yd.v[1];
+      d_px_d_p[0] = ux * inv_z, d_px_d_p[1] = uy * inv_z, d_px_d_p[2] = -(ux * x + uy * y) * inv_z;
+      d_px_d_p[3] = vx * inv_z, d_px_d_p[4] = vy * inv_z, d_px_d_p[5] = -(vx * x + vy * y) * inv_z;
+    }
+    return true;
+  }
+
   // Inverse of Project in double: the ray (x, y, 1) in the camera frame whose projection is px.
   // The distortion is inverted by Newton's method with the Jacobian of Model::Distort taken by
   // ceres::Jet (the same code as the forward model). Returns nullopt where Newton does not

@@ -5,6 +5,21 @@
 
 namespace vstcal {
 
+Eigen::Matrix3d LeftJacobianSO3(const Eigen::Vector3d& omega) {
+  const double theta2 = omega.squaredNorm();
+  const Eigen::Matrix3d W = Hat(omega);
+  double a, b;  // (1 − cos θ)/θ², (θ − sin θ)/θ³
+  if (theta2 < 1e-10) {
+    a = 0.5 - theta2 / 24.0;
+    b = 1.0 / 6.0 - theta2 / 120.0;
+  } else {
+    const double theta = std::sqrt(theta2);
+    a = (1 - std::cos(theta)) / theta2;
+    b = (theta - std::sin(theta)) / (theta2 * theta);
+  }
+  return Eigen::Matrix3d::Identity() + a * W + b * (W * W);
+}
+
 Eigen::Vector3d RotvecFromRotation(const Eigen::Matrix3d& R) {
   // Through the quaternion: stable at θ → 0 and θ → π, unlike acos((tr R − 1)/2).
   Eigen::Quaterniond q(R);

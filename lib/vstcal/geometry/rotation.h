@@ -58,6 +58,11 @@ Vec3<T> RotateByRotvec(const Vec3<T>& r, const Vec3<T>& p) {
   return p + r.cross(p);
 }
 
+// The left Jacobian of SO(3): Exp(ω + dω) ≈ Exp(J_l(ω) dω) Exp(ω), so that
+// ∂(Exp(ω) y)/∂ω = −[Exp(ω) y]× J_l(ω).
+// J_l(ω) = I + (1 − cos θ)/θ² [ω]× + (θ − sin θ)/θ³ [ω]×², θ = ‖ω‖ (series below θ = 1e-5).
+Eigen::Matrix3d LeftJacobianSO3(const Eigen::Vector3d& omega);
+
 // Rotation vector of R (angle in [0, π]). R must be a rotation (see IsRotation).
 Eigen::Vector3d RotvecFromRotation(const Eigen::Matrix3d& R);
 

@@ -1,0 +1,116 @@
+// Calibration solvers (issue 3 targets, 600 points: Tsai including its nonlinear stage < 1 ms,
+// full refinement from a DLT start < 3 ms), with OpenCV's calibrateCamera on the same data as the
+// peer, and the three solvers of seed 000's comparison on the shipped distorted seed-000 volume.
+#include <benchmark/benchmark.h>
+
+#include <opencv2/calib3d.hpp>
+
+#include "vstcal/calib/decompose.h"
+#include "vstcal/calib/dlt.h"
+#include "vstcal/calib/pipeline.h"
+#include "vstcal/calib/refine.h"
+#include "vstcal/calib/tsai.h"
+#include "vstcal/capture/synthetic_volume.h"
+#include "vstcal/io/correspondences_io.h"
+
+namespace {
+
+using namespace vstcal;
+
+// 600 points: a 12×5 template at 10 positions 2–3.8 m from a 1280×1024 camera with barrel
+// distortion, 0.2 px noise.
+const Correspondences& Volume600() {
+  static const Correspondences c = [] {
+    Eigen::Matrix3d K;
+    K << 1509.4, 0, 647.5, 0, 1509.4, 505.5, 0, 0, 1;
+    const double d[5] = {-0.09, 0.015, 0.0004, -0.0003, 0};
+    VolumeSpec spec;
+    spec.grid_cols = 12;
+    spec.grid_rows = 5;
+    spec.far = 1800;
+    spec.tilt_deg = 5;
+    spec.noise_px = 0.2;
+    return SynthesizeVolume(Camera::FromK(K, ImageSize{1280, 1024}, RadialTangentialModel{}, d), spec, {}).correspondences;
+  }();
+  return c;
+}
+
+const Correspondences& Seed000() {
+  static const Correspondences c = io::ReadCorrespondences(std::string(VSTCAL_SOURCE_DIR) + "/datasets/seed000/distorted-noisy.json");
+  return c;
+}
+
+void BM_Tsai(benchmark::State& state) {
+  const Correspondences& c = state.range(0) == 600 ? Volume600() : Seed000();
+  const std::vector<Observation> obs = AllObservations(c);
+  for (auto _ : state) {
+    TsaiResult r = SolveTsai(obs, c.image_size);
+    benchmark::DoNotOptimize(r);
+  }
+  state.counters["points"] = static_cast<double>(obs.size());
+}
+
+void BM_Dlt(benchmark::State& state) {
+  const Correspondences& c = state.range(0) == 600 ? Volume600() : Seed000();
+  const std::vector<Observation> obs = AllObservations(c);
+  for (auto _ : state) {
+    DltResult r = SolveDlt(obs);
+    auto d = DecomposeProjection(r.P);
+    benchmark::DoNotOptimize(d);
+  }
+}
+
+// Refinement of fx, fy, cx, cy, k1, k2, p1, p2 and the pose from the DLT camera (skew dropped),
+// including the covariance at the optimum.
+void BM_RefineFromDlt(benchmark::State& state) {
+  const Correspondences& c = state.range(0) == 600 ? Volume600() : Seed000();
+  const DltResult dlt = SolveDlt(AllObservations(c));
+  const auto d = *DecomposeProjection(dlt.P);
+  Camera start = Camera::FromK(d.K, c.image_size);
+  start.params[4] = 0;
+  for (auto _ : state) {
+    Refinement r = Refine(c, start, {d.camera_from_world}, RefineOptions{});
+    benchmark::DoNotOptimize(r);
+  }
+}
+
+// Tsai's start then the refinement: calib-tsai's whole solve.
+void BM_TsaiRefined(benchmark::State& state) {
+  const Correspondences& c = state.range(0) == 600 ? Volume600() : Seed000();
+  for (auto _ : state) {
+    CalibrationResult r = Calibrate(c, CalibrationOptions{});
+    benchmark::DoNotOptimize(r);
+  }
+}
+
+// Peer: OpenCV's calibrateCamera from the same DLT start (CALIB_USE_INTRINSIC_GUESS, k3 fixed):
+// the same parameters and objective, without covariance.
+void BM_OpenCvCalibrateCamera(benchmark::State& state) {
+  const Correspondences& c = state.range(0) == 600 ? Volume600() : Seed000();
+  std::vector<std::vector<cv::Point3f>> object(1);
+  std::vector<std::vector<cv::Point2f>> image(1);
+  for (const Observation& o : AllObservations(c)) {
+    object[0].emplace_back(o.point.x(), o.point.y(), o.point.z());
+    image[0].emplace_back(o.pixel.x(), o.pixel.y());
+  }
+  const auto d = *DecomposeProjection(SolveDlt(AllObservations(c)).P);
+  for (auto _ : state) {
+    cv::Mat K = (cv::Mat_<double>(3, 3) << d.K(0, 0), 0, d.K(0, 2), 0, d.K(1, 1), d.K(1, 2), 0, 0, 1);
+    cv::Mat dist = cv::Mat::zeros(5, 1, CV_64F);
+    std::vector<cv::Mat> rvecs, tvecs;
+    const double rms = cv::calibrateCamera(object, image, cv::Size(c.image_size.width, c.image_size.height), K, dist,
+                                           rvecs, tvecs, cv::CALIB_USE_INTRINSIC_GUESS | cv::CALIB_FIX_K3);
+    benchmark::DoNotOptimize(rms);
+  }
+}
+
+// Arg 600: the issue's 600-point volume; arg 0: the shipped seed-000 distorted volume (1,287 points).
+BENCHMARK(BM_Dlt)->Arg(600)->Arg(0)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_Tsai)->Arg(600)->Arg(0)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_RefineFromDlt)->Arg(600)->Arg(0)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_TsaiRefined)->Arg(600)->Arg(0)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_OpenCvCalibrateCamera)->Arg(600)->Arg(0)->Unit(benchmark::kMicrosecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();
