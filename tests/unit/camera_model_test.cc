@@ -6,10 +6,10 @@
 #include <opencv2/calib3d.hpp>
 
 #include "support/mrcal.h"
+#include "support/scenes.h"
 #include "vstcal/camera/camera.h"
 #include "vstcal/camera/intrinsics.h"
 #include "vstcal/geometry/rotation.h"
-#include "vstcal/random/philox.h"
 
 namespace vstcal {
 namespace {
@@ -29,18 +29,6 @@ Camera RationalCamera(double skew = 0.0) {
   K << 702.5, skew, 639.1, 0, 701.2, 361.4, 0, 0, 1;
   const double d[8] = {0.412, -0.083, 0.0006, -0.0003, 0.0042, 0.645, -0.041, 0.0093};
   return Camera::FromK(K, ImageSize{1280, 720}, RationalModel{}, d);
-}
-
-// Points in front of the camera within about ±45° of the axis.
-std::vector<Eigen::Vector3d> FrontPoints(int n, uint64_t seed) {
-  const CounterRng rng(seed, 0);
-  std::vector<Eigen::Vector3d> points;
-  for (int i = 0; i < n; ++i) {
-    const auto a = rng.Uniform2(i, 0), b = rng.Uniform2(i, 1);
-    const double z = 0.3 + 4 * b[0];
-    points.emplace_back((2 * a[0] - 1) * 0.9 * z, (2 * a[1] - 1) * 0.5 * z, z);
-  }
-  return points;
 }
 
 TEST(CameraModel, PinholeWithSkewClosedForm) {
@@ -103,21 +91,21 @@ double WorstVsMrcal(const Camera& c, mrcal_lensmodel_type_t type, const std::vec
 }
 
 // Peer 1: OpenCV's projectPoints with the same five coefficients.
-TEST(CameraModel, AgreesWithOpenCvProjectPoints) { EXPECT_LT(WorstVsOpenCv(WideCamera(), FrontPoints(1000, 11)), 1e-9); }
+TEST(CameraModel, AgreesWithOpenCvProjectPoints) { EXPECT_LT(WorstVsOpenCv(WideCamera(), testing::PointsInFront(1000, 11)), 1e-9); }
 
 // ... and with eight: OpenCV selects its rational model by the vector's length.
 TEST(CameraModel, RationalAgreesWithOpenCvProjectPoints) {
-  EXPECT_LT(WorstVsOpenCv(RationalCamera(), FrontPoints(1000, 14)), 1e-9);
+  EXPECT_LT(WorstVsOpenCv(RationalCamera(), testing::PointsInFront(1000, 14)), 1e-9);
 }
 
 // Peer 2: mrcal_project with LENSMODEL_OPENCV5 (fx, fy, cx, cy, k1, k2, p1, p2, k3).
 TEST(CameraModel, AgreesWithMrcalOpenCv5) {
-  EXPECT_LT(WorstVsMrcal(WideCamera(), MRCAL_LENSMODEL_OPENCV5, FrontPoints(1000, 12)), 1e-9);
+  EXPECT_LT(WorstVsMrcal(WideCamera(), MRCAL_LENSMODEL_OPENCV5, testing::PointsInFront(1000, 12)), 1e-9);
 }
 
 // LENSMODEL_OPENCV8: fx, fy, cx, cy, k1, k2, p1, p2, k3, k4, k5, k6.
 TEST(CameraModel, RationalAgreesWithMrcalOpenCv8) {
-  EXPECT_LT(WorstVsMrcal(RationalCamera(), MRCAL_LENSMODEL_OPENCV8, FrontPoints(1000, 15)), 1e-9);
+  EXPECT_LT(WorstVsMrcal(RationalCamera(), MRCAL_LENSMODEL_OPENCV8, testing::PointsInFront(1000, 15)), 1e-9);
 }
 
 // With k4 = k5 = k6 = 0 the denominator is exactly 1: the rational model is the radial-tangential
@@ -127,13 +115,13 @@ TEST(CameraModel, RationalWithUnitDenominatorIsRadialTangential) {
   std::vector<double> d(rt.distortion().begin(), rt.distortion().end());
   d.insert(d.end(), {0.0, 0.0, 0.0});
   const Camera rational = Camera::FromK(rt.K(), rt.image_size, RationalModel{}, d);
-  for (const Eigen::Vector3d& p : FrontPoints(500, 17)) EXPECT_EQ(*rational.Project(p), *rt.Project(p));
+  for (const Eigen::Vector3d& p : testing::PointsInFront(500, 17)) EXPECT_EQ(*rational.Project(p), *rt.Project(p));
 }
 
 TEST(CameraModel, UnprojectInvertsProject) {
   for (const Camera& c : {WideCamera(0.0), WideCamera(2.5), Camera::FromK(WideCamera(1.0).K(), ImageSize{1280, 720}),
                           RationalCamera(0.0), RationalCamera(-1.5)}) {
-    for (const Eigen::Vector3d& p : FrontPoints(500, 13)) {
+    for (const Eigen::Vector3d& p : testing::PointsInFront(500, 13)) {
       const Eigen::Vector2d px = *c.Project(p);
       const auto ray = c.Unproject(px);
       ASSERT_TRUE(ray.has_value()) << LensModelName(c.model) << " at " << px.transpose();
