@@ -25,4 +25,15 @@ Scene RandomVolumeScene(size_t n, double noise_px, uint64_t seed) {
   return s;
 }
 
+std::vector<Eigen::Vector3d> PointsInFront(int n, uint64_t seed, double half_width, double half_height) {
+  const CounterRng rng(seed, 0);
+  std::vector<Eigen::Vector3d> points;
+  for (int i = 0; i < n; ++i) {
+    const auto a = rng.Uniform2(i, 0), b = rng.Uniform2(i, 1);
+    const double z = 0.3 + 4 * b[0];
+    points.emplace_back((2 * a[0] - 1) * half_width * z, (2 * a[1] - 1) * half_height * z, z);
+  }
+  return points;
+}
+
 }  // namespace vstcal::testing

@@ -22,4 +22,8 @@ struct Scene {
 // `n` points drawn uniformly in a 1.2 × 0.9 × 2 m box (mm), all visible.
 Scene RandomVolumeScene(size_t n, double noise_px, uint64_t seed);
 
+// `n` points in a camera frame, 0.3 to 4.3 units in front, with normalized coordinates spread
+// uniformly over ±half_width × ±half_height (about ±42° × ±27° for the defaults).
+std::vector<Eigen::Vector3d> PointsInFront(int n, uint64_t seed, double half_width = 0.9, double half_height = 0.5);
+
 }  // namespace vstcal::testing

@@ -6,10 +6,10 @@
 #include <opencv2/calib3d.hpp>
 
 #include "support/mrcal.h"
+#include "support/scenes.h"
 #include "vstcal/camera/camera.h"
 #include "vstcal/camera/intrinsics.h"
 #include "vstcal/geometry/rotation.h"
-#include "vstcal/random/philox.h"
 
 namespace vstcal {
 namespace {
@@ -22,16 +22,13 @@ Camera WideCamera(double skew = 0.0) {
   return Camera::FromK(K, ImageSize{1280, 720}, RadialTangentialModel{}, d);
 }
 
-// Points in front of the camera within about ±45° of the axis.
-std::vector<Eigen::Vector3d> FrontPoints(int n, uint64_t seed) {
-  const CounterRng rng(seed, 0);
-  std::vector<Eigen::Vector3d> points;
-  for (int i = 0; i < n; ++i) {
-    const auto a = rng.Uniform2(i, 0), b = rng.Uniform2(i, 1);
-    const double z = 0.3 + 4 * b[0];
-    points.emplace_back((2 * a[0] - 1) * 0.9 * z, (2 * a[1] - 1) * 0.5 * z, z);
-  }
-  return points;
+// A rational camera with a strongly barrel-distorting wide lens: the denominator keeps the radial
+// scaling near 1/(1 + k4 r²) at the edge, as OpenCV's CALIB_RATIONAL_MODEL fits produce.
+Camera RationalCamera(double skew = 0.0) {
+  Eigen::Matrix3d K;
+  K << 702.5, skew, 639.1, 0, 701.2, 361.4, 0, 0, 1;
+  const double d[8] = {0.412, -0.083, 0.0006, -0.0003, 0.0042, 0.645, -0.041, 0.0093};
+  return Camera::FromK(K, ImageSize{1280, 720}, RationalModel{}, d);
 }
 
 TEST(CameraModel, PinholeWithSkewClosedForm) {
@@ -55,10 +52,9 @@ TEST(CameraModel, BehindTheCameraIsInvalidNotZero) {
   EXPECT_EQ(px[0], -7);  // untouched
 }
 
-// Peer 1: OpenCV's projectPoints with the same five coefficients (OpenCV ignores skew).
-TEST(CameraModel, AgreesWithOpenCvProjectPoints) {
-  const Camera c = WideCamera();
-  const auto points = FrontPoints(1000, 11);
+// Largest pixel distance between our projection and OpenCV's projectPoints with the camera's
+// coefficients, in OpenCV's order (OpenCV ignores skew: callers pass skew-free cameras).
+double WorstVsOpenCv(const Camera& c, const std::vector<Eigen::Vector3d>& points) {
   std::vector<cv::Point3d> object;
   for (const auto& p : points) object.emplace_back(p.x(), p.y(), p.z());
   const Eigen::Matrix3d K = c.K();
@@ -71,31 +67,61 @@ TEST(CameraModel, AgreesWithOpenCvProjectPoints) {
     const Eigen::Vector2d ours = *c.Project(points[i]);
     worst = std::max(worst, (ours - Eigen::Vector2d(image[i].x, image[i].y)).norm());
   }
-  EXPECT_LT(worst, 1e-9);
+  return worst;
 }
 
-// Peer 2: mrcal_project with LENSMODEL_OPENCV5 (fx, fy, cx, cy, k1, k2, p1, p2, k3).
-TEST(CameraModel, AgreesWithMrcalOpenCv5) {
-  const Camera c = WideCamera();
-  const auto points = FrontPoints(1000, 12);
-  const double intrinsics[9] = {c.params[0], c.params[1], c.params[2], c.params[3], c.params[5],
-                                c.params[6], c.params[7], c.params[8], c.params[9]};
+// The same against mrcal_project: mrcal's intrinsics are fx, fy, cx, cy, then the distortion in
+// OpenCV's order (no skew).
+double WorstVsMrcal(const Camera& c, mrcal_lensmodel_type_t type, const std::vector<Eigen::Vector3d>& points) {
+  std::vector<double> intrinsics = {c.params[0], c.params[1], c.params[2], c.params[3]};
+  intrinsics.insert(intrinsics.end(), c.distortion().begin(), c.distortion().end());
   mrcal_lensmodel_t model;
-  model.type = MRCAL_LENSMODEL_OPENCV5;
+  model.type = type;
+  EXPECT_EQ(mrcal_lensmodel_num_params(&model), static_cast<int>(intrinsics.size()));
   std::vector<mrcal_point3_t> p(points.size());
   std::vector<mrcal_point2_t> q(points.size());
   for (size_t i = 0; i < points.size(); ++i) p[i] = {{points[i].x(), points[i].y(), points[i].z()}};
-  ASSERT_TRUE(mrcal_project(q.data(), nullptr, nullptr, p.data(), static_cast<int>(p.size()), &model, intrinsics));
+  EXPECT_TRUE(
+      mrcal_project(q.data(), nullptr, nullptr, p.data(), static_cast<int>(p.size()), &model, intrinsics.data()));
   double worst = 0;
   for (size_t i = 0; i < points.size(); ++i) {
     worst = std::max(worst, (*c.Project(points[i]) - Eigen::Vector2d(q[i].x, q[i].y)).norm());
   }
-  EXPECT_LT(worst, 1e-9);
+  return worst;
+}
+
+// Peer 1: OpenCV's projectPoints with the same five coefficients.
+TEST(CameraModel, AgreesWithOpenCvProjectPoints) { EXPECT_LT(WorstVsOpenCv(WideCamera(), testing::PointsInFront(1000, 11)), 1e-9); }
+
+// ... and with eight: OpenCV selects its rational model by the vector's length.
+TEST(CameraModel, RationalAgreesWithOpenCvProjectPoints) {
+  EXPECT_LT(WorstVsOpenCv(RationalCamera(), testing::PointsInFront(1000, 14)), 1e-9);
+}
+
+// Peer 2: mrcal_project with LENSMODEL_OPENCV5 (fx, fy, cx, cy, k1, k2, p1, p2, k3).
+TEST(CameraModel, AgreesWithMrcalOpenCv5) {
+  EXPECT_LT(WorstVsMrcal(WideCamera(), MRCAL_LENSMODEL_OPENCV5, testing::PointsInFront(1000, 12)), 1e-9);
+}
+
+// LENSMODEL_OPENCV8: fx, fy, cx, cy, k1, k2, p1, p2, k3, k4, k5, k6.
+TEST(CameraModel, RationalAgreesWithMrcalOpenCv8) {
+  EXPECT_LT(WorstVsMrcal(RationalCamera(), MRCAL_LENSMODEL_OPENCV8, testing::PointsInFront(1000, 15)), 1e-9);
+}
+
+// With k4 = k5 = k6 = 0 the denominator is exactly 1: the rational model is the radial-tangential
+// one, bit for bit.
+TEST(CameraModel, RationalWithUnitDenominatorIsRadialTangential) {
+  const Camera rt = WideCamera();
+  std::vector<double> d(rt.distortion().begin(), rt.distortion().end());
+  d.insert(d.end(), {0.0, 0.0, 0.0});
+  const Camera rational = Camera::FromK(rt.K(), rt.image_size, RationalModel{}, d);
+  for (const Eigen::Vector3d& p : testing::PointsInFront(500, 17)) EXPECT_EQ(*rational.Project(p), *rt.Project(p));
 }
 
 TEST(CameraModel, UnprojectInvertsProject) {
-  for (const Camera& c : {WideCamera(0.0), WideCamera(2.5), Camera::FromK(WideCamera(1.0).K(), ImageSize{1280, 720})}) {
-    for (const Eigen::Vector3d& p : FrontPoints(500, 13)) {
+  for (const Camera& c : {WideCamera(0.0), WideCamera(2.5), Camera::FromK(WideCamera(1.0).K(), ImageSize{1280, 720}),
+                          RationalCamera(0.0), RationalCamera(-1.5)}) {
+    for (const Eigen::Vector3d& p : testing::PointsInFront(500, 13)) {
       const Eigen::Vector2d px = *c.Project(p);
       const auto ray = c.Unproject(px);
       ASSERT_TRUE(ray.has_value()) << LensModelName(c.model) << " at " << px.transpose();
@@ -116,31 +142,33 @@ TEST(CameraModel, UnprojectRefusesTheFoldOverRegion) {
   EXPECT_FALSE(c.Unproject(Eigen::Vector2d(320 + 500 * (peak + 0.01), 240)).has_value());
 }
 
-// Jet instantiation: derivatives w.r.t. all 10 parameters and the 3 point coordinates agree with
+// Jet instantiation: derivatives w.r.t. every parameter and the 3 point coordinates agree with
 // central differences.
-TEST(CameraModel, JetDerivativesMatchCentralDifferences) {
-  using Jet = ceres::Jet<double, 13>;
-  const Camera c = WideCamera(1.5);
+template <typename Model>
+void ExpectJetDerivativesMatchCentralDifferences(const Camera& c) {
+  constexpr int kParams = Model::kNumParams;
+  using Jet = ceres::Jet<double, kParams + 3>;
+  ASSERT_EQ(static_cast<int>(c.params.size()), kParams);
   const Eigen::Vector3d p(0.4, -0.25, 1.7);
-  Jet params[10], point[3], px[2];
-  for (int i = 0; i < 10; ++i) params[i] = Jet(c.params[i], i);
-  for (int i = 0; i < 3; ++i) point[i] = Jet(p(i), 10 + i);
-  ASSERT_TRUE(RadialTangentialModel::Project(params, point, px));
+  Jet params[kParams], point[3], px[2];
+  for (int i = 0; i < kParams; ++i) params[i] = Jet(c.params[i], i);
+  for (int i = 0; i < 3; ++i) point[i] = Jet(p(i), kParams + i);
+  ASSERT_TRUE(Model::Project(params, point, px));
   auto project = [&](std::vector<double> q, Eigen::Vector3d x) {
     double out[2] = {NAN, NAN};
-    EXPECT_TRUE(RadialTangentialModel::Project(q.data(), x.data(), out));
+    EXPECT_TRUE(Model::Project(q.data(), x.data(), out));
     return Eigen::Vector2d(out[0], out[1]);
   };
-  for (int k = 0; k < 13; ++k) {
+  for (int k = 0; k < kParams + 3; ++k) {
     std::vector<double> qp = c.params, qm = c.params;
     Eigen::Vector3d xp = p, xm = p;
-    const double h = k < 10 ? 1e-6 * std::max(1.0, std::abs(c.params[k])) : 1e-6;
-    if (k < 10) {
+    const double h = k < kParams ? 1e-6 * std::max(1.0, std::abs(c.params[k])) : 1e-6;
+    if (k < kParams) {
       qp[k] += h;
       qm[k] -= h;
     } else {
-      xp(k - 10) += h;
-      xm(k - 10) -= h;
+      xp(k - kParams) += h;
+      xm(k - kParams) -= h;
     }
     const Eigen::Vector2d numeric = (project(qp, xp) - project(qm, xm)) / (2 * h);
     for (int i = 0; i < 2; ++i) EXPECT_NEAR(px[i].v(k), numeric(i), 1e-5 * (1 + std::abs(numeric(i)))) << k;
@@ -148,16 +176,30 @@ TEST(CameraModel, JetDerivativesMatchCentralDifferences) {
   EXPECT_NEAR(px[0].a, c.Project(p)->x(), 1e-12);
 }
 
+TEST(CameraModel, JetDerivativesMatchCentralDifferences) {
+  ExpectJetDerivativesMatchCentralDifferences<RadialTangentialModel>(WideCamera(1.5));
+}
+
+TEST(CameraModel, RationalJetDerivativesMatchCentralDifferences) {
+  ExpectJetDerivativesMatchCentralDifferences<RationalModel>(RationalCamera(1.5));
+}
+
 TEST(CameraModel, NamesAndParameterLayout) {
   EXPECT_TRUE(std::holds_alternative<PinholeModel>(*LensModelFromName("none")));
   EXPECT_TRUE(std::holds_alternative<RadialTangentialModel>(*LensModelFromName("radial-tangential")));
+  EXPECT_TRUE(std::holds_alternative<RationalModel>(*LensModelFromName("rational")));
   EXPECT_FALSE(LensModelFromName("opencv5").has_value());
-  EXPECT_EQ(KnownLensModelNames(), "\"none\", \"radial-tangential\"");
+  EXPECT_EQ(KnownLensModelNames(), "\"none\", \"radial-tangential\", \"rational\"");
   EXPECT_EQ(LensModelNumParams(RadialTangentialModel{}), 10);
   const auto names = LensModelParamNames(RadialTangentialModel{});
   EXPECT_EQ(names[5], "k1");
   EXPECT_EQ(names[7], "p1");
   EXPECT_EQ(names[9], "k3");
+  EXPECT_EQ(LensModelNumParams(RationalModel{}), 13);
+  const auto rational = LensModelParamNames(RationalModel{});
+  EXPECT_EQ(rational[9], "k3");
+  EXPECT_EQ(rational[10], "k4");
+  EXPECT_EQ(rational[12], "k6");
   const Camera c = WideCamera();
   EXPECT_DOUBLE_EQ(c.distortion()[4], -0.0021);
   EXPECT_TRUE(c.InImage(Eigen::Vector2d(-0.5, 719.5)));

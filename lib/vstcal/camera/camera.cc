@@ -3,17 +3,6 @@
 #include "vstcal/core/error.h"
 
 namespace vstcal {
-namespace {
-
-// Calls f(Model{}) for every alternative of AnyLensModel, in declaration order.
-template <typename F>
-void ForEachLensModel(F&& f) {
-  [&]<size_t... I>(std::index_sequence<I...>) {
-    (f(std::variant_alternative_t<I, AnyLensModel>{}), ...);
-  }(std::make_index_sequence<std::variant_size_v<AnyLensModel>>{});
-}
-
-}  // namespace
 
 std::optional<AnyLensModel> LensModelFromName(std::string_view name) {
   std::optional<AnyLensModel> found;

@@ -9,6 +9,7 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <variant>
 #include <vector>
 
@@ -18,9 +19,19 @@
 
 namespace vstcal {
 
-using AnyLensModel = std::variant<PinholeModel, RadialTangentialModel>;
+// Alternatives in increasing number of parameters: code that picks "the smallest model that can
+// hold n coefficients" relies on this order.
+using AnyLensModel = std::variant<PinholeModel, RadialTangentialModel, RationalModel>;
 
-// Model by its file name ("none", "radial-tangential"); nullopt for an unknown name.
+// Calls f(Model{}) for every alternative of AnyLensModel, in declaration order.
+template <typename F>
+void ForEachLensModel(F&& f) {
+  [&]<size_t... I>(std::index_sequence<I...>) {
+    (f(std::variant_alternative_t<I, AnyLensModel>{}), ...);
+  }(std::make_index_sequence<std::variant_size_v<AnyLensModel>>{});
+}
+
+// Model by its file name ("none", "radial-tangential", "rational"); nullopt for an unknown name.
 std::optional<AnyLensModel> LensModelFromName(std::string_view name);
 // The known names, comma-separated, for error messages.
 std::string KnownLensModelNames();

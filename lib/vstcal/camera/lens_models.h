@@ -129,9 +129,18 @@ struct PinholeModel : LensModel<PinholeModel> {
   }
 };
 
+// The tangential (decentering) term shared by the Brown–Conrady models, added to a radial
+// scaling: x_d = x·radial + 2 p1 x y + p2 (r² + 2x²), y_d = y·radial + p1 (r² + 2y²) + 2 p2 x y.
+template <typename T>
+void ScaleAndDecenter(const T& x, const T& y, const T& r2, const T& radial, const T& p1, const T& p2, T* xd, T* yd) {
+  const T xy = x * y;
+  *xd = x * radial + T(2) * p1 * xy + p2 * (r2 + T(2) * x * x);
+  *yd = y * radial + p1 * (r2 + T(2) * y * y) + T(2) * p2 * xy;
+}
+
 // Brown–Conrady radial–tangential on normalized coordinates, OpenCV's coefficient order
-// (k1, k2, p1, p2, k3); mrcal's LENSMODEL_OPENCV5. Seed 001 Eq. 15–17 in Heikkilä's notation is
-// the same model in other units: docs/math/camera-model.md.
+// (k1, k2, p1, p2, k3); mrcal's LENSMODEL_OPENCV5 (LENSMODEL_OPENCV4 when k3 = 0). Seed 001
+// Eq. 15–17 in Heikkilä's notation is the same model in other units: docs/math/camera-model.md.
 struct RadialTangentialModel : LensModel<RadialTangentialModel> {
   static constexpr std::string_view kName = "radial-tangential";
   static constexpr int kNumParams = kNumIntrinsicParams + 5;
@@ -147,9 +156,35 @@ struct RadialTangentialModel : LensModel<RadialTangentialModel> {
     const T& k3 = d[4];
     const T r2 = x * x + y * y;
     const T radial = T(1) + r2 * (k1 + r2 * (k2 + r2 * k3));
-    const T xy = x * y;
-    *xd = x * radial + T(2) * p1 * xy + p2 * (r2 + T(2) * x * x);
-    *yd = y * radial + p1 * (r2 + T(2) * y * y) + T(2) * p2 * xy;
+    ScaleAndDecenter(x, y, r2, radial, p1, p2, xd, yd);
+  }
+};
+
+// OpenCV's rational model (CALIB_RATIONAL_MODEL; mrcal's LENSMODEL_OPENCV8), OpenCV's coefficient
+// order (k1, k2, p1, p2, k3, k4, k5, k6): the radial scaling is a ratio of two cubics in r²,
+// (1 + k1 r² + k2 r⁴ + k3 r⁶) / (1 + k4 r² + k5 r⁴ + k6 r⁶), which follows wide-angle lenses
+// further out than one polynomial can. With k4 = k5 = k6 = 0 it is "radial-tangential".
+// Where the denominator reaches 0 the pixel is not finite: calibrated lenses keep it positive
+// over the image (docs/math/camera-model.md#rational).
+struct RationalModel : LensModel<RationalModel> {
+  static constexpr std::string_view kName = "rational";
+  static constexpr int kNumParams = kNumIntrinsicParams + 8;
+  static constexpr std::array<std::string_view, kNumParams> kParamNames = {
+      "fx", "fy", "cx", "cy", "s", "k1", "k2", "p1", "p2", "k3", "k4", "k5", "k6"};
+
+  template <typename T>
+  static void Distort(const T* d, const T& x, const T& y, T* xd, T* yd) {
+    const T& k1 = d[0];
+    const T& k2 = d[1];
+    const T& p1 = d[2];
+    const T& p2 = d[3];
+    const T& k3 = d[4];
+    const T& k4 = d[5];
+    const T& k5 = d[6];
+    const T& k6 = d[7];
+    const T r2 = x * x + y * y;
+    const T radial = (T(1) + r2 * (k1 + r2 * (k2 + r2 * k3))) / (T(1) + r2 * (k4 + r2 * (k5 + r2 * k6)));
+    ScaleAndDecenter(x, y, r2, radial, p1, p2, xd, yd);
   }
 };
 

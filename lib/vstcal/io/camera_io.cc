@@ -18,10 +18,7 @@ bool Agrees(double a, double b, double scale) { return std::abs(a - b) <= kAgree
 
 Eigen::Matrix3d ReadK(const JsonNode& node) {
   const Eigen::Matrix3d K = node.Matrix<3, 3>();
-  if (K(1, 0) != 0 || K(2, 0) != 0 || K(2, 1) != 0 || K(2, 2) != 1) {
-    node.Fail("K must be upper triangular with K[2][2] = 1", "write K as [[fx, s, cx], [0, fy, cy], [0, 0, 1]]");
-  }
-  if (!(K(0, 0) > 0) || !(K(1, 1) > 0)) node.Fail("fx and fy must be positive", "check the signs of K[0][0] and K[1][1]");
+  if (const auto problem = CameraMatrixProblem(K)) node.Fail(problem->reason, problem->fix);
   return K;
 }
 
@@ -104,6 +101,14 @@ ParameterCovariance ReadCovariance(const JsonNode& node, const CalibratedCamera&
 }
 
 }  // namespace
+
+std::optional<FieldProblem> CameraMatrixProblem(const Eigen::Matrix3d& K) {
+  if (K(1, 0) != 0 || K(2, 0) != 0 || K(2, 1) != 0 || K(2, 2) != 1) {
+    return FieldProblem{"K must be upper triangular with K[2][2] = 1", "write K as [[fx, s, cx], [0, fy, cy], [0, 0, 1]]"};
+  }
+  if (!(K(0, 0) > 0) || !(K(1, 1) > 0)) return FieldProblem{"fx and fy must be positive", "check the signs of K[0][0] and K[1][1]"};
+  return std::nullopt;
+}
 
 Camera ReadCameraIntrinsics(const JsonNode& node) {
   const ImageSize size = ReadImageSize(node.at("image_size"));

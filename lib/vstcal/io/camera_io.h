@@ -2,11 +2,13 @@
 #pragma once
 
 #include <filesystem>
+#include <optional>
 
 #include "vstcal/calib/calibrated_camera.h"
 #include "vstcal/io/json_reader.h"
 #include "vstcal/io/json_writer.h"
 #include "vstcal/io/provenance.h"
+#include "vstcal/io/reader_common.h"
 
 namespace vstcal::io {
 
@@ -21,6 +23,10 @@ CalibratedCamera CameraFromJson(const JsonDocument& doc);
 OrderedJson CameraToJson(const CalibratedCamera& camera, const Provenance& provenance,
                          const OrderedJson& extra = OrderedJson::object());
 OrderedJson FitToJson(const Fit& fit);
+
+// Why K cannot be a camera matrix (upper triangular, K[2][2] = 1, fx > 0, fy > 0), or nullopt.
+// Every format's reader applies it, so that K is refused in the same words everywhere.
+std::optional<FieldProblem> CameraMatrixProblem(const Eigen::Matrix3d& K);
 
 // The "distortion" object alone, and a Camera (K, distortion, image size) from a JSON object that
 // has image_size, K and distortion (used by other formats that embed a camera).

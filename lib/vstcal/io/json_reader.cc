@@ -1,29 +1,13 @@
 #include "vstcal/io/json_reader.h"
 
 #include <cctype>
-#include <cerrno>
 #include <cmath>
-#include <cstring>
-#include <fstream>
-#include <sstream>
 
 #include "vstcal/core/error.h"
+#include "vstcal/io/reader_common.h"
 
 namespace vstcal::io {
 namespace {
-
-std::pair<size_t, size_t> LineAndColumn(const std::string& text, size_t byte) {
-  size_t line = 1, column = 1;
-  for (size_t i = 0; i < byte && i < text.size(); ++i) {
-    if (text[i] == '\n') {
-      ++line;
-      column = 1;
-    } else {
-      ++column;
-    }
-  }
-  return {line, column};
-}
 
 bool IsTokenChar(char c) {
   return std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '+' || c == '.';
@@ -82,51 +66,31 @@ bool IsNonFiniteToken(const std::string& token) {
 }  // namespace
 
 JsonDocument JsonDocument::Load(const std::filesystem::path& path) {
-  const std::string name = path.string();
-  std::error_code ec;
-  if (!std::filesystem::exists(path, ec)) {
-    throw InputError(name + ": no such file; check the path");
-  }
-  if (std::filesystem::is_directory(path, ec)) {
-    throw InputError(name + ": is a directory, not a JSON file; give the file's path");
-  }
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    throw InputError(name + ": cannot open (" + std::strerror(errno) + "); check its permissions");
-  }
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
-  return Parse(buffer.str(), name);
+  return Parse(ReadInputFile(path, "a JSON file"), path.string());
 }
 
 JsonDocument JsonDocument::Parse(const std::string& text, std::string name) {
   JsonDocument doc;
   doc.name_ = std::move(name);
-  if (text.find_first_not_of(" \t\r\n") == std::string::npos) {
-    throw InputError(doc.name_ + ": the file is empty; expected a JSON object");
-  }
-  // nlohmann reports the byte after the offending token; `where` names the token's first byte.
-  auto where = [&](size_t position) {
-    const auto [token, begin] = TokenNear(text, position > 0 ? position - 1 : 0);
-    const auto [line, column] = LineAndColumn(text, begin);
-    return std::make_pair(token, doc.name_ + ": line " + std::to_string(line) + ", column " + std::to_string(column));
-  };
+  if (IsBlank(text)) throw InputError(doc.name_ + ": the file is empty; expected a JSON object");
+  // nlohmann reports the byte after the offending token; `where` finds the token and its first byte.
+  auto where = [&](size_t position) { return TokenNear(text, position > 0 ? position - 1 : 0); };
   try {
     doc.json_ = nlohmann::json::parse(text);
   } catch (const nlohmann::json::parse_error& e) {
     const auto [token, at] = where(e.byte);
     if (IsNonFiniteToken(token)) {
-      throw InputError(at + ": " + Quote(token) +
-                       " is not a JSON number; every value must be a finite number (remove or fix the point)");
+      FailSyntax(doc.name_, text, at, Quote(token) + " is not a JSON number",
+                 "every value must be a finite number (remove or fix the point)");
     }
-    throw InputError(at + ": not valid JSON; fix the syntax there");
+    FailSyntax(doc.name_, text, at, "not valid JSON", "fix the syntax there");
   } catch (const nlohmann::json::out_of_range&) {
     // A number too large for a double (1e999): parse again to find where.
     ErrorLocator locator;
     nlohmann::json::sax_parse(text, &locator);
     const auto [token, at] = where(locator.position());
-    throw InputError(at + ": " + Quote(token) +
-                     " is too large for a double; every value must be a finite number (remove or fix the point)");
+    FailSyntax(doc.name_, text, at, Quote(token) + " is too large for a double",
+               "every value must be a finite number (remove or fix the point)");
   }
   return doc;
 }
@@ -221,10 +185,7 @@ std::string JsonNode::OneOf(std::initializer_list<std::string_view> allowed) con
   Fail("unknown value \"" + s + "\"", "use one of " + list);
 }
 
-void JsonNode::Fail(std::string_view reason, std::string_view fix) const {
-  throw InputError(*file_ + ": " + (path_.empty() ? std::string("(top level)") : path_) + ": " + std::string(reason) +
-                   "; " + std::string(fix));
-}
+void JsonNode::Fail(std::string_view reason, std::string_view fix) const { FailField(*file_, path_, reason, fix); }
 
 std::string JsonNode::Describe() const {
   switch (value_->type()) {

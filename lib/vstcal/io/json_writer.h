@@ -35,6 +35,10 @@ OrderedJson MatrixToJson(const Eigen::MatrixBase<Derived>& m) {
 // {"R": [[...]], "t": [...]}
 OrderedJson RigidToJson(const Rigid3d& a_from_b);
 
+// A double in the shortest decimal form that reads back to the same bits, as every vstcal file
+// writes numbers ("0.1", "1e-12", "640.0").
+inline std::string ShortestDecimal(double v) { return OrderedJson(v).dump(); }
+
 // Two-space indented text with a final newline; doubles in shortest round-trip form.
 std::string DumpJson(const OrderedJson& json);
 

@@ -1,0 +1,59 @@
+#include "vstcal/camera/opencv_distortion.h"
+
+#include <algorithm>
+
+#include "vstcal/core/error.h"
+
+namespace vstcal {
+namespace {
+
+bool IsOpenCvLength(int n) {
+  return std::find(std::begin(kOpenCvDistortionLengths), std::end(kOpenCvDistortionLengths), n) !=
+         std::end(kOpenCvDistortionLengths);
+}
+
+}  // namespace
+
+std::optional<AnyLensModel> LensModelForOpenCvLength(int n) {
+  if (!IsOpenCvLength(n)) return std::nullopt;
+  std::optional<AnyLensModel> found;
+  ForEachLensModel([&](auto model) {
+    if (!found && decltype(model)::kNumParams - kNumIntrinsicParams >= n) found = model;
+  });
+  return found;
+}
+
+Camera CameraFromOpenCv(const Eigen::Matrix3d& K, ImageSize image_size, std::span<const double> coefficients) {
+  const auto model = LensModelForOpenCvLength(static_cast<int>(coefficients.size()));
+  VSTCAL_CHECK(model.has_value(), "no lens model holds this many OpenCV coefficients");
+  std::vector<double> distortion(coefficients.begin(), coefficients.end());
+  distortion.resize(LensModelNumParams(*model) - kNumIntrinsicParams, 0.0);
+  return Camera::FromK(K, image_size, *model, distortion);
+}
+
+std::optional<int> FirstCoefficientBeyond(const Camera& camera, int n) {
+  const std::span<const double> d = camera.distortion();
+  for (int i = n; i < static_cast<int>(d.size()); ++i) {
+    if (d[i] != 0) return i;
+  }
+  return std::nullopt;
+}
+
+std::vector<double> OpenCvDistortion(const Camera& camera, int n) {
+  VSTCAL_CHECK(!FirstCoefficientBeyond(camera, n), "a non-zero coefficient does not fit in the OpenCV vector");
+  const std::span<const double> d = camera.distortion();
+  std::vector<double> v(d.begin(), d.begin() + std::min<size_t>(n, d.size()));
+  v.resize(n, 0.0);
+  return v;
+}
+
+int ShortestOpenCvLength(const Camera& camera) {
+  for (const int n : kOpenCvDistortionLengths) {
+    const auto model = LensModelForOpenCvLength(n);
+    if (model && model->index() == camera.model.index() && !FirstCoefficientBeyond(camera, n)) return n;
+  }
+  VSTCAL_CHECK(false, "the camera's own coefficient count is not an OpenCV length");
+  return 0;
+}
+
+}  // namespace vstcal

@@ -1,0 +1,40 @@
+// What the readers and writers of other tools' camera files (OpenCV FileStorage YAML, mrcal
+// .cameramodel) share: their results, the refusal of skew, and the provenance comment.
+#pragma once
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "vstcal/calib/calibrated_camera.h"
+#include "vstcal/io/provenance.h"
+
+namespace vstcal::io {
+
+// A camera read from another tool's file. `notes` say what was assumed or kept although the
+// other tool treats it differently; tools print them, they are not errors.
+struct ImportedCamera {
+  CalibratedCamera camera;  // method names the source: "opencv", "mrcal"
+  std::vector<std::string> notes;
+};
+
+// A camera written for another tool. `notes` say what the format could not hold.
+struct ExportedCamera {
+  std::string text;
+  std::vector<std::string> notes;
+};
+
+// OpenCV's and mrcal's projections have no skew term: a camera with K[0][1] ≠ 0 would project
+// differently there. Throws InputError "<source>: K[0][1]: ..." saying by how many pixels at most
+// (|s|·|v − cy|/fy over the image rows) and what to do; `peer` names the other tool.
+void RefuseSkew(const Camera& camera, std::string_view source, std::string_view peer);
+
+// Neither OpenCV's nor mrcal's file has a field for the camera's name ("left"): when there is
+// one, a note says it is not written.
+void NoteUnwrittenName(const CalibratedCamera& camera, std::string_view source, std::vector<std::string>* notes);
+
+// "vstcal provenance: {...}" on one line (compact JSON, so that a newline in an argument stays
+// escaped), for a comment at the top of a file that has no field for it.
+std::string ProvenanceComment(const Provenance& provenance);
+
+}  // namespace vstcal::io

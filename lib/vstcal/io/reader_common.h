@@ -1,0 +1,36 @@
+// What the readers of every format share: loading the file, and the two shapes of a bad-input
+// message (docs/formats.md#common), so that a mrcal or OpenCV file is reported like a JSON one:
+//   "<file>: <field>: <what is wrong>; <how to fix it>"         a value
+//   "<file>: line L, column C: <what is wrong>; <how to fix it>" the syntax
+// Both throw InputError (exit code 2).
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <string_view>
+
+namespace vstcal::io {
+
+// The whole file as bytes. `kind` completes "is a directory, not <kind>" (e.g. "a JSON file").
+// Errors: no such file, a directory, cannot open.
+std::string ReadInputFile(const std::filesystem::path& path, std::string_view kind);
+
+// True when the text holds only spaces, tabs and line breaks.
+bool IsBlank(std::string_view text);
+
+// 1-based "line L, column C" of a byte offset in a text (columns count bytes).
+std::string LineColumn(std::string_view text, size_t offset);
+
+// A value's problem, before it is tied to a file and a field.
+struct FieldProblem {
+  std::string reason;  // what is wrong
+  std::string fix;     // how to fix it
+};
+
+// An empty field names the top level.
+[[noreturn]] void FailField(std::string_view file, std::string_view field, std::string_view reason,
+                            std::string_view fix);
+[[noreturn]] void FailSyntax(std::string_view file, std::string_view text, size_t offset, std::string_view reason,
+                             std::string_view fix);
+
+}  // namespace vstcal::io
