@@ -28,6 +28,8 @@ ChainEvaluator::ChainEvaluator(const ChainModel& model) : model_(model), layout_
     const std::vector<double>& params = g.cameras[e].params;
     for (size_t i = 0; i < params.size(); ++i) lens_[e][i] = params[i];
     mixing_is_identity_[e] = model_.intrinsic_mixing[e].isIdentity(0.0);
+    display_[e] = {lens_[e][2], lens_[e][3], lens_[e][4], 1.0 / lens_[e][0], 1.0 / lens_[e][1],
+                   g.camera_from_hmd[e].R.transpose()};
   }
   for (const TestPoint& tp : g.test_points) {
     point_in_object_.push_back(object_from_world * tp.point_in_world);

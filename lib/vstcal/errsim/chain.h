@@ -81,6 +81,11 @@ class ChainEvaluator {
   std::vector<Eigen::Vector3d> point_in_object_, point_in_hmd_;
   std::array<std::vector<Eigen::Vector2d>, kNumEyes> real_pixel_;
   std::array<std::vector<double>, kNumEyes> real_depth_;
+  struct DisplayConstants {
+    double cx, cy, s, inverse_fx, inverse_fy;
+    Eigen::Matrix3d hmd_from_camera;  // nominal rotation: the eye looks along its camera's axes
+  };
+  std::array<DisplayConstants, kNumEyes> display_;
   std::optional<RegistrationFrame> fiducials_;
   std::vector<Eigen::Vector3d> fiducials_in_virtual_;  // nominal measured positions
 };
@@ -111,16 +116,17 @@ Rigid3<T> ChainEvaluator::VirtualFromObject(const T* block) const {
 
 template <typename T>
 Vec3<T> ChainEvaluator::DisplayedRay(int eye, const Vec2<T>& pixel, const T* d) const {
-  // d: this eye's display block [eyepoint(3), shift u, shift v, magnification, lens k1].
-  const double* k = lens_[eye].data();  // the display shows the image with the true camera's field of view
-  const T u = T(k[2]) + (T(1) + d[5]) * (pixel(0) - T(k[2])) + d[3];
-  const T v = T(k[3]) + (T(1) + d[5]) * (pixel(1) - T(k[3])) + d[4];
-  const T yn = (v - T(k[3])) / T(k[1]);
-  const T xn = (u - T(k[2]) - T(k[4]) * yn) / T(k[0]);
-  const T residual[5] = {d[6], T(0), T(0), T(0), T(0)};  // the HMD lens's uncorrected radial term
-  T xd, yd;
-  VirtualLens::Distort(residual, xn, yn, &xd, &yd);
-  return camera_from_hmd_[eye].R.transpose().cast<T>() * Vec3<T>(xd, yd, T(1));
+  // d: this eye's display block [eyepoint(3), shift u, shift v, magnification, lens k1]. The display
+  // shows the image with the true camera's field of view (K⁻¹ of the true K), about its principal point.
+  const DisplayConstants& c = display_[eye];
+  const T du = (T(1) + d[5]) * (pixel(0) - T(c.cx)) + d[3];
+  const T dv = (T(1) + d[5]) * (pixel(1) - T(c.cy)) + d[4];
+  const T yn = dv * T(c.inverse_fy);
+  const T xn = (du - T(c.s) * yn) * T(c.inverse_fx);
+  // The HMD lens's uncorrected radial term scales the direction by 1 + k1·r².
+  const T radial = T(1) + d[6] * (xn * xn + yn * yn);
+  const Vec3<T> direction(xn * radial, yn * radial, T(1));
+  return c.hmd_from_camera.cast<T>() * direction;
 }
 
 template <typename T>
@@ -168,7 +174,7 @@ void ChainEvaluator::Evaluate(const T* theta, ChainSample<T>* out) const {
   // What the eyes see now was captured display_latency ago: the physical point, in the head frame
   // at display time, is hmd(t)_from_hmd(t − τ) · p = δ⁻¹ · p with δ = (Exp(ω τ), v τ).
   const T display_latency = ds[2 * ParameterLayout::kDisplayPerEye + 1];
-  const Rigid3<T> motion = Rigid3<T>::FromRotvec(Vec3<T>(w.cast<T>() * display_latency), Vec3<T>(v.cast<T>() * display_latency));
+  const Rigid3<T> motion{RotationFromSmallRotvec(Vec3<T>(w.cast<T>() * display_latency)), Vec3<T>(v.cast<T>() * display_latency)};
   const Rigid3<T> now_from_captured = motion.inverse();
 
   for (size_t k = 0; k < point_in_object_.size(); ++k) {

@@ -55,7 +55,7 @@ Rigid3<T> RefineRegistration(const RegistrationFrame& frame, const Mat3<T>& star
       gradient += frame.centred[k].template cast<T>().cross(Rt * (points_in_b[k] - centroid_b));
     }
     const Vec3<T> step = R * (frame.inverse_inertia.template cast<T>() * gradient);
-    R = RotationFromRotvec(step) * R;
+    R = RotationFromSmallRotvec(step) * R;
     using std::abs;
     if (abs(step(0)) + abs(step(1)) + abs(step(2)) < T(1e-15)) break;
   }
