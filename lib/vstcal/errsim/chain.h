@@ -162,7 +162,7 @@ void ChainEvaluator::Evaluate(const T* theta, ChainSample<T>* out) const {
       T delta = ci[i];
       if (!mixing_is_identity_[e]) {
         delta = T(0);
-        for (int j = 0; j <= i; ++j) delta += model_.intrinsic_mixing[e](i, j) * ci[j];  // lower triangular
+        for (int j = 0; j < kNumLensParams; ++j) delta += model_.intrinsic_mixing[e](i, j) * ci[j];
       }
       lens[e][i] = T(lens_[e][i]) + delta;
     }

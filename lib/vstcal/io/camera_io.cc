@@ -56,6 +56,8 @@ std::vector<double> ReadDistortion(const JsonNode& node, AnyLensModel* model) {
   return coefficients;
 }
 
+}  // namespace
+
 Rigid3d ReadRigid(const JsonNode& node) {
   Rigid3d pose;
   const JsonNode R = node.at("R");
@@ -67,8 +69,6 @@ Rigid3d ReadRigid(const JsonNode& node) {
   pose.t = node.at("t").Vector<3>();
   return pose;
 }
-
-}  // namespace
 
 Camera ReadCameraIntrinsics(const JsonNode& node) {
   const ImageSize size = ReadImageSize(node.at("image_size"));

@@ -27,4 +27,7 @@ OrderedJson FitToJson(const Fit& fit);
 OrderedJson DistortionToJson(const Camera& camera);
 Camera ReadCameraIntrinsics(const JsonNode& node);
 
+// A transform {"R": 3×3, "t": [3]}: R must be a rotation to 1e-6 (then re-orthonormalized).
+Rigid3d ReadRigid(const JsonNode& node);
+
 }  // namespace vstcal::io

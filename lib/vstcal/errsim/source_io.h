@@ -1,0 +1,36 @@
+// The "sources" block of vstcal/vst-chain@1: each source's terms and their distributions
+// (docs/formats.md#vst-chain-sources), written into a ChainModel's parameters.
+#pragma once
+
+#include <array>
+#include <optional>
+#include <vector>
+
+#include "vstcal/errsim/chain_model.h"
+#include "vstcal/io/json_reader.h"
+
+namespace vstcal::errsim {
+
+// A calibration covariance over named lens parameters (a camera@1 file's "covariance").
+struct LensCovariance {
+  std::vector<std::string> parameters;
+  Eigen::MatrixXd matrix;
+};
+
+// The fiducial layout of virtual_object_alignment's fiducial form (object frame), needed before the
+// parameter layout is fixed; empty for the pose form. Fails on a collinear layout.
+std::vector<Eigen::Vector3d> ReadFiducialLayout(const io::JsonNode& sources);
+
+// Fills the distributions of `model` (made by ChainModel::WithZeroErrors with the same fiducials)
+// from the sources object. `camera_covariance[e]` is eye e's camera-file covariance, if it has one.
+void ReadSources(const io::JsonNode& sources, const std::array<std::optional<LensCovariance>, kNumEyes>& camera_covariance,
+                 ChainModel* model);
+
+// Fails on any key of an object not in `allowed`, naming it as `what` and suggesting the closest
+// allowed key ("sources.trackin: unknown error source "trackin"; did you mean "tracking"? …").
+void ExpectKeys(const io::JsonNode& node, const std::vector<std::string_view>& allowed, const std::string& what);
+
+// A "covariance" object {"parameters": [names], "matrix": [[…]]}: square, symmetric, names unique.
+LensCovariance ReadLensCovariance(const io::JsonNode& node);
+
+}  // namespace vstcal::errsim
