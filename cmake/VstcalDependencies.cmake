@@ -6,6 +6,8 @@ find_package(nlohmann_json 3.10 REQUIRED)
 find_package(CLI11 REQUIRED)
 find_package(apriltag REQUIRED)
 find_package(Threads REQUIRED)
+# Boost.Random (header-only) for the Sobol quasi-random sequence of lib/vstcal/sensitivity.
+find_package(Boost 1.74 REQUIRED)
 
 # libmrcal 2.2 ships neither CMake nor pkg-config files, and its headers have no
 # extern "C" guards: include them inside extern "C" { } (see lib/vstcal/io/mrcal_c.h).
