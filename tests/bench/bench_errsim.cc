@@ -24,7 +24,7 @@ ChainModel BenchModel(bool fiducials) {
   std::vector<Eigen::Vector3d> f;
   if (fiducials) f = {{-120, -80, 0}, {150, -60, 20}, {130, 90, -30}, {-100, 110, 10}};
   ChainModel m = ChainModel::WithZeroErrors(g, f);
-  for (auto& p : m.parameters) p.distribution = ParameterDistribution::Normal(0, 1e-3);
+  for (auto& p : m.parameters) p.distribution = Distribution::MakeNormal(0, 1e-3);
   return m;
 }
 

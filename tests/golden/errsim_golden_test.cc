@@ -36,7 +36,7 @@ Evaluated EvaluateWith(ChainGeometry geometry, const std::vector<std::pair<std::
   for (const auto& [name, value] : biases) {
     bool found = false;
     for (ChainParameter& p : model.parameters) {
-      if (p.name == name) p.distribution = ParameterDistribution::Fixed(value), found = true;
+      if (p.name == name) p.distribution = Distribution::MakeFixed(value), found = true;
     }
     EXPECT_TRUE(found) << name;
   }
@@ -79,6 +79,7 @@ TEST(ErrsimGolden, TranslationAcrossTheLineOfSight) {
   const std::vector<std::vector<std::pair<std::string, double>>> cases = {
       {{"tracking.translation.x", dt}},
       {{"camera_extrinsic.left.translation.x", dt}, {"camera_extrinsic.right.translation.x", dt}},
+      {{"camera_extrinsic.rig.translation.x", dt}},
       {{"tracker_alignment.translation.x", in_tracker.x()},
        {"tracker_alignment.translation.y", in_tracker.y()},
        {"tracker_alignment.translation.z", in_tracker.z()}},
@@ -203,7 +204,7 @@ TEST(ErrsimGolden, FiducialRegistrationFollowsFitzpatrick) {
   const double sigma = fle / std::sqrt(3.0);
   const int begin = model.layout.Begin(Source::kVirtualObjectAlignment);
   const int end = model.layout.End(Source::kVirtualObjectAlignment);
-  for (int i = begin; i < end; ++i) model.parameters[i].distribution = ParameterDistribution::Normal(0, sigma);
+  for (int i = begin; i < end; ++i) model.parameters[i].distribution = Distribution::MakeNormal(0, sigma);
   const ChainEvaluator chain(model);
 
   // The formula's geometry: principal axes of the fiducial set.

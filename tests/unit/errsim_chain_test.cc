@@ -68,7 +68,7 @@ TEST(AngleBetweenVectors, MatchesAtan2OnBothSidesOfTheSeries) {
 
 TEST(ParameterLayout, NamesEveryParameterOnce) {
   const ChainModel m = ChainModel::WithZeroErrors(testing::ParallelRig({{0, 0, 0}, {10, 0, 0}}), kFiducials);
-  EXPECT_EQ(m.layout.size, 6 + 7 + 13 + 20 + 3 + 16 + 12);
+  EXPECT_EQ(m.layout.size, 6 + 7 + 19 + 20 + 3 + 16 + 12);
   std::set<std::string> names;
   for (const auto& p : m.parameters) EXPECT_TRUE(names.insert(p.name).second) << p.name;
   EXPECT_EQ(m.parameters[m.layout.tracking + 6].name, "tracking.latency");

@@ -145,7 +145,10 @@ void ChainEvaluator::Evaluate(const T* theta, ChainSample<T>* out) const {
   const Eigen::Vector3d& v = model_.geometry.head_linear_velocity;
   const Rigid3<T> lagged = PerturbLeft(hmd_from_tracker_.cast<T>(), Vec3<T>(w.cast<T>() * age), Vec3<T>(v.cast<T>() * age));
   const Rigid3<T> hmd_from_tracker = PerturbLeft(lagged, Vec3<T>(tr[0], tr[1], tr[2]), Vec3<T>(tr[3], tr[4], tr[5]));
-  const Rigid3<T> hmd_from_object = hmd_from_tracker * (tracker_from_virtual * virtual_from_object);
+  // The stereo rig's mount error is common to both eyes: camera_from_hmd_e · (Exp(ω), ρ) · hmd_from_object.
+  const T* rig = theta + L.camera_extrinsic + 13;
+  const Rigid3<T> hmd_from_object = PerturbLeft(hmd_from_tracker * (tracker_from_virtual * virtual_from_object),
+                                                Vec3<T>(rig[0], rig[1], rig[2]), Vec3<T>(rig[3], rig[4], rig[5]));
 
   std::array<Rigid3<T>, kNumEyes> camera_from_object;
   std::array<std::array<T, kNumLensParams>, kNumEyes> lens;

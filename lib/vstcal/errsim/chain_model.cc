@@ -10,23 +10,11 @@ double ChainGeometry::CameraBaseline() const {
   return (right - left).norm();
 }
 
-double ParameterDistribution::Variance() const {
-  switch (kind) {
-    case Kind::kNormal: return b * b;
-    case Kind::kUniform: return (b - a) * (b - a) / 12.0;
-    case Kind::kFixed: return 0;
-  }
-  return 0;
-}
-
-ParameterDistribution ParameterDistribution::Scaled(double s) const {
+Distribution Scaled(const Distribution& d, double s) {
   VSTCAL_CHECK(s >= 0, "a scale factor must not be negative");
-  switch (kind) {
-    case Kind::kNormal: return Normal(s * a, s * b);
-    case Kind::kUniform: return Uniform(s * a, s * b);
-    case Kind::kFixed: return Fixed(s * a);
-  }
-  return *this;
+  if (const auto* n = std::get_if<Distribution::Normal>(&d.form())) return Distribution::MakeNormal(s * n->mean, s * n->sigma);
+  if (const auto* u = std::get_if<Distribution::Uniform>(&d.form())) return Distribution::MakeUniform(s * u->lo, s * u->hi);
+  return Distribution::MakeFixed(s * d.Mean());
 }
 
 ParameterLayout ParameterLayout::For(size_t num_test_points, size_t num_fiducials) {
@@ -72,7 +60,7 @@ class ParameterNamer {
       : out_(out), length_unit_(std::move(length_unit)) {}
 
   void Add(Source source, const std::string& name, const std::string& unit, double file_per_internal = 1) {
-    out_->push_back({std::string(SourceKey(source)) + "." + name, source, ParameterDistribution::Fixed(0), unit,
+    out_->push_back({std::string(SourceKey(source)) + "." + name, source, Distribution::MakeFixed(0), unit,
                      file_per_internal});
   }
   void Rotation(Source source, const std::string& prefix) {
@@ -108,6 +96,8 @@ ChainModel ChainModel::WithZeroErrors(ChainGeometry geometry, std::vector<Eigen:
     n.Translation(Source::kCameraExtrinsic, std::string(eye) + ".");
   }
   n.Add(Source::kCameraExtrinsic, "baseline", n.length_unit());
+  n.Rotation(Source::kCameraExtrinsic, "rig.");
+  n.Translation(Source::kCameraExtrinsic, "rig.");
   for (const std::string_view eye : kEyeNames) {
     for (const std::string_view p : VirtualLens::kParamNames) {
       n.Add(Source::kCameraIntrinsic, std::string(eye) + "." + std::string(p), p[0] == 'f' || p[0] == 'c' || p == "s" ? "px" : "1");
@@ -146,7 +136,7 @@ std::vector<double> ChainModel::MeanTheta() const {
 ChainModel ChainModel::WithSources(const std::array<bool, kNumSources>& active) const {
   ChainModel m = *this;
   for (ChainParameter& p : m.parameters) {
-    if (!active[static_cast<int>(p.source)]) p.distribution = ParameterDistribution::Fixed(0);
+    if (!active[static_cast<int>(p.source)]) p.distribution = Distribution::MakeFixed(0);
   }
   return m;
 }
@@ -154,14 +144,14 @@ ChainModel ChainModel::WithSources(const std::array<bool, kNumSources>& active) 
 ChainModel ChainModel::WithSourceScaled(Source source, double factor) const {
   ChainModel m = *this;
   for (ChainParameter& p : m.parameters) {
-    if (p.source == source) p.distribution = p.distribution.Scaled(factor);
+    if (p.source == source) p.distribution = Scaled(p.distribution, factor);
   }
   return m;
 }
 
 bool ChainModel::SourceActive(Source source) const {
   for (const ChainParameter& p : parameters) {
-    if (p.source == source && !(p.distribution.IsConstant() && p.distribution.a == 0)) return true;
+    if (p.source == source && !(p.distribution.IsConstant() && p.distribution.Mean() == 0)) return true;
   }
   return false;
 }

@@ -15,6 +15,7 @@
 #include "vstcal/core/units.h"
 #include "vstcal/errsim/sources.h"
 #include "vstcal/geometry/rigid3.h"
+#include "vstcal/sensitivity/distribution.h"
 
 namespace vstcal::errsim {
 
@@ -57,28 +58,15 @@ struct ChainGeometry {
   double CameraBaseline() const;
 };
 
-// The distribution of one parameter, internal units (radians, the length unit, seconds, px).
-struct ParameterDistribution {
-  enum class Kind { kNormal, kUniform, kFixed };
-  Kind kind = Kind::kFixed;
-  double a = 0;  // normal: mean; uniform: lower bound; fixed: the value (a bias)
-  double b = 0;  // normal: σ ≥ 0; uniform: upper bound ≥ a; fixed: unused
+using sensitivity::Distribution;
 
-  static ParameterDistribution Normal(double mean, double sigma) { return {Kind::kNormal, mean, sigma}; }
-  static ParameterDistribution Uniform(double lo, double hi) { return {Kind::kUniform, lo, hi}; }
-  static ParameterDistribution Fixed(double value) { return {Kind::kFixed, value, 0}; }
-  // Every draw is the same value.
-  bool IsConstant() const { return kind == Kind::kFixed || (kind == Kind::kNormal ? b == 0 : a == b); }
-  double Mean() const { return kind == Kind::kUniform ? 0.5 * (a + b) : a; }
-  double Variance() const;
-  // The distribution of s·θ (halving a source is Scaled(0.5)).
-  ParameterDistribution Scaled(double s) const;
-};
+// The distribution of s·θ, for θ ~ d (halving a source is Scaled(d, 0.5)); s ≥ 0.
+Distribution Scaled(const Distribution& d, double s);
 
 struct ChainParameter {
   std::string name;  // "tracking.rotation.x", "camera_intrinsic.left.fx", …
   Source source = Source::kTrackerAlignment;
-  ParameterDistribution distribution;  // internal units
+  Distribution distribution = Distribution::MakeFixed(0);  // internal units
   std::string file_unit;               // unit in files and reports: "deg", "mm", "s", "px", "1"
   double file_per_internal = 1;        // 180/π for angles, 1 otherwise
 };
@@ -92,8 +80,10 @@ struct ParameterLayout {
   // pose the renderer uses relative to the video frame.
   static constexpr int kTrackingSize = 7;  // ω, ρ, latency (s)
   // camera_extrinsic: per eye a left perturbation of camera_from_hmd in the camera frame, then the
-  // baseline error (length, the estimated cameras further apart).
-  static constexpr int kCameraExtrinsicSize = 2 * 6 + 1;
+  // baseline error (length, the estimated cameras further apart), then the rig's mount error: one
+  // perturbation (ω, ρ) shared by both cameras, camera_from_hmd_e · (Exp(ω), ρ), hmd frame (a
+  // factory-calibrated stereo head is rigid; its placement on the HMD is what is uncertain).
+  static constexpr int kCameraExtrinsicSize = 2 * 6 + 1 + 6;
   // camera_intrinsic: per eye 10 values mapped to lens-parameter errors by ChainModel::intrinsic_mixing.
   static constexpr int kCameraIntrinsicSize = 2 * kNumLensParams;
   // rendering: render latency (s), then one disparity error (px) per test point.

@@ -30,12 +30,12 @@ double Component(const JsonNode& node, int i, int n) {
 
 // A distribution object for n components, converted to internal units by `scale`
 // (docs/formats.md#vst-chain-distributions).
-std::vector<ParameterDistribution> ReadDistribution(const JsonNode& node, int n, double scale) {
+std::vector<Distribution> ReadDistribution(const JsonNode& node, int n, double scale) {
   node.ExpectObject();
   const JsonNode kind_node = node.at("distribution");
   const std::string kind = kind_node.String();
   static const std::vector<std::string_view> kKinds = {"normal", "uniform", "fixed"};
-  std::vector<ParameterDistribution> out(n);
+  std::vector<Distribution> out(n, Distribution::MakeFixed(0));
   if (kind == "normal") {
     ExpectKeys(node, {"distribution", "sigma", "mean"}, "field of a normal distribution");
     const JsonNode sigma = node.at("sigma");
@@ -46,7 +46,7 @@ std::vector<ParameterDistribution> ReadDistribution(const JsonNode& node, int n,
         (sigma.json().is_array() ? sigma.at(i) : sigma)
             .Fail("must not be negative, got " + io::OrderedJson(s).dump(), "give a standard deviation ≥ 0");
       }
-      out[i] = ParameterDistribution::Normal(scale * (mean ? Component(*mean, i, n) : 0.0), scale * s);
+      out[i] = Distribution::MakeNormal(scale * (mean ? Component(*mean, i, n) : 0.0), scale * s);
     }
   } else if (kind == "uniform") {
     if (node.find("half_width")) {
@@ -55,7 +55,7 @@ std::vector<ParameterDistribution> ReadDistribution(const JsonNode& node, int n,
       for (int i = 0; i < n; ++i) {
         const double h = Component(hw, i, n);
         if (h < 0) hw.Fail("must not be negative, got " + io::OrderedJson(h).dump(), "give a half width ≥ 0");
-        out[i] = ParameterDistribution::Uniform(-scale * h, scale * h);
+        out[i] = Distribution::MakeUniform(-scale * h, scale * h);
       }
     } else {
       ExpectKeys(node, {"distribution", "min", "max"}, "field of a uniform distribution");
@@ -63,13 +63,13 @@ std::vector<ParameterDistribution> ReadDistribution(const JsonNode& node, int n,
       for (int i = 0; i < n; ++i) {
         const double a = Component(lo, i, n), b = Component(hi, i, n);
         if (a > b) hi.Fail("is below min (" + io::OrderedJson(a).dump() + " > " + io::OrderedJson(b).dump() + ")", "give min ≤ max");
-        out[i] = ParameterDistribution::Uniform(scale * a, scale * b);
+        out[i] = Distribution::MakeUniform(scale * a, scale * b);
       }
     }
   } else if (kind == "fixed") {
     ExpectKeys(node, {"distribution", "value"}, "field of a fixed distribution");
     const JsonNode value = node.at("value");
-    for (int i = 0; i < n; ++i) out[i] = ParameterDistribution::Fixed(scale * Component(value, i, n));
+    for (int i = 0; i < n; ++i) out[i] = Distribution::MakeFixed(scale * Component(value, i, n));
   } else {
     kind_node.Fail("unknown distribution " + Quoted(kind), SuggestKey(kind, kKinds));
   }
@@ -124,7 +124,7 @@ class SourceReader {
     }
   }
 
-  void Set(const std::string& name, const ParameterDistribution& d) {
+  void Set(const std::string& name, const Distribution& d) {
     const auto it = index_.find(name);
     VSTCAL_CHECK(it != index_.end(), "no parameter " + name);
     model_->parameters[it->second].distribution = d;
@@ -191,7 +191,7 @@ void ReadIntrinsics(const JsonNode& node, int eye, const std::optional<LensCovar
     ChainParameter& p = r->parameter("camera_intrinsic." + prefix + std::string(VirtualLens::kParamNames[j]));
     p.name = "camera_intrinsic." + prefix + "mode[" + std::to_string(j) + "]";
     p.file_unit = "1";
-    p.distribution = j < m ? ParameterDistribution::Normal(0, 1) : ParameterDistribution::Fixed(0);
+    p.distribution = j < m ? Distribution::MakeNormal(0, 1) : Distribution::MakeFixed(0);
   }
 }
 
@@ -257,7 +257,8 @@ void ReadSources(const JsonNode& sources, const std::array<std::optional<LensCov
     r.Terms(*n, Source::kTracking, "", terms);
   }
   if (auto n = sources.find("camera_extrinsic")) {
-    r.Terms(*n, Source::kCameraExtrinsic, "", {{"baseline", "baseline", 1, 1.0}}, {"left", "right", "both"});
+    r.Terms(*n, Source::kCameraExtrinsic, "", {{"baseline", "baseline", 1, 1.0}}, {"left", "right", "both", "rig"});
+    if (auto rig = n->find("rig")) r.Terms(*rig, Source::kCameraExtrinsic, "rig.", kPoseTerms);
     r.PerEye(*n, [&](const JsonNode& eye, int e) {
       r.Terms(eye, Source::kCameraExtrinsic, std::string(kEyeNames[e]) + ".", kPoseTerms);
     });
@@ -269,7 +270,7 @@ void ReadSources(const JsonNode& sources, const std::array<std::optional<LensCov
   if (auto n = sources.find("rendering")) {
     r.Terms(*n, Source::kRendering, "", {{"latency_s", "latency", 1, 1.0}}, {"disparity_px"});
     if (auto d = n->find("disparity_px")) {
-      const ParameterDistribution disparity = ReadDistribution(*d, 1, 1.0)[0];
+      const Distribution disparity = ReadDistribution(*d, 1, 1.0)[0];
       for (const TestPoint& tp : model->geometry.test_points) r.Set("rendering.disparity[" + tp.name + "]", disparity);
     }
   }
@@ -292,7 +293,7 @@ void ReadSources(const JsonNode& sources, const std::array<std::optional<LensCov
       for (size_t k = 0; k < model->fiducials_in_object.size(); ++k) {
         for (const char* axis : {".x", ".y", ".z"}) {
           r.Set("virtual_object_alignment.fiducial[" + std::to_string(k) + "]" + axis,
-                ParameterDistribution::Normal(0, fle / std::sqrt(3.0)));
+                Distribution::MakeNormal(0, fle / std::sqrt(3.0)));
         }
       }
     }
