@@ -31,8 +31,8 @@ struct Common {
     app->add_flag("-q,--quiet", quiet, "print only errors (no summary)");
   }
   void Finish(CLI::App* app) {
-    if (app->count("--samples")) chain.samples = samples;
-    if (app->count("--seed")) chain.seed = seed;
+    if (app->get_option_no_throw("--samples") && app->count("--samples")) chain.samples = samples;
+    if (app->get_option_no_throw("--seed") && app->count("--seed")) chain.seed = seed;
   }
 };
 
