@@ -69,6 +69,9 @@ int main(int argc, char** argv) {
   CLI::App* sweep_app = app.add_subcommand("sweep", "one-at-a-time sweeps with the local slope (autodiff)");
   common.Add(sweep_app, false);
   sweep_app->add_option("--parameter", sweep.parameters, "parameter names (default: every random one)")->delimiter(',');
+  sweep_app->add_option("--lo", sweep.lo, "lower end of the range, in the parameter's unit (default: mean − 3σ or the support)")
+      ->check(vstcal::tools::kFinite);
+  sweep_app->add_option("--hi", sweep.hi, "upper end of the range (default: mean + 3σ or the support)")->check(vstcal::tools::kFinite);
   sweep_app->add_option("--points", sweep.points, "points per sweep (≥ 2)")->check(CLI::Range(2, 100000))->capture_default_str();
 
   vstcal::errsim::SobolRequest sobol;

@@ -44,10 +44,12 @@ std::string ShardName(uint64_t shard, uint64_t shards) { return std::to_string(s
 }  // namespace
 
 ChainModel LoadChain(const ChainRequest& request) {
+  const std::vector<Source> only = ParseSources(request.only, "--only");  // flags before files
+  const std::vector<Source> without = ParseSources(request.without, "--without");
   ChainModel model = ReadChain(request.chain);
   if (request.samples) model.samples = *request.samples;
   if (request.seed) model.seed = *request.seed;
-  return SelectSources(model, ParseSources(request.only, "--only"), ParseSources(request.without, "--without"));
+  return SelectSources(model, only, without);
 }
 
 // The provenance records the seed the run used, whether it came from the flag or the chain file.
@@ -133,6 +135,8 @@ Outcome SweepErrSim(const SweepRequest& request, const io::Provenance& provenanc
     const ChainParameter& p = model.parameters[i];
     sensitivity::SweepOptions options;
     options.points = request.points;
+    if (request.lo) options.lo = *request.lo / p.file_per_internal;
+    if (request.hi) options.hi = *request.hi / p.file_per_internal;
     const sensitivity::SweepResult r = sensitivity::SweepParameter(space, vector_model, i, options);
     OrderedJson values = OrderedJson::array(), image = OrderedJson::array(), perceived = OrderedJson::array();
     for (size_t k = 0; k < r.values.size(); ++k) {

@@ -48,6 +48,7 @@ struct SweepRequest {
   ChainRequest chain;
   std::vector<std::string> parameters;  // names (empty: every non-constant parameter)
   size_t points = 21;
+  std::optional<double> lo, hi;  // sweep range in the parameter's file unit (default: ±3σ or the support)
 };
 Outcome SweepErrSim(const SweepRequest& request, const io::Provenance& provenance);
 
