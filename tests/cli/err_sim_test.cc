@@ -222,5 +222,15 @@ TEST_F(CliErrSim, SensitivitySubcommands) {
                         kBadInput, "", {"display.ipdd"}));
 }
 
+// The shipped chains (datasets/vst) read and run.
+TEST_F(CliErrSim, ShippedChainsRun) {
+  for (const std::string name : {"seed000", "seed001"}) {
+    const std::string chain = std::string(VSTCAL_SOURCE_DIR) + "/datasets/vst/" + name + ".json";
+    const CommandResult r = Run("err-sim", {"run", chain, "-o", "out/" + name + ".json", "--samples", "500", "--budget-samples", "200", "-q"});
+    ASSERT_EQ(r.exit_code, kOk) << name << ": " << r.err;
+    EXPECT_EQ(ReadJson("out/" + name + ".json")["undefined_samples"], 0) << name;
+  }
+}
+
 }  // namespace
 }  // namespace vstcal::cli_test
