@@ -1,64 +1,75 @@
-// err-sim throughput (issue 4 targets: ≥ 2 million chain samples per second per core, both eyes,
-// 5 test points, all seven sources active; time per sample ≤ 3× the time to draw its random numbers).
+// err-sim throughput on the shipped seed 001 chain (datasets/vst/seed001.json: both eyes, 5 test
+// points, all seven sources active, 66 random parameters). Issue 4 targets: ≥ 2 million chain
+// samples per second per core; the time per sample ≤ 3× the time to draw its random numbers.
+//   BM_DrawTheta      θ for one sample (ThetaSampler::Fill): the random numbers alone
+//   BM_ChainSample    θ + the chain (both eyes, 5 points) + every error measure: one chain sample
+//   BM_EngineSample   the whole Monte Carlo loop of `err-sim run` per sample, with the mergeable
+//                     statistics (moments and histograms of 55 outputs), one thread
+// The NumPy peer (scripts/bench-errsim-numpy.py) runs the same chain; scripts/bench prints both.
 #include <benchmark/benchmark.h>
 
-#include "support/vst_scenes.h"
 #include "vstcal/errsim/chain.h"
+#include "vstcal/errsim/chain_io.h"
+#include "vstcal/errsim/engine.h"
 #include "vstcal/errsim/holloway.h"
-#include "vstcal/random/philox.h"
+#include "vstcal/errsim/sampler.h"
 
 namespace {
 
-using namespace vstcal;
 using namespace vstcal::errsim;
 
-ChainModel BenchModel(bool fiducials) {
-  std::vector<Eigen::Vector3d> points;
-  for (const Eigen::Vector3d p : {Eigen::Vector3d(-200, -100, 600), Eigen::Vector3d(150, 80, 800), Eigen::Vector3d(0, 0, 1000),
-                                  Eigen::Vector3d(-300, 150, 1200), Eigen::Vector3d(250, -120, 1500)}) {
-    points.push_back(testing::WorldFromHmdPoint(p));
-  }
-  ChainGeometry g = testing::ParallelRig(points);
-  g.head_angular_velocity = Eigen::Vector3d(0.1, 0.8, 0.05);
-  g.head_linear_velocity = Eigen::Vector3d(100, 20, 30);
-  std::vector<Eigen::Vector3d> f;
-  if (fiducials) f = {{-120, -80, 0}, {150, -60, 20}, {130, 90, -30}, {-100, 110, 10}};
-  ChainModel m = ChainModel::WithZeroErrors(g, f);
-  for (auto& p : m.parameters) p.distribution = Distribution::MakeNormal(0, 1e-3);
-  return m;
+const ChainModel& Seed001() {
+  static const ChainModel model = ReadChain(std::string(VSTCAL_SOURCE_DIR) + "/datasets/vst/seed001.json");
+  return model;
 }
 
-void BM_ChainEvaluate(benchmark::State& state) {
-  const ChainModel model = BenchModel(state.range(0) != 0);
-  const ChainEvaluator chain(model);
-  std::vector<double> theta(model.layout.size);
-  const CounterRng rng(1, 0);
-  for (size_t i = 0; i < theta.size(); ++i) theta[i] = 1e-3 * rng.Normal2(i, 0)[0];
-  ChainSample<double> sample(chain.num_points());
+constexpr size_t kBatch = 1024;  // samples per call, as one Monte Carlo block
+
+void BM_DrawTheta(benchmark::State& state) {
+  const ThetaSampler sampler(Seed001(), 1);
+  std::vector<double> theta(kBatch * sampler.size());
+  uint64_t first = 0;
   for (auto _ : state) {
-    chain.Evaluate(theta.data(), &sample);
-    benchmark::DoNotOptimize(sample.points[0].perceived);
+    sampler.Fill(first, kBatch, theta.data());
+    first += kBatch;
+    benchmark::DoNotOptimize(theta.data());
   }
-  state.SetItemsProcessed(state.iterations());
+  state.SetItemsProcessed(state.iterations() * kBatch);
+  state.counters["random_per_sample"] = static_cast<double>(sampler.num_random());
 }
-BENCHMARK(BM_ChainEvaluate)->Arg(0)->Arg(1);
+BENCHMARK(BM_DrawTheta)->Unit(benchmark::kMicrosecond);
 
-void BM_ChainEvaluateAndMeasure(benchmark::State& state) {
-  const ChainModel model = BenchModel(state.range(0) != 0);
+void BM_ChainSample(benchmark::State& state) {
+  const ChainModel& model = Seed001();
+  const ThetaSampler sampler(model, 1);
   const ChainEvaluator chain(model);
   const ErrorOutputs outputs(model);
-  std::vector<double> theta(model.layout.size), y(outputs.size());
-  const CounterRng rng(1, 0);
-  for (size_t i = 0; i < theta.size(); ++i) theta[i] = 1e-3 * rng.Normal2(i, 0)[0];
+  std::vector<double> theta(kBatch * sampler.size()), y(outputs.size());
   ChainSample<double> sample(chain.num_points());
+  uint64_t first = 0;
   for (auto _ : state) {
-    chain.Evaluate(theta.data(), &sample);
-    outputs.Measure(chain, sample, theta.data(), y.data());
-    benchmark::DoNotOptimize(y.data());
+    sampler.Fill(first, kBatch, theta.data());
+    first += kBatch;
+    for (size_t s = 0; s < kBatch; ++s) {
+      chain.Evaluate(&theta[s * sampler.size()], &sample);
+      benchmark::DoNotOptimize(outputs.Measure(chain, sample, &theta[s * sampler.size()], y.data()));
+    }
   }
-  state.SetItemsProcessed(state.iterations());
+  state.SetItemsProcessed(state.iterations() * kBatch);
 }
-BENCHMARK(BM_ChainEvaluateAndMeasure)->Arg(0)->Arg(1);
+BENCHMARK(BM_ChainSample)->Unit(benchmark::kMicrosecond);
+
+void BM_EngineSample(benchmark::State& state) {
+  ChainMonteCarloOptions options;
+  options.samples = 16 * kBatch;
+  options.threads = 1;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(RunChainMonteCarlo(Seed001(), options));
+    ++options.seed;
+  }
+  state.SetItemsProcessed(state.iterations() * options.samples);
+}
+BENCHMARK(BM_EngineSample)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 

@@ -5,24 +5,6 @@
 
 namespace vstcal::errsim {
 
-double AngleBetweenVectors(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
-  const double s = a.cross(b).norm();
-  const double c = a.dot(b);
-  if (c > 0 && s < 0.1 * c) {
-    // atan x = x (1 − x²/3 + x⁴/5 − …), truncated where the first omitted term is below rounding:
-    // through x⁷ for x < 0.01 (x⁸/9 < 1.2e-17), through x¹⁵ for x < 0.1 (x¹⁶/17 < 6e-18).
-    const double x = s / c, x2 = x * x, x4 = x2 * x2;
-    constexpr double k3 = 1.0 / 3, k5 = 1.0 / 5, k7 = 1.0 / 7, k9 = 1.0 / 9, k11 = 1.0 / 11, k13 = 1.0 / 13,
-                     k15 = 1.0 / 15;
-    // Estrin's scheme: pairs of terms evaluated independently, to shorten the dependency chain.
-    const double low = (1 - k3 * x2) + x4 * (k5 - k7 * x2);
-    if (x < 0.01) return x * low;
-    const double high = (k9 - k11 * x2) + x4 * (k13 - k15 * x2);
-    return x * (low + (x4 * x4) * high);
-  }
-  return std::atan2(s, c);
-}
-
 PointErrors MeasurePoint(const ChainEvaluator& chain, const ChainSample<double>& sample, const double* theta, size_t k) {
   constexpr double kDeg = 180.0 / kPi;
   const PointSample<double>& s = sample.points[k];

@@ -4,8 +4,7 @@
 #include <cstdio>
 
 #include "vstcal/core/error.h"
-#include "vstcal/errsim/models.h"
-#include "vstcal/sensitivity/monte_carlo.h"
+#include "vstcal/errsim/engine.h"
 
 namespace vstcal::errsim {
 
@@ -110,28 +109,23 @@ SimulationResult RunSimulation(const std::vector<Scenario>& scenarios, const Sim
   double total = 0, done = 0;
   for (const Scenario& s : scenarios) total += static_cast<double>(s.name == "all" ? options.samples : options.budget_samples);
   for (const Scenario& scenario : scenarios) {
-    sensitivity::MonteCarloOptions mc;
+    ChainMonteCarloOptions mc;
     mc.samples = scenario.name == "all" ? options.samples : options.budget_samples;
     mc.block_size = options.block_size;
-    mc.sampling.seed = options.seed;
+    mc.seed = options.seed;
     mc.run_id = "err-sim/" + digest + "/" + scenario.name + "/seed=" + std::to_string(options.seed);
     mc.threads = options.threads;
-    const sensitivity::ParameterSpace space = MakeParameterSpace(scenario.model);
-    const sensitivity::Model model = ErrorModel(scenario.model);
-    const sensitivity::SummaryPlan plan = sensitivity::MakePlan(model, mc);
-    const uint64_t blocks = sensitivity::ShardBlocks(plan, options.shard, options.shards).end -
-                            sensitivity::ShardBlocks(plan, options.shard, options.shards).begin;
-    const uint64_t pieces = std::clamp<uint64_t>(blocks / 16, 1, 50);
+    const sensitivity::SummaryPlan plan = ChainPlan(scenario.model, mc);
+    const sensitivity::BlockRange range = sensitivity::ShardBlocks(plan, options.shard, options.shards);
+    const uint64_t pieces = std::clamp<uint64_t>((range.end - range.begin) / 16, 1, 50);
     sensitivity::MonteCarloSummary summary(plan);
     for (uint64_t piece = 0; piece < pieces; ++piece) {
       mc.shard = options.shard * pieces + piece;
       mc.shards = options.shards * pieces;
-      summary.Merge(sensitivity::RunMonteCarlo(space, model, mc));
+      summary.Merge(RunChainMonteCarlo(scenario.model, mc));
       if (progress) progress((done + static_cast<double>(mc.samples) * (piece + 1) / pieces / options.shards) / (total / options.shards));
     }
     done += static_cast<double>(mc.samples);
-    // Plans name the sub-shard split nowhere: a sub-run's plan is the scenario's plan.
-    VSTCAL_CHECK(summary.plan() == plan, "sub-shards changed the plan");
     result.scenarios.push_back(scenario.name);
     result.summaries.push_back(std::move(summary));
   }
