@@ -7,8 +7,11 @@ and computes every measure err-sim reports (pixel errors, per-eye angles, Hollow
 lateral, depth and angular errors, occlusion decisions).
 
 Usage: bench-errsim-numpy.py CHAIN.json [SAMPLES] [REPEATS]
-Prints the median time per sample and the totals (image RMS px, perceived RMS), which must agree
-with `err-sim run` within Monte Carlo error: an independent check of the C++ chain.
+       bench-errsim-numpy.py check CHAIN.json ERR_SIM [SAMPLES]
+The first prints the median CPU time per sample and the totals (image RMS px, perceived RMS). The
+second runs `ERR_SIM run CHAIN --no-budget` with the same number of samples and checks that both
+totals agree within 5 standard errors of their difference (ctest errsim_numpy_peer): an
+independent implementation of the same chain, so a disagreement is a bug in one of them.
 """
 import json
 import math
@@ -203,7 +206,39 @@ def project(p, x):
     return np.stack([fx * xd + s * yd + cx, fy * yd + cy], axis=-1)
 
 
+def totals(out):
+    """Per-sample aggregates → (image RMS, its SE, perceived RMS, its SE); SE of √mean by the delta method."""
+    image_ms = np.mean(np.concatenate([out["pixel0"] ** 2, out["pixel1"] ** 2], axis=1), axis=1)
+    perceived_ms = np.mean(out["linear"] ** 2, axis=1)
+    result = []
+    for a in (image_ms, perceived_ms):
+        rms = math.sqrt(np.mean(a))
+        result += [rms, np.std(a, ddof=1) / math.sqrt(len(a)) / (2 * rms)]
+    return result
+
+
+def check(path, err_sim, n):
+    import subprocess
+    import tempfile
+    with tempfile.TemporaryDirectory() as tmp:
+        report = os.path.join(tmp, "report.json")
+        subprocess.run([err_sim, "run", path, "--no-budget", "--samples", str(n), "-q", "-o", report], check=True)
+        ours = json.load(open(report))["totals"]
+    chain = json.load(open(path))
+    image, image_se, perceived, perceived_se = totals(simulate(chain, os.path.dirname(path), n, 2024))
+    ok = True
+    for name, peer, se, cpp in (("image_rms_px", image, image_se, ours["image_rms_px"]),
+                                ("perceived_rms", perceived, perceived_se, ours["perceived_rms"])):
+        z = (cpp - peer) / (math.sqrt(2) * se)
+        print(f"{name}: err-sim {cpp:.4f}, numpy {peer:.4f}, difference {z:+.2f} standard errors")
+        ok &= abs(z) <= 5
+    print("1 passed, 0 failed" if ok else "0 passed, 1 failed")
+    return 0 if ok else 1
+
+
 def main():
+    if sys.argv[1] == "check":
+        return check(sys.argv[2], sys.argv[3], int(sys.argv[4]) if len(sys.argv) > 4 else 200000)
     path = sys.argv[1]
     n = int(sys.argv[2]) if len(sys.argv) > 2 else 100000
     repeats = int(sys.argv[3]) if len(sys.argv) > 3 else 5
@@ -220,4 +255,4 @@ def main():
 
 
 if __name__ == "__main__":
-    main()
+    sys.exit(main())

@@ -19,6 +19,7 @@ ChainEvaluator::ChainEvaluator(const ChainModel& model) : model_(model), layout_
   const Eigen::Vector3d right_centre = g.camera_from_hmd[1].inverse().t;
   const double baseline = (right_centre - left_centre).norm();
   VSTCAL_CHECK(baseline > 0, "the two cameras coincide");
+  camera_baseline_ = baseline;
   const Eigen::Vector3d baseline_direction = (right_centre - left_centre) / baseline;
 
   for (int e = 0; e < kNumEyes; ++e) {

@@ -54,6 +54,7 @@ class ChainEvaluator {
   size_t num_points() const { return point_in_object_.size(); }
   const Eigen::Vector2d& real_pixel(int eye, size_t point) const { return real_pixel_[eye][point]; }
   double real_depth(int eye, size_t point) const { return real_depth_[eye][point]; }
+  double camera_baseline() const { return camera_baseline_; }
 
   template <typename T>
   void Evaluate(const T* theta, ChainSample<T>* out) const;
@@ -73,6 +74,7 @@ class ChainEvaluator {
 
   ChainModel model_;
   ParameterLayout layout_;
+  double camera_baseline_ = 0;
   Rigid3d tracker_from_virtual_, virtual_from_object_, hmd_from_tracker_;
   std::array<Rigid3d, kNumEyes> camera_from_hmd_;
   std::array<Eigen::Vector3d, kNumEyes> baseline_step_;  // ρ per unit of baseline error, camera frame

@@ -15,17 +15,18 @@ PointErrors MeasurePoint(const ChainEvaluator& chain, const ChainSample<double>&
     e.angular_deg[i] = kDeg * AngleBetweenVectors(s.ray[i], s.truth - sample.eye[i]);
   }
   const Eigen::Vector3d cyclops = 0.5 * (sample.eye[0] + sample.eye[1]);
-  const Eigen::Vector3d sight = (s.truth - cyclops).normalized();
+  const Eigen::Vector3d sight = s.truth - cyclops;  // not normalized: depth = Δ·s/|s|, lateral = |Δ × s|/|s|
+  const double inverse_distance = 1.0 / sight.norm();
   const Eigen::Vector3d delta = s.perceived - s.truth;
   e.linear = delta.norm();
-  e.depth = delta.dot(sight);
-  e.lateral = (delta - e.depth * sight).norm();
+  e.depth = delta.dot(sight) * inverse_distance;
+  e.lateral = delta.cross(sight).norm() * inverse_distance;
   e.angular_deg_cyclopean = kDeg * AngleBetweenVectors(s.truth - cyclops, s.perceived - cyclops);
 
   const auto& surface = model.geometry.test_points[k].surface_behind;
   if (surface) {
     const double disparity_error = theta[model.layout.rendering + 1 + k];
-    const double baseline = model.geometry.CameraBaseline();
+    const double baseline = chain.camera_baseline();
     for (int i = 0; i < kNumEyes; ++i) {
       const double fb = model.geometry.cameras[i].params[0] * baseline;
       const double z_surface = chain.real_depth(i, k) + *surface;
