@@ -68,7 +68,7 @@ TEST_F(CliErrSim, RunWritesTheReport) {
   EXPECT_EQ(report["provenance"]["seed"], 7);  // from the chain file: the seed the run used
   for (const Json& e : report["budget"]["entries"]) {
     if (e["source"] == "display") {
-      EXPECT_EQ(e["alone"]["image_rms_px"], 0.0);  // display errors cancel in the image
+      EXPECT_LT(e["alone"]["image_rms_px"].get<double>(), 1e-9);  // display errors cancel in the image (to rounding)
     }
   }
 }
@@ -99,7 +99,7 @@ TEST_F(CliErrSim, OnlyAndWithoutSelectSources) {
   ASSERT_EQ(Run("err-sim", {"run", "in/chain.json", "-o", "out/r.json", "--only", "display", "--no-budget", "-q"}).exit_code, kOk);
   const Json only = ReadJson("out/r.json");
   EXPECT_EQ(only["sources"]["active"], Json::array({"display"}));
-  EXPECT_EQ(only["totals"]["image_rms_px"], 0.0);
+  EXPECT_LT(only["totals"]["image_rms_px"].get<double>(), 1e-9);
   EXPECT_TRUE(only["budget"].is_null());
   ASSERT_EQ(Run("err-sim", {"run", "in/chain.json", "-o", "out/w.json", "--without", "display,tracking", "--no-budget", "-q"}).exit_code, kOk);
   EXPECT_EQ(ReadJson("out/w.json")["sources"]["active"].size(), 5u);

@@ -7,8 +7,8 @@
 
 namespace vstcal::tools {
 
-ProgressBar::ProgressBar(std::string label)
-    : label_(std::move(label)), terminal_(isatty(STDERR_FILENO) == 1), start_(std::chrono::steady_clock::now()), last_(start_) {}
+ProgressBar::ProgressBar(std::string label, bool enabled)
+    : label_(std::move(label)), terminal_(enabled && isatty(STDERR_FILENO) == 1), start_(std::chrono::steady_clock::now()), last_(start_) {}
 
 ProgressBar::~ProgressBar() {
   if (shown_) std::fprintf(stderr, "\r%*s\r", static_cast<int>(label_.size() + 60), "");

@@ -9,7 +9,8 @@ namespace vstcal::tools {
 
 class ProgressBar {
  public:
-  explicit ProgressBar(std::string label);
+  // `enabled` false (e.g. --quiet) never draws.
+  explicit ProgressBar(std::string label, bool enabled = true);
   ~ProgressBar();
   void Update(double fraction);  // 0…1
 

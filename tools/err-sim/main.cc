@@ -94,7 +94,7 @@ int main(int argc, char** argv) {
       run.budget = !no_budget;
       if (run_app->count("--budget-samples")) run.budget_samples = budget_samples;
       std::tie(run.shard, run.shards) = tools::ParseShard(shard, "--shard");
-      tools::ProgressBar bar("err-sim run");
+      tools::ProgressBar bar("err-sim run", !common.quiet);
       outcome = errsim::RunErrSim(run, provenance, [&](double f) { bar.Update(f); });
     } else if (used == merge_app) {
       outcome = errsim::MergeErrSim(common.chain.chain, shards, provenance);
