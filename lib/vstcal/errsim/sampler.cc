@@ -2,6 +2,7 @@
 
 #include <immintrin.h>
 
+#include <algorithm>
 #include <array>
 #include <bit>
 #include <cmath>
@@ -79,18 +80,18 @@ inline double ZigguratFast(uint64_t word, const CounterRng& rng, uint64_t index,
   return ZigguratSlow(word, rng, index, parameter);
 }
 
-void PhiloxWordsScalar(const CounterRng& rng, uint64_t first, size_t count, uint32_t lane, uint64_t* out) {
+void PhiloxWordsScalar(const CounterRng& rng, uint64_t first, size_t count, uint32_t lane, uint64_t* out, size_t stride) {
   for (size_t s = 0; s < count; ++s) {
     const PhiloxCounter b = rng.Bits(first + s, lane);
-    out[2 * s] = Word(b, 0);
-    out[2 * s + 1] = Word(b, 1);
+    out[s * stride] = Word(b, 0);
+    out[s * stride + 1] = Word(b, 1);
   }
 }
 
 // Philox-4×32-10 on four counters at once: each 32-bit word sits in the low half of a 64-bit
 // element, so _mm256_mul_epu32 gives the four 32×32→64 products of a round in one instruction.
 [[gnu::target("avx2")]] void PhiloxWordsAvx2(const CounterRng& rng, uint64_t first, size_t count, uint32_t lane,
-                                             uint64_t* out) {
+                                             uint64_t* out, size_t stride) {
   const __m256i m0 = _mm256_set1_epi64x(0xD2511F53), m1 = _mm256_set1_epi64x(0xCD9E8D57);
   const __m256i low = _mm256_set1_epi64x(0xffffffff);
   const PhiloxKey key = rng.key();
@@ -121,11 +122,11 @@ void PhiloxWordsScalar(const CounterRng& rng, uint64_t first, size_t count, uint
     _mm256_store_si256(reinterpret_cast<__m256i*>(w0), _mm256_or_si256(_mm256_slli_epi64(c0, 32), c1));
     _mm256_store_si256(reinterpret_cast<__m256i*>(w1), _mm256_or_si256(_mm256_slli_epi64(c2, 32), c3));
     for (int k = 0; k < 4; ++k) {
-      out[2 * (s + k)] = w0[k];
-      out[2 * (s + k) + 1] = w1[k];
+      out[(s + k) * stride] = w0[k];
+      out[(s + k) * stride + 1] = w1[k];
     }
   }
-  PhiloxWordsScalar(rng, first + s, count - s, lane, out + 2 * s);
+  PhiloxWordsScalar(rng, first + s, count - s, lane, out + s * stride, stride);
 }
 
 }  // namespace
@@ -134,12 +135,12 @@ double ZigguratNormal(uint64_t word, const CounterRng& rng, uint64_t index, uint
   return ZigguratFast(word, rng, index, parameter);
 }
 
-void PhiloxWords(const CounterRng& rng, uint64_t first, size_t count, uint32_t lane, uint64_t* out) {
+void PhiloxWords(const CounterRng& rng, uint64_t first, size_t count, uint32_t lane, uint64_t* out, size_t stride) {
   static const bool avx2 = __builtin_cpu_supports("avx2");
   if (avx2) {
-    PhiloxWordsAvx2(rng, first, count, lane, out);
+    PhiloxWordsAvx2(rng, first, count, lane, out, stride);
   } else {
-    PhiloxWordsScalar(rng, first, count, lane, out);
+    PhiloxWordsScalar(rng, first, count, lane, out, stride);
   }
 }
 
@@ -161,17 +162,24 @@ ThetaSampler::ThetaSampler(const ChainModel& model, uint64_t seed) : rng_(seed, 
 
 void ThetaSampler::Fill(uint64_t first, size_t count, double* theta) const {
   const size_t n = constants_.size(), lanes = lanes_.size();
-  // Words of every lane for every sample first (vectorized over samples), then the deviates.
+  // Words for a chunk of samples (vectorized over samples), sample-major so that each row reads
+  // its words contiguously; 32 samples × 2 words × lanes stays in the L1 cache.
+  constexpr size_t kChunk = 32;
   thread_local std::vector<uint64_t> words;
-  words.resize(2 * count * lanes);
-  for (size_t l = 0; l < lanes; ++l) PhiloxWords(rng_, first, count, lanes_[l], &words[2 * count * l]);
-  for (size_t s = 0; s < count; ++s) {
-    double* row = theta + s * n;
-    std::memcpy(row, constants_.data(), n * sizeof(double));
-    for (size_t k = 0; k < draws_.size(); ++k) {
-      const Draw& d = draws_[k];
-      const uint64_t word = words[2 * (count * slot_[k] + s) + d.parameter % 2];
-      row[d.parameter] = d.normal ? d.a + d.b * ZigguratFast(word, rng_, first + s, d.parameter) : d.a + d.b * OpenUnit(word);
+  words.resize(2 * kChunk * lanes);
+  for (size_t c = 0; c < count; c += kChunk) {
+    const size_t m = std::min(kChunk, count - c);
+    for (size_t l = 0; l < lanes; ++l) PhiloxWords(rng_, first + c, m, lanes_[l], &words[2 * l], 2 * lanes);
+    for (size_t s = 0; s < m; ++s) {
+      double* row = theta + (c + s) * n;
+      const uint64_t* w = &words[2 * lanes * s];
+      std::memcpy(row, constants_.data(), n * sizeof(double));
+      for (size_t k = 0; k < draws_.size(); ++k) {
+        const Draw& d = draws_[k];
+        const uint64_t word = w[2 * slot_[k] + d.parameter % 2];
+        row[d.parameter] =
+            d.normal ? d.a + d.b * ZigguratFast(word, rng_, first + c + s, d.parameter) : d.a + d.b * OpenUnit(word);
+      }
     }
   }
 }

@@ -25,9 +25,9 @@ namespace vstcal::errsim {
 double ZigguratNormal(uint64_t word, const CounterRng& rng, uint64_t index, uint32_t parameter);
 
 // The Philox blocks (index first + s, lane, stream) for s < count as two 64-bit words each,
-// out[2s] = b₀·2³² + b₁ and out[2s + 1] = b₂·2³² + b₃. Four samples at a time with AVX2 where
-// the CPU has it: integer arithmetic, so the same bits as CounterRng::Bits on any machine.
-void PhiloxWords(const CounterRng& rng, uint64_t first, size_t count, uint32_t lane, uint64_t* out);
+// out[s·stride] = b₀·2³² + b₁ and out[s·stride + 1] = b₂·2³² + b₃. Four samples at a time with
+// AVX2 where the CPU has it: integer arithmetic, so the same bits as CounterRng::Bits anywhere.
+void PhiloxWords(const CounterRng& rng, uint64_t first, size_t count, uint32_t lane, uint64_t* out, size_t stride = 2);
 
 class ThetaSampler {
  public:
