@@ -101,6 +101,24 @@ TEST(Rotation, JetDerivatives) {
   }
 }
 
+// The series form agrees with Rodrigues to rounding on both sides of its 0.1 rad switch, and its
+// Jet derivative at r = 0 is the generator [e_i]×.
+TEST(Rotation, SmallRotvecSeriesMatchesRodrigues) {
+  for (const double angle : {0.0, 1e-12, 1e-6, 1e-3, 0.05, 0.0999, 0.1001, 0.7}) {
+    const Eigen::Vector3d r = angle * Eigen::Vector3d(0.36, -0.48, 0.8);
+    EXPECT_LT((RotationFromSmallRotvec(r) - RotationFromRotvec(r)).cwiseAbs().maxCoeff(), 4e-16) << angle;
+  }
+  using Jet = ceres::Jet<double, 3>;
+  const Vec3<Jet> r(Jet(0.0, 0), Jet(0.0, 1), Jet(0.0, 2));
+  const Mat3<Jet> R = RotationFromSmallRotvec(r);
+  for (int i = 0; i < 3; ++i) {
+    Eigen::Matrix3d d;
+    for (int a = 0; a < 3; ++a)
+      for (int b = 0; b < 3; ++b) d(a, b) = R(a, b).v[i];
+    EXPECT_LT((d - Hat(Eigen::Vector3d(Eigen::Vector3d::Unit(i)))).cwiseAbs().maxCoeff(), 1e-15) << i;
+  }
+}
+
 TEST(Rigid3, CompositionNamesCancel) {
   const Rigid3d a_from_b = Rigid3d::FromRotvec(Eigen::Vector3d(0.1, 0.2, -0.3), Eigen::Vector3d(1, 2, 3));
   const Rigid3d b_from_c = Rigid3d::FromRotvec(Eigen::Vector3d(-0.5, 0.0, 0.4), Eigen::Vector3d(-4, 0.5, 2));

@@ -49,6 +49,32 @@ const CLI::Validator kSeed(
     },
     "UINT64");
 
+const CLI::Validator kPositiveCount(
+    [](std::string& text) -> std::string {
+      uint64_t v = 0;
+      const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+      if (text.empty() || ec != std::errc() || end != text.data() + text.size() || v == 0) {
+        return "expected a whole number ≥ 1, got \"" + text + "\"";
+      }
+      return "";
+    },
+    "COUNT");
+
+std::pair<uint64_t, uint64_t> ParseShard(const std::string& text, const std::string& flag) {
+  const size_t slash = text.find('/');
+  uint64_t i = 0, n = 0;
+  const char* begin = text.data();
+  const char* end = text.data() + text.size();
+  bool ok = slash != std::string::npos;
+  if (ok) {
+    const auto a = std::from_chars(begin, begin + slash, i);
+    const auto b = std::from_chars(begin + slash + 1, end, n);
+    ok = slash > 0 && a.ec == std::errc() && a.ptr == begin + slash && b.ec == std::errc() && b.ptr == end && n > 0 && i < n;
+  }
+  if (!ok) throw InputError(flag + ": expected i/N with 0 ≤ i < N (e.g. 0/4), got \"" + text + "\"; number the shards 0 … N−1");
+  return {i, n};
+}
+
 std::pair<int, int> ParseSize(const std::string& text, const std::string& flag, const std::string& example) {
   int a = 0, b = 0;
   char x = 0, extra = 0;

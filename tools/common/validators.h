@@ -2,6 +2,9 @@
 // unsigned integers and quotes DBL_MAX in its range messages; these say what is wanted instead.
 #pragma once
 
+#include <cstdint>
+#include <utility>
+
 #include <CLI/CLI.hpp>
 #include <Eigen/Core>
 
@@ -11,6 +14,10 @@ extern const CLI::Validator kNonEmpty;       // a string flag given as ""
 extern const CLI::Validator kFinite;         // a number flag: no nan/inf
 extern const CLI::Validator kPositiveFinite;  // a number flag > 0, finite
 extern const CLI::Validator kSeed;           // a whole number in [0, 2^64)
+extern const CLI::Validator kPositiveCount;  // a whole number ≥ 1 (sample counts)
+
+// "i/N" with 0 ≤ i < N → {i, N}; throws InputError naming `flag` otherwise.
+std::pair<uint64_t, uint64_t> ParseShard(const std::string& text, const std::string& flag);
 
 // "1280x720" → {1280, 720}; throws InputError naming `flag` and showing `example` otherwise.
 std::pair<int, int> ParseSize(const std::string& text, const std::string& flag, const std::string& example);

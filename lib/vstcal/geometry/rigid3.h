@@ -46,10 +46,11 @@ struct Rigid3 {
 using Rigid3d = Rigid3<double>;
 
 // Left perturbation in the destination frame (docs/conventions.md#poses-in-optimisation):
-// a_from_b' = (Exp(omega), rho) · a_from_b, i.e. R' = Exp(ω)R, t' = Exp(ω)t + ρ.
+// a_from_b' = (Exp(omega), rho) · a_from_b, i.e. R' = Exp(ω)R, t' = Exp(ω)t + ρ. Perturbations
+// are small: RotationFromSmallRotvec (the same rotation, faster below 0.1 rad).
 template <typename T>
 Rigid3<T> PerturbLeft(const Rigid3<T>& a_from_b, const Vec3<T>& omega, const Vec3<T>& rho) {
-  return Rigid3<T>{RotationFromRotvec(omega), rho} * a_from_b;
+  return Rigid3<T>{RotationFromSmallRotvec(omega), rho} * a_from_b;
 }
 
 }  // namespace vstcal

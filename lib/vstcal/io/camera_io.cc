@@ -54,6 +54,8 @@ std::vector<double> ReadDistortion(const JsonNode& node, AnyLensModel* model) {
   return coefficients;
 }
 
+}  // namespace
+
 Rigid3d ReadRigid(const JsonNode& node) {
   Rigid3d pose;
   const JsonNode R = node.at("R");
@@ -66,14 +68,12 @@ Rigid3d ReadRigid(const JsonNode& node) {
   return pose;
 }
 
-// Parameter names must be the model's intrinsics or pose tangents the file has; the matrix square,
-// symmetric and with a non-negative diagonal.
-ParameterCovariance ReadCovariance(const JsonNode& node, const CalibratedCamera& c) {
+ParameterCovariance ReadCovariance(const JsonNode& node, const Camera& camera) {
   ParameterCovariance cov;
   const JsonNode names = node.at("parameters");
   const size_t n = names.ArraySize();
   if (n == 0) names.Fail("no parameters", "list the parameters the matrix refers to");
-  const auto intrinsics = LensModelParamNames(c.camera.model);
+  const auto intrinsics = LensModelParamNames(camera.model);
   for (size_t i = 0; i < n; ++i) {
     const std::string name = names.at(i).String();
     const bool intrinsic = std::find(intrinsics.begin(), intrinsics.end(), name) != intrinsics.end();
@@ -100,7 +100,6 @@ ParameterCovariance ReadCovariance(const JsonNode& node, const CalibratedCamera&
   return cov;
 }
 
-}  // namespace
 
 std::optional<FieldProblem> CameraMatrixProblem(const Eigen::Matrix3d& K) {
   if (K(1, 0) != 0 || K(2, 0) != 0 || K(2, 1) != 0 || K(2, 2) != 1) {
@@ -140,7 +139,7 @@ CalibratedCamera CameraFromJson(const JsonDocument& doc) {
       c.views.push_back(std::move(pose));
     }
   }
-  if (auto cov = root.find("covariance")) c.covariance = ReadCovariance(*cov, c);
+  if (auto cov = root.find("covariance")) c.covariance = ReadCovariance(*cov, c.camera);
   if (auto P = root.find("P")) {
     Matrix34d m = P->Matrix<3, 4>();
     const double det = m.leftCols<3>().determinant();

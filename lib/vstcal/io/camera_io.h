@@ -33,4 +33,12 @@ std::optional<FieldProblem> CameraMatrixProblem(const Eigen::Matrix3d& K);
 OrderedJson DistortionToJson(const Camera& camera);
 Camera ReadCameraIntrinsics(const JsonNode& node);
 
+// A transform {"R": 3×3, "t": [3]}: R must be a rotation to 1e-6 (then re-orthonormalized).
+Rigid3d ReadRigid(const JsonNode& node);
+
+// A "covariance" object {"parameters": [names], "matrix": [[…]]}: names are `camera`'s lens
+// parameters or pose tangents ("camera_from_world.rx", "views[2].camera_from_board.tz"), each once;
+// the matrix square, symmetric to 1e-9 relative and with a non-negative diagonal.
+ParameterCovariance ReadCovariance(const JsonNode& node, const Camera& camera);
+
 }  // namespace vstcal::io

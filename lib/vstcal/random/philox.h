@@ -54,6 +54,10 @@ class CounterRng {
     return {radius * std::cos(angle), radius * std::sin(angle)};
   }
 
+  // The block cipher's key and the stream word, for batched (SIMD) evaluations of Bits.
+  constexpr PhiloxKey key() const { return key_; }
+  constexpr uint32_t stream() const { return stream_; }
+
  private:
   // (k + 0.5) / 2^53 for the top 53 bits k: never 0 or 1, so log(u) is finite.
   static constexpr double ToOpenUnit(uint32_t hi, uint32_t lo) {

@@ -1,0 +1,30 @@
+// The Monte Carlo loop of err-sim run: θ from the fast sampler (sampler.h), the chain and its error
+// measures (chain.h, holloway.h), accumulated into the sensitivity module's mergeable summary in
+// fixed blocks — so the numbers depend only on (samples, block size, seed), never on the thread
+// count or the shard split. Equivalent to sensitivity::RunMonteCarlo over ErrorModel, without a
+// std::function call and a buffer lookup per sample, and with the faster sampler.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "vstcal/errsim/chain_model.h"
+#include "vstcal/sensitivity/mc_summary.h"
+
+namespace vstcal::errsim {
+
+struct ChainMonteCarloOptions {
+  uint64_t samples = 0;
+  uint64_t seed = 0;
+  uint64_t block_size = 1024;
+  unsigned threads = 0;  // 0: all cores
+  uint64_t shard = 0, shards = 1;
+  std::string run_id;
+};
+
+sensitivity::SummaryPlan ChainPlan(const ChainModel& model, const ChainMonteCarloOptions& options);
+
+// Runs the blocks of shard `shard` of `shards`.
+sensitivity::MonteCarloSummary RunChainMonteCarlo(const ChainModel& model, const ChainMonteCarloOptions& options);
+
+}  // namespace vstcal::errsim

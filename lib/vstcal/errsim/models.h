@@ -1,0 +1,26 @@
+// The chain as the sensitivity module sees it (lib/vstcal/sensitivity): a parameter space whose
+// groups are the seven source keys, and two models over it —
+//  - ErrorModel: the error measures of holloway.h (magnitudes, angles, occlusion decisions), double
+//    only (a norm has no derivative at zero error): Monte Carlo and Sobol indices;
+//  - VectorModel: the signed vector errors of ChainEvaluator (px per eye, perceived − true in the
+//    hmd frame), templated: linear propagation and sweep slopes by ceres::Jet.
+#pragma once
+
+#include "vstcal/errsim/chain_model.h"
+#include "vstcal/sensitivity/model.h"
+#include "vstcal/sensitivity/parameter_space.h"
+
+namespace vstcal::errsim {
+
+// One parameter per θ entry, group = its source key, nominal 0 (an error's nominal value: a bias or
+// a non-zero mean then shows as a mean shift in linear propagation).
+sensitivity::ParameterSpace MakeParameterSpace(const ChainModel& model);
+
+sensitivity::Model ErrorModel(const ChainModel& model);
+sensitivity::Model VectorModel(const ChainModel& model);
+
+// Names of VectorModel's outputs: "<point>.left.du_px", "<point>.left.dv_px", "<point>.right.du_px",
+// "<point>.right.dv_px", "<point>.dx", "<point>.dy", "<point>.dz" (perceived − true, hmd frame).
+std::vector<std::string> VectorOutputNames(const ChainModel& model);
+
+}  // namespace vstcal::errsim

@@ -1,0 +1,142 @@
+#include "vstcal/errsim/simulation.h"
+
+#include <algorithm>
+#include <cstdio>
+
+#include "vstcal/core/error.h"
+#include "vstcal/errsim/engine.h"
+
+namespace vstcal::errsim {
+
+std::vector<Scenario> MakeScenarios(const ChainModel& model, bool budget) {
+  std::vector<Scenario> out = {{"all", model}};
+  if (!budget) return out;
+  for (int s = 0; s < kNumSources; ++s) {
+    const Source source = static_cast<Source>(s);
+    if (!model.SourceActive(source)) continue;
+    std::array<bool, kNumSources> alone{};
+    alone[s] = true;
+    out.push_back({"alone:" + std::string(SourceKey(source)), model.WithSources(alone)});
+    out.push_back({"halved:" + std::string(SourceKey(source)), model.WithSourceScaled(source, 0.5)});
+  }
+  return out;
+}
+
+ChainModel SelectSources(const ChainModel& model, const std::vector<Source>& only, const std::vector<Source>& without) {
+  std::array<bool, kNumSources> active{};
+  active.fill(only.empty());
+  for (const Source s : only) active[static_cast<int>(s)] = true;
+  for (const Source s : without) active[static_cast<int>(s)] = false;
+  return model.WithSources(active);
+}
+
+namespace {
+
+class Fnv1a {
+ public:
+  void Add(const std::string& text) {
+    for (const unsigned char c : text) hash_ = (hash_ ^ c) * 0x100000001b3ull;
+    hash_ = (hash_ ^ 0xff) * 0x100000001b3ull;  // separator
+  }
+  void Add(double v) {
+    char buf[40];
+    std::snprintf(buf, sizeof buf, "%.17g", v);
+    Add(std::string(buf));
+  }
+  template <typename Derived>
+  void Add(const Eigen::MatrixBase<Derived>& m) {
+    for (Eigen::Index r = 0; r < m.rows(); ++r)
+      for (Eigen::Index c = 0; c < m.cols(); ++c) Add(static_cast<double>(m(r, c)));
+  }
+  void Add(const Rigid3d& t) {
+    Add(t.R);
+    Add(t.t);
+  }
+  std::string Hex() const {
+    char buf[20];
+    std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(hash_));
+    return buf;
+  }
+
+ private:
+  uint64_t hash_ = 0xcbf29ce484222325ull;
+};
+
+}  // namespace
+
+std::string ChainDigest(const ChainModel& model) {
+  Fnv1a h;
+  const ChainGeometry& g = model.geometry;
+  h.Add(std::string(LengthUnitName(g.length_unit)));
+  for (const Rigid3d& t : {g.tracker_from_world, g.hmd_from_tracker, g.camera_from_hmd[0], g.camera_from_hmd[1],
+                           g.world_from_virtual, g.world_from_object}) {
+    h.Add(t);
+  }
+  for (const Camera& c : g.cameras) {
+    h.Add(std::string(LensModelName(c.model)));
+    for (double p : c.params) h.Add(p);
+    h.Add(static_cast<double>(c.image_size.width));
+    h.Add(static_cast<double>(c.image_size.height));
+  }
+  h.Add(g.ipd);
+  h.Add(g.eye_centre_in_hmd);
+  h.Add(g.head_angular_velocity);
+  h.Add(g.head_linear_velocity);
+  for (const TestPoint& tp : g.test_points) {
+    h.Add(tp.name);
+    h.Add(tp.point_in_world);
+    h.Add(tp.surface_behind ? *tp.surface_behind : 0.0);
+  }
+  for (const auto& f : model.fiducials_in_object) h.Add(f);
+  for (const auto& m : model.intrinsic_mixing) h.Add(m);
+  for (const ChainParameter& p : model.parameters) {
+    h.Add(p.name);
+    h.Add(p.distribution.Describe());
+  }
+  return h.Hex();
+}
+
+bool SimulationResult::complete() const {
+  return std::all_of(summaries.begin(), summaries.end(), [](const auto& s) { return s.complete(); });
+}
+
+SimulationResult RunSimulation(const std::vector<Scenario>& scenarios, const SimulationOptions& options,
+                               const std::string& digest, const Progress& progress) {
+  SimulationResult result;
+  // Each scenario's blocks are run in `pieces` consecutive sub-shards of this shard (shard i of N is
+  // exactly sub-shards i·M … i·M + M − 1 of N·M), merged as they come: identical bits, and a place
+  // to report progress.
+  double total = 0, done = 0;
+  for (const Scenario& s : scenarios) total += static_cast<double>(s.name == "all" ? options.samples : options.budget_samples);
+  for (const Scenario& scenario : scenarios) {
+    ChainMonteCarloOptions mc;
+    mc.samples = scenario.name == "all" ? options.samples : options.budget_samples;
+    mc.block_size = options.block_size;
+    mc.seed = options.seed;
+    mc.run_id = "err-sim/" + digest + "/" + scenario.name + "/seed=" + std::to_string(options.seed);
+    mc.threads = options.threads;
+    const sensitivity::SummaryPlan plan = ChainPlan(scenario.model, mc);
+    const sensitivity::BlockRange range = sensitivity::ShardBlocks(plan, options.shard, options.shards);
+    const uint64_t pieces = std::clamp<uint64_t>((range.end - range.begin) / 16, 1, 50);
+    sensitivity::MonteCarloSummary summary(plan);
+    for (uint64_t piece = 0; piece < pieces; ++piece) {
+      mc.shard = options.shard * pieces + piece;
+      mc.shards = options.shards * pieces;
+      summary.Merge(RunChainMonteCarlo(scenario.model, mc));
+      if (progress) progress((done + static_cast<double>(mc.samples) * (piece + 1) / pieces / options.shards) / (total / options.shards));
+    }
+    done += static_cast<double>(mc.samples);
+    result.scenarios.push_back(scenario.name);
+    result.summaries.push_back(std::move(summary));
+  }
+  return result;
+}
+
+void MergeSimulation(SimulationResult* into, const SimulationResult& other) {
+  if (into->scenarios != other.scenarios) {
+    throw InputError("the shards ran different scenarios (different --only/--without or --no-budget); merge shards of one run");
+  }
+  for (size_t i = 0; i < into->summaries.size(); ++i) into->summaries[i].Merge(other.summaries[i]);
+}
+
+}  // namespace vstcal::errsim

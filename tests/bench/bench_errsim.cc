@@ -1,0 +1,76 @@
+// err-sim throughput on the shipped seed 001 chain (datasets/vst/seed001.json: both eyes, 5 test
+// points, all seven sources active, 66 random parameters). Issue 4 targets: ≥ 2 million chain
+// samples per second per core; the time per sample ≤ 3× the time to draw its random numbers.
+//   BM_DrawTheta      θ for one sample (ThetaSampler::Fill): the random numbers alone
+//   BM_ChainSample    θ + the chain (both eyes, 5 points) + every error measure: one chain sample
+//   BM_EngineSample   the whole Monte Carlo loop of `err-sim run` per sample, with the mergeable
+//                     statistics (moments and histograms of 55 outputs), one thread
+// The NumPy peer (scripts/bench-errsim-numpy.py) runs the same chain; scripts/bench prints both.
+#include <benchmark/benchmark.h>
+
+#include "vstcal/errsim/chain.h"
+#include "vstcal/errsim/chain_io.h"
+#include "vstcal/errsim/engine.h"
+#include "vstcal/errsim/holloway.h"
+#include "vstcal/errsim/sampler.h"
+
+namespace {
+
+using namespace vstcal::errsim;
+
+const ChainModel& Seed001() {
+  static const ChainModel model = ReadChain(std::string(VSTCAL_SOURCE_DIR) + "/datasets/vst/seed001.json");
+  return model;
+}
+
+constexpr size_t kBatch = 1024;  // samples per call, as one Monte Carlo block
+
+void BM_DrawTheta(benchmark::State& state) {
+  const ThetaSampler sampler(Seed001(), 1);
+  std::vector<double> theta(kBatch * sampler.size());
+  uint64_t first = 0;
+  for (auto _ : state) {
+    sampler.Fill(first, kBatch, theta.data());
+    first += kBatch;
+    benchmark::DoNotOptimize(theta.data());
+  }
+  state.SetItemsProcessed(state.iterations() * kBatch);
+  state.counters["random_per_sample"] = static_cast<double>(sampler.num_random());
+}
+BENCHMARK(BM_DrawTheta)->Unit(benchmark::kMicrosecond);
+
+void BM_ChainSample(benchmark::State& state) {
+  const ChainModel& model = Seed001();
+  const ThetaSampler sampler(model, 1);
+  const ChainEvaluator chain(model);
+  const ErrorOutputs outputs(model);
+  std::vector<double> theta(kBatch * sampler.size()), y(outputs.size());
+  ChainSample<double> sample(chain.num_points());
+  uint64_t first = 0;
+  for (auto _ : state) {
+    sampler.Fill(first, kBatch, theta.data());
+    first += kBatch;
+    for (size_t s = 0; s < kBatch; ++s) {
+      chain.Evaluate(&theta[s * sampler.size()], &sample);
+      benchmark::DoNotOptimize(outputs.Measure(chain, sample, &theta[s * sampler.size()], y.data()));
+    }
+  }
+  state.SetItemsProcessed(state.iterations() * kBatch);
+}
+BENCHMARK(BM_ChainSample)->Unit(benchmark::kMicrosecond);
+
+void BM_EngineSample(benchmark::State& state) {
+  ChainMonteCarloOptions options;
+  options.samples = 16 * kBatch;
+  options.threads = 1;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(RunChainMonteCarlo(Seed001(), options));
+    ++options.seed;
+  }
+  state.SetItemsProcessed(state.iterations() * options.samples);
+}
+BENCHMARK(BM_EngineSample)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();

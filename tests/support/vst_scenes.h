@@ -1,0 +1,24 @@
+// Simple VST rigs for err-sim tests and benchmarks.
+#pragma once
+
+#include <vector>
+
+#include "vstcal/errsim/chain_model.h"
+
+namespace vstcal::testing {
+
+// A parallel orthostereo rig: two pinhole cameras (1280×720, fx = fy = `focal`, principal point
+// at the image centre) with axes along the hmd's, centres at (∓baseline/2, 0, 0) in the hmd frame,
+// eyes at the camera centres (ipd = baseline). The hmd sits 2 m behind the world origin looking
+// along world +z (hmd_from_tracker · tracker_from_world = translation (0, 0, 2000) mm with a
+// non-trivial tracker in between); the virtual world and the object frame are rotated and
+// shifted away from the world so that every frame of the chain is exercised. Test points are
+// given in the world frame. Lengths in mm.
+errsim::ChainGeometry ParallelRig(std::vector<Eigen::Vector3d> points_in_world, double focal = 700.0,
+                                  double baseline = 63.0);
+
+// The hmd frame's origin expressed in the world frame of ParallelRig: a point at hmd (x, y, z) is
+// at world (x, y, z − 2000).
+Eigen::Vector3d WorldFromHmdPoint(const Eigen::Vector3d& point_in_hmd);
+
+}  // namespace vstcal::testing
