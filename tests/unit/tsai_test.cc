@@ -151,5 +151,27 @@ TEST(Tsai, RefusalsAndVariants) {
   EXPECT_EQ(SolveTsai(TsaiPixels(truth, Volume()), ImageSize{1280, 1024}, coplanar).status, TsaiStatus::kDegenerate);
 }
 
+// A point moved behind the camera is named; a mirrored (left-handed) world is told apart from it:
+// Tsai's first stage fits both, and only the mirrored rotation puts every point in front.
+TEST(Tsai, PointsBehindTheCameraAndMirroredWorld) {
+  const TsaiTruth truth = Truth();
+  std::vector<Observation> obs = TsaiPixels(truth, Volume(), 0.2);
+  const Eigen::Vector3d centre = truth.camera_from_world.inverse().t;
+  obs[100].point = 2 * centre - obs[100].point;  // same ray, behind the camera
+  const TsaiResult behind = SolveTsai(obs, ImageSize{1280, 1024});
+  EXPECT_EQ(behind.status, TsaiStatus::kPointsBehind) << behind.message;
+  EXPECT_EQ(behind.n_behind, 1u);
+  EXPECT_EQ(behind.deepest_behind, 100u);
+  EXPECT_NE(behind.message.find("1 of 378 points lie behind the camera"), std::string::npos) << behind.message;
+  EXPECT_EQ(TsaiStatusExitCode(behind.status), ExitCode::kBadInput);
+
+  std::vector<Observation> mirrored = TsaiPixels(truth, Volume(), 0.2);
+  for (Observation& o : mirrored) o.point.x() = -o.point.x();
+  const TsaiResult m = SolveTsai(mirrored, ImageSize{1280, 1024});
+  EXPECT_EQ(m.status, TsaiStatus::kMirrored) << m.message;
+  EXPECT_NE(m.message.find("mirrored"), std::string::npos) << m.message;
+  EXPECT_EQ(TsaiStatusExitCode(m.status), ExitCode::kBadInput);
+}
+
 }  // namespace
 }  // namespace vstcal

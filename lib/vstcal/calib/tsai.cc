@@ -50,7 +50,8 @@ struct Stage3Cost {
 // Stage 2: f and Tz from X_d(w + Tz) = f x and Y_d(w + Tz) = f y (distortion ignored), by linear
 // least squares over both equations of every point (Tsai uses the Y equation only; with sx known
 // the X equation is as good and halves the variance).
-bool SolveFocalAndDepth(const std::vector<SensorPoint>& points, const Rigid3d& pose, double* f, double* tz) {
+bool SolveFocalAndDepth(const std::vector<SensorPoint>& points, const Rigid3d& pose, double* f, double* tz,
+                        double* residual = nullptr) {
   Eigen::MatrixXd A(2 * points.size(), 2);
   Eigen::VectorXd b(2 * points.size());
   for (size_t i = 0; i < points.size(); ++i) {
@@ -67,6 +68,7 @@ bool SolveFocalAndDepth(const std::vector<SensorPoint>& points, const Rigid3d& p
   const Eigen::Vector2d sol = qr.solve(b);
   *f = sol(0);
   *tz = sol(1);
+  if (residual) *residual = (A * sol - b).norm();
   return std::isfinite(*f) && std::isfinite(*tz);
 }
 
@@ -84,22 +86,69 @@ double TySign(const std::vector<SensorPoint>& points, const Eigen::Matrix<double
   return (x * points[far].xd >= 0 && y * points[far].yd >= 0) ? 1.0 : -1.0;
 }
 
-// Stages 2 and 3 after a stage-1 rotation and Tx, Ty; flips the rotation's sign ambiguity when f
-// comes out negative (Tsai: r3, r6, r7, r8 change sign).
+// Points with depth ≤ 0 for the rotation of `pose` and depth offset `tz`; sets out->n_behind and
+// out->deepest_behind.
+size_t CountBehind(const std::vector<SensorPoint>& points, const Rigid3d& pose, double tz, TsaiResult* out) {
+  double deepest = INFINITY;
+  out->n_behind = 0;
+  for (size_t i = 0; i < points.size(); ++i) {
+    const double depth = (pose.R * points[i].X).z() + tz;
+    if (depth > 0) continue;
+    ++out->n_behind;
+    if (depth < deepest) deepest = depth, out->deepest_behind = i;
+  }
+  return out->n_behind;
+}
+
+// f and Tz by stage 2 for the rotation of `pose`, resolving Tsai's sign ambiguity when f comes
+// out negative (r3, r6, r7, r8 change sign); false when no positive f fits. `residual`: the
+// stage-2 system's residual norm.
+bool SolvePositiveFocal(const std::vector<SensorPoint>& points, Rigid3d* pose, double* f, double* tz, double* residual) {
+  if (!SolveFocalAndDepth(points, *pose, f, tz, residual)) return false;
+  if (*f >= 0) return true;
+  const Eigen::Vector3d D(1, 1, -1);
+  pose->R = D.asDiagonal() * pose->R * D.asDiagonal();
+  return SolveFocalAndDepth(points, *pose, f, tz, residual) && *f >= 0;
+}
+
+// A world frame mirrored relative to the image fits stage 1 as well as a right-handed one; it is
+// recognised by the mirrored third row fitting stage 2 better than the proper rotation did
+// (`residual`) with every point in front of a camera with f > 0.
+bool FitsMirrored(const std::vector<SensorPoint>& points, const Rigid3d& stage_one, double residual) {
+  Rigid3d mirrored = stage_one;
+  mirrored.R.row(2) *= -1;
+  double f = 0, tz = 0, mirrored_residual = 0;
+  TsaiResult unused;
+  return SolvePositiveFocal(points, &mirrored, &f, &tz, &mirrored_residual) && mirrored_residual < residual &&
+         CountBehind(points, mirrored, tz, &unused) == 0;
+}
+
+// Stages 2 and 3 after a stage-1 rotation and Tx, Ty.
 TsaiStatus FinishStages(const std::vector<SensorPoint>& points, Rigid3d* pose, TsaiResult* out) {
+  const Rigid3d stage_one = *pose;
   double f = 0, tz = 0;
   if (!SolveFocalAndDepth(points, *pose, &f, &tz)) {
     out->message = "f and Tz cannot be separated: the points do not vary in depth (a plane parallel to the image?); "
                    "tilt the target or use a volume";
     return TsaiStatus::kDegenerate;
   }
-  if (f < 0) {
-    const Eigen::Vector3d D(1, 1, -1);
-    pose->R = D.asDiagonal() * pose->R * D.asDiagonal();
-    if (!SolveFocalAndDepth(points, *pose, &f, &tz) || f < 0) {
+  // The nonlinear stage needs a positive f and every point in front of the camera.
+  double residual = INFINITY;
+  const bool positive = SolvePositiveFocal(points, pose, &f, &tz, &residual);
+  if (!positive) residual = INFINITY;
+  if (!positive || CountBehind(points, *pose, tz, out) > 0) {
+    if (FitsMirrored(points, stage_one, residual)) {
+      out->message = "the world frame is mirrored relative to the image: the world axes are left-handed or u/v are "
+                     "swapped; flip one world axis or fix the pixel columns";
+      return TsaiStatus::kMirrored;
+    }
+    if (!positive) {
       out->message = "no positive focal length fits the data; check the correspondences";
       return TsaiStatus::kDegenerate;
     }
+    out->message = std::to_string(out->n_behind) + " of " + std::to_string(points.size()) +
+                   " points lie behind the camera that the others define; check their coordinates and signs";
+    return TsaiStatus::kPointsBehind;
   }
   double p[3] = {f, tz, 0.0};
   ceres::Problem problem;
@@ -359,7 +408,9 @@ TsaiResult SolveTsai(std::span<const Observation> obs, ImageSize size, const Tsa
 ExitCode TsaiStatusExitCode(TsaiStatus status) {
   switch (status) {
     case TsaiStatus::kOk: return ExitCode::kOk;
-    case TsaiStatus::kTooFewPoints: return ExitCode::kBadInput;
+    case TsaiStatus::kTooFewPoints:
+    case TsaiStatus::kPointsBehind:
+    case TsaiStatus::kMirrored: return ExitCode::kBadInput;
     default: return ExitCode::kDegenerate;
   }
 }

@@ -38,6 +38,8 @@ enum class TsaiStatus {
   kTooFewPoints,       // fewer than 7 (non-coplanar) or 5 (coplanar) points
   kCoplanarForced,     // kNonCoplanar asked for coplanar data
   kDegenerate,         // the linear stages have no unique solution (e.g. a plane parallel to the image)
+  kPointsBehind,       // points behind the camera the others define (wrong coordinates)
+  kMirrored,           // the world frame is left-handed relative to the image
   kNotConverged,       // the nonlinear stage did not converge
 };
 
@@ -53,6 +55,8 @@ struct TsaiResult {
   Eigen::Vector2d principal_point = Eigen::Vector2d::Zero();
   Rigid3d camera_from_world;
   int nonlinear_iterations = 0;
+  size_t n_behind = 0;        // kPointsBehind: points with depth ≤ 0 after the linear stages
+  size_t deepest_behind = 0;  // kPointsBehind: index of the deepest of them
   double plane_rms = 0;  // coplanar variant: RMS distance of the points from their plane
 
   // The same camera in vstcal's model: K = [[f·sx, 0, Cx], [0, f, Cy], [0, 0, 1]] and
