@@ -123,8 +123,27 @@ bool FitsMirrored(const std::vector<SensorPoint>& points, const Rigid3d& stage_o
          CountBehind(points, mirrored, tz, &unused) == 0;
 }
 
+// Standard error of f at stage 3's optimum p = (f, Tz, κ₁): σ̂² (JᵀJ)⁻¹ with σ̂² the residual
+// variance (sensor units, 2n − 3 degrees of freedom).
+double FocalStandardError(const std::vector<SensorPoint>& points, const Rigid3d& pose, const double* p) {
+  const int m = 2 * static_cast<int>(points.size());
+  ceres::AutoDiffCostFunction<Stage3Cost, ceres::DYNAMIC, 3> cost(new Stage3Cost{&points, &pose}, m);
+  Eigen::VectorXd r(m);
+  Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> J(m, 3);
+  double* jacobians[1] = {J.data()};
+  if (!cost.Evaluate(&p, r.data(), jacobians)) return INFINITY;
+  // f (px), Tz (length) and κ₁ (px⁻²) differ in scale by ten orders: invert with unit columns.
+  const Eigen::Vector3d scale = J.colwise().norm().cwiseInverse().transpose();
+  const Eigen::Matrix3d information = scale.asDiagonal() * (J.transpose() * J) * scale.asDiagonal();
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(information);
+  if (!(eig.eigenvalues()(0) > 1e-14 * eig.eigenvalues()(2))) return INFINITY;
+  const double inverse_ff = (eig.eigenvectors().row(0).array().square() / eig.eigenvalues().transpose().array()).sum();
+  return std::sqrt(r.squaredNorm() / (m - 3) * inverse_ff) * scale(0);
+}
+
 // Stages 2 and 3 after a stage-1 rotation and Tx, Ty.
-TsaiStatus FinishStages(const std::vector<SensorPoint>& points, Rigid3d* pose, TsaiResult* out) {
+TsaiStatus FinishStages(const std::vector<SensorPoint>& points, Rigid3d* pose, const TsaiOptions& options,
+                        TsaiResult* out) {
   const Rigid3d stage_one = *pose;
   double f = 0, tz = 0;
   if (!SolveFocalAndDepth(points, *pose, &f, &tz)) {
@@ -155,18 +174,28 @@ TsaiStatus FinishStages(const std::vector<SensorPoint>& points, Rigid3d* pose, T
   problem.AddResidualBlock(new ceres::AutoDiffCostFunction<Stage3Cost, ceres::DYNAMIC, 3>(
                                new Stage3Cost{&points, pose}, 2 * static_cast<int>(points.size())),
                            nullptr, p);
-  ceres::Solver::Options options;
-  options.linear_solver_type = ceres::DENSE_QR;
-  options.max_num_iterations = 100;
-  options.function_tolerance = 1e-14;
-  options.parameter_tolerance = 1e-14;
-  options.logging_type = ceres::SILENT;
+  ceres::Solver::Options solver;
+  solver.linear_solver_type = ceres::DENSE_QR;
+  solver.max_num_iterations = 100;
+  solver.function_tolerance = 1e-14;
+  solver.parameter_tolerance = 1e-14;
+  solver.logging_type = ceres::SILENT;
   ceres::Solver::Summary summary;
-  ceres::Solve(options, &problem, &summary);
+  ceres::Solve(solver, &problem, &summary);
   out->nonlinear_iterations = static_cast<int>(summary.iterations.size()) - 1;
   if (summary.termination_type != ceres::CONVERGENCE) {
     out->message = "Tsai's nonlinear stage (f, Tz, kappa1) did not converge: " + summary.message;
     return TsaiStatus::kNotConverged;
+  }
+  // Stage 3 fits f from the points' depth differences only: a plane (nearly) parallel to the
+  // image leaves it undetermined, whatever the linear stages' conditioning.
+  out->f_sigma = FocalStandardError(points, *pose, p);
+  if (!(out->f_sigma <= options.max_focal_relative_sigma * p[0])) {
+    out->message = Format("f is not determined by these points (standard error %.3g%% of f, limit %.3g%%): their "
+                          "depths vary too little (a plane nearly parallel to the image?); tilt the target (30 degrees "
+                          "or more) or use a volume",
+                          100 * out->f_sigma / p[0], 100 * options.max_focal_relative_sigma);
+    return TsaiStatus::kDegenerate;
   }
   out->f = p[0];
   out->kappa1 = p[2];
@@ -381,7 +410,7 @@ TsaiResult SolveTsai(std::span<const Observation> obs, ImageSize size, const Tsa
     status = StageOneNonCoplanar(points, &camera_from_work, &out.sx, &out);
     for (SensorPoint& s : points) s.xd /= out.sx;
   }
-  if (status == TsaiStatus::kOk) status = FinishStages(points, &camera_from_work, &out);
+  if (status == TsaiStatus::kOk) status = FinishStages(points, &camera_from_work, options, &out);
   if (status != TsaiStatus::kOk) {
     out.status = status;
     return out;

@@ -31,6 +31,10 @@ struct TsaiOptions {
   std::optional<Eigen::Vector2d> principal_point;  // default: the image centre ((W − 1)/2, (H − 1)/2)
   double sx = 1.0;                                 // the coplanar variant's fixed scale factor
   double min_extent_ratio = 1e-2;                  // planarity decision, as DLT's
+  // f is told apart from Tz only by the points' depth differences: refuse (kDegenerate) when its
+  // standard error exceeds this fraction of f (a plane nearly parallel to the image; Tsai
+  // recommends tilting a plane by 30° or more).
+  double max_focal_relative_sigma = 0.1;
 };
 
 enum class TsaiStatus {
@@ -50,6 +54,7 @@ struct TsaiResult {
 
   // Tsai's own parameters.
   double f = 0;       // px
+  double f_sigma = 0; // px: f's standard error at stage 3, from the residuals (0 for exact data)
   double sx = 1;      // horizontal scale factor
   double kappa1 = 0;  // px⁻², on distorted sensor coordinates
   Eigen::Vector2d principal_point = Eigen::Vector2d::Zero();
