@@ -41,7 +41,7 @@ enum class TsaiStatus {
   kOk,
   kTooFewPoints,       // fewer than 7 (non-coplanar) or 5 (coplanar) points
   kCoplanarForced,     // kNonCoplanar asked for coplanar data
-  kDegenerate,         // the linear stages have no unique solution (e.g. a plane parallel to the image)
+  kDegenerate,         // no unique solution (e.g. a plane parallel to the image: f undetermined)
   kPointsBehind,       // points behind the camera the others define (wrong coordinates)
   kMirrored,           // the world frame is left-handed relative to the image
   kNotConverged,       // the nonlinear stage did not converge
@@ -54,7 +54,7 @@ struct TsaiResult {
 
   // Tsai's own parameters.
   double f = 0;       // px
-  double f_sigma = 0; // px: f's standard error at stage 3, from the residuals (0 for exact data)
+  double f_sigma = 0;  // px: f's standard error at stage 3, from the residuals (0 for exact data)
   double sx = 1;      // horizontal scale factor
   double kappa1 = 0;  // px⁻², on distorted sensor coordinates
   Eigen::Vector2d principal_point = Eigen::Vector2d::Zero();

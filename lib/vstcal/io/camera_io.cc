@@ -106,9 +106,9 @@ ParameterCovariance ReadCovariance(const JsonNode& node, const Camera& camera) {
       std::vector<std::string_view> candidates(intrinsics.begin(), intrinsics.end());
       candidates.insert(candidates.end(), tangents.begin(), tangents.end());
       const auto near = ClosestMatch(name, candidates);
+      const std::string known = lens + " for this lens model, camera_from_world.rx … tz or views[i].camera_from_board.rx … tz";
       names.at(i).Fail("unknown parameter \"" + name + "\"",
-                       (near ? "did you mean \"" + std::string(*near) + "\"? (known: " : "use (") + lens +
-                           " for this lens model, camera_from_world.rx … tz, views[i].camera_from_board.rx … tz)");
+                       near ? "did you mean \"" + std::string(*near) + "\"? (known: " + known + ")" : "use " + known);
     }
     if (cov.Find(name)) names.at(i).Fail("duplicate parameter \"" + name + "\"", "list each parameter once");
     cov.parameters.push_back(name);
