@@ -233,7 +233,7 @@ TEST(Refine, SelectedTermsOnlyAndUnknownNamesRefused) {
   }
 }
 
-TEST(Refine, MoreParametersThanResidualsFails) {
+TEST(Refine, MoreParametersThanResidualsIsRefusedBeforeSolving) {
   auto scene = testing::RandomVolumeScene(7, 0.1, 1);  // 14 residuals < 8 intrinsics + 6 pose + …
   Correspondences c;
   c.image_size = scene.camera.image_size;
@@ -242,8 +242,26 @@ TEST(Refine, MoreParametersThanResidualsFails) {
   options.free_distortion = {"k1", "k2", "p1", "p2", "k3"};
   options.free_skew = true;
   const Refinement r = Refine(c, scene.camera, {scene.camera_from_world}, options);
-  EXPECT_EQ(r.status, RefineStatus::kFailed);
-  EXPECT_NE(r.message.find("more free parameters"), std::string::npos) << r.message;
+  EXPECT_EQ(r.status, RefineStatus::kTooFewPoints);
+  EXPECT_EQ(r.iterations, 0);
+  EXPECT_NE(r.message.find("7 points give 14 for 16"), std::string::npos) << r.message;
+}
+
+// One plane seen once cannot fix fx, fy, cx and cy together (Zhang 2000, §3.1): the information
+// matrix is singular, so no covariance is given and the message says why, whether or not the
+// solver stopped.
+TEST(Refine, UnobservableParametersAreReported) {
+  const SyntheticViews data = PlanarData(0.2, 8, 1);
+  ASSERT_EQ(data.correspondences.views.size(), 1u);
+  const ZhangResult zhang = ZhangInitialization(PlanarData(0.2, 8, 4).correspondences);
+  ASSERT_TRUE(zhang.ok) << zhang.message;
+  const Refinement r = Refine(data.correspondences, zhang.camera, {zhang.camera_from_board[0]}, RefineOptions{});
+  EXPECT_NE(r.status, RefineStatus::kFailed) << r.message;
+  EXPECT_TRUE(r.covariance.parameters.empty());
+  EXPECT_NE(r.message.find("the information matrix is singular"), std::string::npos) << r.message;
+  if (r.status == RefineStatus::kNotConverged) {
+    EXPECT_EQ(r.message.rfind("the refinement did not converge in 100 iterations: ", 0), 0u) << r.message;
+  }
 }
 
 TEST(Zhang, RefusesParallelBoardsAndTooFewViews) {

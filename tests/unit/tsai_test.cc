@@ -151,5 +151,48 @@ TEST(Tsai, RefusalsAndVariants) {
   EXPECT_EQ(SolveTsai(TsaiPixels(truth, Volume()), ImageSize{1280, 1024}, coplanar).status, TsaiStatus::kDegenerate);
 }
 
+// With pixel noise a board parallel to the image no longer makes stage 2 rank deficient, but f
+// stays undetermined: its standard error says so. Tilted by 30°, f is within 5σ of the truth.
+TEST(Tsai, FocalStandardErrorRefusesANoisyParallelBoard) {
+  std::vector<Eigen::Vector3d> plane;
+  for (int j = 0; j < 6; ++j) {
+    for (int i = 0; i < 8; ++i) plane.emplace_back(-350 + 100 * i, -250 + 100 * j, 0);
+  }
+  const TsaiTruth parallel{1500, 1, 0, {639.5, 511.5}, Rigid3d::FromRotvec({0, 0, 0.2}, {10, 20, 2000})};
+  const TsaiResult r = SolveTsai(TsaiPixels(parallel, plane, 0.3), ImageSize{1280, 1024});
+  EXPECT_EQ(r.status, TsaiStatus::kDegenerate) << r.message;
+  EXPECT_NE(r.message.find("f is not determined"), std::string::npos) << r.message;
+  EXPECT_GT(r.f_sigma, 0.1 * r.f);
+
+  TsaiTruth tilted = parallel;
+  tilted.camera_from_world = Rigid3d::FromRotvec(DegToRad(30) * Eigen::Vector3d(1, 0.5, 0).normalized(), {10, 20, 2000});
+  const TsaiResult t = SolveTsai(TsaiPixels(tilted, plane, 0.3), ImageSize{1280, 1024});
+  ASSERT_EQ(t.status, TsaiStatus::kOk) << t.message;
+  EXPECT_GT(t.f_sigma, 0);
+  EXPECT_LT(std::abs(t.f - tilted.f), 5 * t.f_sigma);
+}
+
+// A point moved behind the camera is named; a mirrored (left-handed) world is told apart from it:
+// Tsai's first stage fits both, and only the mirrored rotation puts every point in front.
+TEST(Tsai, PointsBehindTheCameraAndMirroredWorld) {
+  const TsaiTruth truth = Truth();
+  std::vector<Observation> obs = TsaiPixels(truth, Volume(), 0.2);
+  const Eigen::Vector3d centre = truth.camera_from_world.inverse().t;
+  obs[100].point = 2 * centre - obs[100].point;  // same ray, behind the camera
+  const TsaiResult behind = SolveTsai(obs, ImageSize{1280, 1024});
+  EXPECT_EQ(behind.status, TsaiStatus::kPointsBehind) << behind.message;
+  EXPECT_EQ(behind.n_behind, 1u);
+  EXPECT_EQ(behind.deepest_behind, 100u);
+  EXPECT_NE(behind.message.find("1 of 378 points lie behind the camera"), std::string::npos) << behind.message;
+  EXPECT_EQ(TsaiStatusExitCode(behind.status), ExitCode::kBadInput);
+
+  std::vector<Observation> mirrored = TsaiPixels(truth, Volume(), 0.2);
+  for (Observation& o : mirrored) o.point.x() = -o.point.x();
+  const TsaiResult m = SolveTsai(mirrored, ImageSize{1280, 1024});
+  EXPECT_EQ(m.status, TsaiStatus::kMirrored) << m.message;
+  EXPECT_NE(m.message.find("mirrored"), std::string::npos) << m.message;
+  EXPECT_EQ(TsaiStatusExitCode(m.status), ExitCode::kBadInput);
+}
+
 }  // namespace
 }  // namespace vstcal

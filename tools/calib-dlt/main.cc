@@ -49,7 +49,8 @@ int main(int argc, char** argv) {
       throw InputError(input + ": rig: DLT needs one world frame (rig \"volume\"), got \"planar-views\"; "
                        "calibrate planar views with calib-tsai");
     }
+    const io::UncertaintyRequest request = flags.Uncertainty(corners);
     const CalibrationResult result = Calibrate(std::move(corners), options);
-    return tools::FinishCalibration("calib-dlt", input, output, result, options, flags, argc, argv);
+    return tools::FinishCalibration("calib-dlt", input, output, result, options, flags, request, argc, argv);
   });
 }

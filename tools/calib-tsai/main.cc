@@ -44,7 +44,17 @@ int main(int argc, char** argv) {
                            : variant == "non-coplanar" ? TsaiOptions::Variant::kNonCoplanar
                                                        : TsaiOptions::Variant::kAuto;
     if (principal_point) options.tsai.principal_point = tools::ParsePoint2(*principal_point, "--principal-point");
-    const CalibrationResult result = Calibrate(io::ReadCorrespondences(input), options);
-    return tools::FinishCalibration("calib-tsai", input, output, result, options, flags, argc, argv);
+    Correspondences corners = io::ReadCorrespondences(input);
+    if (corners.rig == Rig::kPlanarViews) {
+      for (const char* flag : {"--variant", "--principal-point", "--sx"}) {
+        if (app.count(flag) > 0) {
+          throw InputError(std::string(flag) + ": applies to rig \"volume\" only (planar views start from Zhang's "
+                           "method); remove it");
+        }
+      }
+    }
+    const io::UncertaintyRequest request = flags.Uncertainty(corners);
+    const CalibrationResult result = Calibrate(std::move(corners), options);
+    return tools::FinishCalibration("calib-tsai", input, output, result, options, flags, request, argc, argv);
   });
 }

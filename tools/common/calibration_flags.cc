@@ -1,5 +1,6 @@
 #include "common/calibration_flags.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <iostream>
 
@@ -11,18 +12,19 @@
 namespace vstcal::tools {
 namespace {
 
-// "1,2,3" → the numbers, exactly `count` of them, finite; else an InputError naming the flag.
+// "1,2,3" → the numbers, exactly `count` of them, finite; else an InputError naming the flag and
+// showing `form` (e.g. "three numbers X,Y,Z (e.g. 0,0,1000)").
 std::vector<double> ParseNumbers(const std::string& text, size_t count, const std::string& flag, const std::string& form) {
   std::vector<double> values;
   for (const std::string& item : CLI::detail::split(text, ',')) {
     char* end = nullptr;
     const double v = std::strtod(item.c_str(), &end);
-    if (item.empty() || end != item.c_str() + item.size() || !std::isfinite(v)) {
-      throw InputError(flag + ": \"" + text + "\" is not " + form);
-    }
+    if (item.empty() || end != item.c_str() + item.size() || !std::isfinite(v)) break;
     values.push_back(v);
   }
-  if (values.size() != count) throw InputError(flag + ": \"" + text + "\" is not " + form);
+  if (values.size() != count || static_cast<size_t>(std::count(text.begin(), text.end(), ',')) != count - 1) {
+    throw InputError(flag + ": expected " + form + ", got \"" + text + "\"");
+  }
   return values;
 }
 
@@ -76,17 +78,30 @@ RefineOptions CalibrationFlags::Refinement() const {
   return o;
 }
 
-io::UncertaintyRequest CalibrationFlags::Uncertainty() const {
+io::UncertaintyRequest CalibrationFlags::Uncertainty(const Correspondences& corners) const {
   io::UncertaintyRequest r;
+  if (!at_world.empty() && corners.rig != Rig::kVolume) {
+    throw InputError("--uncertainty-at: planar views have no world frame; use --uncertainty-pixel U,V,DEPTH");
+  }
   r.grid_depth = grid_depth;
   std::tie(r.grid_cols, r.grid_rows) = ParseSize(grid_size, "--grid-size", "COLSxROWS (e.g. 16x9)");
   for (const std::string& p : at_world) {
-    const auto v = ParseNumbers(p, 3, "--uncertainty-at", "three numbers X,Y,Z");
+    const auto v = ParseNumbers(p, 3, "--uncertainty-at", "three finite numbers X,Y,Z (e.g. 0,0,1000)");
     r.world_points.emplace_back(v[0], v[1], v[2]);
   }
   for (const std::string& p : at_pixel) {
-    const auto v = ParseNumbers(p, 3, "--uncertainty-pixel", "three numbers U,V,DEPTH");
-    if (!(v[2] > 0)) throw InputError("--uncertainty-pixel: the depth in \"" + p + "\" must be positive");
+    const auto v = ParseNumbers(p, 3, "--uncertainty-pixel", "three finite numbers U,V,DEPTH (e.g. 320,240,1000)");
+    if (!(v[2] > 0)) {
+      throw InputError("--uncertainty-pixel: the depth in \"" + p + "\" must be positive; give the distance along the "
+                       "optical axis in the length unit");
+    }
+    const ImageSize& size = corners.image_size;
+    if (v[0] < -0.5 || v[0] > size.width - 0.5 || v[1] < -0.5 || v[1] > size.height - 0.5) {
+      char buf[200];
+      std::snprintf(buf, sizeof buf, "--uncertainty-pixel: (%g, %g) lies outside the %d×%d image; give U in [-0.5, %g] "
+                    "and V in [-0.5, %g]", v[0], v[1], size.width, size.height, size.width - 0.5, size.height - 0.5);
+      throw InputError(buf);
+    }
     r.pixel_depths.emplace_back(v[0], v[1], v[2]);
   }
   return r;
@@ -94,13 +109,9 @@ io::UncertaintyRequest CalibrationFlags::Uncertainty() const {
 
 int FinishCalibration(const std::string& tool, const std::string& input, const std::string& output,
                       const CalibrationResult& result, const CalibrationOptions& options, const CalibrationFlags& flags,
-                      int argc, char** argv) {
-  for (const std::string& w : result.warnings) std::cerr << tool << ": warning: " << w << "\n";
+                      const io::UncertaintyRequest& request, int argc, char** argv) {
   if (result.exit_code != ExitCode::kOk) throw Error(result.exit_code, input + ": " + result.message);
-  const io::UncertaintyRequest request = flags.Uncertainty();
-  if (!request.world_points.empty() && !result.camera.camera_from_world) {
-    throw InputError("--uncertainty-at: planar views have no world frame; use --uncertainty-pixel");
-  }
+  for (const std::string& w : result.warnings) std::cerr << tool << ": warning: " << w << "\n";
 
   const io::Provenance provenance = io::MakeProvenance(tool, argc, argv);
   io::OrderedJson blocks = io::CalibrationBlocksToJson(result, options);

@@ -36,13 +36,16 @@ struct CalibrationFlags {
   void AddOutput(CLI::App& app);
 
   RefineOptions Refinement() const;
-  io::UncertaintyRequest Uncertainty() const;  // throws InputError naming the flag for bad values
+  // The uncertainty flags checked against the data before any solve: throws InputError naming the
+  // flag for malformed values, pixels outside the image, and world points for planar views.
+  io::UncertaintyRequest Uncertainty(const Correspondences& corners) const;
 };
 
-// Turns a failed result into the documented exit code and message (throws vstcal::Error), or
-// writes OUTPUT (and --residuals) all-or-nothing and prints warnings and the summary on stderr.
+// Turns a failed result into the documented exit code and its one-line message (throws
+// vstcal::Error; the warnings are not printed then), or writes OUTPUT (and --residuals)
+// all-or-nothing and prints warnings and the summary on stderr.
 int FinishCalibration(const std::string& tool, const std::string& input, const std::string& output,
                       const CalibrationResult& result, const CalibrationOptions& options, const CalibrationFlags& flags,
-                      int argc, char** argv);
+                      const io::UncertaintyRequest& request, int argc, char** argv);
 
 }  // namespace vstcal::tools

@@ -4,6 +4,8 @@
 #include <iostream>
 #include <string_view>
 
+#include <glog/logging.h>
+
 #include "vstcal/core/error.h"
 #include "vstcal/core/version.h"
 
@@ -38,6 +40,9 @@ std::string OneLine(std::string_view message) {
 
 int RunTool(CLI::App& app, int argc, char** argv, const std::function<int()>& body) {
   const std::string tool = app.get_name();
+  // Ceres logs through glog to stderr; a tool's stderr holds only its own warnings and its one-line
+  // error (solver outcomes come back in result structs and are reported from there).
+  FLAGS_minloglevel = google::GLOG_FATAL;
   app.set_version_flag("--version", tool + " " + kVersion, "print the version and exit");
   try {
     app.parse(argc, argv);

@@ -1,5 +1,6 @@
 #include "vstcal/calib/pipeline.h"
 
+#include <algorithm>
 #include <cstdio>
 
 #include <Eigen/Geometry>
@@ -24,7 +25,7 @@ std::string Locate(const Correspondences& c, size_t flat) {
 void ApplyRefinement(CalibrationResult* r, Refinement refinement) {
   const Correspondences& c = r->used;
   if (refinement.status != RefineStatus::kConverged) {
-    r->exit_code = ExitCode::kDegenerate;
+    r->exit_code = refinement.status == RefineStatus::kTooFewPoints ? ExitCode::kBadInput : ExitCode::kDegenerate;
     r->message = refinement.message;
     r->refinement = std::move(refinement);
     return;
@@ -84,6 +85,13 @@ void StartVolume(CalibrationResult* r, const CalibrationOptions& options) {
     r->dlt = std::move(dlt);
   } else {
     TsaiResult tsai = SolveTsai(obs, c.image_size, options.tsai);
+    if (tsai.status == TsaiStatus::kPointsBehind) {
+      const Observation& o = obs[tsai.deepest_behind];
+      char buf[240];
+      std::snprintf(buf, sizeof buf, " (e.g. %s at (%.6g, %.6g, %.6g))", Locate(c, tsai.deepest_behind).c_str(),
+                    o.point.x(), o.point.y(), o.point.z());
+      tsai.message += buf;
+    }
     if (tsai.status != TsaiStatus::kOk) {
       r->exit_code = TsaiStatusExitCode(tsai.status);
       r->message = tsai.message;
@@ -102,9 +110,19 @@ void StartPlanar(CalibrationResult* r) {
   Correspondences& c = r->used;
   const auto dropped = DropSparseViews(&c, kMinPointsPerPlanarView);
   r->warnings.insert(r->warnings.end(), dropped.begin(), dropped.end());
+  if (c.views.size() < 2) {
+    // A failing tool prints one line, so the skipped views are named here, not as warnings.
+    std::string skipped;
+    for (const std::string& d : dropped) skipped += (skipped.empty() ? " (" : "; ") + d;
+    r->exit_code = ExitCode::kBadInput;
+    r->message = "planar views need at least 2 views of " + std::to_string(kMinPointsPerPlanarView) +
+                 " or more points, got " + std::to_string(c.views.size()) + (skipped.empty() ? "" : skipped + ")") +
+                 "; add views of the board at different orientations";
+    return;
+  }
   const ZhangResult zhang = ZhangInitialization(c);
   if (!zhang.ok) {
-    r->exit_code = c.views.size() < 2 ? ExitCode::kBadInput : ExitCode::kDegenerate;
+    r->exit_code = ExitCode::kDegenerate;
     r->message = zhang.message;
     return;
   }
@@ -129,10 +147,27 @@ CalibrationResult Calibrate(Correspondences correspondences, const CalibrationOp
     StartPlanar(&r);
   }
   if (r.exit_code != ExitCode::kOk || !options.refine) return r;
+  if (r.tsai && r.tsai->variant == TsaiOptions::Variant::kCoplanar) {
+    // One plane constrains only two of fx, fy, cx, cy (Zhang 2000, §3.1); Tsai's coplanar variant
+    // solves it by fixing the principal point and sx, which the refinement would set free.
+    r.exit_code = ExitCode::kDegenerate;
+    r.message = "the points lie on one plane, which cannot determine the focal lengths and the principal point the "
+                "refinement estimates; use --no-refine for Tsai's coplanar result (principal point and sx fixed), or "
+                "show the board at several orientations (rig \"planar-views\")";
+    return r;
+  }
 
-  // Skew not estimated means skew zero: a DLT start's small skew is dropped, not frozen.
+  // A parameter not estimated is zero, not frozen at its start: a DLT start's small skew and a
+  // Tsai start's k1, k2, k3 (converted from κ₁) would otherwise stay in the refined model
+  // unestimated, outside the covariance, and bias the parameters that are estimated.
   Camera start = r.camera.camera;
   if (!options.refinement.free_skew) start.params[4] = 0;
+  const auto names = LensModelParamNames(start.model);
+  const std::vector<std::string>& free = options.refinement.free_distortion;
+  for (size_t i = kNumIntrinsicParams; i < names.size(); ++i) {
+    if (std::find(free.begin(), free.end(), names[i]) == free.end()) start.params[i] = 0;
+  }
+  if (free.empty()) start = Camera::FromK(start.K(), start.image_size);  // "none": a pinhole
   std::vector<Rigid3d> poses;
   if (r.used.rig == Rig::kVolume) {
     poses.push_back(*r.camera.camera_from_world);

@@ -8,6 +8,7 @@
 
 #include "vstcal/calib/reprojection_cost.h"
 #include "vstcal/core/error.h"
+#include "vstcal/core/suggest.h"
 
 namespace vstcal {
 namespace {
@@ -146,11 +147,14 @@ Eigen::MatrixXd Covariance(const Problem& p, const RefineOptions& options, doubl
   const double largest = eig.eigenvalues().maxCoeff();
   if (!(eig.eigenvalues().minCoeff() > 1e-13 * largest)) {
     *message = "the information matrix is singular: some free parameter is not observable from these points "
-               "(e.g. skew or a distortion term without coverage); fix it or add views";
+               "(e.g. skew or a distortion term without coverage); estimate fewer terms (--distortion, --skew) or "
+               "add views";
     return {};
   }
   const Eigen::VectorXd inverse = eig.eigenvalues().cwiseInverse();
-  return sigma2 * eig.eigenvectors() * inverse.asDiagonal() * eig.eigenvectors().transpose();
+  const Eigen::MatrixXd covariance = sigma2 * eig.eigenvectors() * inverse.asDiagonal() * eig.eigenvectors().transpose();
+  // V D Vᵀ is symmetric only to rounding; the file promises a symmetric matrix, bit for bit.
+  return 0.5 * (covariance + covariance.transpose());
 }
 
 template <typename Model>
@@ -158,6 +162,16 @@ Refinement RefineWith(const Correspondences& c, Problem* p, const RefineOptions&
   Refinement out;
   out.camera.image_size = c.image_size;
   out.camera.model = Model{};
+
+  const size_t n = NumObservations(c);
+  const size_t free = p->free_intrinsics.size() + 6 * p->reference.size();
+  if (2 * n <= free) {
+    out.status = RefineStatus::kTooFewPoints;
+    out.message = "the refinement needs more residuals than free parameters, but " + std::to_string(n) + " points give " +
+                  std::to_string(2 * n) + " for " + std::to_string(free) + " (" + std::to_string(p->free_intrinsics.size()) +
+                  " intrinsics, 6 per pose); add points or estimate fewer terms (--distortion)";
+    return out;
+  }
 
   std::unique_ptr<ceres::Problem> problem = BuildProblem<Model>(p, options);
   ceres::Solver::Options solver;
@@ -176,7 +190,6 @@ Refinement RefineWith(const Correspondences& c, Problem* p, const RefineOptions&
   ceres::Solver::Summary summary;
   ceres::Solve(solver, problem.get(), &summary);
   out.iterations = static_cast<int>(summary.iterations.size()) - 1;
-  const size_t n = NumObservations(c);
   out.initial_rms_px = std::sqrt(2 * summary.initial_cost / static_cast<double>(n));
   if (summary.termination_type == ceres::FAILURE || !summary.IsSolutionUsable()) {
     out.status = RefineStatus::kFailed;
@@ -185,10 +198,6 @@ Refinement RefineWith(const Correspondences& c, Problem* p, const RefineOptions&
     return out;
   }
   out.status = summary.termination_type == ceres::CONVERGENCE ? RefineStatus::kConverged : RefineStatus::kNotConverged;
-  if (out.status == RefineStatus::kNotConverged) {
-    out.message = "no convergence in " + std::to_string(options.max_iterations) +
-                  " iterations (" + summary.message + "); raise --max-iterations or start from a better camera";
-  }
 
   Recentre(p);
   out.camera.params = p->intrinsics;
@@ -199,8 +208,7 @@ Refinement RefineWith(const Correspondences& c, Problem* p, const RefineOptions&
                                   : ComputeViewsFit(out.camera, per_view, c);
 
   // Degrees of freedom and noise estimate (docs/math/uncertainty.md).
-  const int free = static_cast<int>(p->free_intrinsics.size()) + 6 * static_cast<int>(p->reference.size());
-  out.dof = 2 * static_cast<int>(out.fit.overall.n_points) - free;
+  out.dof = 2 * static_cast<int>(out.fit.overall.n_points) - static_cast<int>(free);
   double rss = 0;
   std::vector<double> norms;
   for (const ViewFit& v : out.fit.views) {
@@ -212,8 +220,8 @@ Refinement RefineWith(const Correspondences& c, Problem* p, const RefineOptions&
   }
   if (out.dof <= 0) {
     out.status = RefineStatus::kFailed;
-    out.message = "more free parameters (" + std::to_string(free) + ") than residuals (" +
-                  std::to_string(2 * out.fit.overall.n_points) + "); free fewer parameters or add points";
+    out.message = "only " + std::to_string(out.fit.overall.n_points) + " points project in front of the refined "
+                  "camera, too few for " + std::to_string(free) + " free parameters; check the correspondences";
     return out;
   }
   out.sigma_px = std::sqrt(rss / out.dof);
@@ -231,8 +239,15 @@ Refinement RefineWith(const Correspondences& c, Problem* p, const RefineOptions&
   // Covariance at the optimum, linearized at δ = 0 around the refined poses.
   std::string singular;
   out.covariance.matrix = Covariance<Model>(*p, options, out.sigma_px * out.sigma_px, &singular);
+  if (out.status == RefineStatus::kNotConverged) {
+    // An unobservable parameter is the likely reason for wandering: say that rather than "iterate more".
+    out.message = "the refinement did not converge in " + std::to_string(options.max_iterations) + " iterations" +
+                  (singular.empty() ? "; raise --max-iterations or start from a better camera" : ": " + singular);
+    out.covariance.matrix.resize(0, 0);
+    return out;
+  }
   if (out.covariance.matrix.size() == 0) {
-    out.message += (out.message.empty() ? "" : "; ") + singular;
+    out.message = singular;
   } else {
     const auto names = LensModelParamNames(out.camera.model);
     for (int i : p->free_intrinsics) out.covariance.parameters.emplace_back(names[i]);
@@ -272,10 +287,9 @@ Refinement Refine(const Correspondences& c, const Camera& initial, const std::ve
   for (const std::string& term : options.free_distortion) {
     const auto it = std::find(names.begin() + kNumIntrinsicParams, names.end(), term);
     if (it == names.end()) {
-      std::string known;
-      for (size_t i = kNumIntrinsicParams; i < names.size(); ++i) known += (known.empty() ? "" : ", ") + std::string(names[i]);
+      const std::vector<std::string_view> terms(names.begin() + kNumIntrinsicParams, names.end());
       throw InputError("--distortion: unknown term \"" + term + "\" for the " + std::string(LensModelName(model)) +
-                       " model; use some of " + known + ", or none");
+                       " model; " + SuggestKey(term, terms) + ", or none for no distortion");
     }
   }
   Problem p;

@@ -37,6 +37,7 @@ enum class RefineStatus {
   kConverged,
   kNotConverged,  // iteration limit reached: the result is the last iterate (not written by tools)
   kFailed,        // Ceres could not start or every step failed (e.g. points behind the camera)
+  kTooFewPoints,  // no more residuals than free parameters: nothing was solved
 };
 
 struct Outlier {

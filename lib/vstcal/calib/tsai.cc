@@ -50,7 +50,8 @@ struct Stage3Cost {
 // Stage 2: f and Tz from X_d(w + Tz) = f x and Y_d(w + Tz) = f y (distortion ignored), by linear
 // least squares over both equations of every point (Tsai uses the Y equation only; with sx known
 // the X equation is as good and halves the variance).
-bool SolveFocalAndDepth(const std::vector<SensorPoint>& points, const Rigid3d& pose, double* f, double* tz) {
+bool SolveFocalAndDepth(const std::vector<SensorPoint>& points, const Rigid3d& pose, double* f, double* tz,
+                        double* residual = nullptr) {
   Eigen::MatrixXd A(2 * points.size(), 2);
   Eigen::VectorXd b(2 * points.size());
   for (size_t i = 0; i < points.size(); ++i) {
@@ -67,6 +68,7 @@ bool SolveFocalAndDepth(const std::vector<SensorPoint>& points, const Rigid3d& p
   const Eigen::Vector2d sol = qr.solve(b);
   *f = sol(0);
   *tz = sol(1);
+  if (residual) *residual = (A * sol - b).norm();
   return std::isfinite(*f) && std::isfinite(*tz);
 }
 
@@ -84,40 +86,116 @@ double TySign(const std::vector<SensorPoint>& points, const Eigen::Matrix<double
   return (x * points[far].xd >= 0 && y * points[far].yd >= 0) ? 1.0 : -1.0;
 }
 
-// Stages 2 and 3 after a stage-1 rotation and Tx, Ty; flips the rotation's sign ambiguity when f
-// comes out negative (Tsai: r3, r6, r7, r8 change sign).
-TsaiStatus FinishStages(const std::vector<SensorPoint>& points, Rigid3d* pose, TsaiResult* out) {
+// Points with depth ≤ 0 for the rotation of `pose` and depth offset `tz`; sets out->n_behind and
+// out->deepest_behind.
+size_t CountBehind(const std::vector<SensorPoint>& points, const Rigid3d& pose, double tz, TsaiResult* out) {
+  double deepest = INFINITY;
+  out->n_behind = 0;
+  for (size_t i = 0; i < points.size(); ++i) {
+    const double depth = (pose.R * points[i].X).z() + tz;
+    if (depth > 0) continue;
+    ++out->n_behind;
+    if (depth < deepest) deepest = depth, out->deepest_behind = i;
+  }
+  return out->n_behind;
+}
+
+// f and Tz by stage 2 for the rotation of `pose`, resolving Tsai's sign ambiguity when f comes
+// out negative (r3, r6, r7, r8 change sign); false when no positive f fits. `residual`: the
+// stage-2 system's residual norm.
+bool SolvePositiveFocal(const std::vector<SensorPoint>& points, Rigid3d* pose, double* f, double* tz, double* residual) {
+  if (!SolveFocalAndDepth(points, *pose, f, tz, residual)) return false;
+  if (*f >= 0) return true;
+  const Eigen::Vector3d D(1, 1, -1);
+  pose->R = D.asDiagonal() * pose->R * D.asDiagonal();
+  return SolveFocalAndDepth(points, *pose, f, tz, residual) && *f >= 0;
+}
+
+// A world frame mirrored relative to the image fits stage 1 as well as a right-handed one; it is
+// recognised by the mirrored third row fitting stage 2 better than the proper rotation did
+// (`residual`) with every point in front of a camera with f > 0.
+bool FitsMirrored(const std::vector<SensorPoint>& points, const Rigid3d& stage_one, double residual) {
+  Rigid3d mirrored = stage_one;
+  mirrored.R.row(2) *= -1;
+  double f = 0, tz = 0, mirrored_residual = 0;
+  TsaiResult unused;
+  return SolvePositiveFocal(points, &mirrored, &f, &tz, &mirrored_residual) && mirrored_residual < residual &&
+         CountBehind(points, mirrored, tz, &unused) == 0;
+}
+
+// Standard error of f at stage 3's optimum p = (f, Tz, κ₁): σ̂² (JᵀJ)⁻¹ with σ̂² the residual
+// variance (sensor units, 2n − 3 degrees of freedom).
+double FocalStandardError(const std::vector<SensorPoint>& points, const Rigid3d& pose, const double* p) {
+  const int m = 2 * static_cast<int>(points.size());
+  ceres::AutoDiffCostFunction<Stage3Cost, ceres::DYNAMIC, 3> cost(new Stage3Cost{&points, &pose}, m);
+  Eigen::VectorXd r(m);
+  Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> J(m, 3);
+  double* jacobians[1] = {J.data()};
+  if (!cost.Evaluate(&p, r.data(), jacobians)) return INFINITY;
+  // f (px), Tz (length) and κ₁ (px⁻²) differ in scale by ten orders: invert with unit columns.
+  const Eigen::Vector3d scale = J.colwise().norm().cwiseInverse().transpose();
+  const Eigen::Matrix3d information = scale.asDiagonal() * (J.transpose() * J) * scale.asDiagonal();
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(information);
+  if (!(eig.eigenvalues()(0) > 1e-14 * eig.eigenvalues()(2))) return INFINITY;
+  const double inverse_ff = (eig.eigenvectors().row(0).array().square() / eig.eigenvalues().transpose().array()).sum();
+  return std::sqrt(r.squaredNorm() / (m - 3) * inverse_ff) * scale(0);
+}
+
+// Stages 2 and 3 after a stage-1 rotation and Tx, Ty.
+TsaiStatus FinishStages(const std::vector<SensorPoint>& points, Rigid3d* pose, const TsaiOptions& options,
+                        TsaiResult* out) {
+  const Rigid3d stage_one = *pose;
   double f = 0, tz = 0;
   if (!SolveFocalAndDepth(points, *pose, &f, &tz)) {
     out->message = "f and Tz cannot be separated: the points do not vary in depth (a plane parallel to the image?); "
                    "tilt the target or use a volume";
     return TsaiStatus::kDegenerate;
   }
-  if (f < 0) {
-    const Eigen::Vector3d D(1, 1, -1);
-    pose->R = D.asDiagonal() * pose->R * D.asDiagonal();
-    if (!SolveFocalAndDepth(points, *pose, &f, &tz) || f < 0) {
+  // The nonlinear stage needs a positive f and every point in front of the camera.
+  double residual = INFINITY;
+  const bool positive = SolvePositiveFocal(points, pose, &f, &tz, &residual);
+  if (!positive) residual = INFINITY;
+  if (!positive || CountBehind(points, *pose, tz, out) > 0) {
+    if (FitsMirrored(points, stage_one, residual)) {
+      out->message = "the world frame is mirrored relative to the image: the world axes are left-handed or u/v are "
+                     "swapped; flip one world axis or fix the pixel columns";
+      return TsaiStatus::kMirrored;
+    }
+    if (!positive) {
       out->message = "no positive focal length fits the data; check the correspondences";
       return TsaiStatus::kDegenerate;
     }
+    out->message = std::to_string(out->n_behind) + " of " + std::to_string(points.size()) +
+                   " points lie behind the camera that the others define; check their coordinates and signs";
+    return TsaiStatus::kPointsBehind;
   }
   double p[3] = {f, tz, 0.0};
   ceres::Problem problem;
   problem.AddResidualBlock(new ceres::AutoDiffCostFunction<Stage3Cost, ceres::DYNAMIC, 3>(
                                new Stage3Cost{&points, pose}, 2 * static_cast<int>(points.size())),
                            nullptr, p);
-  ceres::Solver::Options options;
-  options.linear_solver_type = ceres::DENSE_QR;
-  options.max_num_iterations = 100;
-  options.function_tolerance = 1e-14;
-  options.parameter_tolerance = 1e-14;
-  options.logging_type = ceres::SILENT;
+  ceres::Solver::Options solver;
+  solver.linear_solver_type = ceres::DENSE_QR;
+  solver.max_num_iterations = 100;
+  solver.function_tolerance = 1e-14;
+  solver.parameter_tolerance = 1e-14;
+  solver.logging_type = ceres::SILENT;
   ceres::Solver::Summary summary;
-  ceres::Solve(options, &problem, &summary);
+  ceres::Solve(solver, &problem, &summary);
   out->nonlinear_iterations = static_cast<int>(summary.iterations.size()) - 1;
   if (summary.termination_type != ceres::CONVERGENCE) {
     out->message = "Tsai's nonlinear stage (f, Tz, kappa1) did not converge: " + summary.message;
     return TsaiStatus::kNotConverged;
+  }
+  // Stage 3 fits f from the points' depth differences only: a plane (nearly) parallel to the
+  // image leaves it undetermined, whatever the linear stages' conditioning.
+  out->f_sigma = FocalStandardError(points, *pose, p);
+  if (!(out->f_sigma <= options.max_focal_relative_sigma * p[0])) {
+    out->message = Format("f is not determined by these points (standard error %.3g%% of f, limit %.3g%%): their "
+                          "depths vary too little (a plane nearly parallel to the image?); tilt the target (30 degrees "
+                          "or more) or use a volume",
+                          100 * out->f_sigma / p[0], 100 * options.max_focal_relative_sigma);
+    return TsaiStatus::kDegenerate;
   }
   out->f = p[0];
   out->kappa1 = p[2];
@@ -332,7 +410,7 @@ TsaiResult SolveTsai(std::span<const Observation> obs, ImageSize size, const Tsa
     status = StageOneNonCoplanar(points, &camera_from_work, &out.sx, &out);
     for (SensorPoint& s : points) s.xd /= out.sx;
   }
-  if (status == TsaiStatus::kOk) status = FinishStages(points, &camera_from_work, &out);
+  if (status == TsaiStatus::kOk) status = FinishStages(points, &camera_from_work, options, &out);
   if (status != TsaiStatus::kOk) {
     out.status = status;
     return out;
@@ -359,7 +437,9 @@ TsaiResult SolveTsai(std::span<const Observation> obs, ImageSize size, const Tsa
 ExitCode TsaiStatusExitCode(TsaiStatus status) {
   switch (status) {
     case TsaiStatus::kOk: return ExitCode::kOk;
-    case TsaiStatus::kTooFewPoints: return ExitCode::kBadInput;
+    case TsaiStatus::kTooFewPoints:
+    case TsaiStatus::kPointsBehind:
+    case TsaiStatus::kMirrored: return ExitCode::kBadInput;
     default: return ExitCode::kDegenerate;
   }
 }

@@ -31,13 +31,19 @@ struct TsaiOptions {
   std::optional<Eigen::Vector2d> principal_point;  // default: the image centre ((W − 1)/2, (H − 1)/2)
   double sx = 1.0;                                 // the coplanar variant's fixed scale factor
   double min_extent_ratio = 1e-2;                  // planarity decision, as DLT's
+  // f is told apart from Tz only by the points' depth differences: refuse (kDegenerate) when its
+  // standard error exceeds this fraction of f (a plane nearly parallel to the image; Tsai
+  // recommends tilting a plane by 30° or more).
+  double max_focal_relative_sigma = 0.1;
 };
 
 enum class TsaiStatus {
   kOk,
   kTooFewPoints,       // fewer than 7 (non-coplanar) or 5 (coplanar) points
   kCoplanarForced,     // kNonCoplanar asked for coplanar data
-  kDegenerate,         // the linear stages have no unique solution (e.g. a plane parallel to the image)
+  kDegenerate,         // no unique solution (e.g. a plane parallel to the image: f undetermined)
+  kPointsBehind,       // points behind the camera the others define (wrong coordinates)
+  kMirrored,           // the world frame is left-handed relative to the image
   kNotConverged,       // the nonlinear stage did not converge
 };
 
@@ -48,11 +54,14 @@ struct TsaiResult {
 
   // Tsai's own parameters.
   double f = 0;       // px
+  double f_sigma = 0;  // px: f's standard error at stage 3, from the residuals (0 for exact data)
   double sx = 1;      // horizontal scale factor
   double kappa1 = 0;  // px⁻², on distorted sensor coordinates
   Eigen::Vector2d principal_point = Eigen::Vector2d::Zero();
   Rigid3d camera_from_world;
   int nonlinear_iterations = 0;
+  size_t n_behind = 0;        // kPointsBehind: points with depth ≤ 0 after the linear stages
+  size_t deepest_behind = 0;  // kPointsBehind: index of the deepest of them
   double plane_rms = 0;  // coplanar variant: RMS distance of the points from their plane
 
   // The same camera in vstcal's model: K = [[f·sx, 0, Cx], [0, f, Cy], [0, 0, 1]] and

@@ -26,8 +26,8 @@ std::vector<std::string> DropSparseViews(Correspondences* c, size_t min_points) 
     if (v.observations.size() >= min_points) {
       kept.push_back(std::move(v));
     } else {
-      warnings.push_back("view \"" + v.name + "\" has " + std::to_string(v.observations.size()) +
-                         " points (fewer than " + std::to_string(min_points) + "): skipped");
+      warnings.push_back("view \"" + v.name + "\" skipped: " + std::to_string(v.observations.size()) +
+                         " points, fewer than " + std::to_string(min_points));
     }
   }
   c->views = std::move(kept);

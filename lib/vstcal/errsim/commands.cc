@@ -4,6 +4,7 @@
 #include <set>
 
 #include "vstcal/core/error.h"
+#include "vstcal/core/suggest.h"
 #include "vstcal/errsim/chain_io.h"
 #include "vstcal/errsim/models.h"
 #include "vstcal/errsim/report.h"

@@ -7,6 +7,7 @@
 #include <Eigen/Eigenvalues>
 
 #include "vstcal/core/error.h"
+#include "vstcal/core/suggest.h"
 #include "vstcal/errsim/point_registration.h"
 #include "vstcal/io/camera_io.h"
 #include "vstcal/io/json_writer.h"

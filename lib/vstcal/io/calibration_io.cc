@@ -36,6 +36,7 @@ OrderedJson CalibrationBlocksToJson(const CalibrationResult& r, const Calibratio
     const TsaiResult& t = *r.tsai;
     j["tsai"] = {{"variant", VariantName(t.variant)},
                  {"f_px", t.f},
+                 {"f_sigma_px", t.f_sigma},
                  {"sx", t.sx},
                  {"kappa1_per_px2", t.kappa1},
                  {"principal_point", MatrixToJson(t.principal_point)},

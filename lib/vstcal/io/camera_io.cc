@@ -5,6 +5,7 @@
 
 #include "vstcal/calib/decompose.h"
 #include "vstcal/camera/intrinsics.h"
+#include "vstcal/core/suggest.h"
 #include "vstcal/io/correspondences_io.h"
 #include "vstcal/io/format_check.h"
 
@@ -54,6 +55,26 @@ std::vector<double> ReadDistortion(const JsonNode& node, AnyLensModel* model) {
   return coefficients;
 }
 
+constexpr std::string_view kTangentAxes[] = {"rx", "ry", "rz", "tx", "ty", "tz"};
+
+// "camera_from_world.<axis>" or "views[<i>].camera_from_board.<axis>" (calibrated_camera.h).
+bool IsPoseTangentName(std::string_view name) {
+  std::string_view rest;
+  if (name.starts_with("camera_from_world.")) {
+    rest = name.substr(std::string_view("camera_from_world.").size());
+  } else if (name.starts_with("views[")) {
+    const size_t close = name.find(']');
+    const std::string_view index = name.substr(6, close == std::string_view::npos ? 0 : close - 6);
+    if (index.empty() || !std::all_of(index.begin(), index.end(), [](char c) { return c >= '0' && c <= '9'; })) return false;
+    rest = name.substr(close + 1);
+    if (!rest.starts_with(".camera_from_board.")) return false;
+    rest = rest.substr(std::string_view(".camera_from_board.").size());
+  } else {
+    return false;
+  }
+  return std::find(std::begin(kTangentAxes), std::end(kTangentAxes), rest) != std::end(kTangentAxes);
+}
+
 }  // namespace
 
 Rigid3d ReadRigid(const JsonNode& node) {
@@ -77,9 +98,17 @@ ParameterCovariance ReadCovariance(const JsonNode& node, const Camera& camera) {
   for (size_t i = 0; i < n; ++i) {
     const std::string name = names.at(i).String();
     const bool intrinsic = std::find(intrinsics.begin(), intrinsics.end(), name) != intrinsics.end();
-    const bool pose = name.rfind("camera_from_world.", 0) == 0 || name.rfind("views[", 0) == 0;
-    if (!intrinsic && !pose) {
-      names.at(i).Fail("unknown parameter \"" + name + "\"", "use the lens model's names or a pose tangent (docs/formats.md#camera)");
+    if (!intrinsic && !IsPoseTangentName(name)) {
+      std::string lens;
+      for (const std::string_view p : intrinsics) lens += (lens.empty() ? "" : ", ") + std::string(p);
+      std::vector<std::string> tangents;
+      for (const std::string_view axis : kTangentAxes) tangents.push_back("camera_from_world." + std::string(axis));
+      std::vector<std::string_view> candidates(intrinsics.begin(), intrinsics.end());
+      candidates.insert(candidates.end(), tangents.begin(), tangents.end());
+      const auto near = ClosestMatch(name, candidates);
+      const std::string known = lens + " for this lens model, camera_from_world.rx … tz or views[i].camera_from_board.rx … tz";
+      names.at(i).Fail("unknown parameter \"" + name + "\"",
+                       near ? "did you mean \"" + std::string(*near) + "\"? (known: " + known + ")" : "use " + known);
     }
     if (cov.Find(name)) names.at(i).Fail("duplicate parameter \"" + name + "\"", "list each parameter once");
     cov.parameters.push_back(name);
@@ -92,11 +121,18 @@ ParameterCovariance ReadCovariance(const JsonNode& node, const Camera& camera) {
     row.ArraySize(n);
     for (size_t k = 0; k < n; ++k) cov.matrix(r, k) = row.at(k).Number();
   }
-  const double scale = cov.matrix.cwiseAbs().maxCoeff();
-  if (!(cov.matrix - cov.matrix.transpose()).isZero(1e-9 * std::max(scale, 1e-300))) {
-    m.Fail("not symmetric", "write a symmetric covariance matrix");
+  const double tolerance = 1e-9 * std::max(cov.matrix.cwiseAbs().maxCoeff(), 1e-300);
+  for (size_t r = 0; r < n; ++r) {
+    if (cov.matrix(r, r) < 0) {
+      m.at(r).at(r).Fail("the variance of \"" + cov.parameters[r] + "\" is negative", "fix the matrix");
+    }
+    for (size_t k = 0; k < r; ++k) {
+      if (std::abs(cov.matrix(r, k) - cov.matrix(k, r)) > tolerance) {
+        m.at(r).at(k).Fail("differs from matrix[" + std::to_string(k) + "][" + std::to_string(r) + "]: not symmetric",
+                           "write a symmetric covariance matrix");
+      }
+    }
   }
-  if ((cov.matrix.diagonal().array() < 0).any()) m.Fail("a variance on the diagonal is negative", "fix the matrix");
   return cov;
 }
 

@@ -1,0 +1,272 @@
+// CLI tests of calib-dlt --refine: the DLT camera refined to maximum likelihood (distortion,
+// robust loss, covariance, projection uncertainty) against calib-synth's truth within the σ the
+// tool reports; the refinement's flags without --refine, its failures; and the covariance block
+// of a camera@1 file as calib-compare and calib-convert read it back (every malformation refused
+// with exit code 2 and one line naming the entry).
+#include <cmath>
+#include <functional>
+#include <ostream>
+
+#include "calibration_checks.h"
+#include "cli_fixture.h"
+
+namespace vstcal::cli_test {
+namespace {
+
+constexpr std::string_view kTool = "calib-dlt";
+
+// DistortedVolumeArgs() with seed 000's test points.
+std::vector<std::string> VolumeArgs() { return Remove(DistortedVolumeArgs(), "--no-test-points", false); }
+
+const std::vector<std::string> kDefaultTerms = {"fx", "fy", "cx", "cy", "k1", "k2", "p1", "p2"};
+
+class CliCalibDltRefine : public CliTest {
+ protected:
+  // Runs calib-dlt in/volume.json -o out/camera.json --refine [args]; the run must succeed.
+  Json Refine(std::vector<std::string> args = {}) {
+    args.insert(args.begin(), {"in/volume.json", "-o", "out/camera.json", "--refine"});
+    last_ = Run(kTool, args);
+    EXPECT_EQ(last_.exit_code, kOk) << last_.err;
+    if (last_.exit_code != kOk) throw std::runtime_error("calib-dlt failed: " + last_.err);
+    return ReadJson("out/camera.json");
+  }
+
+  CommandResult last_;
+};
+
+TEST_F(CliCalibDltRefine, RecoversTheTruthWithinFiveSigma) {
+  Synth("in/volume.json", VolumeArgs());
+  const Json camera = Refine();
+  const Json truth = ReadJson("in/volume.truth.json");
+  EXPECT_EQ(camera.at("method"), "dlt+refine");
+  EXPECT_TRUE(camera.contains("dlt"));  // the start's diagnostics are kept
+  EXPECT_EQ(camera.at("refinement").at("status"), "converged");
+  // The DLT's pinhole is promoted to radial-tangential for the named terms; its skew is dropped.
+  EXPECT_EQ(camera.at("distortion").at("model"), "radial-tangential");
+  EXPECT_EQ(camera.at("distortion").at("k3"), 0.0);
+  EXPECT_EQ(camera.at("K")[0][1], 0.0);
+  EXPECT_TRUE(CovarianceIsWellFormed(camera));
+  EXPECT_EQ(camera.at("covariance").at("parameters"),
+            Json({"fx", "fy", "cx", "cy", "k1", "k2", "p1", "p2", "camera_from_world.rx", "camera_from_world.ry",
+                  "camera_from_world.rz", "camera_from_world.tx", "camera_from_world.ty", "camera_from_world.tz"}));
+  EXPECT_TRUE(WithinSigmas(camera, truth, kDefaultTerms, 5));
+  // The refined P is K [R | t] of the refined camera (the DLT's P is not kept).
+  const Pinhole p = Pinhole::FromTruth(camera);
+  Eigen::Matrix<double, 3, 4> Rt;
+  Rt << p.R, p.t;
+  Eigen::Matrix<double, 3, 4> KRt = p.K * Rt;
+  KRt /= KRt.row(2).head<3>().norm();
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 4; ++c)
+      EXPECT_NEAR(camera.at("P")[r][c].get<double>(), KRt(r, c), 1e-9 * KRt.cwiseAbs().maxCoeff());
+  }
+  // With the lens modelled, the reprojection RMS drops below the DLT's (which has no distortion).
+  ASSERT_EQ(Run(kTool, {"in/volume.json", "-o", "out/dlt.json"}).exit_code, kOk);
+  const Json dlt = ReadJson("out/dlt.json");
+  EXPECT_LT(camera.at("fit").at("rms_px").get<double>(), dlt.at("fit").at("rms_px").get<double>());
+  EXPECT_FALSE(dlt.contains("covariance"));
+  EXPECT_FALSE(dlt.contains("refinement"));
+}
+
+TEST_F(CliCalibDltRefine, StartsFromDltNotTsai) {
+  // The same optimum from either closed form (to far below σ), but recorded as its own method.
+  Synth("in/volume.json", VolumeArgs());
+  const Json dlt = Refine();
+  ASSERT_EQ(Run("calib-tsai", {"in/volume.json", "-o", "out/tsai.json", "-q"}).exit_code, kOk);
+  const Json tsai = ReadJson("out/tsai.json");
+  EXPECT_EQ(tsai.at("method"), "tsai+refine");
+  for (const std::string& p : kDefaultTerms) {
+    EXPECT_NEAR(LensParameter(dlt, p), LensParameter(tsai, p), 1e-3 * Sigma(dlt, p)) << p;
+  }
+}
+
+TEST_F(CliCalibDltRefine, PinholeWithSkewIsTheDltModelRefined) {
+  // --distortion none --skew: the DLT's own 11 parameters, now maximum likelihood.
+  Synth("in/volume.json", Override(Override(VolumeArgs(), "--distortion", "0,0,0,0,0"), "--skew-deg", "89.5"));
+  const Json camera = Refine({"--distortion", "none", "--skew"});
+  EXPECT_EQ(camera.at("distortion").at("model"), "none");
+  EXPECT_EQ(camera.at("refinement").at("free_intrinsics"), Json({"fx", "fy", "cx", "cy", "s"}));
+  EXPECT_TRUE(WithinSigmas(camera, ReadJson("in/volume.truth.json"), {"fx", "fy", "cx", "cy", "s"}, 5));
+}
+
+TEST_F(CliCalibDltRefine, OutlierListedAndUncertaintyReported) {
+  Json doc = Synth("in/volume.json", VolumeArgs());
+  doc["views"][0]["points"][10][4] = doc["views"][0]["points"][10][4].get<double>() - 25;
+  WriteJson("in/volume.json", doc);
+  const Json camera = Refine({"--loss", "huber", "--uncertainty-at", "0,0,200", "--uncertainty-pixel", "320,240,1000",
+                              "--uncertainty-grid", "1200", "--grid-size", "8x6"});
+  const Json& outliers = camera.at("refinement").at("outliers");
+  ASSERT_EQ(outliers.size(), 1u);
+  EXPECT_EQ(outliers[0].at("view"), "plane-00");
+  EXPECT_EQ(outliers[0].at("point_index"), 10);
+  EXPECT_NE(last_.err.find("calib-dlt: warning: outlier: views[0].points[10] (view \"plane-00\")"), std::string::npos)
+      << last_.err;
+  const Json& u = camera.at("projection_uncertainty");
+  EXPECT_EQ(u.at("test_points").size(), 5u);
+  EXPECT_EQ(u.at("world_points").size(), 1u);
+  EXPECT_EQ(u.at("pixels").size(), 1u);
+  EXPECT_EQ(u.at("grid").at("cells").size(), 48u);
+}
+
+TEST_F(CliCalibDltRefine, WithoutRefineTheRefinementFlagsAreRefused) {
+  Synth("in/volume.json", VolumeArgs());
+  for (const std::vector<std::string>& flag : std::vector<std::vector<std::string>>{{"--distortion", "k1"},
+                                                                                    {"--skew"},
+                                                                                    {"--loss", "huber"},
+                                                                                    {"--loss-scale", "2"},
+                                                                                    {"--max-iterations", "50"},
+                                                                                    {"--uncertainty-grid", "1000"},
+                                                                                    {"--grid-size", "4x3"},
+                                                                                    {"--uncertainty-at", "0,0,0"},
+                                                                                    {"--uncertainty-pixel", "1,1,1"}}) {
+    std::vector<std::string> args = {"in/volume.json", "-o", "out/camera.json"};
+    args.insert(args.end(), flag.begin(), flag.end());
+    EXPECT_TRUE(
+        FailsWith(Run(kTool, args), kTool, kBadInput, flag[0] + " requires --refine", {"see calib-dlt --help"}));
+  }
+  EXPECT_TRUE(OutDirEmpty());
+}
+
+struct BadRefine {
+  std::string name;
+  int exit_code;
+  std::vector<std::string> flags;
+  std::string location;  // after "calib-dlt: error: "
+  std::vector<std::string> phrases;
+  std::function<void(Json& doc)> edit = [](Json&) {};
+};
+
+void PrintTo(const BadRefine& c, std::ostream* os) { *os << c.name; }
+
+class CliCalibDltRefineBad : public CliTest, public ::testing::WithParamInterface<BadRefine> {};
+
+TEST_P(CliCalibDltRefineBad, FailsWithOneLineAndNoOutput) {
+  const BadRefine& c = GetParam();
+  Json doc = Synth("in/volume.json", VolumeArgs());
+  c.edit(doc);
+  WriteJson("in/volume.json", doc);
+  std::vector<std::string> args = {"in/volume.json", "-o", "out/camera.json", "--refine", "--residuals", "out/r.json"};
+  args.insert(args.end(), c.flags.begin(), c.flags.end());
+  const auto r = Run(kTool, args);
+  EXPECT_TRUE(FailsWith(r, kTool, c.exit_code, c.location, c.phrases));
+  EXPECT_EQ(r.err.rfind("calib-dlt: error: " + c.location, 0), 0u) << r.err;
+  EXPECT_TRUE(OutDirEmpty());
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Cases, CliCalibDltRefineBad,
+    ::testing::Values(
+        BadRefine{"NoConvergence",
+                  kDegenerate,
+                  {"--max-iterations", "1"},
+                  "in/volume.json: ",
+                  {"the refinement did not converge in 1 iterations", "raise --max-iterations"}},
+        BadRefine{"UnknownDistortionTerm",
+                  kBadInput,
+                  {"--distortion", "k1,p3"},
+                  "--distortion: ",
+                  {"unknown term \"p3\" for the radial-tangential model", "did you mean \"p1\"?"}},
+        BadRefine{"PixelOutsideTheImage",
+                  kBadInput,
+                  {"--uncertainty-pixel", "-1,100,1000"},
+                  "--uncertainty-pixel: ",
+                  {"(-1, 100) lies outside the 640×480 image"}},
+        BadRefine{"ZeroGridDepth", kBadInput, {"--uncertainty-grid", "0"}, "--uncertainty-grid: ", {"positive"}},
+        BadRefine{"PointBehindTheCamera",
+                  kBadInput,
+                  {},
+                  "in/volume.json: ",
+                  {"1 of 315 points lie behind the camera", "views[3].points[2]"},
+                  [](Json& d) { d["views"][3]["points"][2][2] = -5000.0; }}),
+    [](const auto& param_info) { return param_info.param.name; });
+
+// ---------------------------------------------------------------------------------------------
+// The covariance block read back: calib-compare and calib-convert both refuse a malformed one.
+
+struct BadCovariance {
+  std::string name;
+  std::string field;  // after "in/camera.json: "
+  std::vector<std::string> phrases;
+  std::function<void(Json& covariance)> edit;
+};
+
+void PrintTo(const BadCovariance& c, std::ostream* os) { *os << c.name; }
+
+class CliBadCovariance : public CliTest, public ::testing::WithParamInterface<BadCovariance> {};
+
+TEST_P(CliBadCovariance, IsRefusedByCompareAndConvert) {
+  const BadCovariance& c = GetParam();
+  Synth("in/volume.json", VolumeArgs());
+  ASSERT_EQ(Run(kTool, {"in/volume.json", "-o", "in/good.json", "--refine", "-q"}).exit_code, kOk);
+  // The good file is read back by both tools.
+  ASSERT_EQ(Run("calib-compare", {"in/volume.truth.json", "in/good.json"}).exit_code, kOk);
+  ASSERT_EQ(Run("calib-convert", {"in/good.json", "-o", "in/again.json"}).exit_code, kOk);
+  EXPECT_EQ(ReadJson("in/again.json").at("covariance"), ReadJson("in/good.json").at("covariance"));
+
+  Json camera = ReadJson("in/good.json");
+  c.edit(camera.at("covariance"));
+  WriteJson("in/camera.json", camera);
+  const std::string location = "in/camera.json: " + c.field + ": ";
+  EXPECT_TRUE(FailsWith(Run("calib-compare", {"in/volume.truth.json", "in/camera.json"}), "calib-compare", kBadInput,
+                        location, c.phrases));
+  EXPECT_TRUE(FailsWith(Run("calib-convert", {"in/camera.json", "-o", "out/camera.yaml"}), "calib-convert", kBadInput,
+                        location, c.phrases));
+  EXPECT_TRUE(OutDirEmpty());
+}
+
+// The good covariance names fx, fy, cx, cy, k1, k2, p1, p2, camera_from_world.rx … tz (14).
+INSTANTIATE_TEST_SUITE_P(
+    Cases, CliBadCovariance,
+    ::testing::Values(
+        BadCovariance{"NotSymmetric",
+                      "covariance.matrix[1][0]",
+                      {"differs from matrix[0][1]: not symmetric", "write a symmetric covariance matrix"},
+                      [](Json& c) { c["matrix"][1][0] = 2 * c["matrix"][0][1].get<double>() + 1; }},
+        BadCovariance{"NegativeVariance",
+                      "covariance.matrix[3][3]",
+                      {"the variance of \"cy\" is negative"},
+                      [](Json& c) { c["matrix"][3][3] = -1.0; }},
+        BadCovariance{
+            "MissingRow", "covariance.matrix", {"expected 14 items, got 13"}, [](Json& c) { c["matrix"].erase(13); }},
+        BadCovariance{"ShortRow",
+                      "covariance.matrix[2]",
+                      {"expected 14 items, got 13"},
+                      [](Json& c) { c["matrix"][2].erase(0); }},
+        BadCovariance{"ExtraParameter",
+                      "covariance.matrix",
+                      {"expected 15 items, got 14"},
+                      [](Json& c) { c["parameters"].push_back("k3"); }},
+        BadCovariance{"UnknownIntrinsicSuggestsTheNearest",
+                      "covariance.parameters[1]",
+                      {"unknown parameter \"fyy\"", "did you mean \"fy\"?",
+                       "(known: fx, fy, cx, cy, s, k1, k2, p1, p2, k3 for this lens model, camera_from_world.rx … tz "
+                       "or views[i].camera_from_board.rx … tz)"},
+                      [](Json& c) { c["parameters"][1] = "fyy"; }},
+        BadCovariance{"UnknownPoseAxis",
+                      "covariance.parameters[8]",
+                      {"unknown parameter \"camera_from_world.qx\"", "did you mean \"camera_from_world.rx\"?"},
+                      [](Json& c) { c["parameters"][8] = "camera_from_world.qx"; }},
+        BadCovariance{"MalformedViewIndex",
+                      "covariance.parameters[8]",
+                      {"unknown parameter \"views[one].camera_from_board.rx\"", "; use fx, fy, cx, cy",
+                       "or views[i].camera_from_board.rx … tz"},
+                      [](Json& c) { c["parameters"][8] = "views[one].camera_from_board.rx"; }},
+        BadCovariance{"DuplicateParameter",
+                      "covariance.parameters[1]",
+                      {"duplicate parameter \"fx\"", "list each parameter once"},
+                      [](Json& c) { c["parameters"][1] = "fx"; }},
+        BadCovariance{"NoParameters",
+                      "covariance.parameters",
+                      {"no parameters"},
+                      [](Json& c) {
+                        c["parameters"] = Json::array();
+                        c["matrix"] = Json::array();
+                      }},
+        BadCovariance{"EntryNotANumber",
+                      "covariance.matrix[4][5]",
+                      {"expected a number, got the string \"0\""},
+                      [](Json& c) { c["matrix"][4][5] = "0"; }}),
+    [](const auto& param_info) { return param_info.param.name; });
+
+}  // namespace
+}  // namespace vstcal::cli_test
