@@ -1,8 +1,9 @@
 // Maximum-likelihood refinement shared by every solver (DLT, Tsai, Zhang's planar views): Ceres
-// Levenberg–Marquardt over the lens model's free parameters and one pose per rig (volume) or per
-// view (planar views), with optional robust loss, outliers listed (never dropped), and the
-// parameter covariance at the optimum. Objective and parameter blocks: calib/reprojection_cost.h;
-// covariance and its degrees of freedom: docs/math/uncertainty.md.
+// trust-region least squares with Powell's dogleg (refine.cc says why) over the lens model's free
+// parameters and one pose per rig (volume) or per view (planar views), with optional robust loss,
+// outliers listed (never dropped), and the parameter covariance at the optimum. Objective and
+// parameter blocks: calib/reprojection_cost.h; covariance and its degrees of freedom:
+// docs/math/uncertainty.md.
 #pragma once
 
 #include <string>
