@@ -61,7 +61,10 @@ struct Refinement {
   // message says so).
   ParameterCovariance covariance;
   double sigma_px = 0;  // σ̂ = √(Σ r² / dof): the estimated pixel noise per coordinate
-  int dof = 0;          // 2N − number of free parameters
+  int dof = 0;          // 2N − number of free parameters, N the points σ̂ sums over
+  // Under a robust loss σ̂ sums over the points not listed as outliers (they barely weigh in the fit
+  // or in JᵀWJ); under least squares over all points.
+  bool sigma_inliers_only = false;
   double robust_sigma_px = 0;
   std::vector<Outlier> outliers;
 
