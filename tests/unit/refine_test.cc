@@ -215,6 +215,37 @@ TEST(Refine, OutliersAreListedAndRobustLossResistsThem) {
   ExpectWithinSigma(robust, truth);
 }
 
+// Under a robust loss the outlier barely weighs in the fit, so it must not weigh in σ̂ either: σ̂
+// comes from the other points (dof 2·N_inliers − p) and matches the true noise, and the covariance
+// is that of the clean data. Counted in, one +40 px corner would double σ̂ and quadruple the
+// covariance.
+TEST(Refine, RobustSigmaAndCovarianceLeaveTheOutlierOut) {
+  const double noise = 0.5;
+  SyntheticViews data = PlanarData(noise, 11);
+  RefineOptions huber;
+  huber.loss = RefineOptions::Loss::kHuber;
+  huber.loss_scale_px = 1.5;
+  const Refinement clean = RefinePlanar(data.correspondences, huber);
+  data.correspondences.views[3].observations[12].pixel.x() += 40;
+  const Refinement dirty = RefinePlanar(data.correspondences, huber);
+  ASSERT_EQ(clean.status, RefineStatus::kConverged) << clean.message;
+  ASSERT_EQ(dirty.status, RefineStatus::kConverged) << dirty.message;
+  ASSERT_EQ(dirty.outliers.size(), 1u);
+  EXPECT_TRUE(dirty.sigma_inliers_only);
+  EXPECT_EQ(dirty.dof, clean.dof - 2);
+  EXPECT_NEAR(dirty.sigma_px, noise, 5 * noise / std::sqrt(2.0 * dirty.dof));
+  EXPECT_NEAR(dirty.sigma_px, clean.sigma_px, 0.01 * clean.sigma_px);
+  ASSERT_EQ(dirty.covariance.parameters, clean.covariance.parameters);
+  for (int i = 0; i < 8; ++i) {
+    EXPECT_NEAR(dirty.covariance.matrix(i, i), clean.covariance.matrix(i, i), 0.03 * clean.covariance.matrix(i, i))
+        << clean.covariance.parameters[i];
+  }
+  // Least squares keeps the outlier in the fit, and in σ̂.
+  const Refinement plain = RefinePlanar(data.correspondences);
+  EXPECT_FALSE(plain.sigma_inliers_only);
+  EXPECT_EQ(plain.dof, clean.dof);
+}
+
 TEST(Refine, SelectedTermsOnlyAndUnknownNamesRefused) {
   const SyntheticViews data = PlanarData(0.2, 6);
   RefineOptions options;

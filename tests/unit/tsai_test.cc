@@ -194,5 +194,29 @@ TEST(Tsai, PointsBehindTheCameraAndMirroredWorld) {
   EXPECT_EQ(TsaiStatusExitCode(m.status), ExitCode::kBadInput);
 }
 
+// Ty² from stage 1's block C = [[r1, r2], [r4, r5]] / Ty, for rotations whose r9 is known: a target
+// nearly edge-on (r9 = 1e-8, where (S − √(S² − 4D²))/(2D²) loses ~9 % to cancellation) and exactly
+// edge-on with a vanishing column of C (D = 0, Tsai's 1/S, which 1/max(row norm²) is not).
+TEST(Tsai, CoplanarTySquaredNearAndAtEdgeOn) {
+  const double ty = 250;
+  const auto ty2_of = [&](const Eigen::Matrix3d& R) {
+    return CoplanarTySquared(R(0, 0) / ty, R(0, 1) / ty, R(1, 0) / ty, R(1, 1) / ty);
+  };
+  for (const double r9 : {0.5, 1e-4, 1e-8, 1e-12}) {
+    // Rz(0.3) Rx(θ) Rz(0.7) has r9 = cos θ and every entry of C non-zero.
+    const Eigen::Matrix3d R = (Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitZ()) *
+                               Eigen::AngleAxisd(std::acos(r9), Eigen::Vector3d::UnitX()) *
+                               Eigen::AngleAxisd(0.7, Eigen::Vector3d::UnitZ()))
+                                  .toRotationMatrix();
+    ASSERT_NEAR(R(2, 2), r9, 1e-15);
+    EXPECT_NEAR(ty2_of(R), ty * ty, 1e-12 * ty * ty) << "r9 = " << r9;
+  }
+  // Rz(φ) Rx(90°), exact: rows (c, 0, s), (s, 0, −c), (0, 1, 0); C's second column vanishes.
+  const double c = 0.6, s = 0.8;
+  Eigen::Matrix3d edge_on;
+  edge_on << c, 0, s, s, 0, -c, 0, 1, 0;
+  EXPECT_NEAR(ty2_of(edge_on), ty * ty, 1e-12 * ty * ty);
+}
+
 }  // namespace
 }  // namespace vstcal

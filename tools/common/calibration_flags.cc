@@ -68,6 +68,9 @@ RefineOptions CalibrationFlags::Refinement() const {
   if (distortion != "none") {
     for (const std::string& term : CLI::detail::split(distortion, ',')) {
       if (term.empty()) throw InputError("--distortion: empty term in \"" + distortion + "\"; give names like k1,k2,p1,p2 or none");
+      if (std::find(o.free_distortion.begin(), o.free_distortion.end(), term) != o.free_distortion.end()) {
+        throw InputError("--distortion: \"" + term + "\" is named twice in \"" + distortion + "\"; name each term once");
+      }
       o.free_distortion.push_back(term);
     }
   }

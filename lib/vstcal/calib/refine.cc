@@ -207,26 +207,23 @@ Refinement RefineWith(const Correspondences& c, Problem* p, const RefineOptions&
   out.fit = c.rig == Rig::kVolume ? ComputeVolumeFit(out.camera, p->reference[0], c)
                                   : ComputeViewsFit(out.camera, per_view, c);
 
-  // Degrees of freedom and noise estimate (docs/math/uncertainty.md).
-  out.dof = 2 * static_cast<int>(out.fit.overall.n_points) - static_cast<int>(free);
-  double rss = 0;
+  // Outliers by the robust σ, then the noise estimate and its degrees of freedom
+  // (docs/math/uncertainty.md#sigma).
   std::vector<double> norms;
   for (const ViewFit& v : out.fit.views) {
     for (const Eigen::Vector2d& r : v.residuals_px) {
-      if (!r.allFinite()) continue;
-      rss += r.squaredNorm();
-      norms.push_back(r.norm());
+      if (r.allFinite()) norms.push_back(r.norm());
     }
   }
-  if (out.dof <= 0) {
+  if (2 * static_cast<int>(norms.size()) <= static_cast<int>(free)) {
     out.status = RefineStatus::kFailed;
-    out.message = "only " + std::to_string(out.fit.overall.n_points) + " points project in front of the refined "
+    out.message = "only " + std::to_string(norms.size()) + " points project in front of the refined "
                   "camera, too few for " + std::to_string(free) + " free parameters; check the correspondences";
     return out;
   }
-  out.sigma_px = std::sqrt(rss / out.dof);
-  std::nth_element(norms.begin(), norms.begin() + norms.size() / 2, norms.end());
-  out.robust_sigma_px = norms[norms.size() / 2] / std::sqrt(2 * std::log(2.0));
+  std::vector<double> sorted = norms;
+  std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
+  out.robust_sigma_px = sorted[sorted.size() / 2] / std::sqrt(2 * std::log(2.0));
   const double threshold = ChiSquare2Quantile(options.outlier_false_alarm / static_cast<double>(norms.size()));
   for (size_t v = 0; v < out.fit.views.size(); ++v) {
     const auto& residuals = out.fit.views[v].residuals_px;
@@ -235,6 +232,30 @@ Refinement RefineWith(const Correspondences& c, Problem* p, const RefineOptions&
       if (residuals[k].allFinite() && z2 > threshold) out.outliers.push_back({v, k, residuals[k], std::sqrt(z2)});
     }
   }
+  // A robust loss takes the outliers (almost) out of the fit and out of JᵀWJ, so σ̂ leaves them out
+  // too: counted in, one 40 px corner among a few hundred triples σ̂ and the covariance with it.
+  // Least squares keeps them in the fit, so σ̂ keeps them as well.
+  out.sigma_inliers_only = options.loss != RefineOptions::Loss::kNone;
+  double rss = 0;
+  size_t n_sigma = 0;
+  for (size_t v = 0, next = 0; v < out.fit.views.size(); ++v) {
+    const auto& residuals = out.fit.views[v].residuals_px;
+    for (size_t k = 0; k < residuals.size(); ++k) {
+      const bool outlier = next < out.outliers.size() && out.outliers[next].view == v && out.outliers[next].point == k;
+      next += outlier;
+      if (!residuals[k].allFinite() || (outlier && out.sigma_inliers_only)) continue;
+      rss += residuals[k].squaredNorm();
+      ++n_sigma;
+    }
+  }
+  out.dof = 2 * static_cast<int>(n_sigma) - static_cast<int>(free);
+  if (out.dof <= 0) {
+    out.status = RefineStatus::kFailed;
+    out.message = std::to_string(out.outliers.size()) + " of " + std::to_string(norms.size()) +
+                  " points are outliers, too many to estimate the noise of the others; check the correspondences";
+    return out;
+  }
+  out.sigma_px = std::sqrt(rss / out.dof);
 
   // Covariance at the optimum, linearized at δ = 0 around the refined poses.
   std::string singular;

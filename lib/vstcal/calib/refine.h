@@ -1,8 +1,9 @@
 // Maximum-likelihood refinement shared by every solver (DLT, Tsai, Zhang's planar views): Ceres
-// Levenberg–Marquardt over the lens model's free parameters and one pose per rig (volume) or per
-// view (planar views), with optional robust loss, outliers listed (never dropped), and the
-// parameter covariance at the optimum. Objective and parameter blocks: calib/reprojection_cost.h;
-// covariance and its degrees of freedom: docs/math/uncertainty.md.
+// trust-region least squares with Powell's dogleg (refine.cc says why) over the lens model's free
+// parameters and one pose per rig (volume) or per view (planar views), with optional robust loss,
+// outliers listed (never dropped), and the parameter covariance at the optimum. Objective and
+// parameter blocks: calib/reprojection_cost.h; covariance and its degrees of freedom:
+// docs/math/uncertainty.md.
 #pragma once
 
 #include <string>
@@ -60,7 +61,10 @@ struct Refinement {
   // message says so).
   ParameterCovariance covariance;
   double sigma_px = 0;  // σ̂ = √(Σ r² / dof): the estimated pixel noise per coordinate
-  int dof = 0;          // 2N − number of free parameters
+  int dof = 0;          // 2N − number of free parameters, N the points σ̂ sums over
+  // Under a robust loss σ̂ sums over the points not listed as outliers (they barely weigh in the fit
+  // or in JᵀWJ); under least squares over all points.
+  bool sigma_inliers_only = false;
   double robust_sigma_px = 0;
   std::vector<Outlier> outliers;
 

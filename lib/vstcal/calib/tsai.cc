@@ -261,17 +261,7 @@ TsaiStatus StageOneCoplanar(const std::vector<SensorPoint>& points, Rigid3d* pos
   }
   const Eigen::Matrix<double, 5, 1> a = qr.solve(b);
   const double a1 = a(0), a2 = a(1), a3 = a(2), a4 = a(3), a5 = a(4);
-  const double Sr = a1 * a1 + a2 * a2 + a4 * a4 + a5 * a5;
-  const double det = a1 * a5 - a4 * a2;
-  double ty2;
-  if (std::abs(det) > 1e-12 * Sr) {
-    ty2 = (Sr - std::sqrt(std::max(0.0, Sr * Sr - 4 * det * det))) / (2 * det * det);
-  } else if (a1 * a1 + a2 * a2 > 0 && a4 * a4 + a5 * a5 > 0) {
-    ty2 = 1.0 / std::max(a1 * a1 + a2 * a2, a4 * a4 + a5 * a5);
-  } else {
-    ty2 = 1.0 / Sr;
-  }
-  const double ty_abs = std::sqrt(ty2);
+  const double ty_abs = std::sqrt(CoplanarTySquared(a1, a2, a4, a5));
   Eigen::Matrix<double, 2, 3> rows;
   rows << a1 * ty_abs, a2 * ty_abs, 0, a4 * ty_abs, a5 * ty_abs, 0;
   double tx = a3 * ty_abs;
@@ -325,6 +315,13 @@ KappaConversion ConvertTsaiKappa(double K, double r_max) {
     out.max_error = std::max(out.max_error, std::abs(rn(i) * (1 + r2 * (out.k1 + r2 * (out.k2 + r2 * out.k3))) - rd(i)));
   }
   return out;
+}
+
+double CoplanarTySquared(double a1, double a2, double a4, double a5) {
+  const double S = a1 * a1 + a2 * a2 + a4 * a4 + a5 * a5;
+  const double D = a1 * a5 - a4 * a2;
+  // S² − 4D² = ((a1 − a5)² + (a2 + a4)²)((a1 + a5)² + (a2 − a4)²) ≥ 0; the max guards rounding.
+  return 2 / (S + std::sqrt(std::max(0.0, S * S - 4 * D * D)));
 }
 
 TsaiResult SolveTsai(std::span<const Observation> obs, ImageSize size, const TsaiOptions& options) {

@@ -84,4 +84,10 @@ struct KappaConversion {
 };
 KappaConversion ConvertTsaiKappa(double kappa_normalized, double r_max);
 
+// Tsai's coplanar Ty² from stage 1's block C = [[a1, a2], [a4, a5]] = [[r1, r2], [r4, r5]] / Ty:
+// the smaller root of D² Ty⁴ − S Ty² + 1 = 0 (S = ‖C‖_F², D = det C; docs/math/tsai.md#coplanar),
+// evaluated as 2 / (S + √(S² − 4D²)). The textbook (S − √(S² − 4D²)) / (2D²) cancels as the target
+// turns edge-on (D → 0); this form does not, and at D = 0 it is Tsai's 1/S.
+double CoplanarTySquared(double a1, double a2, double a4, double a5);
+
 }  // namespace vstcal

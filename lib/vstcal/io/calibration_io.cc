@@ -59,6 +59,7 @@ OrderedJson CalibrationBlocksToJson(const CalibrationResult& r, const Calibratio
                        {"loss", LossName(options.refinement.loss)},
                        {"loss_scale_px", options.refinement.loss_scale_px},
                        {"sigma_px", f.sigma_px},
+                       {"sigma_from", f.sigma_inliers_only ? "inliers" : "all points"},
                        {"robust_sigma_px", f.robust_sigma_px},
                        {"dof", f.dof},
                        {"outlier_false_alarm", options.refinement.outlier_false_alarm},
