@@ -188,6 +188,7 @@ struct BadCovariance {
   std::string field;  // after "in/camera.json: "
   std::vector<std::string> phrases;
   std::function<void(Json& covariance)> edit;
+  std::function<void(Json& camera)> edit_camera = [](Json&) {};  // the rest of the file
 };
 
 void PrintTo(const BadCovariance& c, std::ostream* os) { *os << c.name; }
@@ -205,6 +206,7 @@ TEST_P(CliBadCovariance, IsRefusedByCompareAndConvert) {
 
   Json camera = ReadJson("in/good.json");
   c.edit(camera.at("covariance"));
+  c.edit_camera(camera);
   WriteJson("in/camera.json", camera);
   const std::string location = "in/camera.json: " + c.field + ": ";
   EXPECT_TRUE(FailsWith(Run("calib-compare", {"in/volume.truth.json", "in/camera.json"}), "calib-compare", kBadInput,
@@ -265,7 +267,40 @@ INSTANTIATE_TEST_SUITE_P(
         BadCovariance{"EntryNotANumber",
                       "covariance.matrix[4][5]",
                       {"expected a number, got the string \"0\""},
-                      [](Json& c) { c["matrix"][4][5] = "0"; }}),
+                      [](Json& c) { c["matrix"][4][5] = "0"; }},
+        BadCovariance{"NotPositiveSemiDefinite",
+                      "covariance.matrix",
+                      {"not positive semi-definite: eigenvalue -", "< -1e-9 × largest |eigenvalue|",
+                       "; write a covariance matrix (correlations within [-1, 1], no negative eigenvalue)"},
+                      [](Json& c) {  // a correlation of 2 between fx and fy
+                        const double r = 2 * std::sqrt(c["matrix"][0][0].get<double>() * c["matrix"][1][1].get<double>());
+                        c["matrix"][0][1] = r;
+                        c["matrix"][1][0] = r;
+                      }},
+        BadCovariance{"ViewTangentWithoutViews",
+                      "covariance.parameters[8]",
+                      {"\"views[0].camera_from_board.rx\" names view 0, but the file has no views",
+                       "; add the views or drop the parameter"},
+                      [](Json& c) { c["parameters"][8] = "views[0].camera_from_board.rx"; }},
+        BadCovariance{"ViewIndexBeyondTheViews",
+                      "covariance.parameters[9]",
+                      {"\"views[2].camera_from_board.ry\" names view 2, but the file has 2 views",
+                       "; use views[0] … views[1] or drop the parameter"},
+                      [](Json& c) { c["parameters"][9] = "views[2].camera_from_board.ry"; },
+                      [](Json& camera) {
+                        for (const char* name : {"a", "b"}) {
+                          camera["views"].push_back({{"name", name}, {"camera_from_board", camera["camera_from_world"]}});
+                        }
+                      }},
+        BadCovariance{"WorldTangentWithoutThePose",
+                      "covariance.parameters[8]",
+                      {"\"camera_from_world.rx\" is a tangent of camera_from_world, which the file does not have",
+                       "; add \"camera_from_world\" or drop the parameter"},
+                      [](Json&) {},
+                      [](Json& camera) {
+                        camera.erase("camera_from_world");
+                        camera.erase("P");
+                      }}),
     [](const auto& param_info) { return param_info.param.name; });
 
 }  // namespace

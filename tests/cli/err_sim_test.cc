@@ -171,8 +171,12 @@ TEST_F(CliErrSim, CovarianceFromTheCameraFile) {
   camera["length_unit"] = "mm";
   camera["method"] = "dlt";
   WriteJson("in/plain.camera.json", camera);
-  camera["covariance"] = {{"parameters", {"fx", "fy", "cx", "cy", "camera_from_world.rx"}},
-                          {"matrix", {{1.0, 0.5, 0, 0, 0}, {0.5, 1.0, 0, 0, 0}, {0, 0, 0.25, 0, 0}, {0, 0, 0, 0.25, 0}, {0, 0, 0, 0, 1e-6}}}};
+  // A pose tangent is ignored by err-sim; in a camera@1 file it must name a pose the file has.
+  const Json covariance = {{"parameters", {"fx", "fy", "cx", "cy", "camera_from_world.rx"}},
+                           {"matrix", {{1.0, 0.5, 0, 0, 0}, {0.5, 1.0, 0, 0, 0}, {0, 0, 0.25, 0, 0}, {0, 0, 0, 0.25, 0}, {0, 0, 0, 0, 1e-6}}}};
+  camera["covariance"] = covariance;
+  WriteJson("in/noworld.camera.json", camera);
+  camera["camera_from_world"] = {{"R", {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}}, {"t", {0, 0, 1000}}};
   WriteJson("in/cov.camera.json", camera);
   c["cameras"]["left"] = {{"file", "cov.camera.json"}};
   c["cameras"]["right"] = {{"file", "plain.camera.json"}};
@@ -181,6 +185,24 @@ TEST_F(CliErrSim, CovarianceFromTheCameraFile) {
   const CommandResult r = Run("err-sim", {"run", "in/chain.json", "-o", "out/r.json", "--only", "camera_intrinsic", "--no-budget", "-q"});
   ASSERT_EQ(r.exit_code, kOk) << r.err;
   EXPECT_GT(ReadJson("out/r.json")["totals"]["image_rms_px"].get<double>(), 0.0);
+
+  // An inline camera has no poses: any pose tangent is accepted (and ignored).
+  Json inline_chain = c;
+  inline_chain["cameras"]["left"] = SmallChain()["cameras"]["left"];
+  inline_chain["cameras"]["left"]["covariance"] = covariance;
+  inline_chain["cameras"]["left"]["covariance"]["parameters"][4] = "views[3].camera_from_board.tz";
+  WriteJson("in/inline.json", inline_chain);
+  const CommandResult ri = Run("err-sim", {"run", "in/inline.json", "-o", "out/ri.json", "--only", "camera_intrinsic", "--no-budget", "-q"});
+  ASSERT_EQ(ri.exit_code, kOk) << ri.err;
+  EXPECT_EQ(ReadJson("out/ri.json")["totals"]["image_rms_px"], ReadJson("out/r.json")["totals"]["image_rms_px"]);
+
+  c["cameras"]["left"] = {{"file", "noworld.camera.json"}};
+  WriteJson("in/noworld.json", c);
+  EXPECT_TRUE(FailsWith(Run("err-sim", {"run", "in/noworld.json", "-o", "out/r.json"}), "err-sim", kBadInput,
+                        "in/noworld.camera.json: covariance.parameters[4]: ",
+                        {"\"camera_from_world.rx\" is a tangent of camera_from_world, which the file does not have",
+                         "add \"camera_from_world\" or drop the parameter"}));
+  c["cameras"]["left"] = {{"file", "cov.camera.json"}};
 
   c["sources"]["camera_intrinsic"]["right"] = {{"covariance", "camera"}};
   WriteJson("in/nocov.json", c);

@@ -295,6 +295,31 @@ TEST(Refine, UnobservableParametersAreReported) {
   }
 }
 
+// Noise-free views of a zero-skew pinhole: the closed form is exact (Zhang 2000, §3.1), so K and
+// every board pose come back to rounding, against calib-synth's ground truth.
+TEST(Zhang, RecoversKAndPosesExactlyFromNoiseFreeViews) {
+  Eigen::Matrix3d K;
+  K << 700.2, 0, 641.3, 0, 698.4, 361.7, 0, 0, 1;
+  const Camera truth = Camera::FromK(K, ImageSize{1280, 720}, PinholeModel{}, {});
+  PlanarViewsSpec spec;
+  spec.num_views = 8;
+  const SyntheticViews data = SynthesizePlanarViews(truth, spec);
+  ASSERT_EQ(data.camera_from_board.size(), 8u);
+  const ZhangResult r = ZhangInitialization(data.correspondences);
+  ASSERT_TRUE(r.ok) << r.message;
+  const Eigen::Matrix3d got = r.camera.K();
+  for (const auto& [row, col] : {std::pair{0, 0}, {1, 1}, {0, 2}, {1, 2}}) {
+    EXPECT_LT(std::abs(got(row, col) - K(row, col)), 1e-8 * K(row, col)) << row << col << "\n" << got;
+  }
+  EXPECT_EQ(got(0, 1), 0.0);  // zero skew imposed
+  ASSERT_EQ(r.camera_from_board.size(), data.camera_from_board.size());
+  for (size_t v = 0; v < data.camera_from_board.size(); ++v) {
+    const Rigid3d& want = data.camera_from_board[v];
+    EXPECT_LT(AngleBetween(r.camera_from_board[v].R, want.R), 1e-8) << v;
+    EXPECT_LT((r.camera_from_board[v].t - want.t).norm(), 1e-8 * want.t.norm()) << v;
+  }
+}
+
 TEST(Zhang, RefusesParallelBoardsAndTooFewViews) {
   SyntheticViews data = PlanarData(0.0, 7, 3);
   Correspondences one = data.correspondences;

@@ -11,6 +11,9 @@
 namespace vstcal {
 namespace {
 
+// A wide-angle lens: the denominator 1 + k4 r² + k5 r⁴ + k6 r⁶ stays above 1 over the points drawn.
+const std::vector<double> kRationalParams = {700, 690, 640, 360, 1.5, 0.12, -0.05, 0.001, -0.0005, 0.004, 0.45, 0.03, 0.002};
+
 template <typename Model>
 void CheckProjectWithJacobians(const std::vector<double>& params) {
   constexpr int n = Model::kNumParams;
@@ -39,6 +42,36 @@ void CheckProjectWithJacobians(const std::vector<double>& params) {
 TEST(ProjectWithJacobians, MatchesAutodiffForEveryModel) {
   CheckProjectWithJacobians<PinholeModel>({700, 690, 640, 360, 1.5});
   CheckProjectWithJacobians<RadialTangentialModel>({700, 690, 640, 360, 1.5, -0.17, 0.03, 0.001, -0.0005, -0.002});
+  CheckProjectWithJacobians<RationalModel>(kRationalParams);
+}
+
+// The rational model's Jacobians against central differences of Project itself (no Jets: a check
+// independent of the autodiff both sides of the test above use).
+TEST(ProjectWithJacobians, RationalMatchesCentralDifferences) {
+  constexpr int n = RationalModel::kNumParams;
+  const CounterRng rng(9, 0);
+  for (uint64_t k = 0; k < 20; ++k) {
+    const auto a = rng.Uniform2(k, 0), b = rng.Uniform2(k, 1);
+    const double p[3] = {(a[0] - 0.5) * 2, (a[1] - 0.5) * 1.2, 0.8 + 2 * b[0]};
+    double q[2], d_params[2 * n], d_p[6];
+    ASSERT_TRUE(RationalModel::ProjectWithJacobians(kRationalParams.data(), p, q, d_params, d_p));
+    for (int i = 0; i < n + 3; ++i) {
+      std::vector<double> plus = kRationalParams, minus = kRationalParams;
+      double p_plus[3] = {p[0], p[1], p[2]}, p_minus[3] = {p[0], p[1], p[2]};
+      double* const x_plus = i < n ? &plus[i] : &p_plus[i - n];
+      double* const x_minus = i < n ? &minus[i] : &p_minus[i - n];
+      const double h = 1e-6 * std::max(1.0, std::abs(*x_plus));
+      *x_plus += h;
+      *x_minus -= h;
+      double q_plus[2], q_minus[2];
+      ASSERT_TRUE(RationalModel::Project(plus.data(), p_plus, q_plus));
+      ASSERT_TRUE(RationalModel::Project(minus.data(), p_minus, q_minus));
+      for (int r = 0; r < 2; ++r) {
+        const double analytic = i < n ? d_params[r * n + i] : d_p[r * 3 + i - n];
+        EXPECT_NEAR(analytic, (q_plus[r] - q_minus[r]) / (2 * h), 1e-6 * (1 + std::abs(analytic))) << "column " << i << " row " << r;
+      }
+    }
+  }
 }
 
 // The cost's Jacobians at a non-zero pose perturbation δ against central differences of its own

@@ -52,7 +52,7 @@ EyeCamera ReadEyeCamera(const JsonNode& node, const std::filesystem::path& direc
     return out;
   }
   out.camera = io::ReadCameraIntrinsics(node);
-  if (const auto cov = node.find("covariance")) out.covariance = io::ReadCovariance(*cov, out.camera);
+  if (const auto cov = node.find("covariance")) out.covariance = io::ReadCovariance(*cov, out.camera, std::nullopt);  // inline: no poses
   return out;
 }
 

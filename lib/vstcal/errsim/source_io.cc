@@ -160,7 +160,7 @@ void ReadIntrinsics(const JsonNode& node, int eye, const std::optional<Parameter
     }
     cov = *from_camera;
   } else {
-    cov = io::ReadCovariance(*cov_node, r->model().geometry.cameras[eye]);
+    cov = io::ReadCovariance(*cov_node, r->model().geometry.cameras[eye], std::nullopt);  // inline: no poses to name
   }
   std::vector<int> rows;  // lens index of each covariance row used
   std::vector<int> used;  // covariance index

@@ -1,7 +1,11 @@
 #include "vstcal/io/camera_io.h"
 
+#include <Eigen/Eigenvalues>
+
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <string>
 
 #include "vstcal/calib/decompose.h"
 #include "vstcal/camera/intrinsics.h"
@@ -57,22 +61,50 @@ std::vector<double> ReadDistortion(const JsonNode& node, AnyLensModel* model) {
 
 constexpr std::string_view kTangentAxes[] = {"rx", "ry", "rz", "tx", "ty", "tz"};
 
-// "camera_from_world.<axis>" or "views[<i>].camera_from_board.<axis>" (calibrated_camera.h).
-bool IsPoseTangentName(std::string_view name) {
+// The pose a pose-tangent name refers to (calibrated_camera.h): "camera_from_world.<axis>" or
+// "views[<i>].camera_from_board.<axis>"; nullopt for any other name.
+struct TangentPose {
+  std::optional<size_t> view;  // nullopt: camera_from_world
+};
+
+std::optional<TangentPose> PoseOfTangentName(std::string_view name) {
   std::string_view rest;
+  TangentPose pose;
   if (name.starts_with("camera_from_world.")) {
     rest = name.substr(std::string_view("camera_from_world.").size());
   } else if (name.starts_with("views[")) {
     const size_t close = name.find(']');
     const std::string_view index = name.substr(6, close == std::string_view::npos ? 0 : close - 6);
-    if (index.empty() || !std::all_of(index.begin(), index.end(), [](char c) { return c >= '0' && c <= '9'; })) return false;
+    // More than 9 digits is no view index a file can have (and a long one would overflow stoul).
+    if (index.empty() || index.size() > 9 || !std::all_of(index.begin(), index.end(), [](char c) { return c >= '0' && c <= '9'; })) {
+      return std::nullopt;
+    }
+    pose.view = std::stoul(std::string(index));
     rest = name.substr(close + 1);
-    if (!rest.starts_with(".camera_from_board.")) return false;
+    if (!rest.starts_with(".camera_from_board.")) return std::nullopt;
     rest = rest.substr(std::string_view(".camera_from_board.").size());
   } else {
-    return false;
+    return std::nullopt;
   }
-  return std::find(std::begin(kTangentAxes), std::end(kTangentAxes), rest) != std::end(kTangentAxes);
+  if (std::find(std::begin(kTangentAxes), std::end(kTangentAxes), rest) == std::end(kTangentAxes)) return std::nullopt;
+  return pose;
+}
+
+// A pose tangent must name a pose the file has.
+void CheckTangentPoseExists(const JsonNode& name_node, const std::string& name, const TangentPose& pose,
+                            const CovariancePoses& poses) {
+  if (!pose.view) {
+    if (!poses.camera_from_world) {
+      name_node.Fail("\"" + name + "\" is a tangent of camera_from_world, which the file does not have",
+                     "add \"camera_from_world\" or drop the parameter");
+    }
+    return;
+  }
+  if (*pose.view < poses.num_views) return;
+  const std::string has = poses.num_views == 0 ? "the file has no views" : "the file has " + std::to_string(poses.num_views) + " views";
+  const std::string fix = poses.num_views == 0 ? "add the views or drop the parameter"
+                                               : "use views[0] … views[" + std::to_string(poses.num_views - 1) + "] or drop the parameter";
+  name_node.Fail("\"" + name + "\" names view " + std::to_string(*pose.view) + ", but " + has, fix);
 }
 
 }  // namespace
@@ -89,7 +121,7 @@ Rigid3d ReadRigid(const JsonNode& node) {
   return pose;
 }
 
-ParameterCovariance ReadCovariance(const JsonNode& node, const Camera& camera) {
+ParameterCovariance ReadCovariance(const JsonNode& node, const Camera& camera, const std::optional<CovariancePoses>& poses) {
   ParameterCovariance cov;
   const JsonNode names = node.at("parameters");
   const size_t n = names.ArraySize();
@@ -98,7 +130,8 @@ ParameterCovariance ReadCovariance(const JsonNode& node, const Camera& camera) {
   for (size_t i = 0; i < n; ++i) {
     const std::string name = names.at(i).String();
     const bool intrinsic = std::find(intrinsics.begin(), intrinsics.end(), name) != intrinsics.end();
-    if (!intrinsic && !IsPoseTangentName(name)) {
+    const auto pose = intrinsic ? std::nullopt : PoseOfTangentName(name);
+    if (!intrinsic && !pose) {
       std::string lens;
       for (const std::string_view p : intrinsics) lens += (lens.empty() ? "" : ", ") + std::string(p);
       std::vector<std::string> tangents;
@@ -110,6 +143,7 @@ ParameterCovariance ReadCovariance(const JsonNode& node, const Camera& camera) {
       names.at(i).Fail("unknown parameter \"" + name + "\"",
                        near ? "did you mean \"" + std::string(*near) + "\"? (known: " + known + ")" : "use " + known);
     }
+    if (pose && poses) CheckTangentPoseExists(names.at(i), name, *pose, *poses);
     if (cov.Find(name)) names.at(i).Fail("duplicate parameter \"" + name + "\"", "list each parameter once");
     cov.parameters.push_back(name);
   }
@@ -132,6 +166,16 @@ ParameterCovariance ReadCovariance(const JsonNode& node, const Camera& camera) {
                            "write a symmetric covariance matrix");
       }
     }
+  }
+  // Symmetric to the tolerance above, so the lower triangle the solver reads is the matrix.
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(cov.matrix, Eigen::EigenvaluesOnly);
+  const double smallest = eig.eigenvalues().minCoeff();
+  const double largest = eig.eigenvalues().cwiseAbs().maxCoeff();
+  if (smallest < -1e-9 * largest) {
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "not positive semi-definite: eigenvalue %.6g < -1e-9 × largest |eigenvalue| %.6g", smallest,
+                  largest);
+    m.Fail(buf, "write a covariance matrix (correlations within [-1, 1], no negative eigenvalue)");
   }
   return cov;
 }
@@ -175,7 +219,9 @@ CalibratedCamera CameraFromJson(const JsonDocument& doc) {
       c.views.push_back(std::move(pose));
     }
   }
-  if (auto cov = root.find("covariance")) c.covariance = ReadCovariance(*cov, c.camera);
+  if (auto cov = root.find("covariance")) {
+    c.covariance = ReadCovariance(*cov, c.camera, CovariancePoses{c.camera_from_world.has_value(), c.views.size()});
+  }
   if (auto P = root.find("P")) {
     Matrix34d m = P->Matrix<3, 4>();
     const double det = m.leftCols<3>().determinant();

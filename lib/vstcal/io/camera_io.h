@@ -36,9 +36,18 @@ Camera ReadCameraIntrinsics(const JsonNode& node);
 // A transform {"R": 3×3, "t": [3]}: R must be a rotation to 1e-6 (then re-orthonormalized).
 Rigid3d ReadRigid(const JsonNode& node);
 
+// The poses a camera file has, which a covariance's pose tangents may name.
+struct CovariancePoses {
+  bool camera_from_world = false;
+  size_t num_views = 0;
+};
+
 // A "covariance" object {"parameters": [names], "matrix": [[…]]}: names are `camera`'s lens
-// parameters or pose tangents ("camera_from_world.rx", "views[2].camera_from_board.tz"), each once;
-// the matrix square, symmetric to 1e-9 relative and with a non-negative diagonal.
-ParameterCovariance ReadCovariance(const JsonNode& node, const Camera& camera);
+// parameters or pose tangents ("camera_from_world.rx", "views[2].camera_from_board.tz"), each once
+// and, given `poses`, each tangent of a pose the file has (without `poses`, for an inline camera
+// that has no poses, any well-formed tangent name is accepted: its readers ignore them); the
+// matrix square, symmetric to 1e-9 relative, with a non-negative diagonal and positive
+// semi-definite (smallest eigenvalue ≥ −1e-9 × the largest |eigenvalue|).
+ParameterCovariance ReadCovariance(const JsonNode& node, const Camera& camera, const std::optional<CovariancePoses>& poses);
 
 }  // namespace vstcal::io
