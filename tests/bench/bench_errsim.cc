@@ -12,6 +12,7 @@
 #include "vstcal/errsim/chain_io.h"
 #include "vstcal/errsim/engine.h"
 #include "vstcal/errsim/holloway.h"
+#include "vstcal/errsim/sample_measurer.h"
 #include "vstcal/errsim/sampler.h"
 
 namespace {
@@ -30,7 +31,7 @@ void BM_DrawTheta(benchmark::State& state) {
   std::vector<double> theta(kBatch * sampler.size());
   uint64_t first = 0;
   for (auto _ : state) {
-    sampler.Fill(first, kBatch, theta.data());
+    sampler.FillLanes(first, kBatch / ThetaSampler::kLanes, theta.data());
     first += kBatch;
     benchmark::DoNotOptimize(theta.data());
   }
@@ -44,20 +45,44 @@ void BM_ChainSample(benchmark::State& state) {
   const ThetaSampler sampler(model, 1);
   const ChainEvaluator chain(model);
   const ErrorOutputs outputs(model);
+  SampleMeasurer measurer(chain, outputs);
+  constexpr size_t kLanes = SampleMeasurer::kLanes;
+  std::vector<double> theta(kBatch * sampler.size()), y(kLanes * outputs.size());
+  bool defined[kLanes];
+  uint64_t first = 0;
+  for (auto _ : state) {
+    sampler.FillLanes(first, kBatch / kLanes, theta.data());
+    first += kBatch;
+    for (size_t g = 0; g < kBatch / kLanes; ++g) {
+      measurer.MeasureLanes(&theta[g * kLanes * sampler.size()], y.data(), defined);
+      benchmark::DoNotOptimize(y.data());
+    }
+  }
+  state.SetItemsProcessed(state.iterations() * kBatch);
+  state.counters["divergent_groups"] = static_cast<double>(measurer.divergent_groups());
+}
+
+// The same, one sample at a time with double (the path a divergent group takes): the speed-up of
+// evaluating four samples together.
+void BM_ChainSampleScalar(benchmark::State& state) {
+  const ChainModel& model = Seed001();
+  const ThetaSampler sampler(model, 1);
+  const ChainEvaluator chain(model);
+  const ErrorOutputs outputs(model);
+  SampleMeasurer measurer(chain, outputs);
   std::vector<double> theta(kBatch * sampler.size()), y(outputs.size());
-  ChainSample<double> sample(chain.num_points());
   uint64_t first = 0;
   for (auto _ : state) {
     sampler.Fill(first, kBatch, theta.data());
     first += kBatch;
     for (size_t s = 0; s < kBatch; ++s) {
-      chain.Evaluate(&theta[s * sampler.size()], &sample);
-      benchmark::DoNotOptimize(outputs.Measure(chain, sample, &theta[s * sampler.size()], y.data()));
+      benchmark::DoNotOptimize(measurer.MeasureOne(&theta[s * sampler.size()], y.data()));
     }
   }
   state.SetItemsProcessed(state.iterations() * kBatch);
 }
 BENCHMARK(BM_ChainSample)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_ChainSampleScalar)->Unit(benchmark::kMicrosecond);
 
 void BM_EngineSample(benchmark::State& state) {
   ChainMonteCarloOptions options;

@@ -211,8 +211,9 @@ void ChainEvaluator::Evaluate(const T* theta, ChainSample<T>* out) const {
       continue;
     }
     const Vec3<T> between = out->eye[1] - out->eye[0];
-    const T s0 = between.cross(d1).dot(n) / n2;
-    const T s1 = between.cross(d0).dot(n) / n2;
+    const T inverse_n2 = T(1) / n2;
+    const T s0 = between.cross(d1).dot(n) * inverse_n2;
+    const T s1 = between.cross(d0).dot(n) * inverse_n2;
     s.perceived = T(0.5) * (out->eye[0] + s0 * d0 + out->eye[1] + s1 * d1);
   }
 }

@@ -80,53 +80,151 @@ inline double ZigguratFast(uint64_t word, const CounterRng& rng, uint64_t index,
   return ZigguratSlow(word, rng, index, parameter);
 }
 
-void PhiloxWordsScalar(const CounterRng& rng, uint64_t first, size_t count, uint32_t lane, uint64_t* out, size_t stride) {
-  for (size_t s = 0; s < count; ++s) {
-    const PhiloxCounter b = rng.Bits(first + s, lane);
-    out[s * stride] = Word(b, 0);
-    out[s * stride + 1] = Word(b, 1);
+// The value of one draw from its word (sample `index`).
+inline double DrawValue(const ThetaSampler::Draw& d, uint64_t word, const CounterRng& rng, uint64_t index) {
+  return d.normal ? d.a + d.b * ZigguratFast(word, rng, index, d.parameter) : d.a + d.b * OpenUnit(word);
+}
+
+using Draw = ThetaSampler::Draw;
+using Constant = ThetaSampler::Constant;
+constexpr size_t kLanes = ThetaSampler::kLanes;
+
+// Both fill kernels write every parameter's lanes of each group: the constants, then the draws.
+void FillGroupsScalar(size_t size, const std::vector<uint32_t>& blocks, const std::vector<Draw>& draws,
+                      const std::vector<Constant>& constants, const CounterRng& rng, uint64_t first, size_t groups,
+                      double* theta) {
+  const size_t group_size = kLanes * size;
+  std::vector<uint64_t> words(2 * blocks.size());
+  for (size_t g = 0; g < groups; ++g) {
+    double* out = theta + g * group_size;
+    for (const Constant& c : constants) std::fill_n(out + kLanes * c.parameter, kLanes, c.value);
+    for (size_t l = 0; l < kLanes; ++l) {
+      const uint64_t index = first + kLanes * g + l;
+      for (size_t b = 0; b < blocks.size(); ++b) {
+        const PhiloxCounter bits = rng.Bits(index, blocks[b]);
+        words[2 * b] = Word(bits, 0);
+        words[2 * b + 1] = Word(bits, 1);
+      }
+      for (const Draw& d : draws) out[kLanes * d.parameter + l] = DrawValue(d, words[d.word], rng, index);
+    }
   }
 }
 
-// Philox-4×32-10 on four counters at once: each 32-bit word sits in the low half of a 64-bit
-// element, so _mm256_mul_epu32 gives the four 32×32→64 products of a round in one instruction.
-[[gnu::target("avx2")]] void PhiloxWordsAvx2(const CounterRng& rng, uint64_t first, size_t count, uint32_t lane,
-                                             uint64_t* out, size_t stride) {
-  const __m256i m0 = _mm256_set1_epi64x(0xD2511F53), m1 = _mm256_set1_epi64x(0xCD9E8D57);
-  const __m256i low = _mm256_set1_epi64x(0xffffffff);
-  const PhiloxKey key = rng.key();
-  size_t s = 0;
-  for (; s + 4 <= count; s += 4) {
-    const uint64_t i0 = first + s;
-    __m256i c0 = _mm256_set_epi64x(static_cast<uint32_t>(i0 + 3), static_cast<uint32_t>(i0 + 2),
-                                   static_cast<uint32_t>(i0 + 1), static_cast<uint32_t>(i0));
-    __m256i c1 = _mm256_set_epi64x((i0 + 3) >> 32, (i0 + 2) >> 32, (i0 + 1) >> 32, i0 >> 32);
-    __m256i c2 = _mm256_set1_epi64x(lane);
-    __m256i c3 = _mm256_set1_epi64x(rng.stream());
-    uint32_t k0 = key[0], k1 = key[1];
+// OpenUnit on four words: the top 53 bits k converted exactly in two parts (no 64-bit integer to
+// double conversion before AVX-512), k = (2⁸⁴ + hi·2³²) − 2⁸⁴ + (2⁵² + lo) − 2⁵², then the same
+// (k + ½)·2⁻⁵³ as the scalar path.
+[[gnu::target("avx2")]] inline __m256d OpenUnitAvx2(__m256i word) {
+  const __m256i k = _mm256_srli_epi64(word, 11);
+  const __m256i hi = _mm256_or_si256(_mm256_srli_epi64(k, 32), _mm256_set1_epi64x(0x4530000000000000));
+  const __m256i lo = _mm256_or_si256(_mm256_and_si256(k, _mm256_set1_epi64x(0xffffffff)), _mm256_set1_epi64x(0x4330000000000000));
+  const __m256d exact = _mm256_add_pd(_mm256_sub_pd(_mm256_castsi256_pd(hi), _mm256_set1_pd(0x1.0p84)),
+                                      _mm256_sub_pd(_mm256_castsi256_pd(lo), _mm256_set1_pd(0x1.0p52)));
+  return _mm256_mul_pd(_mm256_add_pd(exact, _mm256_set1_pd(0.5)), _mm256_set1_pd(0x1.0p-53));
+}
+
+// ZigguratFast on the four words at `words` (samples index … index + 3); lanes outside their
+// rectangle take the scalar slow path.
+[[gnu::target("avx2")]] inline __m256d ZigguratAvx2(const uint64_t* words, const CounterRng& rng, uint64_t index,
+                                                   uint32_t parameter) {
+  const __m256i word = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(words));
+  // The layer's two edges by scalar loads: on Zen 3 two gathers cost more than the rest together.
+  const double* x0 = &kZigX[words[0] & 127];
+  const double* x1 = &kZigX[words[1] & 127];
+  const double* x2 = &kZigX[words[2] & 127];
+  const double* x3 = &kZigX[words[3] & 127];
+  const __m256d x = _mm256_mul_pd(OpenUnitAvx2(word), _mm256_setr_pd(x0[0], x1[0], x2[0], x3[0]));
+  const __m256d edge = _mm256_setr_pd(x0[1], x1[1], x2[1], x3[1]);
+  const __m256i sign = _mm256_slli_epi64(_mm256_and_si256(word, _mm256_set1_epi64x(128)), 56);
+  const __m256d z = _mm256_xor_pd(x, _mm256_castsi256_pd(sign));
+  const int inside = _mm256_movemask_pd(_mm256_cmp_pd(x, edge, _CMP_LT_OQ));
+  if (inside == 0xf) [[likely]] return z;
+  alignas(32) double lanes[kLanes];
+  _mm256_store_pd(lanes, z);
+  for (size_t l = 0; l < kLanes; ++l) {
+    if (!(inside >> l & 1)) lanes[l] = ZigguratSlow(words[l], rng, index + l, parameter);
+  }
+  return _mm256_load_pd(lanes);
+}
+
+// Philox-4×32-10 on the four samples of a group at once: each 32-bit word sits in the low half of
+// a 64-bit element, so _mm256_mul_epu32 gives the four 32×32→64 products of a round in one
+// instruction. Integer arithmetic: the same bits as CounterRng::Bits.
+struct PhiloxAvx2 {
+  __m256i m0, m1, stream;
+  std::array<__m256i, 10> key0, key1;  // round keys
+
+  [[gnu::target("avx2")]] explicit PhiloxAvx2(const CounterRng& rng) {
+    m0 = _mm256_set1_epi64x(0xD2511F53), m1 = _mm256_set1_epi64x(0xCD9E8D57);
+    stream = _mm256_set1_epi64x(rng.stream());
+    PhiloxKey key = rng.key();
     for (int round = 0; round < 10; ++round) {
-      if (round > 0) {
-        k0 += 0x9E3779B9u;
-        k1 += 0xBB67AE85u;
-      }
-      const __m256i p0 = _mm256_mul_epu32(c0, m0);
-      const __m256i p1 = _mm256_mul_epu32(c2, m1);
-      const __m256i n0 = _mm256_xor_si256(_mm256_xor_si256(_mm256_srli_epi64(p1, 32), c1), _mm256_set1_epi64x(k0));
-      const __m256i n2 = _mm256_xor_si256(_mm256_xor_si256(_mm256_srli_epi64(p0, 32), c3), _mm256_set1_epi64x(k1));
-      c1 = _mm256_and_si256(p1, low);
-      c3 = _mm256_and_si256(p0, low);
-      c0 = n0;
-      c2 = n2;
-    }
-    alignas(32) uint64_t w0[4], w1[4];
-    _mm256_store_si256(reinterpret_cast<__m256i*>(w0), _mm256_or_si256(_mm256_slli_epi64(c0, 32), c1));
-    _mm256_store_si256(reinterpret_cast<__m256i*>(w1), _mm256_or_si256(_mm256_slli_epi64(c2, 32), c3));
-    for (int k = 0; k < 4; ++k) {
-      out[(s + k) * stride] = w0[k];
-      out[(s + k) * stride + 1] = w1[k];
+      if (round > 0) key[0] += 0x9E3779B9u, key[1] += 0xBB67AE85u;
+      key0[round] = _mm256_set1_epi64x(key[0]);
+      key1[round] = _mm256_set1_epi64x(key[1]);
     }
   }
-  PhiloxWordsScalar(rng, first + s, count - s, lane, out + s * stride, stride);
+
+  // c1 and c3 keep the high halves of the products: _mm256_mul_epu32 ignores the high half of its
+  // inputs, and Words masks them once at the end.
+  [[gnu::target("avx2"), gnu::always_inline]] inline void Round(int round, __m256i& c0, __m256i& c1, __m256i& c2,
+                                                               __m256i& c3) const {
+    const __m256i p0 = _mm256_mul_epu32(c0, m0);
+    const __m256i p1 = _mm256_mul_epu32(c2, m1);
+    c0 = _mm256_xor_si256(_mm256_xor_si256(_mm256_srli_epi64(p1, 32), c1), key0[round]);
+    c2 = _mm256_xor_si256(_mm256_xor_si256(_mm256_srli_epi64(p0, 32), c3), key1[round]);
+    c1 = p1;
+    c3 = p0;
+  }
+
+  // The block's two 64-bit words for the four samples: out[0…3] word 0, out[4…7] word 1.
+  [[gnu::target("avx2"), gnu::always_inline]] static inline void Words(__m256i c0, __m256i c1, __m256i c2, __m256i c3,
+                                                                      uint64_t* out) {
+    const __m256i low = _mm256_set1_epi64x(0xffffffff);
+    _mm256_storeu_si256(reinterpret_cast<__m256i*>(out), _mm256_or_si256(_mm256_slli_epi64(c0, 32), _mm256_and_si256(c1, low)));
+    _mm256_storeu_si256(reinterpret_cast<__m256i*>(out + kLanes),
+                        _mm256_or_si256(_mm256_slli_epi64(c2, 32), _mm256_and_si256(c3, low)));
+  }
+};
+
+// A group's Philox blocks first (two at a time: the ten rounds of one block are a dependency
+// chain, and two chains keep the multipliers busy), then the draws from the words.
+[[gnu::target("avx2")]] void FillGroupsAvx2(size_t size, const std::vector<uint32_t>& blocks,
+                                            const std::vector<Draw>& draws, const std::vector<Constant>& constants,
+                                            const CounterRng& rng, uint64_t first, size_t groups, double* theta) {
+  const PhiloxAvx2 philox(rng);
+  const size_t group_size = kLanes * size, num_blocks = blocks.size();
+  // Not a vector of __m256i: outside AVX code GCC aligns that type to 16 bytes only.
+  std::vector<uint64_t> words(2 * kLanes * num_blocks);
+  for (size_t g = 0; g < groups; ++g) {
+    double* out = theta + g * group_size;
+    for (const Constant& c : constants) _mm256_storeu_pd(out + kLanes * c.parameter, _mm256_set1_pd(c.value));
+    const uint64_t i0 = first + kLanes * g;
+    const __m256i index_low = _mm256_set_epi64x(static_cast<uint32_t>(i0 + 3), static_cast<uint32_t>(i0 + 2),
+                                                static_cast<uint32_t>(i0 + 1), static_cast<uint32_t>(i0));
+    const __m256i index_high = _mm256_set_epi64x((i0 + 3) >> 32, (i0 + 2) >> 32, (i0 + 1) >> 32, i0 >> 32);
+    size_t b = 0;
+    for (; b + 2 <= num_blocks; b += 2) {
+      __m256i a0 = index_low, a1 = index_high, a2 = _mm256_set1_epi64x(blocks[b]), a3 = philox.stream;
+      __m256i b0 = index_low, b1 = index_high, b2 = _mm256_set1_epi64x(blocks[b + 1]), b3 = philox.stream;
+      for (int round = 0; round < 10; ++round) {
+        philox.Round(round, a0, a1, a2, a3);
+        philox.Round(round, b0, b1, b2, b3);
+      }
+      PhiloxAvx2::Words(a0, a1, a2, a3, &words[2 * kLanes * b]);
+      PhiloxAvx2::Words(b0, b1, b2, b3, &words[2 * kLanes * (b + 1)]);
+    }
+    if (b < num_blocks) {
+      __m256i a0 = index_low, a1 = index_high, a2 = _mm256_set1_epi64x(blocks[b]), a3 = philox.stream;
+      for (int round = 0; round < 10; ++round) philox.Round(round, a0, a1, a2, a3);
+      PhiloxAvx2::Words(a0, a1, a2, a3, &words[2 * kLanes * b]);
+    }
+    for (const Draw& d : draws) {
+      const uint64_t* w = &words[kLanes * d.word];
+      const __m256d v = d.normal ? ZigguratAvx2(w, rng, i0, d.parameter)
+                                 : OpenUnitAvx2(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(w)));
+      _mm256_storeu_pd(out + kLanes * d.parameter, _mm256_add_pd(_mm256_set1_pd(d.a), _mm256_mul_pd(_mm256_set1_pd(d.b), v)));
+    }
+  }
 }
 
 }  // namespace
@@ -135,51 +233,40 @@ double ZigguratNormal(uint64_t word, const CounterRng& rng, uint64_t index, uint
   return ZigguratFast(word, rng, index, parameter);
 }
 
-void PhiloxWords(const CounterRng& rng, uint64_t first, size_t count, uint32_t lane, uint64_t* out, size_t stride) {
-  static const bool avx2 = __builtin_cpu_supports("avx2");
-  if (avx2) {
-    PhiloxWordsAvx2(rng, first, count, lane, out, stride);
-  } else {
-    PhiloxWordsScalar(rng, first, count, lane, out, stride);
+ThetaSampler::ThetaSampler(const ChainModel& model, uint64_t seed)
+    : num_parameters_(model.parameters.size()), rng_(seed, 1) {
+  for (size_t j = 0; j < model.parameters.size(); ++j) {
+    const Distribution& d = model.parameters[j].distribution;
+    if (d.IsConstant()) {
+      constants_.push_back({static_cast<uint32_t>(j), d.Mean()});
+      continue;
+    }
+    const uint32_t lane = static_cast<uint32_t>(j / 2);
+    if (blocks_.empty() || blocks_.back() != lane) blocks_.push_back(lane);
+    Draw draw{static_cast<uint32_t>(j), static_cast<uint32_t>(2 * (blocks_.size() - 1) + j % 2), false, 0, 0};
+    if (const auto* n = std::get_if<Distribution::Normal>(&d.form())) {
+      draw.normal = true, draw.a = n->mean, draw.b = n->sigma;
+    } else if (const auto* u = std::get_if<Distribution::Uniform>(&d.form())) {
+      draw.a = u->lo, draw.b = u->hi - u->lo;
+    }
+    draws_.push_back(draw);
   }
 }
 
-ThetaSampler::ThetaSampler(const ChainModel& model, uint64_t seed) : rng_(seed, 1) {
-  for (size_t j = 0; j < model.parameters.size(); ++j) {
-    const Distribution& d = model.parameters[j].distribution;
-    constants_.push_back(d.Mean());
-    if (d.IsConstant()) continue;
-    if (const auto* n = std::get_if<Distribution::Normal>(&d.form())) {
-      draws_.push_back({static_cast<uint32_t>(j), true, n->mean, n->sigma});
-    } else if (const auto* u = std::get_if<Distribution::Uniform>(&d.form())) {
-      draws_.push_back({static_cast<uint32_t>(j), false, u->lo, u->hi - u->lo});
-    }
-    const uint32_t lane = static_cast<uint32_t>(j / 2);
-    if (lanes_.empty() || lanes_.back() != lane) lanes_.push_back(lane);
-    slot_.push_back(static_cast<uint32_t>(lanes_.size() - 1));
-  }
+void ThetaSampler::FillLanes(uint64_t first, size_t groups, double* theta) const {
+  static const bool avx2 = __builtin_cpu_supports("avx2");
+  (avx2 ? FillGroupsAvx2 : FillGroupsScalar)(num_parameters_, blocks_, draws_, constants_, rng_, first, groups,
+                                                        theta);
 }
 
 void ThetaSampler::Fill(uint64_t first, size_t count, double* theta) const {
-  const size_t n = constants_.size(), lanes = lanes_.size();
-  // Words for a chunk of samples (vectorized over samples), sample-major so that each row reads
-  // its words contiguously; 32 samples × 2 words × lanes stays in the L1 cache.
-  constexpr size_t kChunk = 32;
-  thread_local std::vector<uint64_t> words;
-  words.resize(2 * kChunk * lanes);
-  for (size_t c = 0; c < count; c += kChunk) {
-    const size_t m = std::min(kChunk, count - c);
-    for (size_t l = 0; l < lanes; ++l) PhiloxWords(rng_, first + c, m, lanes_[l], &words[2 * l], 2 * lanes);
-    for (size_t s = 0; s < m; ++s) {
-      double* row = theta + (c + s) * n;
-      const uint64_t* w = &words[2 * lanes * s];
-      std::memcpy(row, constants_.data(), n * sizeof(double));
-      for (size_t k = 0; k < draws_.size(); ++k) {
-        const Draw& d = draws_[k];
-        const uint64_t word = w[2 * slot_[k] + d.parameter % 2];
-        row[d.parameter] =
-            d.normal ? d.a + d.b * ZigguratFast(word, rng_, first + c + s, d.parameter) : d.a + d.b * OpenUnit(word);
-      }
+  const size_t n = num_parameters_;
+  thread_local std::vector<double> group;
+  group.resize(kLanes * n);
+  for (size_t s = 0; s < count; s += kLanes) {
+    FillLanes(first + s, 1, group.data());
+    for (size_t l = 0; l < kLanes && s + l < count; ++l) {
+      for (size_t j = 0; j < n; ++j) theta[(s + l) * n + j] = group[kLanes * j + l];
     }
   }
 }

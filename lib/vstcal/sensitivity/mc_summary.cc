@@ -31,10 +31,10 @@ BlockAccumulator::BlockAccumulator(const SummaryPlan& plan)
   bins_.reserve(plan.block_size * moments_.size());
 }
 
-void BlockAccumulator::Add(const double* y) {
+void BlockAccumulator::Add(const double* y, size_t stride) {
   for (size_t k = 0; k < moments_.size(); ++k) {
-    moments_[k].Add(y[k]);
-    bins_.push_back(static_cast<uint32_t>(spec_->BinOf(y[k])));
+    moments_[k].Add(y[k * stride]);
+    bins_.push_back(static_cast<uint32_t>(spec_->BinOf(y[k * stride])));
   }
 }
 
