@@ -118,6 +118,11 @@ inline SimdMask operator!=(const SimdDouble& a, const SimdDouble& b) { return Si
 inline SimdMask operator<(const SimdDouble& a, double b) { return a < SimdDouble(b); }
 inline SimdMask operator>(const SimdDouble& a, double b) { return a > SimdDouble(b); }
 
+// Whether every lane is set, without recording a divergence (for loops that run until all lanes are
+// done, with finished lanes kept by Select). For bool, the value itself.
+inline bool AllLanes(const SimdMask& m) { return m.all(); }
+inline bool AllLanes(bool b) { return b; }
+
 // Lane by lane: a where the mask is set, b elsewhere. For bool, the plain choice, so that
 // templated code can use it for every scalar type.
 inline SimdDouble Select(const SimdMask& m, const SimdDouble& a, const SimdDouble& b) { return SimdDouble::FromLanes(m.bits ? a.v : b.v); }

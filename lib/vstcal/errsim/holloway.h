@@ -56,7 +56,7 @@ T AngleFromSinCos(const T& s, const T& c) {
 // Angle between two non-zero vectors, radians.
 template <typename T>
 T AngleBetweenVectors(const Vec3<T>& a, const Vec3<T>& b) {
-  return AngleFromSinCos(a.cross(b).norm(), a.dot(b));
+  return AngleFromSinCos(fixed_order::Norm(fixed_order::Cross(a, b)), fixed_order::Dot(a, b));
 }
 
 // The errors of test point k of a valid sample. The occlusion decision compares the virtual depth
@@ -65,22 +65,23 @@ T AngleBetweenVectors(const Vec3<T>& a, const Vec3<T>& b) {
 template <typename T>
 PointErrorsOf<T> MeasurePoint(const ChainEvaluator& chain, const ChainSample<T>& sample, const T* theta, size_t k) {
   using std::sqrt;
+  namespace fo = fixed_order;
   constexpr double kDeg = 180.0 / kPi;
   const PointSample<T>& s = sample.points[k];
   const ChainModel& model = chain.model();
   PointErrorsOf<T> e;
   for (int i = 0; i < kNumEyes; ++i) {
-    e.pixel_px[i] = s.pixel_error[i].norm();
+    e.pixel_px[i] = fo::Norm(s.pixel_error[i]);
     e.angular_deg[i] = kDeg * AngleBetweenVectors<T>(s.ray[i], s.truth - sample.eye[i]);
   }
   const Vec3<T> cyclops = T(0.5) * (sample.eye[0] + sample.eye[1]);
   const Vec3<T> sight = s.truth - cyclops;  // not normalized: depth = Δ·s/|s|, lateral = |Δ × s|/|s|
-  const T distance2 = sight.squaredNorm();
+  const T distance2 = fo::SquaredNorm(sight);
   const T inverse_distance = T(1) / sqrt(distance2);
   const Vec3<T> delta = s.perceived - s.truth;
-  const T along = delta.dot(sight);
-  const T across = delta.cross(sight).norm();
-  e.linear = delta.norm();
+  const T along = fo::Dot(delta, sight);
+  const T across = fo::Norm(fo::Cross(delta, sight));
+  e.linear = fo::Norm(delta);
   e.depth = along * inverse_distance;
   e.lateral = across * inverse_distance;
   // ∠(s, s + Δ): |s × (s + Δ)| = |Δ × s| and s·(s + Δ) = |s|² + Δ·s, from what is at hand.

@@ -89,24 +89,25 @@ using Draw = ThetaSampler::Draw;
 using Constant = ThetaSampler::Constant;
 constexpr size_t kLanes = ThetaSampler::kLanes;
 
-// Both fill kernels write every parameter's lanes of each group: the constants, then the draws.
+// One sample's draws one at a time, parameter j to out[j·stride]: the reference that the AVX2
+// kernel reproduces bit for bit.
+void DrawSample(const std::vector<uint32_t>& blocks, const std::vector<Draw>& draws, const CounterRng& rng,
+                uint64_t index, double* out, size_t stride) {
+  PhiloxCounter bits{};
+  uint32_t block = UINT32_MAX;
+  for (const Draw& d : draws) {
+    if (d.word / 2 != block) bits = rng.Bits(index, blocks[block = d.word / 2]);
+    out[d.parameter * stride] = DrawValue(d, Word(bits, d.word % 2), rng, index);
+  }
+}
+
 void FillGroupsScalar(size_t size, const std::vector<uint32_t>& blocks, const std::vector<Draw>& draws,
                       const std::vector<Constant>& constants, const CounterRng& rng, uint64_t first, size_t groups,
                       double* theta) {
-  const size_t group_size = kLanes * size;
-  std::vector<uint64_t> words(2 * blocks.size());
   for (size_t g = 0; g < groups; ++g) {
-    double* out = theta + g * group_size;
+    double* out = theta + g * kLanes * size;
     for (const Constant& c : constants) std::fill_n(out + kLanes * c.parameter, kLanes, c.value);
-    for (size_t l = 0; l < kLanes; ++l) {
-      const uint64_t index = first + kLanes * g + l;
-      for (size_t b = 0; b < blocks.size(); ++b) {
-        const PhiloxCounter bits = rng.Bits(index, blocks[b]);
-        words[2 * b] = Word(bits, 0);
-        words[2 * b + 1] = Word(bits, 1);
-      }
-      for (const Draw& d : draws) out[kLanes * d.parameter + l] = DrawValue(d, words[d.word], rng, index);
-    }
+    for (size_t l = 0; l < kLanes; ++l) DrawSample(blocks, draws, rng, first + kLanes * g + l, out + l, kLanes);
   }
 }
 
@@ -260,14 +261,10 @@ void ThetaSampler::FillLanes(uint64_t first, size_t groups, double* theta) const
 }
 
 void ThetaSampler::Fill(uint64_t first, size_t count, double* theta) const {
-  const size_t n = num_parameters_;
-  thread_local std::vector<double> group;
-  group.resize(kLanes * n);
-  for (size_t s = 0; s < count; s += kLanes) {
-    FillLanes(first + s, 1, group.data());
-    for (size_t l = 0; l < kLanes && s + l < count; ++l) {
-      for (size_t j = 0; j < n; ++j) theta[(s + l) * n + j] = group[kLanes * j + l];
-    }
+  for (size_t s = 0; s < count; ++s) {
+    double* row = theta + s * num_parameters_;
+    for (const Constant& c : constants_) row[c.parameter] = c.value;
+    DrawSample(blocks_, draws_, rng_, first + s, row, 1);
   }
 }
 

@@ -38,7 +38,8 @@ class ThetaSampler {
   // ChainEvaluator::Evaluate<SimdDouble> call. Where the CPU has AVX2 a group's Philox blocks and
   // ziggurat rectangles are computed four samples at a time (the same bits as one at a time).
   void FillLanes(uint64_t first, size_t groups, double* theta) const;
-  // Rows first … first + count − 1 of θ, row-major (count × size()): the same numbers.
+  // Rows first … first + count − 1 of θ, row-major (count × size()), one draw at a time without
+  // SIMD: the reference for FillLanes, which gives the same numbers.
   void Fill(uint64_t first, size_t count, double* theta) const;
 
   // One random parameter: its value is a + b·z (normal, z standard normal) or a + b·u (uniform,
