@@ -34,7 +34,6 @@ class ExtraWords {
     if (k_ % 2 == 0) block_ = rng_.Bits(index_, kExtraLanes + (parameter_ << 7) + (k_ / 2) % 128);
     return Word(block_, k_++ % 2);
   }
-
  private:
   const CounterRng& rng_;
   uint64_t index_;
@@ -123,107 +122,179 @@ void FillGroupsScalar(size_t size, const std::vector<uint32_t>& blocks, const st
   return _mm256_mul_pd(_mm256_add_pd(exact, _mm256_set1_pd(0.5)), _mm256_set1_pd(0x1.0p-53));
 }
 
-// ZigguratFast on the four words at `words` (samples index … index + 3); lanes outside their
-// rectangle take the scalar slow path.
-[[gnu::target("avx2")]] inline __m256d ZigguratAvx2(const uint64_t* words, const CounterRng& rng, uint64_t index,
-                                                   uint32_t parameter) {
+// ZigguratFast's rectangle test on the four words at `words`: z for the lanes inside their
+// rectangle, and which lanes those are (bit l for lane l); the others need ZigguratSlow.
+[[gnu::target("avx2")]] inline __m256d ZigguratRectangleAvx2(const uint64_t* words, int* inside) {
   const __m256i word = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(words));
-  // The layer's two edges by scalar loads: on Zen 3 two gathers cost more than the rest together.
-  const double* x0 = &kZigX[words[0] & 127];
-  const double* x1 = &kZigX[words[1] & 127];
-  const double* x2 = &kZigX[words[2] & 127];
-  const double* x3 = &kZigX[words[3] & 127];
-  const __m256d x = _mm256_mul_pd(OpenUnitAvx2(word), _mm256_setr_pd(x0[0], x1[0], x2[0], x3[0]));
-  const __m256d edge = _mm256_setr_pd(x0[1], x1[1], x2[1], x3[1]);
+  // Each lane's layer edges (x[layer], x[layer + 1]) are adjacent in the table: one 16-byte load
+  // per lane and a transpose, where two gathers cost more than everything else here on Zen 3.
+  const __m256d pairs02 = _mm256_insertf128_pd(_mm256_castpd128_pd256(_mm_loadu_pd(&kZigX[words[0] & 127])),
+                                               _mm_loadu_pd(&kZigX[words[2] & 127]), 1);
+  const __m256d pairs13 = _mm256_insertf128_pd(_mm256_castpd128_pd256(_mm_loadu_pd(&kZigX[words[1] & 127])),
+                                               _mm_loadu_pd(&kZigX[words[3] & 127]), 1);
+  const __m256d x = _mm256_mul_pd(OpenUnitAvx2(word), _mm256_unpacklo_pd(pairs02, pairs13));
+  const __m256d edge = _mm256_unpackhi_pd(pairs02, pairs13);
   const __m256i sign = _mm256_slli_epi64(_mm256_and_si256(word, _mm256_set1_epi64x(128)), 56);
-  const __m256d z = _mm256_xor_pd(x, _mm256_castsi256_pd(sign));
-  const int inside = _mm256_movemask_pd(_mm256_cmp_pd(x, edge, _CMP_LT_OQ));
-  if (inside == 0xf) [[likely]] return z;
-  alignas(32) double lanes[kLanes];
-  _mm256_store_pd(lanes, z);
-  for (size_t l = 0; l < kLanes; ++l) {
-    if (!(inside >> l & 1)) lanes[l] = ZigguratSlow(words[l], rng, index + l, parameter);
-  }
-  return _mm256_load_pd(lanes);
+  *inside = _mm256_movemask_pd(_mm256_cmp_pd(x, edge, _CMP_LT_OQ));
+  return _mm256_xor_pd(x, _mm256_castsi256_pd(sign));
 }
 
 // Philox-4×32-10 on the four samples of a group at once: each 32-bit word sits in the low half of
 // a 64-bit element, so _mm256_mul_epu32 gives the four 32×32→64 products of a round in one
 // instruction. Integer arithmetic: the same bits as CounterRng::Bits.
-struct PhiloxAvx2 {
-  __m256i m0, m1, stream;
-  std::array<__m256i, 10> key0, key1;  // round keys
+//
+// Rounds 0 and 1 mostly repeat: a block's counter is (index low, index high, lane, stream), and
+// within a group only the index's low word varies, so each word after those two rounds is a part
+// that depends on the group (one vector per group) xor a part that depends on the lane and the
+// index's high word (scalars per block, recomputed when the high word changes). The blocks then
+// start at round 2: 8 rounds each instead of 10 (6 % of the draws' time).
+class PhiloxAvx2 {
+ public:
+  static constexpr uint32_t kM0 = 0xD2511F53u, kM1 = 0xCD9E8D57u;
 
-  [[gnu::target("avx2")]] explicit PhiloxAvx2(const CounterRng& rng) {
-    m0 = _mm256_set1_epi64x(0xD2511F53), m1 = _mm256_set1_epi64x(0xCD9E8D57);
-    stream = _mm256_set1_epi64x(rng.stream());
+  // Scalars only: GCC aligns __m256i members to 16 bytes outside AVX code and to 32 inside.
+  PhiloxAvx2(const CounterRng& rng, const std::vector<uint32_t>& blocks)
+      : stream_(rng.stream()), blocks_(blocks), lane_parts_(blocks.size()) {
     PhiloxKey key = rng.key();
     for (int round = 0; round < 10; ++round) {
       if (round > 0) key[0] += 0x9E3779B9u, key[1] += 0xBB67AE85u;
-      key0[round] = _mm256_set1_epi64x(key[0]);
-      key1[round] = _mm256_set1_epi64x(key[1]);
+      key0_[round] = key[0], key1_[round] = key[1];
     }
   }
 
+  // The blocks of samples i0 … i0 + 3: block b's word 0 of the four samples to out[8b…8b + 3],
+  // word 1 to out[8b + 4…8b + 7].
+  [[gnu::target("avx2")]] void Group(uint64_t i0, uint64_t* out) {
+    const __m256i index_low = _mm256_set_epi64x(static_cast<uint32_t>(i0 + 3), static_cast<uint32_t>(i0 + 2),
+                                                static_cast<uint32_t>(i0 + 1), static_cast<uint32_t>(i0));
+    const size_t n = blocks_.size();
+    size_t b = 0;
+    if (i0 >> 32 != (i0 + kLanes - 1) >> 32) {  // the high word differs between the samples
+      const __m256i index_high = _mm256_set_epi64x((i0 + 3) >> 32, (i0 + 2) >> 32, (i0 + 1) >> 32, i0 >> 32);
+      const __m256i counter[2] = {index_low, index_high};
+      for (; b < n; ++b) Blocks<1>(counter, nullptr, &blocks_[b], 0, out + 2 * kLanes * b);
+      return;
+    }
+    SetIndexHigh(static_cast<uint32_t>(i0 >> 32));
+    // Rounds 0 and 1, group part: p0 = M0·(index low), q = M1·(hi p0 ^ stream ^ k1₀).
+    const __m256i p0 = _mm256_mul_epu32(index_low, _mm256_set1_epi64x(kM0));
+    const __m256i q = _mm256_mul_epu32(_mm256_xor_si256(_mm256_srli_epi64(p0, 32), _mm256_set1_epi64x(stream_ ^ key1_[0])),
+                                       _mm256_set1_epi64x(kM1));
+    const __m256i group[3] = {_mm256_xor_si256(_mm256_srli_epi64(q, 32), _mm256_set1_epi64x(key0_[1])), q,
+                              _mm256_xor_si256(p0, _mm256_set1_epi64x(key1_[1]))};
+    for (; b + 3 <= n; b += 3) Blocks<3>(group, &lane_parts_[b], nullptr, 2, out + 2 * kLanes * b);
+    for (; b < n; ++b) Blocks<1>(group, &lane_parts_[b], nullptr, 2, out + 2 * kLanes * b);
+  }
+
+ private:
+  // Rounds 0 and 1, block part: with p1 = M1·lane and e = M0·(hi p1 ^ index high ^ k0₀), after
+  // round 1 the block holds (g0 ^ lo p1, g1, g2 ^ hi e, lo e), g the group part.
+  struct LanePart {
+    uint64_t w0, w2, w3;
+  };
+
+  void SetIndexHigh(uint32_t high) {
+    if (high == index_high_ && lane_parts_valid_) return;
+    for (size_t b = 0; b < blocks_.size(); ++b) {
+      const uint64_t p1 = uint64_t{kM1} * blocks_[b];
+      const uint64_t e = uint64_t{kM0} * (static_cast<uint32_t>(p1 >> 32) ^ high ^ key0_[0]);
+      lane_parts_[b] = {static_cast<uint32_t>(p1), e >> 32, static_cast<uint32_t>(e)};
+    }
+    index_high_ = high;
+    lane_parts_valid_ = true;
+  }
+
   // c1 and c3 keep the high halves of the products: _mm256_mul_epu32 ignores the high half of its
-  // inputs, and Words masks them once at the end.
+  // inputs, and Blocks masks them once at the end.
   [[gnu::target("avx2"), gnu::always_inline]] inline void Round(int round, __m256i& c0, __m256i& c1, __m256i& c2,
                                                                __m256i& c3) const {
-    const __m256i p0 = _mm256_mul_epu32(c0, m0);
-    const __m256i p1 = _mm256_mul_epu32(c2, m1);
-    c0 = _mm256_xor_si256(_mm256_xor_si256(_mm256_srli_epi64(p1, 32), c1), key0[round]);
-    c2 = _mm256_xor_si256(_mm256_xor_si256(_mm256_srli_epi64(p0, 32), c3), key1[round]);
+    const __m256i p0 = _mm256_mul_epu32(c0, _mm256_set1_epi64x(kM0));
+    const __m256i p1 = _mm256_mul_epu32(c2, _mm256_set1_epi64x(kM1));
+    c0 = _mm256_xor_si256(_mm256_xor_si256(_mm256_srli_epi64(p1, 32), c1), _mm256_set1_epi64x(key0_[round]));
+    c2 = _mm256_xor_si256(_mm256_xor_si256(_mm256_srli_epi64(p0, 32), c3), _mm256_set1_epi64x(key1_[round]));
     c1 = p1;
     c3 = p0;
   }
 
-  // The block's two 64-bit words for the four samples: out[0…3] word 0, out[4…7] word 1.
-  [[gnu::target("avx2"), gnu::always_inline]] static inline void Words(__m256i c0, __m256i c1, __m256i c2, __m256i c3,
-                                                                      uint64_t* out) {
+  // K blocks interleaved from round `first_round`: the rounds of one block are a chain of
+  // dependent multiplications, and three chains keep the multiplier busy (two leave it idle, four
+  // run out of registers). From round 0, `start` is the counter's index (low, high) and `lanes`
+  // the blocks' lanes; from round 2, `start` is the group part and `parts` the blocks' parts.
+  template <int K>
+  [[gnu::target("avx2"), gnu::always_inline]] inline void Blocks(const __m256i* start, const LanePart* parts,
+                                                                const uint32_t* lanes, int first_round,
+                                                                uint64_t* out) const {
+    __m256i c0[K], c1[K], c2[K], c3[K];
+#pragma GCC unroll 4
+    for (int k = 0; k < K; ++k) {
+      if (first_round == 0) {
+        c0[k] = start[0], c1[k] = start[1], c2[k] = _mm256_set1_epi64x(lanes[k]), c3[k] = _mm256_set1_epi64x(stream_);
+      } else {
+        c0[k] = _mm256_xor_si256(start[0], _mm256_set1_epi64x(parts[k].w0));
+        c1[k] = start[1];
+        c2[k] = _mm256_xor_si256(start[2], _mm256_set1_epi64x(parts[k].w2));
+        c3[k] = _mm256_set1_epi64x(parts[k].w3);
+      }
+    }
+    for (int round = first_round; round < 10; ++round) {
+#pragma GCC unroll 4
+      for (int k = 0; k < K; ++k) Round(round, c0[k], c1[k], c2[k], c3[k]);
+    }
     const __m256i low = _mm256_set1_epi64x(0xffffffff);
-    _mm256_storeu_si256(reinterpret_cast<__m256i*>(out), _mm256_or_si256(_mm256_slli_epi64(c0, 32), _mm256_and_si256(c1, low)));
-    _mm256_storeu_si256(reinterpret_cast<__m256i*>(out + kLanes),
-                        _mm256_or_si256(_mm256_slli_epi64(c2, 32), _mm256_and_si256(c3, low)));
+#pragma GCC unroll 4
+    for (int k = 0; k < K; ++k) {
+      _mm256_storeu_si256(reinterpret_cast<__m256i*>(out + 2 * kLanes * k),
+                          _mm256_or_si256(_mm256_slli_epi64(c0[k], 32), _mm256_and_si256(c1[k], low)));
+      _mm256_storeu_si256(reinterpret_cast<__m256i*>(out + 2 * kLanes * k + kLanes),
+                          _mm256_or_si256(_mm256_slli_epi64(c2[k], 32), _mm256_and_si256(c3[k], low)));
+    }
   }
+
+  uint64_t stream_;
+  std::array<uint64_t, 10> key0_{}, key1_{};  // round keys
+  const std::vector<uint32_t>& blocks_;
+  std::vector<LanePart> lane_parts_;
+  uint32_t index_high_ = 0;
+  bool lane_parts_valid_ = false;
 };
 
-// A group's Philox blocks first (two at a time: the ten rounds of one block are a dependency
-// chain, and two chains keep the multipliers busy), then the draws from the words.
+// A group's Philox blocks first, then the draws from the words.
 [[gnu::target("avx2")]] void FillGroupsAvx2(size_t size, const std::vector<uint32_t>& blocks,
                                             const std::vector<Draw>& draws, const std::vector<Constant>& constants,
                                             const CounterRng& rng, uint64_t first, size_t groups, double* theta) {
-  const PhiloxAvx2 philox(rng);
+  PhiloxAvx2 philox(rng, blocks);
   const size_t group_size = kLanes * size, num_blocks = blocks.size();
   // Not a vector of __m256i: outside AVX code GCC aligns that type to 16 bytes only.
   std::vector<uint64_t> words(2 * kLanes * num_blocks);
+  struct Pending {
+    const Draw* draw;
+    int inside;  // bit l: lane l was inside its rectangle
+  };
+  std::vector<Pending> pending(draws.size());
   for (size_t g = 0; g < groups; ++g) {
     double* out = theta + g * group_size;
     for (const Constant& c : constants) _mm256_storeu_pd(out + kLanes * c.parameter, _mm256_set1_pd(c.value));
     const uint64_t i0 = first + kLanes * g;
-    const __m256i index_low = _mm256_set_epi64x(static_cast<uint32_t>(i0 + 3), static_cast<uint32_t>(i0 + 2),
-                                                static_cast<uint32_t>(i0 + 1), static_cast<uint32_t>(i0));
-    const __m256i index_high = _mm256_set_epi64x((i0 + 3) >> 32, (i0 + 2) >> 32, (i0 + 1) >> 32, i0 >> 32);
-    size_t b = 0;
-    for (; b + 2 <= num_blocks; b += 2) {
-      __m256i a0 = index_low, a1 = index_high, a2 = _mm256_set1_epi64x(blocks[b]), a3 = philox.stream;
-      __m256i b0 = index_low, b1 = index_high, b2 = _mm256_set1_epi64x(blocks[b + 1]), b3 = philox.stream;
-      for (int round = 0; round < 10; ++round) {
-        philox.Round(round, a0, a1, a2, a3);
-        philox.Round(round, b0, b1, b2, b3);
-      }
-      PhiloxAvx2::Words(a0, a1, a2, a3, &words[2 * kLanes * b]);
-      PhiloxAvx2::Words(b0, b1, b2, b3, &words[2 * kLanes * (b + 1)]);
-    }
-    if (b < num_blocks) {
-      __m256i a0 = index_low, a1 = index_high, a2 = _mm256_set1_epi64x(blocks[b]), a3 = philox.stream;
-      for (int round = 0; round < 10; ++round) philox.Round(round, a0, a1, a2, a3);
-      PhiloxAvx2::Words(a0, a1, a2, a3, &words[2 * kLanes * b]);
-    }
+    philox.Group(i0, words.data());
+    // The rectangles first, recording the draws with a lane outside (without a branch: which
+    // vectors those are is a coin toss for the predictor); then the slow lanes, whose chains of
+    // Philox rounds and exp calls are independent of each other and overlap.
+    size_t num_pending = 0;
     for (const Draw& d : draws) {
       const uint64_t* w = &words[kLanes * d.word];
-      const __m256d v = d.normal ? ZigguratAvx2(w, rng, i0, d.parameter)
+      int inside = 0xf;
+      const __m256d v = d.normal ? ZigguratRectangleAvx2(w, &inside)
                                  : OpenUnitAvx2(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(w)));
       _mm256_storeu_pd(out + kLanes * d.parameter, _mm256_add_pd(_mm256_set1_pd(d.a), _mm256_mul_pd(_mm256_set1_pd(d.b), v)));
+      pending[num_pending] = {&d, inside};
+      num_pending += inside != 0xf;
+    }
+    for (size_t p = 0; p < num_pending; ++p) {
+      const Draw& d = *pending[p].draw;
+      for (size_t l = 0; l < kLanes; ++l) {
+        if (pending[p].inside >> l & 1) continue;
+        out[kLanes * d.parameter + l] = d.a + d.b * ZigguratSlow(words[kLanes * d.word + l], rng, i0 + l, d.parameter);
+      }
     }
   }
 }
