@@ -159,16 +159,18 @@ void ChainEvaluator::Evaluate(const T* theta, ChainSample<T>* out) const {
       fo::PerturbLeft(fo::Compose(hmd_from_tracker, fo::Compose(tracker_from_virtual, virtual_from_object)),
                       Vec3<T>(rig[0], rig[1], rig[2]), Vec3<T>(rig[3], rig[4], rig[5]));
 
-  std::array<Rigid3<T>, kNumEyes> camera_from_object;
+  auto camera_from_object_of = [&](int e) {
+    const T* ce = theta + L.camera_extrinsic + 6 * e;
+    const T baseline = theta[L.camera_extrinsic + 12];
+    const Vec3<T> rho = Vec3<T>(ce[3], ce[4], ce[5]) + baseline_step_[e].cast<T>() * baseline;
+    return fo::Compose(fo::PerturbLeft(camera_from_hmd_[e], Vec3<T>(ce[0], ce[1], ce[2]), rho), hmd_from_object);
+  };
+  // Built in place: a default Rigid3 would first be written as the identity.
+  const std::array<Rigid3<T>, kNumEyes> camera_from_object = {camera_from_object_of(0), camera_from_object_of(1)};
   std::array<std::array<T, kNumLensParams>, kNumEyes> lens;
   const T* ds = theta + L.display;
   const T ipd = T(model_.geometry.ipd) + ds[2 * ParameterLayout::kDisplayPerEye];
   for (int e = 0; e < kNumEyes; ++e) {
-    const T* ce = theta + L.camera_extrinsic + 6 * e;
-    const T baseline = theta[L.camera_extrinsic + 12];
-    const Vec3<T> rho = Vec3<T>(ce[3], ce[4], ce[5]) + baseline_step_[e].cast<T>() * baseline;
-    camera_from_object[e] = fo::Compose(fo::PerturbLeft(camera_from_hmd_[e], Vec3<T>(ce[0], ce[1], ce[2]), rho), hmd_from_object);
-
     const T* ci = theta + L.camera_intrinsic + kNumLensParams * e;
     for (int i = 0; i < kNumLensParams; ++i) {
       T delta = ci[i];
@@ -189,11 +191,18 @@ void ChainEvaluator::Evaluate(const T* theta, ChainSample<T>* out) const {
   const Rigid3<T> motion{fo::Exp(Vec3<T>(w.cast<T>() * display_latency)), Vec3<T>(v.cast<T>() * display_latency)};
   const Rigid3<T> now_from_captured = fo::Inverse(motion);
 
-  for (size_t k = 0; k < point_in_object_.size(); ++k) {
+  // Point by point in three passes (the truth, each eye's path, the perceived point) rather than
+  // one: the iterations of a pass are independent, short enough for the processor to overlap them
+  // (each eye's path waits on two divisions), and the numbers are the same.
+  const size_t num_points = point_in_object_.size();
+  for (size_t k = 0; k < num_points; ++k) {
     PointSample<T>& s = out->points[k];
     s.valid = true;
     s.truth = fo::Apply(now_from_captured, Vec3<T>(point_in_hmd_[k].cast<T>()));
-    for (int e = 0; e < kNumEyes; ++e) {
+  }
+  for (size_t k = 0; k < num_points; ++k) {
+    PointSample<T>& s = out->points[k];
+    for (int e = 0; e < kNumEyes && s.valid; ++e) {
       const Vec3<T> x = fo::Apply(camera_from_object[e], Vec3<T>(point_in_object_[k].cast<T>()));
       Vec2<T> q;
       if (!VirtualLens::Project(lens[e].data(), x.data(), q.data())) {
@@ -204,6 +213,10 @@ void ChainEvaluator::Evaluate(const T* theta, ChainSample<T>* out) const {
       s.virtual_depth[e] = x(2);
       s.ray[e] = DisplayedRay(e, q, ds + ParameterLayout::kDisplayPerEye * e);
     }
+  }
+  const Vec3<T> between = out->eye[1] - out->eye[0];
+  for (size_t k = 0; k < num_points; ++k) {
+    PointSample<T>& s = out->points[k];
     if (!s.valid) continue;
     // Midpoint of the closest approach of eye_l + s0·ray_l and eye_r + s1·ray_r. With n = d0 × d1,
     // s0 = ((e1 − e0) × d1)·n/|n|² and s1 = ((e1 − e0) × d0)·n/|n|²: unlike the textbook
@@ -217,7 +230,6 @@ void ChainEvaluator::Evaluate(const T* theta, ChainSample<T>* out) const {
       s.valid = false;
       continue;
     }
-    const Vec3<T> between = out->eye[1] - out->eye[0];
     const T inverse_n2 = T(1) / n2;
     const T s0 = fo::Dot(fo::Cross(between, d1), n) * inverse_n2;
     const T s1 = fo::Dot(fo::Cross(between, d0), n) * inverse_n2;
