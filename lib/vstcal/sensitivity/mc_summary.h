@@ -54,7 +54,7 @@ class BlockAccumulator {
 
  private:
   friend class MonteCarloSummary;
-  const HistogramSpec* spec_;
+  const HistogramBinner* binner_;
   std::vector<Moments> moments_;          // per output
   std::vector<uint32_t> bins_;            // histogram bin per (sample, output)
   uint64_t undefined_ = 0;
