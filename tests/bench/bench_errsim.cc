@@ -1,10 +1,13 @@
 // err-sim throughput on the shipped seed 001 chain (datasets/vst/seed001.json: both eyes, 5 test
-// points, all seven sources active, 66 random parameters). Issue 4 targets: ≥ 2 million chain
+// points, all seven sources active, 72 random parameters). Issue 4 targets: ≥ 2 million chain
 // samples per second per core; the time per sample ≤ 3× the time to draw its random numbers.
-//   BM_DrawTheta      θ for one sample (ThetaSampler::Fill): the random numbers alone
-//   BM_ChainSample    θ + the chain (both eyes, 5 points) + every error measure: one chain sample
-//   BM_EngineSample   the whole Monte Carlo loop of `err-sim run` per sample, with the mergeable
-//                     statistics (moments and histograms of 55 outputs), one thread
+//   BM_DrawTheta          θ for one sample (ThetaSampler::FillLanes): the random numbers alone
+//   BM_ChainSample        θ + the chain (both eyes, 5 points) + every error measure: one chain
+//                         sample, four at a time as err-sim run evaluates them (SampleMeasurer)
+//   BM_ChainSampleScalar  the same one sample at a time throughout (θ by Fill, the chain with
+//                         double): what drawing and evaluating four together gains
+//   BM_EngineSample       the whole Monte Carlo loop of `err-sim run` per sample, with the mergeable
+//                         statistics (moments and histograms of 55 outputs), one thread
 // The NumPy peer (scripts/bench-errsim-numpy.py) runs the same chain; scripts/bench prints both.
 #include <benchmark/benchmark.h>
 
@@ -40,44 +43,44 @@ void BM_DrawTheta(benchmark::State& state) {
 }
 BENCHMARK(BM_DrawTheta)->Unit(benchmark::kMicrosecond);
 
+// What a chain sample needs, on seed 001.
+struct ChainSampleSetup {
+  const ThetaSampler sampler{Seed001(), 1};
+  const ChainEvaluator chain{Seed001()};
+  const ErrorOutputs outputs{Seed001()};
+  SampleMeasurer measurer{chain, outputs};
+};
+
 void BM_ChainSample(benchmark::State& state) {
-  const ChainModel& model = Seed001();
-  const ThetaSampler sampler(model, 1);
-  const ChainEvaluator chain(model);
-  const ErrorOutputs outputs(model);
-  SampleMeasurer measurer(chain, outputs);
+  ChainSampleSetup setup;
   constexpr size_t kLanes = SampleMeasurer::kLanes;
-  std::vector<double> theta(kBatch * sampler.size()), y(kLanes * outputs.size());
+  const size_t n = setup.sampler.size();
+  std::vector<double> theta(kBatch * n), y(kLanes * setup.outputs.size());
   bool defined[kLanes];
   uint64_t first = 0;
   for (auto _ : state) {
-    sampler.FillLanes(first, kBatch / kLanes, theta.data());
+    setup.sampler.FillLanes(first, kBatch / kLanes, theta.data());
     first += kBatch;
     for (size_t g = 0; g < kBatch / kLanes; ++g) {
-      measurer.MeasureLanes(&theta[g * kLanes * sampler.size()], y.data(), defined);
+      setup.measurer.MeasureLanes(&theta[g * kLanes * n], y.data(), defined);
       benchmark::DoNotOptimize(y.data());
     }
   }
   state.SetItemsProcessed(state.iterations() * kBatch);
-  state.counters["divergent_groups"] = static_cast<double>(measurer.divergent_groups());
+  state.counters["divergent_groups"] = static_cast<double>(setup.measurer.divergent_groups());
 }
 
-// The same, one sample at a time with double (the path a divergent group takes): the speed-up of
-// evaluating four samples together.
+// The same one sample at a time throughout (θ by Fill, the chain with double, the path of a group
+// whose lanes diverge): what drawing and evaluating four together gains.
 void BM_ChainSampleScalar(benchmark::State& state) {
-  const ChainModel& model = Seed001();
-  const ThetaSampler sampler(model, 1);
-  const ChainEvaluator chain(model);
-  const ErrorOutputs outputs(model);
-  SampleMeasurer measurer(chain, outputs);
-  std::vector<double> theta(kBatch * sampler.size()), y(outputs.size());
+  ChainSampleSetup setup;
+  const size_t n = setup.sampler.size();
+  std::vector<double> theta(kBatch * n), y(setup.outputs.size());
   uint64_t first = 0;
   for (auto _ : state) {
-    sampler.Fill(first, kBatch, theta.data());
+    setup.sampler.Fill(first, kBatch, theta.data());
     first += kBatch;
-    for (size_t s = 0; s < kBatch; ++s) {
-      benchmark::DoNotOptimize(measurer.MeasureOne(&theta[s * sampler.size()], y.data()));
-    }
+    for (size_t s = 0; s < kBatch; ++s) benchmark::DoNotOptimize(setup.measurer.MeasureOne(&theta[s * n], y.data()));
   }
   state.SetItemsProcessed(state.iterations() * kBatch);
 }

@@ -70,7 +70,7 @@ namespace {
 }
 
 // Bits 0–6 pick the layer, bit 7 the sign, the top 53 the position: inside the layer's rectangle
-// (98.8 % of draws) the deviate is sign · u · x[layer].
+// (97.2 % of draws) the deviate is sign · u · x[layer].
 inline double ZigguratFast(uint64_t word, const CounterRng& rng, uint64_t index, uint32_t parameter) {
   const int layer = static_cast<int>(word & 127);
   const double x = OpenUnit(word) * kZigX[layer];
