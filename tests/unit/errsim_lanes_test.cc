@@ -89,8 +89,8 @@ TEST(ThetaSampler, LanesHoldTheBitsOfOneDrawAtATime) {
 
 // The x86-64 baseline lowering of SimdDouble (two SSE2 operations each), for comparison with the
 // AVX2 clone that SampleMeasurer runs on this machine.
-[[gnu::flatten]] bool EvaluateBaseline(const ChainEvaluator& chain, const ErrorOutputs& outputs, const SimdDouble* theta,
-                                       ChainSample<SimdDouble>* sample, SimdDouble* y) {
+[[gnu::flatten]] bool EvaluateBaseline(const ChainEvaluator& chain, const ErrorOutputs& outputs,
+                                       const SimdDouble* theta, ChainSample<SimdDouble>* sample, SimdDouble* y) {
   chain.Evaluate(theta, sample);
   return outputs.Measure(chain, *sample, theta, y);
 }
@@ -166,7 +166,9 @@ TEST(SampleMeasurer, LanesThatTakeDifferentBranchesAreRedoneOneAtATime) {
     const bool length = p.file_unit == "mm";
     if (p.name.find("virtual_object_alignment") == 0) p.distribution = Distribution::MakeNormal(0, 2.0);
     if (p.name.find("tracking") == 0) p.distribution = Distribution::MakeNormal(0, angle ? 0.03 : length ? 40 : 0.01);
-    if (p.name.find("camera_intrinsic") == 0) p.distribution = Distribution::MakeNormal(0, p.file_unit == "px" ? 3.0 : 1e-3);
+    if (p.name.find("camera_intrinsic") == 0) {
+      p.distribution = Distribution::MakeNormal(0, p.file_unit == "px" ? 3.0 : 1e-3);
+    }
     if (p.name.find("rendering.disparity") == 0) p.distribution = Distribution::MakeUniform(-2.0, 2.0);
   }
   const LaneComparison c = CompareLanesWithDouble(model, 1500);

@@ -51,8 +51,12 @@ class SimdMask {
     return _mm_movemask_pd(reinterpret_cast<__m128d>(pair));
   }
   bool lane(int i) const { return bits[i] != 0; }
-  bool all() const { return SignBits(__builtin_shufflevector(bits, bits, 0, 1) & __builtin_shufflevector(bits, bits, 2, 3)) == 3; }
-  bool any() const { return SignBits(__builtin_shufflevector(bits, bits, 0, 1) | __builtin_shufflevector(bits, bits, 2, 3)) != 0; }
+  bool all() const {
+    return SignBits(__builtin_shufflevector(bits, bits, 0, 1) & __builtin_shufflevector(bits, bits, 2, 3)) == 3;
+  }
+  bool any() const {
+    return SignBits(__builtin_shufflevector(bits, bits, 0, 1) | __builtin_shufflevector(bits, bits, 2, 3)) != 0;
+  }
 
   // A branch on the mask: see the header comment.
   explicit operator bool() const {
@@ -125,7 +129,9 @@ inline bool AllLanes(bool b) { return b; }
 
 // Lane by lane: a where the mask is set, b elsewhere. For bool, the plain choice, so that
 // templated code can use it for every scalar type.
-inline SimdDouble Select(const SimdMask& m, const SimdDouble& a, const SimdDouble& b) { return SimdDouble::FromLanes(m.bits ? a.v : b.v); }
+inline SimdDouble Select(const SimdMask& m, const SimdDouble& a, const SimdDouble& b) {
+  return SimdDouble::FromLanes(m.bits ? a.v : b.v);
+}
 template <typename T>
 T Select(bool m, const T& a, const T& b) {
   return m ? a : b;

@@ -152,7 +152,8 @@ void ChainEvaluator::Evaluate(const T* theta, ChainSample<T>* out) const {
   const Eigen::Vector3d& w = model_.geometry.head_angular_velocity;
   const Eigen::Vector3d& v = model_.geometry.head_linear_velocity;
   const Rigid3<T> lagged = fo::PerturbLeft(hmd_from_tracker_, Vec3<T>(w.cast<T>() * age), Vec3<T>(v.cast<T>() * age));
-  const Rigid3<T> hmd_from_tracker = fo::PerturbLeft(lagged, Vec3<T>(tr[0], tr[1], tr[2]), Vec3<T>(tr[3], tr[4], tr[5]));
+  const Rigid3<T> hmd_from_tracker =
+      fo::PerturbLeft(lagged, Vec3<T>(tr[0], tr[1], tr[2]), Vec3<T>(tr[3], tr[4], tr[5]));
   // The stereo rig's mount error is common to both eyes: camera_from_hmd_e · (Exp(ω), ρ) · hmd_from_object.
   const T* rig = theta + L.camera_extrinsic + 13;
   const Rigid3<T> hmd_from_object =

@@ -59,7 +59,8 @@ Rigid3<T> RefineRegistration(const RegistrationFrame& frame, const Mat3<T>& star
     const Mat3<T> Rt = R.transpose();
     Vec3<T> gradient = Vec3<T>::Zero();
     for (size_t k = 0; k < n; ++k) {
-      gradient = gradient + fo::Cross(Vec3<T>(frame.centred[k].template cast<T>()), fo::Times(Rt, Vec3<T>(points_in_b[k] - centroid_b)));
+      const Vec3<T> a = frame.centred[k].template cast<T>();
+      gradient = gradient + fo::Cross(a, fo::Times(Rt, Vec3<T>(points_in_b[k] - centroid_b)));
     }
     const Vec3<T> step = fo::Times(R, fo::Times(frame.inverse_inertia, gradient));
     const Mat3<T> next = fo::Times(fo::Exp(step), R);

@@ -116,7 +116,8 @@ void FillGroupsScalar(size_t size, const std::vector<uint32_t>& blocks, const st
 [[gnu::target("avx2")]] inline __m256d OpenUnitAvx2(__m256i word) {
   const __m256i k = _mm256_srli_epi64(word, 11);
   const __m256i hi = _mm256_or_si256(_mm256_srli_epi64(k, 32), _mm256_set1_epi64x(0x4530000000000000));
-  const __m256i lo = _mm256_or_si256(_mm256_and_si256(k, _mm256_set1_epi64x(0xffffffff)), _mm256_set1_epi64x(0x4330000000000000));
+  const __m256i lo =
+      _mm256_or_si256(_mm256_and_si256(k, _mm256_set1_epi64x(0xffffffff)), _mm256_set1_epi64x(0x4330000000000000));
   const __m256d exact = _mm256_add_pd(_mm256_sub_pd(_mm256_castsi256_pd(hi), _mm256_set1_pd(0x1.0p84)),
                                       _mm256_sub_pd(_mm256_castsi256_pd(lo), _mm256_set1_pd(0x1.0p52)));
   return _mm256_mul_pd(_mm256_add_pd(exact, _mm256_set1_pd(0.5)), _mm256_set1_pd(0x1.0p-53));
@@ -178,8 +179,8 @@ class PhiloxAvx2 {
     SetIndexHigh(static_cast<uint32_t>(i0 >> 32));
     // Rounds 0 and 1, group part: p0 = M0·(index low), q = M1·(hi p0 ^ stream ^ k1₀).
     const __m256i p0 = _mm256_mul_epu32(index_low, _mm256_set1_epi64x(kM0));
-    const __m256i q = _mm256_mul_epu32(_mm256_xor_si256(_mm256_srli_epi64(p0, 32), _mm256_set1_epi64x(stream_ ^ key1_[0])),
-                                       _mm256_set1_epi64x(kM1));
+    const __m256i q = _mm256_mul_epu32(
+        _mm256_xor_si256(_mm256_srli_epi64(p0, 32), _mm256_set1_epi64x(stream_ ^ key1_[0])), _mm256_set1_epi64x(kM1));
     const __m256i group[3] = {_mm256_xor_si256(_mm256_srli_epi64(q, 32), _mm256_set1_epi64x(key0_[1])), q,
                               _mm256_xor_si256(p0, _mm256_set1_epi64x(key1_[1]))};
     for (; b + 3 <= n; b += 3) Blocks<3>(group, &lane_parts_[b], nullptr, 2, out + 2 * kLanes * b);
@@ -285,7 +286,8 @@ class PhiloxAvx2 {
       int inside = 0xf;
       const __m256d v = d.normal ? ZigguratRectangleAvx2(w, &inside)
                                  : OpenUnitAvx2(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(w)));
-      _mm256_storeu_pd(out + kLanes * d.parameter, _mm256_add_pd(_mm256_set1_pd(d.a), _mm256_mul_pd(_mm256_set1_pd(d.b), v)));
+      const __m256d value = _mm256_add_pd(_mm256_set1_pd(d.a), _mm256_mul_pd(_mm256_set1_pd(d.b), v));
+      _mm256_storeu_pd(out + kLanes * d.parameter, value);
       pending[num_pending] = {&d, inside};
       num_pending += inside != 0xf;
     }

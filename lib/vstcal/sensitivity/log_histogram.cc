@@ -62,7 +62,8 @@ HistogramBinner::HistogramBinner(const HistogramSpec& spec) : spec_(spec) {
   lower_.resize(bins_per_side_);
   lower_[0] = spec_.min_magnitude;
   for (size_t b = 1; b < bins_per_side_; ++b) {
-    double m = std::max(lower_[b - 1], spec_.min_magnitude * std::pow(10.0, static_cast<double>(b) / spec_.bins_per_decade));
+    const double edge = spec_.min_magnitude * std::pow(10.0, static_cast<double>(b) / spec_.bins_per_decade);
+    double m = std::max(lower_[b - 1], edge);
     while (m > lower_[b - 1] && index(std::nextafter(m, 0.0)) >= b) m = std::nextafter(m, 0.0);
     while (index(m) < b) m = std::nextafter(m, HUGE_VAL);
     lower_[b] = m;
