@@ -21,6 +21,7 @@
 namespace {
 
 using namespace vstcal::errsim;
+using vstcal::SimdDouble;
 
 const ChainModel& Seed001() {
   static const ChainModel model = ReadChain(std::string(VSTCAL_SOURCE_DIR) + "/datasets/vst/seed001.json");
@@ -31,7 +32,7 @@ constexpr size_t kBatch = 1024;  // samples per call, as one Monte Carlo block
 
 void BM_DrawTheta(benchmark::State& state) {
   const ThetaSampler sampler(Seed001(), 1);
-  std::vector<double> theta(kBatch * sampler.size());
+  std::vector<SimdDouble> theta(kBatch / ThetaSampler::kLanes * sampler.size());
   uint64_t first = 0;
   for (auto _ : state) {
     sampler.FillLanes(first, kBatch / ThetaSampler::kLanes, theta.data());
@@ -55,14 +56,15 @@ void BM_ChainSample(benchmark::State& state) {
   ChainSampleSetup setup;
   constexpr size_t kLanes = SampleMeasurer::kLanes;
   const size_t n = setup.sampler.size();
-  std::vector<double> theta(kBatch * n), y(kLanes * setup.outputs.size());
+  std::vector<SimdDouble> theta(kBatch / kLanes * n);
+  std::vector<double> y(kLanes * setup.outputs.size());
   bool defined[kLanes];
   uint64_t first = 0;
   for (auto _ : state) {
     setup.sampler.FillLanes(first, kBatch / kLanes, theta.data());
     first += kBatch;
     for (size_t g = 0; g < kBatch / kLanes; ++g) {
-      setup.measurer.MeasureLanes(&theta[g * kLanes * n], y.data(), defined);
+      setup.measurer.MeasureLanes(&theta[g * n], y.data(), defined);
       benchmark::DoNotOptimize(y.data());
     }
   }

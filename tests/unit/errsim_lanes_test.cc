@@ -74,13 +74,14 @@ TEST(ThetaSampler, LanesHoldTheBitsOfOneDrawAtATime) {
   const ThetaSampler sampler(model, 99);
   const size_t n = sampler.size(), groups = 1500;
   const uint64_t first = (uint64_t{1} << 32) - 2000;  // the counter's high word changes inside
-  std::vector<double> lanes(groups * kLanes * n), rows(groups * kLanes * n);
+  std::vector<SimdDouble> lanes(groups * n);
+  std::vector<double> rows(groups * kLanes * n);
   sampler.FillLanes(first, groups, lanes.data());
   sampler.Fill(first, groups * kLanes, rows.data());
   size_t mismatches = 0;
   for (size_t s = 0; s < groups * kLanes; ++s) {
     for (size_t j = 0; j < n; ++j) {
-      mismatches += !SameBits(lanes[(s / kLanes * n + j) * kLanes + s % kLanes], rows[s * n + j]);
+      mismatches += !SameBits(lanes[s / kLanes * n + j].lane(static_cast<int>(s % kLanes)), rows[s * n + j]);
     }
   }
   EXPECT_EQ(mismatches, 0u);
@@ -105,8 +106,8 @@ LaneComparison CompareLanesWithDouble(const ChainModel& model, size_t groups) {
   const ThetaSampler sampler(model, 2024);
   SampleMeasurer lanes(chain, outputs), one(chain, outputs);
   const size_t n = sampler.size(), m = outputs.size();
-  std::vector<double> theta(kLanes * n), row(n), y(kLanes * m), y_one(m);
-  std::vector<SimdDouble> theta_simd(n), y_simd(m);
+  std::vector<double> row(n), y(kLanes * m), y_one(m);
+  std::vector<SimdDouble> theta(n), y_simd(m);
   ChainSample<SimdDouble> sample(chain.num_points());
   bool defined[kLanes];
   LaneComparison c;
@@ -119,9 +120,8 @@ LaneComparison CompareLanesWithDouble(const ChainModel& model, size_t groups) {
     c.divergent_groups += divergent;
     bool baseline_defined = false;
     if (!divergent) {
-      for (size_t j = 0; j < n; ++j) theta_simd[j] = SimdDouble::Load(&theta[kLanes * j]);
       SimdDivergence::Clear();
-      baseline_defined = EvaluateBaseline(chain, outputs, theta_simd.data(), &sample, y_simd.data());
+      baseline_defined = EvaluateBaseline(chain, outputs, theta.data(), &sample, y_simd.data());
       c.mismatches += SimdDivergence::Occurred();
     }
     for (size_t l = 0; l < kLanes; ++l) {

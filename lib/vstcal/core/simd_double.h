@@ -91,6 +91,7 @@ struct SimdDouble {
   }
   void Store(double* p) const { std::memcpy(p, &v, sizeof v); }
   double lane(int i) const { return v[i]; }
+  void set_lane(int i, double x) { v[i] = x; }
 
   SimdDouble& operator+=(const SimdDouble& o) { return v += o.v, *this; }
   SimdDouble& operator-=(const SimdDouble& o) { return v -= o.v, *this; }

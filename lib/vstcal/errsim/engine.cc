@@ -39,13 +39,14 @@ sensitivity::MonteCarloSummary RunChainMonteCarlo(const ChainModel& model, const
     // Samples are measured four at a time; a last partial group computes samples past the block
     // (each a function of its own index) and drops them.
     const size_t groups = (count + kLanes - 1) / kLanes;
-    std::vector<double> theta(groups * kLanes * n), y(kLanes * m);
+    std::vector<SimdDouble> theta(groups * n);
+    std::vector<double> y(kLanes * m);
     bool defined[kLanes];
     SampleMeasurer measurer(chain, outputs);
     sampler.FillLanes(first, groups, theta.data());
     sensitivity::BlockAccumulator accumulator(plan);
     for (size_t g = 0; g < groups; ++g) {
-      measurer.MeasureLanes(&theta[g * kLanes * n], y.data(), defined);
+      measurer.MeasureLanes(&theta[g * n], y.data(), defined);
       for (size_t l = 0; l < kLanes && g * kLanes + l < count; ++l) {
         if (defined[l]) {
           accumulator.Add(&y[l], kLanes);

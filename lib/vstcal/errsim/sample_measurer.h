@@ -22,11 +22,11 @@ class SampleMeasurer {
   // Keeps references: chain and outputs must outlive the measurer. One measurer per thread.
   SampleMeasurer(const ChainEvaluator& chain, const ErrorOutputs& outputs);
 
-  // Four samples whose θ is lane-interleaved (θ_j of lane l at theta[kLanes·j + l], one group of
-  // ThetaSampler::FillLanes). Writes the outputs lane-interleaved too, output k of lane l at
-  // y[kLanes·k + l] (kLanes·outputs.size() values), and defined[l] (false: the sample is
-  // undefined, ErrorOutputs::Measure; its outputs are then unspecified).
-  void MeasureLanes(const double* theta, double* y, bool* defined);
+  // Four samples, one per lane of θ (one group of ThetaSampler::FillLanes). Writes the outputs
+  // lane-interleaved, output k of lane l at y[kLanes·k + l] (kLanes·outputs.size() values), and
+  // defined[l] (false: the sample is undefined, ErrorOutputs::Measure; its outputs are then
+  // unspecified).
+  void MeasureLanes(const SimdDouble* theta, double* y, bool* defined);
   // One sample from a row of θ, with double: ErrorOutputs::Measure's result.
   bool MeasureOne(const double* theta, double* y);
   // Groups redone one sample at a time since construction (lanes that took different branches).
@@ -37,7 +37,7 @@ class SampleMeasurer {
   const ErrorOutputs& outputs_;
   ChainSample<double> sample_;
   ChainSample<SimdDouble> lanes_sample_;
-  std::vector<SimdDouble> theta_lanes_, y_lanes_;
+  std::vector<SimdDouble> y_lanes_;
   std::vector<double> row_, y_row_;
   size_t divergent_groups_ = 0;
 };

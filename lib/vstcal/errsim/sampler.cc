@@ -88,25 +88,29 @@ using Draw = ThetaSampler::Draw;
 using Constant = ThetaSampler::Constant;
 constexpr size_t kLanes = ThetaSampler::kLanes;
 
-// One sample's draws one at a time, parameter j to out[j·stride]: the reference that the AVX2
+// One sample's draws one at a time, put(j, value) for parameter j: the reference that the AVX2
 // kernel reproduces bit for bit.
+template <typename Put>
 void DrawSample(const std::vector<uint32_t>& blocks, const std::vector<Draw>& draws, const CounterRng& rng,
-                uint64_t index, double* out, size_t stride) {
+                uint64_t index, Put&& put) {
   PhiloxCounter bits{};
   uint32_t block = UINT32_MAX;
   for (const Draw& d : draws) {
     if (d.word / 2 != block) bits = rng.Bits(index, blocks[block = d.word / 2]);
-    out[d.parameter * stride] = DrawValue(d, Word(bits, d.word % 2), rng, index);
+    put(d.parameter, DrawValue(d, Word(bits, d.word % 2), rng, index));
   }
 }
 
 void FillGroupsScalar(size_t size, const std::vector<uint32_t>& blocks, const std::vector<Draw>& draws,
                       const std::vector<Constant>& constants, const CounterRng& rng, uint64_t first, size_t groups,
-                      double* theta) {
+                      SimdDouble* theta) {
   for (size_t g = 0; g < groups; ++g) {
-    double* out = theta + g * kLanes * size;
-    for (const Constant& c : constants) std::fill_n(out + kLanes * c.parameter, kLanes, c.value);
-    for (size_t l = 0; l < kLanes; ++l) DrawSample(blocks, draws, rng, first + kLanes * g + l, out + l, kLanes);
+    SimdDouble* out = theta + g * size;
+    for (const Constant& c : constants) out[c.parameter] = SimdDouble(c.value);
+    for (size_t l = 0; l < kLanes; ++l) {
+      DrawSample(blocks, draws, rng, first + kLanes * g + l,
+                 [&](uint32_t j, double value) { out[j].set_lane(static_cast<int>(l), value); });
+    }
   }
 }
 
@@ -262,9 +266,9 @@ class PhiloxAvx2 {
 // A group's Philox blocks first, then the draws from the words.
 [[gnu::target("avx2")]] void FillGroupsAvx2(size_t size, const std::vector<uint32_t>& blocks,
                                             const std::vector<Draw>& draws, const std::vector<Constant>& constants,
-                                            const CounterRng& rng, uint64_t first, size_t groups, double* theta) {
+                                            const CounterRng& rng, uint64_t first, size_t groups, SimdDouble* theta) {
   PhiloxAvx2 philox(rng, blocks);
-  const size_t group_size = kLanes * size, num_blocks = blocks.size();
+  const size_t num_blocks = blocks.size();
   // Not a vector of __m256i: outside AVX code GCC aligns that type to 16 bytes only.
   std::vector<uint64_t> words(2 * kLanes * num_blocks);
   struct Pending {
@@ -273,8 +277,8 @@ class PhiloxAvx2 {
   };
   std::vector<Pending> pending(draws.size());
   for (size_t g = 0; g < groups; ++g) {
-    double* out = theta + g * group_size;
-    for (const Constant& c : constants) _mm256_storeu_pd(out + kLanes * c.parameter, _mm256_set1_pd(c.value));
+    SimdDouble* out = theta + g * size;
+    for (const Constant& c : constants) out[c.parameter] = SimdDouble(c.value);
     const uint64_t i0 = first + kLanes * g;
     philox.Group(i0, words.data());
     // The rectangles first, recording the draws with a lane outside (without a branch: which
@@ -287,7 +291,7 @@ class PhiloxAvx2 {
       const __m256d v = d.normal ? ZigguratRectangleAvx2(w, &inside)
                                  : OpenUnitAvx2(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(w)));
       const __m256d value = _mm256_add_pd(_mm256_set1_pd(d.a), _mm256_mul_pd(_mm256_set1_pd(d.b), v));
-      _mm256_storeu_pd(out + kLanes * d.parameter, value);
+      out[d.parameter].v = reinterpret_cast<SimdDouble::Lanes>(value);
       pending[num_pending] = {&d, inside};
       num_pending += inside != 0xf;
     }
@@ -296,7 +300,7 @@ class PhiloxAvx2 {
       // The lanes outside by their bits: a test of each lane would mispredict about once a draw.
       for (unsigned outside = ~pending[p].inside & 0xfu; outside != 0; outside &= outside - 1) {
         const int l = std::countr_zero(outside);
-        out[kLanes * d.parameter + l] = d.a + d.b * ZigguratSlow(words[kLanes * d.word + l], rng, i0 + l, d.parameter);
+        out[d.parameter].set_lane(l, d.a + d.b * ZigguratSlow(words[kLanes * d.word + l], rng, i0 + l, d.parameter));
       }
     }
   }
@@ -328,7 +332,7 @@ ThetaSampler::ThetaSampler(const ChainModel& model, uint64_t seed)
   }
 }
 
-void ThetaSampler::FillLanes(uint64_t first, size_t groups, double* theta) const {
+void ThetaSampler::FillLanes(uint64_t first, size_t groups, SimdDouble* theta) const {
   static const bool avx2 = __builtin_cpu_supports("avx2");
   (avx2 ? FillGroupsAvx2 : FillGroupsScalar)(num_parameters_, blocks_, draws_, constants_, rng_, first, groups,
                                                         theta);
@@ -338,7 +342,7 @@ void ThetaSampler::Fill(uint64_t first, size_t count, double* theta) const {
   for (size_t s = 0; s < count; ++s) {
     double* row = theta + s * num_parameters_;
     for (const Constant& c : constants_) row[c.parameter] = c.value;
-    DrawSample(blocks_, draws_, rng_, first + s, row, 1);
+    DrawSample(blocks_, draws_, rng_, first + s, [row](uint32_t j, double value) { row[j] = value; });
   }
 }
 

@@ -16,6 +16,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "vstcal/core/simd_double.h"
 #include "vstcal/errsim/chain_model.h"
 #include "vstcal/random/philox.h"
 
@@ -27,17 +28,17 @@ double ZigguratNormal(uint64_t word, const CounterRng& rng, uint64_t index, uint
 
 class ThetaSampler {
  public:
-  static constexpr size_t kLanes = 4;  // samples per group in FillLanes (SimdDouble::kLanes)
+  static constexpr size_t kLanes = SimdDouble::kLanes;  // samples per group in FillLanes
 
   ThetaSampler(const ChainModel& model, uint64_t seed);
 
   size_t size() const { return num_parameters_; }
   size_t num_random() const { return draws_.size(); }
-  // θ of samples first … first + kLanes·groups − 1 in groups of kLanes, lane-interleaved: θ_j of
-  // sample first + kLanes·g + l at theta[kLanes·(g·size() + j) + l] — one group is the θ of a
+  // θ of samples first … first + kLanes·groups − 1 in groups of kLanes, one sample per lane: θ_j
+  // of sample first + kLanes·g + l is lane l of theta[g·size() + j] — one group is the θ of a
   // ChainEvaluator::Evaluate<SimdDouble> call. Where the CPU has AVX2 a group's Philox blocks and
   // ziggurat rectangles are computed four samples at a time (the same bits as one at a time).
-  void FillLanes(uint64_t first, size_t groups, double* theta) const;
+  void FillLanes(uint64_t first, size_t groups, SimdDouble* theta) const;
   // Rows first … first + count − 1 of θ, row-major (count × size()), one draw at a time without
   // SIMD: the reference for FillLanes, which gives the same numbers.
   void Fill(uint64_t first, size_t count, double* theta) const;
