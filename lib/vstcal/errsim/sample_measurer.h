@@ -1,9 +1,10 @@
 // The chain and its error measures for err-sim's Monte Carlo loop (engine.h), four samples at a
 // time: ChainEvaluator::Evaluate and ErrorOutputs::Measure instantiated with SimdDouble, one
 // sample per lane, compiled for AVX2 where the CPU has it. The same templates with double give
-// every lane's numbers bit for bit (simd_double.h), so where the lanes would branch differently
-// (a point behind a camera, a large rotation, an unconverged registration in some lanes only)
-// the group is redone one sample at a time, and the results never depend on the grouping.
+// every lane's numbers bit for bit (simd_double.h, geometry/fixed_order.h), so where the lanes
+// would branch differently (in some lanes only: a point behind a camera, a rotation or an angle
+// beyond 0.1 rad, parallel rays) the group is redone one sample at a time, and the results never
+// depend on the grouping (docs/math/vst-chain.md#lanes).
 #pragma once
 
 #include <cstddef>
