@@ -1,10 +1,13 @@
 // err-sim throughput on the shipped seed 001 chain (datasets/vst/seed001.json: both eyes, 5 test
-// points, all seven sources active, 66 random parameters). Issue 4 targets: ≥ 2 million chain
+// points, all seven sources active, 72 random parameters). Issue 4 targets: ≥ 2 million chain
 // samples per second per core; the time per sample ≤ 3× the time to draw its random numbers.
-//   BM_DrawTheta      θ for one sample (ThetaSampler::Fill): the random numbers alone
-//   BM_ChainSample    θ + the chain (both eyes, 5 points) + every error measure: one chain sample
-//   BM_EngineSample   the whole Monte Carlo loop of `err-sim run` per sample, with the mergeable
-//                     statistics (moments and histograms of 55 outputs), one thread
+//   BM_DrawTheta          θ for one sample (ThetaSampler::FillLanes): the random numbers alone
+//   BM_ChainSample        θ + the chain (both eyes, 5 points) + every error measure: one chain
+//                         sample, four at a time as err-sim run evaluates them (SampleMeasurer)
+//   BM_ChainSampleScalar  the same one sample at a time throughout (θ by Fill, the chain with
+//                         double): what drawing and evaluating four together gains
+//   BM_EngineSample       the whole Monte Carlo loop of `err-sim run` per sample, with the mergeable
+//                         statistics (moments and histograms of 55 outputs), one thread
 // The NumPy peer (scripts/bench-errsim-numpy.py) runs the same chain; scripts/bench prints both.
 #include <benchmark/benchmark.h>
 
@@ -12,11 +15,13 @@
 #include "vstcal/errsim/chain_io.h"
 #include "vstcal/errsim/engine.h"
 #include "vstcal/errsim/holloway.h"
+#include "vstcal/errsim/sample_measurer.h"
 #include "vstcal/errsim/sampler.h"
 
 namespace {
 
 using namespace vstcal::errsim;
+using vstcal::SimdDouble;
 
 const ChainModel& Seed001() {
   static const ChainModel model = ReadChain(std::string(VSTCAL_SOURCE_DIR) + "/datasets/vst/seed001.json");
@@ -27,10 +32,10 @@ constexpr size_t kBatch = 1024;  // samples per call, as one Monte Carlo block
 
 void BM_DrawTheta(benchmark::State& state) {
   const ThetaSampler sampler(Seed001(), 1);
-  std::vector<double> theta(kBatch * sampler.size());
+  std::vector<SimdDouble> theta(kBatch / ThetaSampler::kLanes * sampler.size());
   uint64_t first = 0;
   for (auto _ : state) {
-    sampler.Fill(first, kBatch, theta.data());
+    sampler.FillLanes(first, kBatch / ThetaSampler::kLanes, theta.data());
     first += kBatch;
     benchmark::DoNotOptimize(theta.data());
   }
@@ -39,25 +44,50 @@ void BM_DrawTheta(benchmark::State& state) {
 }
 BENCHMARK(BM_DrawTheta)->Unit(benchmark::kMicrosecond);
 
+// What a chain sample needs, on seed 001.
+struct ChainSampleSetup {
+  const ThetaSampler sampler{Seed001(), 1};
+  const ChainEvaluator chain{Seed001()};
+  const ErrorOutputs outputs{Seed001()};
+  SampleMeasurer measurer{chain, outputs};
+};
+
 void BM_ChainSample(benchmark::State& state) {
-  const ChainModel& model = Seed001();
-  const ThetaSampler sampler(model, 1);
-  const ChainEvaluator chain(model);
-  const ErrorOutputs outputs(model);
-  std::vector<double> theta(kBatch * sampler.size()), y(outputs.size());
-  ChainSample<double> sample(chain.num_points());
+  ChainSampleSetup setup;
+  constexpr size_t kLanes = SampleMeasurer::kLanes;
+  const size_t n = setup.sampler.size();
+  std::vector<SimdDouble> theta(kBatch / kLanes * n);
+  std::vector<double> y(kLanes * setup.outputs.size());
+  bool defined[kLanes];
   uint64_t first = 0;
   for (auto _ : state) {
-    sampler.Fill(first, kBatch, theta.data());
+    setup.sampler.FillLanes(first, kBatch / kLanes, theta.data());
     first += kBatch;
-    for (size_t s = 0; s < kBatch; ++s) {
-      chain.Evaluate(&theta[s * sampler.size()], &sample);
-      benchmark::DoNotOptimize(outputs.Measure(chain, sample, &theta[s * sampler.size()], y.data()));
+    for (size_t g = 0; g < kBatch / kLanes; ++g) {
+      setup.measurer.MeasureLanes(&theta[g * n], y.data(), defined);
+      benchmark::DoNotOptimize(y.data());
     }
+  }
+  state.SetItemsProcessed(state.iterations() * kBatch);
+  state.counters["divergent_groups"] = static_cast<double>(setup.measurer.divergent_groups());
+}
+
+// The same one sample at a time throughout (θ by Fill, the chain with double, the path of a group
+// whose lanes diverge): what drawing and evaluating four together gains.
+void BM_ChainSampleScalar(benchmark::State& state) {
+  ChainSampleSetup setup;
+  const size_t n = setup.sampler.size();
+  std::vector<double> theta(kBatch * n), y(setup.outputs.size());
+  uint64_t first = 0;
+  for (auto _ : state) {
+    setup.sampler.Fill(first, kBatch, theta.data());
+    first += kBatch;
+    for (size_t s = 0; s < kBatch; ++s) benchmark::DoNotOptimize(setup.measurer.MeasureOne(&theta[s * n], y.data()));
   }
   state.SetItemsProcessed(state.iterations() * kBatch);
 }
 BENCHMARK(BM_ChainSample)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_ChainSampleScalar)->Unit(benchmark::kMicrosecond);
 
 void BM_EngineSample(benchmark::State& state) {
   ChainMonteCarloOptions options;

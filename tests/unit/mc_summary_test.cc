@@ -109,6 +109,35 @@ TEST(LogHistogram, CentralAndOverflowBins) {
   EXPECT_THROW((HistogramSpec{1e-3, 1.0, 0}.Validate()), InputError);
 }
 
+// The binner without logarithms puts every value where BinOf's log10 does: at each bin edge (the
+// doubles around min·10^(b/d), where log10's rounding decides), across the range, at the central
+// and overflow bins, on both sides.
+TEST(HistogramBinner, AgreesWithBinOfOnEveryValueTried) {
+  const CounterRng rng(8, 0);
+  for (const HistogramSpec& spec : {HistogramSpec{}, HistogramSpec{1e-3, 1e3, 20}, HistogramSpec{0.37, 5e4, 7},
+                                    HistogramSpec{1e-12, 1e15, 1000}}) {
+    const HistogramBinner binner(spec);
+    size_t tried = 0, disagree = 0;
+    auto check = [&](double y) {
+      ++tried;
+      disagree += binner.BinOf(y) != spec.BinOf(y) || binner.BinOf(-y) != spec.BinOf(-y);
+    };
+    const double decades = std::log10(spec.max_magnitude / spec.min_magnitude);
+    for (int b = 0; b <= static_cast<int>(decades * spec.bins_per_decade) + 1; ++b) {
+      double edge = spec.min_magnitude * std::pow(10.0, static_cast<double>(b) / spec.bins_per_decade);
+      for (int step = 0; step < 4; ++step) edge = std::nextafter(edge, 0.0);
+      for (int step = 0; step < 9; ++step, edge = std::nextafter(edge, HUGE_VAL)) check(edge);
+    }
+    for (uint64_t i = 0; i < 200000; ++i) {
+      check(spec.min_magnitude * std::pow(10.0, (1.2 * rng.Uniform2(i, 0)[0] - 0.1) * decades));
+    }
+    for (double y : {0.0, spec.min_magnitude, spec.max_magnitude, 1e300, 1e-300}) check(y);
+    EXPECT_EQ(disagree, 0u) << "of " << tried << " values, spec " << spec.min_magnitude << ", " << spec.max_magnitude
+                            << ", " << spec.bins_per_decade;
+    EXPECT_EQ(&HistogramBinner::For(spec), &HistogramBinner::For(spec));
+  }
+}
+
 // Three outputs of different character: Ishigami (signed), its magnitude, and a constant.
 struct ThreeOutputs {
   template <typename T>

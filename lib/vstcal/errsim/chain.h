@@ -11,6 +11,10 @@
 // eye's composited pixel through the display (screen mapping, lens residual) from the true eye
 // position; the perceived overlay is the midpoint of the two eyes' rays, compared with the physical
 // point in the head frame at display time (display latency) — Holloway's errors (holloway.h).
+//
+// The same code runs with double, ceres::Jet and SimdDouble (four samples at once,
+// sample_measurer.h). Products and sums go through fixed_order.h, so double and SimdDouble give
+// the same bits for every sample.
 #pragma once
 
 #include <array>
@@ -20,6 +24,7 @@
 
 #include "vstcal/errsim/chain_model.h"
 #include "vstcal/errsim/point_registration.h"
+#include "vstcal/geometry/fixed_order.h"
 #include "vstcal/geometry/rigid3.h"
 
 namespace vstcal::errsim {
@@ -97,8 +102,8 @@ class ChainEvaluator {
 template <typename T>
 Rigid3<T> ChainEvaluator::VirtualFromObject(const T* block) const {
   if (!fiducials_) {
-    return PerturbLeft(virtual_from_object_.cast<T>(), Vec3<T>(block[0], block[1], block[2]),
-                       Vec3<T>(block[3], block[4], block[5]));
+    return fixed_order::PerturbLeft(virtual_from_object_, Vec3<T>(block[0], block[1], block[2]),
+                                    Vec3<T>(block[3], block[4], block[5]));
   }
   // The fiducials as measured in the virtual world (true position + localization error), then the
   // least-squares registration of the object-frame layout onto them.
@@ -128,15 +133,16 @@ Vec3<T> ChainEvaluator::DisplayedRay(int eye, const Vec2<T>& pixel, const T* d) 
   // The HMD lens's uncorrected radial term scales the direction by 1 + k1·r².
   const T radial = T(1) + d[6] * (xn * xn + yn * yn);
   const Vec3<T> direction(xn * radial, yn * radial, T(1));
-  return c.hmd_from_camera.cast<T>() * direction;
+  return fixed_order::Times(c.hmd_from_camera, direction);
 }
 
 template <typename T>
 void ChainEvaluator::Evaluate(const T* theta, ChainSample<T>* out) const {
+  namespace fo = fixed_order;
   const ParameterLayout& L = layout_;
   const T* ta = theta + L.tracker_alignment;
   const Rigid3<T> tracker_from_virtual =
-      PerturbLeft(tracker_from_virtual_.cast<T>(), Vec3<T>(ta[0], ta[1], ta[2]), Vec3<T>(ta[3], ta[4], ta[5]));
+      fo::PerturbLeft(tracker_from_virtual_, Vec3<T>(ta[0], ta[1], ta[2]), Vec3<T>(ta[3], ta[4], ta[5]));
   const Rigid3<T> virtual_from_object = VirtualFromObject(theta + L.virtual_object_alignment);
 
   // The renderer's pose is older than the video frame by the tracking and render latencies: the
@@ -145,23 +151,27 @@ void ChainEvaluator::Evaluate(const T* theta, ChainSample<T>* out) const {
   const T age = tr[6] + theta[L.rendering];
   const Eigen::Vector3d& w = model_.geometry.head_angular_velocity;
   const Eigen::Vector3d& v = model_.geometry.head_linear_velocity;
-  const Rigid3<T> lagged = PerturbLeft(hmd_from_tracker_.cast<T>(), Vec3<T>(w.cast<T>() * age), Vec3<T>(v.cast<T>() * age));
-  const Rigid3<T> hmd_from_tracker = PerturbLeft(lagged, Vec3<T>(tr[0], tr[1], tr[2]), Vec3<T>(tr[3], tr[4], tr[5]));
+  const Rigid3<T> lagged = fo::PerturbLeft(hmd_from_tracker_, Vec3<T>(w.cast<T>() * age), Vec3<T>(v.cast<T>() * age));
+  const Rigid3<T> hmd_from_tracker =
+      fo::PerturbLeft(lagged, Vec3<T>(tr[0], tr[1], tr[2]), Vec3<T>(tr[3], tr[4], tr[5]));
   // The stereo rig's mount error is common to both eyes: camera_from_hmd_e · (Exp(ω), ρ) · hmd_from_object.
   const T* rig = theta + L.camera_extrinsic + 13;
-  const Rigid3<T> hmd_from_object = PerturbLeft(hmd_from_tracker * (tracker_from_virtual * virtual_from_object),
-                                                Vec3<T>(rig[0], rig[1], rig[2]), Vec3<T>(rig[3], rig[4], rig[5]));
+  const Rigid3<T> hmd_from_object =
+      fo::PerturbLeft(fo::Compose(hmd_from_tracker, fo::Compose(tracker_from_virtual, virtual_from_object)),
+                      Vec3<T>(rig[0], rig[1], rig[2]), Vec3<T>(rig[3], rig[4], rig[5]));
 
-  std::array<Rigid3<T>, kNumEyes> camera_from_object;
+  auto camera_from_object_of = [&](int e) {
+    const T* ce = theta + L.camera_extrinsic + 6 * e;
+    const T baseline = theta[L.camera_extrinsic + 12];
+    const Vec3<T> rho = Vec3<T>(ce[3], ce[4], ce[5]) + baseline_step_[e].cast<T>() * baseline;
+    return fo::Compose(fo::PerturbLeft(camera_from_hmd_[e], Vec3<T>(ce[0], ce[1], ce[2]), rho), hmd_from_object);
+  };
+  // Built in place: a default Rigid3 would first be written as the identity.
+  const std::array<Rigid3<T>, kNumEyes> camera_from_object = {camera_from_object_of(0), camera_from_object_of(1)};
   std::array<std::array<T, kNumLensParams>, kNumEyes> lens;
   const T* ds = theta + L.display;
   const T ipd = T(model_.geometry.ipd) + ds[2 * ParameterLayout::kDisplayPerEye];
   for (int e = 0; e < kNumEyes; ++e) {
-    const T* ce = theta + L.camera_extrinsic + 6 * e;
-    const T baseline = theta[L.camera_extrinsic + 12];
-    const Vec3<T> rho = Vec3<T>(ce[3], ce[4], ce[5]) + baseline_step_[e].cast<T>() * baseline;
-    camera_from_object[e] = PerturbLeft(camera_from_hmd_[e].cast<T>(), Vec3<T>(ce[0], ce[1], ce[2]), rho) * hmd_from_object;
-
     const T* ci = theta + L.camera_intrinsic + kNumLensParams * e;
     for (int i = 0; i < kNumLensParams; ++i) {
       T delta = ci[i];
@@ -179,15 +189,22 @@ void ChainEvaluator::Evaluate(const T* theta, ChainSample<T>* out) const {
   // What the eyes see now was captured display_latency ago: the physical point, in the head frame
   // at display time, is hmd(t)_from_hmd(t − τ) · p = δ⁻¹ · p with δ = (Exp(ω τ), v τ).
   const T display_latency = ds[2 * ParameterLayout::kDisplayPerEye + 1];
-  const Rigid3<T> motion{RotationFromSmallRotvec(Vec3<T>(w.cast<T>() * display_latency)), Vec3<T>(v.cast<T>() * display_latency)};
-  const Rigid3<T> now_from_captured = motion.inverse();
+  const Rigid3<T> motion{fo::Exp(Vec3<T>(w.cast<T>() * display_latency)), Vec3<T>(v.cast<T>() * display_latency)};
+  const Rigid3<T> now_from_captured = fo::Inverse(motion);
 
-  for (size_t k = 0; k < point_in_object_.size(); ++k) {
+  // Point by point in three passes (the truth, each eye's path, the perceived point) rather than
+  // one: the iterations of a pass are independent, short enough for the processor to overlap them
+  // (each eye's path waits on two divisions), and the numbers are the same.
+  const size_t num_points = point_in_object_.size();
+  for (size_t k = 0; k < num_points; ++k) {
     PointSample<T>& s = out->points[k];
     s.valid = true;
-    s.truth = now_from_captured * point_in_hmd_[k].cast<T>();
-    for (int e = 0; e < kNumEyes; ++e) {
-      const Vec3<T> x = camera_from_object[e] * point_in_object_[k].cast<T>();
+    s.truth = fo::Apply(now_from_captured, Vec3<T>(point_in_hmd_[k].cast<T>()));
+  }
+  for (size_t k = 0; k < num_points; ++k) {
+    PointSample<T>& s = out->points[k];
+    for (int e = 0; e < kNumEyes && s.valid; ++e) {
+      const Vec3<T> x = fo::Apply(camera_from_object[e], Vec3<T>(point_in_object_[k].cast<T>()));
       Vec2<T> q;
       if (!VirtualLens::Project(lens[e].data(), x.data(), q.data())) {
         s.valid = false;
@@ -197,6 +214,10 @@ void ChainEvaluator::Evaluate(const T* theta, ChainSample<T>* out) const {
       s.virtual_depth[e] = x(2);
       s.ray[e] = DisplayedRay(e, q, ds + ParameterLayout::kDisplayPerEye * e);
     }
+  }
+  const Vec3<T> between = out->eye[1] - out->eye[0];
+  for (size_t k = 0; k < num_points; ++k) {
+    PointSample<T>& s = out->points[k];
     if (!s.valid) continue;
     // Midpoint of the closest approach of eye_l + s0·ray_l and eye_r + s1·ray_r. With n = d0 × d1,
     // s0 = ((e1 − e0) × d1)·n/|n|² and s1 = ((e1 − e0) × d0)·n/|n|²: unlike the textbook
@@ -204,15 +225,15 @@ void ChainEvaluator::Evaluate(const T* theta, ChainSample<T>* out) const {
     // (vergence 0.02 rad at 3 m with a 63 mm baseline).
     const Vec3<T>& d0 = s.ray[0];
     const Vec3<T>& d1 = s.ray[1];
-    const Vec3<T> n = d0.cross(d1);
-    const T n2 = n.squaredNorm();
-    if (!(n2 > T(1e-24) * d0.squaredNorm() * d1.squaredNorm())) {
+    const Vec3<T> n = fo::Cross(d0, d1);
+    const T n2 = fo::SquaredNorm(n);
+    if (!(n2 > T(1e-24) * fo::SquaredNorm(d0) * fo::SquaredNorm(d1))) {
       s.valid = false;
       continue;
     }
-    const Vec3<T> between = out->eye[1] - out->eye[0];
-    const T s0 = between.cross(d1).dot(n) / n2;
-    const T s1 = between.cross(d0).dot(n) / n2;
+    const T inverse_n2 = T(1) / n2;
+    const T s0 = fo::Dot(fo::Cross(between, d1), n) * inverse_n2;
+    const T s1 = fo::Dot(fo::Cross(between, d0), n) * inverse_n2;
     s.perceived = T(0.5) * (out->eye[0] + s0 * d0 + out->eye[1] + s1 * d1);
   }
 }

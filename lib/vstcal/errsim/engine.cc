@@ -4,8 +4,8 @@
 #include <mutex>
 #include <vector>
 
-#include "vstcal/errsim/chain.h"
 #include "vstcal/errsim/holloway.h"
+#include "vstcal/errsim/sample_measurer.h"
 #include "vstcal/errsim/sampler.h"
 #include "vstcal/sensitivity/parallel.h"
 
@@ -28,6 +28,7 @@ sensitivity::MonteCarloSummary RunChainMonteCarlo(const ChainModel& model, const
   const ErrorOutputs outputs(model);
   const ThetaSampler sampler(model, options.seed);
   const size_t n = sampler.size(), m = outputs.size();
+  constexpr size_t kLanes = SampleMeasurer::kLanes;
 
   sensitivity::MonteCarloSummary summary(plan);
   std::mutex summary_mutex;
@@ -35,17 +36,23 @@ sensitivity::MonteCarloSummary RunChainMonteCarlo(const ChainModel& model, const
     const uint64_t block = range.begin + task;
     const uint64_t first = block * plan.block_size;
     const size_t count = static_cast<size_t>(std::min(plan.block_size, plan.total_samples - first));
-    std::vector<double> theta(count * n), y(m);
-    ChainSample<double> sample(chain.num_points());
-    sampler.Fill(first, count, theta.data());
+    // Samples are measured four at a time; a last partial group computes samples past the block
+    // (each a function of its own index) and drops them.
+    const size_t groups = (count + kLanes - 1) / kLanes;
+    std::vector<SimdDouble> theta(groups * n);
+    std::vector<double> y(kLanes * m);
+    bool defined[kLanes];
+    SampleMeasurer measurer(chain, outputs);
+    sampler.FillLanes(first, groups, theta.data());
     sensitivity::BlockAccumulator accumulator(plan);
-    for (size_t s = 0; s < count; ++s) {
-      const double* row = &theta[s * n];
-      chain.Evaluate(row, &sample);
-      if (outputs.Measure(chain, sample, row, y.data())) {
-        accumulator.Add(y.data());
-      } else {
-        accumulator.AddUndefined();
+    for (size_t g = 0; g < groups; ++g) {
+      measurer.MeasureLanes(&theta[g * n], y.data(), defined);
+      for (size_t l = 0; l < kLanes && g * kLanes + l < count; ++l) {
+        if (defined[l]) {
+          accumulator.Add(&y[l], kLanes);
+        } else {
+          accumulator.AddUndefined();
+        }
       }
     }
     const std::lock_guard<std::mutex> lock(summary_mutex);

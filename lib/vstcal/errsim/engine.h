@@ -1,7 +1,7 @@
 // The Monte Carlo loop of err-sim run: θ from the fast sampler (sampler.h), the chain and its error
-// measures (chain.h, holloway.h), accumulated into the sensitivity module's mergeable summary in
-// fixed blocks — so the numbers depend only on (samples, block size, seed), never on the thread
-// count or the shard split. Equivalent to sensitivity::RunMonteCarlo over ErrorModel, without a
+// measures four samples at a time (sample_measurer.h), accumulated into the sensitivity module's
+// mergeable summary in fixed blocks — so the numbers depend only on (samples, block size, seed),
+// never on the thread count or the shard split. Equivalent to sensitivity::RunMonteCarlo over ErrorModel, without a
 // std::function call and a buffer lookup per sample, and with the faster sampler.
 #pragma once
 

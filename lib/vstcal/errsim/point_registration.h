@@ -19,6 +19,8 @@
 #include <Eigen/Core>
 #include <Eigen/LU>
 
+#include "vstcal/core/simd_double.h"
+#include "vstcal/geometry/fixed_order.h"
 #include "vstcal/geometry/rigid3.h"
 
 namespace vstcal::errsim {
@@ -39,27 +41,35 @@ struct RegistrationFrame {
 
 // Gauss–Newton iterations (at most `max_iterations`, stopping when the step is below 1e-15 rad)
 // from `start_rotation`; points_in_b has frame.centred.size() entries.
+// Every operation in a fixed order (fixed_order.h): double and SimdDouble give the same bits.
 template <typename T>
 Rigid3<T> RefineRegistration(const RegistrationFrame& frame, const Mat3<T>& start_rotation, const Vec3<T>* points_in_b,
                              int max_iterations = 8) {
+  namespace fo = fixed_order;
   const size_t n = frame.centred.size();
   Vec3<T> centroid_b = Vec3<T>::Zero();
-  for (size_t k = 0; k < n; ++k) centroid_b += points_in_b[k];
-  centroid_b /= T(static_cast<double>(n));
+  for (size_t k = 0; k < n; ++k) centroid_b = centroid_b + points_in_b[k];
+  centroid_b = centroid_b / T(static_cast<double>(n));
   Mat3<T> R = start_rotation;
+  // Samples evaluated together (SimdDouble) converge after different numbers of steps: each lane
+  // keeps its rotation from the step that converged it, as the double code stops there.
+  auto done = T(1) < T(0);
   for (int iteration = 0; iteration < max_iterations; ++iteration) {
     // φ = R C⁻¹ Σ ã_k × (Rᵀ b̃_k): the Gauss–Newton step for R' = Exp(φ) R.
-    Vec3<T> gradient = Vec3<T>::Zero();
     const Mat3<T> Rt = R.transpose();
+    Vec3<T> gradient = Vec3<T>::Zero();
     for (size_t k = 0; k < n; ++k) {
-      gradient += frame.centred[k].template cast<T>().cross(Rt * (points_in_b[k] - centroid_b));
+      const Vec3<T> a = frame.centred[k].template cast<T>();
+      gradient = gradient + fo::Cross(a, fo::Times(Rt, Vec3<T>(points_in_b[k] - centroid_b)));
     }
-    const Vec3<T> step = R * (frame.inverse_inertia.template cast<T>() * gradient);
-    R = RotationFromSmallRotvec(step) * R;
+    const Vec3<T> step = fo::Times(R, fo::Times(frame.inverse_inertia, gradient));
+    const Mat3<T> next = fo::Times(fo::Exp(step), R);
+    for (int i = 0; i < 9; ++i) R(i) = Select(done, R(i), next(i));
     using std::abs;
-    if (abs(step(0)) + abs(step(1)) + abs(step(2)) < T(1e-15)) break;
+    done = done || abs(step(0)) + abs(step(1)) + abs(step(2)) < T(1e-15);
+    if (AllLanes(done)) break;
   }
-  return Rigid3<T>{R, centroid_b - R * frame.centroid.template cast<T>()};
+  return Rigid3<T>{R, centroid_b - fo::Times(R, Vec3<T>(frame.centroid.template cast<T>()))};
 }
 
 }  // namespace vstcal::errsim

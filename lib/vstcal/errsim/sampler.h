@@ -5,16 +5,18 @@
 // same whatever the thread count, the shard, or which other parameters are random. Constant
 // parameters take their value without a draw. A uniform takes the word's top 53 bits; a normal
 // goes through a 128-layer ziggurat (Marsaglia & Tsang 2000, Doornik's 2005 layout) whose layer
-// table is frozen in the source, so no libm call is made in 98.8 % of draws (the tail and the
+// table is frozen in the source, so no libm call is made in 97.2 % of draws (the tail and the
 // wedges draw further words from lanes 2³¹ + …). Compared with the sensitivity module's inverse CDF
 // (AS 241, 11.5 ns a draw) this is the same distribution at about a fifth of the cost; it gives up
 // the one-coordinate-per-parameter property that quasi-Monte Carlo needs, which err-sim run does
-// not use.
+// not use. Every path below (AVX2 or not, one sample or four) gives the same bits.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
+#include "vstcal/core/simd_double.h"
 #include "vstcal/errsim/chain_model.h"
 #include "vstcal/random/philox.h"
 
@@ -24,30 +26,42 @@ namespace vstcal::errsim {
 // (index, lanes 2³¹ + (parameter << 7) + k).
 double ZigguratNormal(uint64_t word, const CounterRng& rng, uint64_t index, uint32_t parameter);
 
-// The Philox blocks (index first + s, lane, stream) for s < count as two 64-bit words each,
-// out[s·stride] = b₀·2³² + b₁ and out[s·stride + 1] = b₂·2³² + b₃. Four samples at a time with
-// AVX2 where the CPU has it: integer arithmetic, so the same bits as CounterRng::Bits anywhere.
-void PhiloxWords(const CounterRng& rng, uint64_t first, size_t count, uint32_t lane, uint64_t* out, size_t stride = 2);
-
 class ThetaSampler {
  public:
+  static constexpr size_t kLanes = SimdDouble::kLanes;  // samples per group in FillLanes
+
   ThetaSampler(const ChainModel& model, uint64_t seed);
 
-  size_t size() const { return constants_.size(); }
+  size_t size() const { return num_parameters_; }
   size_t num_random() const { return draws_.size(); }
-  // Rows first … first + count − 1 of θ, row-major (count × size()).
+  // θ of samples first … first + kLanes·groups − 1 in groups of kLanes, one sample per lane: θ_j
+  // of sample first + kLanes·g + l is lane l of theta[g·size() + j] — one group is the θ of a
+  // ChainEvaluator::Evaluate<SimdDouble> call. Where the CPU has AVX2 a group's Philox blocks and
+  // ziggurat rectangles are computed four samples at a time (the same bits as one at a time).
+  void FillLanes(uint64_t first, size_t groups, SimdDouble* theta) const;
+  // Rows first … first + count − 1 of θ, row-major (count × size()), one draw at a time without
+  // SIMD: the reference for FillLanes, which gives the same numbers.
   void Fill(uint64_t first, size_t count, double* theta) const;
 
- private:
+  // One random parameter: its value is a + b·z (normal, z standard normal) or a + b·u (uniform,
+  // u in (0, 1)) from the 64-bit word `word` of the sampler's Philox words of a sample — word 2k
+  // and 2k + 1 are the two halves of the block at the k-th lane of `blocks_` (sampler.cc).
   struct Draw {
     uint32_t parameter;
-    bool normal;  // else uniform
+    uint32_t word;
+    bool normal;
     double a, b;  // normal: mean, σ; uniform: lower bound, width
   };
-  std::vector<double> constants_;
-  std::vector<Draw> draws_;        // in parameter order
-  std::vector<uint32_t> lanes_;    // the Philox lanes that hold some draw
-  std::vector<uint32_t> slot_;     // per draw: its lane's position in lanes_
+  struct Constant {
+    uint32_t parameter;
+    double value;
+  };
+
+ private:
+  size_t num_parameters_ = 0;
+  std::vector<Constant> constants_;     // the parameters that are not drawn
+  std::vector<uint32_t> blocks_;        // the Philox lanes that hold some draw (lane j/2 for parameter j)
+  std::vector<Draw> draws_;             // in parameter order
   CounterRng rng_;
 };
 

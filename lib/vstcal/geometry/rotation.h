@@ -42,17 +42,10 @@ Mat3<T> RotationFromRotvec(const Vec3<T>& r) {
   return Mat3<T>::Identity() + Hat(r);
 }
 
-// The same rotation as RotationFromRotvec, about 5× faster for the small angles of error models
-// (θ < 0.1 rad): R = I + A[r]× + B[r]×² with A = sin θ/θ and B = (1 − cos θ)/θ² from their
-// Taylor series through θ¹⁰ (the first omitted terms are below 2e-22 there, under rounding), so no
-// sqrt or trig; [r]×² = r rᵀ − θ² I. Polynomial in r, hence exact Jet derivatives at r = 0 too.
-// Larger angles take RotationFromRotvec.
+// R = I + A[r]× + B[r]×² from the coefficients A and B, with [r]×² = r rᵀ − θ² I (t2 = θ²): the
+// assembly of RotationFromSmallRotvec, in a fixed order of operations.
 template <typename T>
-Mat3<T> RotationFromSmallRotvec(const Vec3<T>& r) {
-  const T t2 = r.squaredNorm();
-  if (!(t2 < T(1e-2))) return RotationFromRotvec(r);
-  const T A = T(1) - t2 * (T(1.0 / 6) - t2 * (T(1.0 / 120) - t2 * (T(1.0 / 5040) - t2 * (T(1.0 / 362880) - t2 * T(1.0 / 39916800)))));
-  const T B = T(0.5) - t2 * (T(1.0 / 24) - t2 * (T(1.0 / 720) - t2 * (T(1.0 / 40320) - t2 * (T(1.0 / 3628800) - t2 * T(1.0 / 479001600)))));
+Mat3<T> RotationFromCoefficients(const Vec3<T>& r, const T& t2, const T& A, const T& B) {
   const T d = T(1) - B * t2;
   const T ax = A * r(0), ay = A * r(1), az = A * r(2);
   const T bxy = B * r(0) * r(1), bxz = B * r(0) * r(2), byz = B * r(1) * r(2);
@@ -61,6 +54,21 @@ Mat3<T> RotationFromSmallRotvec(const Vec3<T>& r) {
       bxy + az, d + B * r(1) * r(1), byz - ax,   //
       bxz - ay, byz + ax, d + B * r(2) * r(2);
   return m;
+}
+
+// The same rotation as RotationFromRotvec, about 5× faster for the small angles of error models
+// (θ < 0.1 rad): R = I + A[r]× + B[r]×² with A = sin θ/θ and B = (1 − cos θ)/θ² from their
+// Taylor series through θ¹⁰ (the first omitted terms are below 2e-22 there, under rounding), so no
+// sqrt or trig. Polynomial in r, hence exact Jet derivatives at r = 0 too. Larger angles take
+// RotationFromRotvec. Below 0.1 rad every operation is in a fixed order (θ² summed left to right,
+// as Eigen sums a double 3-vector), so any scalar type gives double's bits (fixed_order.h).
+template <typename T>
+Mat3<T> RotationFromSmallRotvec(const Vec3<T>& r) {
+  const T t2 = r(0) * r(0) + r(1) * r(1) + r(2) * r(2);
+  if (!(t2 < T(1e-2))) return RotationFromRotvec(r);
+  const T A = T(1) - t2 * (T(1.0 / 6) - t2 * (T(1.0 / 120) - t2 * (T(1.0 / 5040) - t2 * (T(1.0 / 362880) - t2 * T(1.0 / 39916800)))));
+  const T B = T(0.5) - t2 * (T(1.0 / 24) - t2 * (T(1.0 / 720) - t2 * (T(1.0 / 40320) - t2 * (T(1.0 / 3628800) - t2 * T(1.0 / 479001600)))));
+  return RotationFromCoefficients(r, t2, A, B);
 }
 
 // R·p without forming R (used inside cost functions).

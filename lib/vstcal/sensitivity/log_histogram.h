@@ -11,6 +11,7 @@
 // flagged as out of range.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -29,6 +30,30 @@ struct HistogramSpec {
   // Worst relative error of a percentile inside the log-spaced range: √r − 1.
   double RelativeResolution() const;
   bool operator==(const HistogramSpec&) const = default;
+};
+
+// HistogramSpec::BinOf without a logarithm per value (Monte Carlo blocks bin every output of every
+// sample): the smallest magnitude of each log-spaced bin is found once, from BinOf itself, and a
+// value's bin is a cheap estimate of its logarithm corrected against those edges — so the two
+// agree on every double. Building costs a few log10 per bin; For() builds each spec once.
+class HistogramBinner {
+ public:
+  explicit HistogramBinner(const HistogramSpec& spec);
+  // The binner of `spec`, built on first use and kept for the process (thread-safe).
+  static const HistogramBinner& For(const HistogramSpec& spec);
+
+  size_t BinOf(double y) const;
+
+ private:
+  size_t EdgeSearch(double magnitude, size_t estimate) const;  // the positive index by the edges
+  size_t BinOnSide(double y, size_t b) const;                   // positive index b on y's side
+
+  HistogramSpec spec_;
+  size_t bins_per_side_;
+  double log2_min_;         // log2(min_magnitude)
+  double bins_per_octave_;  // bins_per_decade · log10(2)
+  std::array<double, 64> log2_centre_, inverse_centre_;  // mantissa table (BinOf)
+  std::vector<double> lower_;  // lower_[b]: the smallest magnitude in positive bin b (lower_[0] = min)
 };
 
 struct Percentile {

@@ -27,14 +27,14 @@ BlockRange ShardBlocks(const SummaryPlan& plan, uint64_t shard, uint64_t shards)
 }
 
 BlockAccumulator::BlockAccumulator(const SummaryPlan& plan)
-    : spec_(&plan.histogram), moments_(plan.output_names.size()) {
+    : binner_(&HistogramBinner::For(plan.histogram)), moments_(plan.output_names.size()) {
   bins_.reserve(plan.block_size * moments_.size());
 }
 
-void BlockAccumulator::Add(const double* y) {
+void BlockAccumulator::Add(const double* y, size_t stride) {
   for (size_t k = 0; k < moments_.size(); ++k) {
-    moments_[k].Add(y[k]);
-    bins_.push_back(static_cast<uint32_t>(spec_->BinOf(y[k])));
+    moments_[k].Add(y[k * stride]);
+    bins_.push_back(static_cast<uint32_t>(binner_->BinOf(y[k * stride])));
   }
 }
 

@@ -48,12 +48,13 @@ BlockRange ShardBlocks(const SummaryPlan& plan, uint64_t shard, uint64_t shards)
 class BlockAccumulator {
  public:
   explicit BlockAccumulator(const SummaryPlan& plan);
-  void Add(const double* y);  // one defined sample: m outputs
+  // One defined sample: output k at y[k·stride] (stride > 1 for samples evaluated lane-interleaved).
+  void Add(const double* y, size_t stride = 1);
   void AddUndefined() { ++undefined_; }
 
  private:
   friend class MonteCarloSummary;
-  const HistogramSpec* spec_;
+  const HistogramBinner* binner_;
   std::vector<Moments> moments_;          // per output
   std::vector<uint32_t> bins_;            // histogram bin per (sample, output)
   uint64_t undefined_ = 0;

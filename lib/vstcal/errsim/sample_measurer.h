@@ -1,0 +1,46 @@
+// The chain and its error measures for err-sim's Monte Carlo loop (engine.h), four samples at a
+// time: ChainEvaluator::Evaluate and ErrorOutputs::Measure instantiated with SimdDouble, one
+// sample per lane, compiled for AVX2 where the CPU has it. The same templates with double give
+// every lane's numbers bit for bit (simd_double.h, geometry/fixed_order.h), so where the lanes
+// would branch differently (in some lanes only: a point behind a camera, a rotation or an angle
+// beyond 0.1 rad, parallel rays) the group is redone one sample at a time, and the results never
+// depend on the grouping (docs/math/vst-chain.md#lanes).
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include "vstcal/core/simd_double.h"
+#include "vstcal/errsim/chain.h"
+#include "vstcal/errsim/holloway.h"
+
+namespace vstcal::errsim {
+
+class SampleMeasurer {
+ public:
+  static constexpr size_t kLanes = SimdDouble::kLanes;
+
+  // Keeps references: chain and outputs must outlive the measurer. One measurer per thread.
+  SampleMeasurer(const ChainEvaluator& chain, const ErrorOutputs& outputs);
+
+  // Four samples, one per lane of θ (one group of ThetaSampler::FillLanes). Writes the outputs
+  // lane-interleaved, output k of lane l at y[kLanes·k + l] (kLanes·outputs.size() values), and
+  // defined[l] (false: the sample is undefined, ErrorOutputs::Measure; its outputs are then
+  // unspecified).
+  void MeasureLanes(const SimdDouble* theta, double* y, bool* defined);
+  // One sample from a row of θ, with double: ErrorOutputs::Measure's result.
+  bool MeasureOne(const double* theta, double* y);
+  // Groups redone one sample at a time since construction (lanes that took different branches).
+  size_t divergent_groups() const { return divergent_groups_; }
+
+ private:
+  const ChainEvaluator& chain_;
+  const ErrorOutputs& outputs_;
+  ChainSample<double> sample_;
+  ChainSample<SimdDouble> lanes_sample_;
+  std::vector<SimdDouble> y_lanes_;
+  std::vector<double> row_, y_row_;
+  size_t divergent_groups_ = 0;
+};
+
+}  // namespace vstcal::errsim
