@@ -9,6 +9,7 @@
 #include <memory>
 #include <sstream>
 
+#include "support/error_of.h"
 #include "support/interop_cameras.h"
 #include "support/mrcal.h"
 #include "support/scenes.h"
@@ -18,6 +19,7 @@
 namespace vstcal {
 namespace {
 
+using testing::ErrorOf;
 using testing::InteropCameras;
 using testing::PointsInFront;
 
@@ -29,16 +31,6 @@ std::string WriteText(const CalibratedCamera& c, const io::MrcalWriteOptions& op
 
 io::ImportedCamera ReadText(const std::string& text, std::optional<LengthUnit> unit = std::nullopt) {
   return io::MrcalCameramodelFromText(text, "cam.cameramodel", unit);
-}
-
-template <typename F>
-std::string ErrorOf(F&& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
 }
 
 struct MrcalModelDeleter {

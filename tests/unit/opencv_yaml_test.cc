@@ -5,6 +5,7 @@
 #include <opencv2/calib3d.hpp>
 #include <opencv2/core.hpp>
 
+#include "support/error_of.h"
 #include "support/interop_cameras.h"
 #include "support/scenes.h"
 #include "vstcal/core/error.h"
@@ -13,6 +14,7 @@
 namespace vstcal {
 namespace {
 
+using testing::ErrorOf;
 using testing::InteropCameras;
 using testing::PointsInFront;
 
@@ -23,17 +25,6 @@ io::ImportedCamera ReadText(const std::string& text) {
 }
 
 std::string WriteText(const CalibratedCamera& c) { return io::OpenCvYamlText(c, "cam.json", kProvenance).text; }
-
-// The message of the InputError `f` throws ("" if it throws none).
-template <typename F>
-std::string ErrorOf(F&& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
-}
 
 TEST(OpenCvYaml, RoundTripIsExactForEveryModel) {
   for (const CalibratedCamera& c : InteropCameras(false)) {
