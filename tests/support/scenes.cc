@@ -36,4 +36,16 @@ std::vector<Eigen::Vector3d> PointsInFront(int n, uint64_t seed, double half_wid
   return points;
 }
 
+VolumeSpec NearWideVolumeSpec() {
+  VolumeSpec spec;
+  spec.grid_cols = 15;
+  spec.grid_rows = 9;
+  spec.spacing = 60;
+  spec.far = 1000;
+  spec.interval = 100;
+  spec.camera_distance = 500;
+  spec.tilt_deg = 8;
+  return spec;
+}
+
 }  // namespace vstcal::testing

@@ -7,6 +7,7 @@
 
 #include "vstcal/calib/correspondences.h"
 #include "vstcal/camera/camera.h"
+#include "vstcal/capture/synthetic_volume.h"
 #include "vstcal/geometry/rigid3.h"
 
 namespace vstcal::testing {
@@ -25,5 +26,9 @@ Scene RandomVolumeScene(size_t n, double noise_px, uint64_t seed);
 // `n` points in a camera frame, 0.3 to 4.3 units in front, with normalized coordinates spread
 // uniformly over ±half_width × ±half_height (about ±42° × ±27° for the defaults).
 std::vector<Eigen::Vector3d> PointsInFront(int n, uint64_t seed, double half_width = 0.9, double half_height = 0.5);
+
+// A near calibration volume for a wide (ZED-mini-like) camera: a 15×9 grid at 60 mm, moved by
+// 100 mm from 500 mm out to 1 m, tilted 8°; noise-free until the caller sets noise_px.
+VolumeSpec NearWideVolumeSpec();
 
 }  // namespace vstcal::testing

@@ -144,14 +144,7 @@ TEST(Refine, PlanarViewsAgreeWithOpenCvCalibrateCamera) {
 // A volume rig: DLT start, then refinement with distortion. OpenCV accepts non-planar points only
 // with CALIB_USE_INTRINSIC_GUESS; given vstcal's DLT K it must reach the same optimum.
 TEST(Refine, VolumeFromDltAgreesWithOpenCvIntrinsicGuess) {
-  VolumeSpec spec;
-  spec.grid_cols = 15;
-  spec.grid_rows = 9;
-  spec.spacing = 60;
-  spec.far = 1000;
-  spec.interval = 100;
-  spec.camera_distance = 500;
-  spec.tilt_deg = 8;
+  VolumeSpec spec = testing::NearWideVolumeSpec();
   spec.noise_px = 0.2;
   spec.seed = 4;
   const Camera truth = DistortedCamera();

@@ -10,6 +10,7 @@
 #include "support/crb.h"
 #include "vstcal/calib/pipeline.h"
 #include "vstcal/calib/uncertainty.h"
+#include "support/scenes.h"
 #include "vstcal/capture/synthetic_views.h"
 #include "vstcal/capture/synthetic_volume.h"
 #include "vstcal/random/philox.h"
@@ -66,14 +67,7 @@ Camera WideCamera() {
 }
 
 VolumeSpec ZedVolume() {
-  VolumeSpec spec;
-  spec.grid_cols = 15;
-  spec.grid_rows = 9;
-  spec.spacing = 60;
-  spec.far = 1000;
-  spec.interval = 100;
-  spec.camera_distance = 500;
-  spec.tilt_deg = 8;
+  VolumeSpec spec = testing::NearWideVolumeSpec();
   spec.tilt_direction_deg = 200;
   return spec;
 }
