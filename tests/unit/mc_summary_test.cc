@@ -8,7 +8,7 @@
 
 #include "support/sensitivity_models.h"
 #include "vstcal/core/error.h"
-#include "vstcal/io/json_reader.h"
+#include "vstcal/json/json_reader.h"
 #include "vstcal/random/philox.h"
 #include "vstcal/sensitivity/mc_summary_json.h"
 #include "vstcal/sensitivity/monte_carlo.h"

@@ -5,8 +5,8 @@
 
 #include "vstcal/io/camera_io.h"
 #include "vstcal/io/correspondences_io.h"
-#include "vstcal/io/format_check.h"
-#include "vstcal/io/json_writer.h"
+#include "vstcal/json/format_check.h"
+#include "vstcal/json/json_writer.h"
 #include "vstcal/errsim/source_io.h"
 
 namespace vstcal::errsim {

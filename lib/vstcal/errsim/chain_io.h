@@ -7,7 +7,7 @@
 #include <string_view>
 
 #include "vstcal/errsim/chain_model.h"
-#include "vstcal/io/json_reader.h"
+#include "vstcal/json/json_reader.h"
 
 namespace vstcal::errsim {
 

@@ -10,8 +10,8 @@
 
 #include "vstcal/errsim/chain_model.h"
 #include "vstcal/errsim/simulation.h"
-#include "vstcal/io/json_writer.h"
-#include "vstcal/io/provenance.h"
+#include "vstcal/json/json_writer.h"
+#include "vstcal/json/provenance.h"
 
 namespace vstcal::errsim {
 

@@ -8,7 +8,7 @@
 
 #include "vstcal/core/error.h"
 #include "vstcal/errsim/holloway.h"
-#include "vstcal/io/format_check.h"
+#include "vstcal/json/format_check.h"
 #include "vstcal/sensitivity/mc_summary_json.h"
 
 namespace vstcal::errsim {

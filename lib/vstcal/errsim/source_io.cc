@@ -10,7 +10,7 @@
 #include "vstcal/core/suggest.h"
 #include "vstcal/errsim/point_registration.h"
 #include "vstcal/io/camera_io.h"
-#include "vstcal/io/json_writer.h"
+#include "vstcal/json/json_writer.h"
 
 namespace vstcal::errsim {
 namespace {

@@ -8,7 +8,7 @@
 
 #include "vstcal/calib/calibrated_camera.h"
 #include "vstcal/errsim/chain_model.h"
-#include "vstcal/io/json_reader.h"
+#include "vstcal/json/json_reader.h"
 
 namespace vstcal::errsim {
 

@@ -11,7 +11,7 @@
 #include "vstcal/camera/intrinsics.h"
 #include "vstcal/core/suggest.h"
 #include "vstcal/io/correspondences_io.h"
-#include "vstcal/io/format_check.h"
+#include "vstcal/json/format_check.h"
 
 namespace vstcal::io {
 namespace {

@@ -5,10 +5,10 @@
 #include <optional>
 
 #include "vstcal/calib/calibrated_camera.h"
-#include "vstcal/io/json_reader.h"
-#include "vstcal/io/json_writer.h"
-#include "vstcal/io/provenance.h"
-#include "vstcal/io/reader_common.h"
+#include "vstcal/json/json_reader.h"
+#include "vstcal/json/json_writer.h"
+#include "vstcal/json/provenance.h"
+#include "vstcal/json/reader_common.h"
 
 namespace vstcal::io {
 

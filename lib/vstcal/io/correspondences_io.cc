@@ -2,7 +2,7 @@
 
 #include <set>
 
-#include "vstcal/io/format_check.h"
+#include "vstcal/json/format_check.h"
 
 namespace vstcal::io {
 namespace {

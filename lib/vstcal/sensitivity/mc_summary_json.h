@@ -11,8 +11,8 @@
 //   moments = [count, mean, m2, m3, m4, min, max]; an empty one is [0, 0, 0, 0, 0, 0, 0].
 #pragma once
 
-#include "vstcal/io/json_reader.h"
-#include "vstcal/io/json_writer.h"
+#include "vstcal/json/json_reader.h"
+#include "vstcal/json/json_writer.h"
 #include "vstcal/sensitivity/mc_summary.h"
 
 namespace vstcal::sensitivity {

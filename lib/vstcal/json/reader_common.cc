@@ -1,4 +1,4 @@
-#include "vstcal/io/reader_common.h"
+#include "vstcal/json/reader_common.h"
 
 #include <cerrno>
 #include <cstring>

@@ -1,4 +1,4 @@
-#include "vstcal/io/json_writer.h"
+#include "vstcal/json/json_writer.h"
 
 #include <sys/stat.h>
 #include <unistd.h>
