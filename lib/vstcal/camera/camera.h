@@ -16,6 +16,7 @@
 #include <Eigen/Core>
 
 #include "vstcal/camera/lens_models.h"
+#include "vstcal/core/image_size.h"
 
 namespace vstcal {
 
@@ -38,12 +39,6 @@ std::string KnownLensModelNames();
 std::string_view LensModelName(const AnyLensModel& model);
 int LensModelNumParams(const AnyLensModel& model);
 std::vector<std::string_view> LensModelParamNames(const AnyLensModel& model);
-
-struct ImageSize {
-  int width = 0;   // px
-  int height = 0;  // px
-  bool operator==(const ImageSize&) const = default;
-};
 
 struct Camera {
   ImageSize image_size;

@@ -4,7 +4,7 @@
 #include <set>
 
 #include "vstcal/io/camera_io.h"
-#include "vstcal/io/correspondences_io.h"
+#include "vstcal/json/fields.h"
 #include "vstcal/json/format_check.h"
 #include "vstcal/json/json_writer.h"
 #include "vstcal/errsim/source_io.h"
@@ -13,6 +13,7 @@ namespace vstcal::errsim {
 namespace {
 
 using io::JsonNode;
+using io::ExpectKeys;
 
 // {"R", "t"} or {"rotvec_deg", "t"} (docs/conventions.md#rotations).
 Rigid3d ReadTransform(const JsonNode& node) {

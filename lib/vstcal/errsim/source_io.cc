@@ -10,12 +10,14 @@
 #include "vstcal/core/suggest.h"
 #include "vstcal/errsim/point_registration.h"
 #include "vstcal/io/camera_io.h"
+#include "vstcal/json/fields.h"
 #include "vstcal/json/json_writer.h"
 
 namespace vstcal::errsim {
 namespace {
 
 using io::JsonNode;
+using io::ExpectKeys;
 
 constexpr double kRadPerDeg = kPi / 180.0;
 
@@ -198,15 +200,6 @@ void ReadIntrinsics(const JsonNode& node, int eye, const std::optional<Parameter
 }
 
 }  // namespace
-
-void ExpectKeys(const JsonNode& node, const std::vector<std::string_view>& allowed, const std::string& what) {
-  node.ExpectObject();
-  for (auto it = node.json().begin(); it != node.json().end(); ++it) {
-    if (std::find(allowed.begin(), allowed.end(), it.key()) == allowed.end()) {
-      node.at(it.key()).Fail("unknown " + what + " " + Quoted(it.key()), SuggestKey(it.key(), allowed));
-    }
-  }
-}
 
 std::vector<Eigen::Vector3d> ReadFiducialLayout(const JsonNode& sources) {
   const auto voa = sources.find("virtual_object_alignment");

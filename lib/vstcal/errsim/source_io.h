@@ -21,8 +21,4 @@ std::vector<Eigen::Vector3d> ReadFiducialLayout(const io::JsonNode& sources);
 void ReadSources(const io::JsonNode& sources, const std::array<std::optional<ParameterCovariance>, kNumEyes>& camera_covariance,
                  ChainModel* model);
 
-// Fails on any key of an object not in `allowed`, naming it as `what` and suggesting the closest
-// allowed key ("sources.trackin: unknown error source "trackin"; did you mean "tracking"? …").
-void ExpectKeys(const io::JsonNode& node, const std::vector<std::string_view>& allowed, const std::string& what);
-
 }  // namespace vstcal::errsim

@@ -17,9 +17,4 @@ Correspondences CorrespondencesFromJson(const JsonDocument& doc);
 
 OrderedJson CorrespondencesToJson(const Correspondences& c, const Provenance& provenance);
 
-// Parses image_size [width, height] (positive integers).
-ImageSize ReadImageSize(const JsonNode& node);
-// Parses length_unit.
-LengthUnit ReadLengthUnit(const JsonNode& node);
-
 }  // namespace vstcal::io
