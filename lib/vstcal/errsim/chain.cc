@@ -43,10 +43,12 @@ ChainEvaluator::ChainEvaluator(const ChainModel& model) : model_(model), layout_
     camera_from_hmd_[e] = g.camera_from_hmd[e];
     baseline_step_[e] = (e == 0 ? 0.5 : -0.5) * (g.camera_from_hmd[e].R * baseline_direction);
     design_eyepoint_[e] = g.display.DesignEyepoint(e);
+    focal_baseline_[e] = camera.params[0] * baseline;
     mixing_is_identity_[e] = model_.intrinsic_mixing[e].isIdentity(0.0);
     const std::vector<double>& p = camera.params;
-    display_[e] = {p[2], p[3], p[4], 1.0 / p[0], 1.0 / p[1], g.camera_from_hmd[e].R.transpose(), -0.5,
-                   camera.image_size.width - 0.5, -0.5, camera.image_size.height - 0.5};
+    display_[e] = {p[2], p[3], p[4], 1.0 / p[0], 1.0 / p[1], g.camera_from_hmd[e].R.transpose(),
+                   g.camera_from_hmd[e].R == Eigen::Matrix3d::Identity(), -0.5, camera.image_size.width - 0.5, -0.5,
+                   camera.image_size.height - 0.5};
   }
   for (const TestPoint& tp : g.test_points) {
     point_in_object_.push_back(object_from_world * tp.point_in_world);
@@ -58,6 +60,7 @@ ChainEvaluator::ChainEvaluator(const ChainModel& model) : model_(model), layout_
       real_pixel_[e].push_back(*q);
       real_centred_[e].push_back(*q - Eigen::Vector2d(display_[e].cx, display_[e].cy));
       real_depth_[e].push_back(x.z());
+      surface_disparity_[e].push_back(tp.surface_behind ? focal_baseline_[e] / (x.z() + *tp.surface_behind) : 0.0);
     }
   }
   if (!model_.fiducials_in_object.empty()) {

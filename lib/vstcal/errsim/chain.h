@@ -89,6 +89,10 @@ class ChainEvaluator {
   const Eigen::Vector2d& real_pixel(int eye, size_t point) const { return real_pixel_[eye][point]; }
   double real_depth(int eye, size_t point) const { return real_depth_[eye][point]; }
   double camera_baseline() const { return camera_baseline_; }
+  // For the occlusion decision: f·b of eye e's camera (fx times the baseline), and the disparity
+  // f·b/z_s of the real surface behind test point k (0 without surface_behind).
+  double focal_baseline(int eye) const { return focal_baseline_[eye]; }
+  double surface_disparity(int eye, size_t point) const { return surface_disparity_[eye][point]; }
   const Systematic& systematic(size_t point) const { return systematic_[point]; }
   // Why the error-free chain cannot see test point k (kNone when it can; the chain reader refuses
   // such a chain, naming the point).
@@ -117,8 +121,7 @@ class ChainEvaluator {
   template <typename T>
   Rigid3<T> VirtualFromObject(const T* theta) const;
   template <typename T>
-  Vec3<T> DisplayedDirection(int eye, const Vec2<T>& centred, const T* shift, const T& magnification,
-                             const T& lens_k1) const;
+  Vec3<T> DisplayedDirection(int eye, const Vec2<T>& centred, const T* shift, const T& scale, const T& lens_k1) const;
 
   ChainModel model_;
   ParameterLayout layout_;
@@ -130,10 +133,12 @@ class ChainEvaluator {
   std::array<bool, kNumEyes> mixing_is_identity_;
   std::vector<Eigen::Vector3d> point_in_object_, point_in_hmd_;
   std::array<std::vector<Eigen::Vector2d>, kNumEyes> real_pixel_, real_centred_;  // q, and q − principal point
-  std::array<std::vector<double>, kNumEyes> real_depth_;
+  std::array<std::vector<double>, kNumEyes> real_depth_, surface_disparity_;
+  std::array<double, kNumEyes> focal_baseline_{};
   struct DisplayConstants {
     double cx, cy, s, inverse_fx, inverse_fy;  // the true camera's K⁻¹: the display shows its field of view
     Eigen::Matrix3d hmd_from_camera;           // nominal rotation: the display is aligned with the camera's axes
+    bool camera_axes_are_hmd_axes;             // hmd_from_camera is exactly I (most rigs): no rotation to apply
     double min_u, max_u, min_v, max_v;         // the image, px
   };
   std::array<DisplayConstants, kNumEyes> display_;
@@ -167,17 +172,20 @@ Rigid3<T> ChainEvaluator::VirtualFromObject(const T* theta) const {
 }
 
 template <typename T>
-Vec3<T> ChainEvaluator::DisplayedDirection(int eye, const Vec2<T>& centred, const T* shift, const T& magnification,
+Vec3<T> ChainEvaluator::DisplayedDirection(int eye, const Vec2<T>& centred, const T* shift, const T& scale,
                                            const T& lens_k1) const {
-  // The screen mapping (magnification about the principal point, shift), the true camera's K⁻¹,
-  // the HMD lens's uncorrected radial term 1 + k1·r², the camera's nominal axes.
+  // The screen mapping (scale = 1 + magnification about the principal point, shift), the true
+  // camera's K⁻¹, the HMD lens's uncorrected radial term 1 + k1·r², the camera's nominal axes.
   const DisplayConstants& c = display_[eye];
-  const T du = (T(1) + magnification) * centred(0) + shift[0];
-  const T dv = (T(1) + magnification) * centred(1) + shift[1];
+  const T du = scale * centred(0) + shift[0];
+  const T dv = scale * centred(1) + shift[1];
   const T yn = dv * T(c.inverse_fy);
   const T xn = (du - T(c.s) * yn) * T(c.inverse_fx);
   const T radial = T(1) + lens_k1 * (xn * xn + yn * yn);
-  return fixed_order::Times(c.hmd_from_camera, Vec3<T>(xn * radial, yn * radial, T(1)));
+  const Vec3<T> direction(xn * radial, yn * radial, T(1));
+  // Branching on a constant of the chain, the same for every lane. I·v gives v's bits too (x·1 + 0
+  // adds nothing but the sign of a zero, which no later step can see): the shortcut changes no number.
+  return c.camera_axes_are_hmd_axes ? direction : fixed_order::Times(c.hmd_from_camera, direction);
 }
 
 template <typename T>
@@ -209,11 +217,15 @@ void ChainEvaluator::Evaluate(const T* theta, ChainSample<T>* out) const {
   const std::array<Rigid3<T>, kNumEyes> camera_from_object = {camera_from_object_of(0), camera_from_object_of(1)};
 
   // The renderer's lens parameters, and the eyes: each at its design eyepoint moved by its own
-  // eyepoint error, the common offset of both (how the HMD sits) and half the IPD error.
+  // eyepoint error, the common offset of both (how the HMD sits) and half the IPD error. A display
+  // whose virtual image is at distance D shows pixel q at E⁰ + D·d(q); seen from E = E⁰ + Δ the
+  // ray's direction is D·d(q) − Δ ∝ d(q) − Δ/D.
   std::array<std::array<T, kMaxLensParams>, kNumEyes> lens;
-  std::array<Vec3<T>, kNumEyes> displacement;
+  std::array<Vec3<T>, kNumEyes> towards_eye;
+  std::array<T, kNumEyes> screen_scale;
   const T ipd_error = At(theta, Term::kIpd)[0];
   const Vec3<T> eye_offset = Vec(At(theta, Term::kEyeOffset));
+  const T inverse_image_distance = T(model_.geometry.display.inverse_image_distance);
   for (int e = 0; e < kNumEyes; ++e) {
     const T* ci = At(theta, Term::kLens, e);
     const std::vector<double>& nominal = model_.renderer[e].params;
@@ -227,8 +239,10 @@ void ChainEvaluator::Evaluate(const T* theta, ChainSample<T>* out) const {
       lens[e][i] = T(nominal[i]) + delta;
     }
     const T side = T(e == 0 ? -0.5 : 0.5);
-    displacement[e] = Vec(At(theta, Term::kEyepoint, e)) + eye_offset + Vec3<T>(side * ipd_error, T(0), T(0));
-    out->eye[e] = design_eyepoint_[e].cast<T>() + displacement[e];
+    const Vec3<T> displacement = Vec(At(theta, Term::kEyepoint, e)) + eye_offset + Vec3<T>(side * ipd_error, T(0), T(0));
+    out->eye[e] = design_eyepoint_[e].cast<T>() + displacement;
+    towards_eye[e] = inverse_image_distance * displacement;
+    screen_scale[e] = T(1) + At(theta, Term::kMagnification, e)[0];
   }
 
   // What the eyes see now was captured display_latency ago: the physical point, in the head frame
@@ -236,9 +250,6 @@ void ChainEvaluator::Evaluate(const T* theta, ChainSample<T>* out) const {
   const T display_latency = At(theta, Term::kDisplayLatency)[0];
   const Rigid3<T> motion{fo::Exp(Vec3<T>(w.cast<T>() * display_latency)), Vec3<T>(v.cast<T>() * display_latency)};
   const Rigid3<T> now_from_captured = fo::Inverse(motion);
-  // A display whose virtual image is at distance D shows pixel q at E⁰ + D·d(q); seen from
-  // E = E⁰ + Δ the ray's direction is D·d(q) − Δ ∝ d(q) − Δ/D.
-  const T inverse_image_distance = T(model_.geometry.display.inverse_image_distance);
 
   // Point by point in three passes (the truth, each eye's paths, the seen points) rather than one:
   // the iterations of a pass are independent, short enough for the processor to overlap them, and
@@ -274,13 +285,11 @@ void ChainEvaluator::Evaluate(const T* theta, ChainSample<T>* out) const {
       s.pixel_error[e] = q - real_pixel_[e][k].cast<T>();
       s.virtual_depth[e] = x(2);
       const T* shift = At(theta, Term::kScreenShift, e);
-      const T& magnification = At(theta, Term::kMagnification, e)[0];
       const T& lens_k1 = At(theta, Term::kLensK1, e)[0];
-      const Vec3<T> towards_eye = inverse_image_distance * displacement[e];
       s.overlay_ray[e] =
-          DisplayedDirection(e, Vec2<T>(q(0) - T(c.cx), q(1) - T(c.cy)), shift, magnification, lens_k1) - towards_eye;
-      s.seen_ray[e] = DisplayedDirection(e, Vec2<T>(real_centred_[e][k].cast<T>()), shift, magnification, lens_k1) -
-                      towards_eye;
+          DisplayedDirection(e, Vec2<T>(q(0) - T(c.cx), q(1) - T(c.cy)), shift, screen_scale[e], lens_k1) - towards_eye[e];
+      s.seen_ray[e] = DisplayedDirection(e, Vec2<T>(real_centred_[e][k].cast<T>()), shift, screen_scale[e], lens_k1) -
+                      towards_eye[e];
     }
   }
   for (size_t k = 0; k < num_points; ++k) {

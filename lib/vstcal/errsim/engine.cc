@@ -15,6 +15,7 @@ sensitivity::SummaryPlan ChainPlan(const ChainModel& model, const ChainMonteCarl
   sensitivity::SummaryPlan plan;
   plan.output_names = outputs.names();
   plan.all_percentiles = false;
+  plan.higher_moments = false;  // the report gives no standard error of σ
   for (size_t k = 0; k < outputs.size(); ++k) {
     if (outputs.wants_percentiles(k)) plan.percentile_outputs.push_back(k);
   }
@@ -41,17 +42,19 @@ sensitivity::MonteCarloSummary RunChainMonteCarlo(const ChainModel& model, const
     const uint64_t first = block * plan.block_size;
     const size_t count = static_cast<size_t>(std::min(plan.block_size, plan.total_samples - first));
     // Samples are measured four at a time; a last partial group computes samples past the block
-    // (each a function of its own index) and drops them.
+    // (each a function of its own index) and drops them. θ is drawn a few groups at a time, so
+    // that it stays in the cache between the draws and the chain.
     const size_t groups = (count + kLanes - 1) / kLanes;
-    std::vector<SimdDouble> theta(groups * n);
+    constexpr size_t kGroupsPerDraw = 32;
+    std::vector<SimdDouble> theta(kGroupsPerDraw * n);
     std::vector<double> y(kLanes * m);
     std::vector<uint8_t> defined(m);
     SampleMeasurer measurer(chain, outputs);
-    sampler.FillLanes(first, groups, theta.data());
     sensitivity::BlockAccumulator accumulator(plan);
     for (size_t g = 0; g < groups; ++g) {
+      if (g % kGroupsPerDraw == 0) sampler.FillLanes(first + kLanes * g, std::min(kGroupsPerDraw, groups - g), theta.data());
       const size_t lanes = std::min(kLanes, count - g * kLanes);
-      const int incomplete = measurer.MeasureLanes(&theta[g * n], y.data(), defined.data());
+      const int incomplete = measurer.MeasureLanes(&theta[(g % kGroupsPerDraw) * n], y.data(), defined.data());
       // The dropped lanes past the block are not counted as incomplete.
       int counted = incomplete;
       if (lanes < kLanes) {

@@ -17,7 +17,7 @@ ErrorOutputs::ErrorOutputs(const ChainModel& model, OutputSet set) : set_(set) {
     };
     for (const std::string_view eye : kEyeNames) add("image." + std::string(eye) + ".pixel_px", true);
     for (const std::string measure : {"misregistration", "misperception"}) {
-      for (const std::string& m : measures) add(measure + "." + m, m == "linear" || m == "angular_deg");
+      for (const std::string& m : measures) add(measure + "." + m, m == "linear");
     }
     if (tp.surface_behind) {
       for (const std::string_view eye : kEyeNames) add("occlusion." + std::string(eye) + ".wrong", false);

@@ -60,11 +60,9 @@ PointErrorsOf<T> MeasurePoint(const ChainEvaluator& chain, const ChainSample<T>&
   const auto& surface = model.geometry.test_points[k].surface_behind;
   if (surface) {
     const T disparity_error = theta[model.layout.Offset(Term::kDisparity) + static_cast<int>(k)];
-    const double baseline = chain.camera_baseline();
     for (int i = 0; i < kNumEyes; ++i) {
-      const double fb = model.geometry.cameras[i].params[0] * baseline;
-      const double z_surface = chain.real_depth(i, k) + *surface;
-      const T disparity = T(fb / z_surface) + disparity_error;
+      const double fb = chain.focal_baseline(i);
+      const T disparity = T(chain.surface_disparity(i, k)) + disparity_error;
       // No positive disparity: the matcher sees the surface at infinity, and the overlay is drawn.
       const T measured = Select(disparity > T(0), T(fb) / disparity, T(std::numeric_limits<double>::infinity()));
       // Drawn when in front of the measured surface: wrong when that disagrees with the truth.
@@ -103,7 +101,8 @@ class ErrorOutputs {
   bool has_occlusion(size_t k) const { return occlusion_[k]; }
   size_t num_points() const { return offsets_.size(); }
   size_t point_of(size_t output) const { return point_of_[output]; }
-  // Whether output k gets percentiles (a histogram): the magnitudes the report ranks by.
+  // Whether output k gets percentiles (a histogram): the magnitudes the report ranks by, each
+  // eye's pixel error and the two measures' linear terms (kFull only).
   bool wants_percentiles(size_t output) const { return percentiles_[output]; }
   static constexpr size_t kPixel = 0;  // + eye
   size_t misregistration() const { return 2; }

@@ -35,24 +35,8 @@ size_t HistogramSpec::BinOf(double y) const {
   return (bits & kSign) ? k - b : k + 2 + b;
 }
 
-// The same arithmetic on four lanes with GCC vector extensions (one AVX2 instruction each where the
-// CPU has it); NaN and the edges as BinOf.
 [[gnu::target_clones("avx2", "default")]] void HistogramSpec::BinsOf4(const double* y, uint32_t* bins) const {
-  using V = int64_t __attribute__((vector_size(32)));
-  V bits;
-  static_assert(sizeof bits == 4 * sizeof(double));
-  __builtin_memcpy(&bits, y, sizeof bits);
-  const int64_t k = static_cast<int64_t>(BinsPerSide());
-  const int64_t low = static_cast<int64_t>(ExponentBits(min_exponent)), high = static_cast<int64_t>(ExponentBits(max_exponent));
-  const V magnitude = bits & static_cast<int64_t>(kMagnitude);
-  const V negative = bits < 0;
-  const V b = (magnitude - low) >> (52 - sub_bins_log2);
-  const V inside = ((k - b) & negative) | ((k + 2 + b) & ~negative);
-  const V overflow = negative ? V{} : V{} + (2 * k + 2);
-  const V central = (magnitude < low) | (magnitude > 0x7ff0000000000000ll);
-  const V over = magnitude >= high;
-  const V bin = central ? V{} + (k + 1) : (over ? overflow : inside);
-  for (int l = 0; l < 4; ++l) bins[l] = static_cast<uint32_t>(bin[l]);
+  BinsOf4Inline(*this, y, bins);
 }
 
 double HistogramSpec::BinLow(size_t bin) const {
@@ -94,6 +78,22 @@ void LogHistogram::AddBin(size_t bin, uint64_t count) {
   if (!page) page = std::make_unique<Page>(Page{});
   (*page)[bin % kPageSize] += count;
   total_ += count;
+}
+
+void LogHistogram::AddBins(const uint32_t* bins, size_t n, uint32_t skip) {
+  const size_t num_bins = spec_.NumBins();
+  uint64_t added = 0;
+  for (size_t i = 0; i < n; ++i) {
+    const uint32_t bin = bins[i];
+    if (bin == skip) continue;
+    VSTCAL_CHECK(bin < num_bins, "histogram bin out of range");
+    const size_t p = bin / kPageSize;
+    if (p >= pages_.size()) pages_.resize(p + 1);
+    if (!pages_[p]) pages_[p] = std::make_unique<Page>(Page{});
+    ++(*pages_[p])[bin % kPageSize];
+    ++added;
+  }
+  total_ += added;
 }
 
 uint64_t LogHistogram::count(size_t bin) const {

@@ -71,24 +71,46 @@ BlockAccumulator::BlockAccumulator(const SummaryPlan& plan)
       s4_(num_outputs_, SimdDouble(0.0)),
       min_(num_outputs_, SimdDouble(std::numeric_limits<double>::infinity())),
       max_(num_outputs_, SimdDouble(-std::numeric_limits<double>::infinity())),
-      bins_(plan.NumHistograms()) {
-  for (auto& b : bins_) b.reserve(plan.block_size);
-}
+      bins_(plan.NumHistograms(), std::vector<uint32_t>(plan.block_size + kLanes, kNoBin)) {}
 
 namespace {
 
-// The sums of AddLanes for one output, in a function of its own so that it is cloned for AVX2.
-[[gnu::target_clones("avx2", "default")]] void AccumulateLanes(size_t n, const double* y, const uint8_t* defined,
-                                                               const double* shift, SimdDouble* count, SimdDouble* s1,
-                                                               SimdDouble* s2, SimdDouble* s3, SimdDouble* s4,
-                                                               SimdDouble* lo, SimdDouble* hi, unsigned lanes) {
+// A group of four samples for every output: the shift, the sums and the histogram bins, in one
+// function cloned for AVX2 (each SimdDouble operation one instruction there).
+struct GroupState {
+  size_t num_outputs;
+  double* shift;
+  uint8_t* has_shift;
+  SimdDouble *count, *s1, *s2, *s3, *s4, *lo, *hi;
+  bool higher_moments;
+  const HistogramSpec* spec;
+  const SummaryPlan* plan;
+  std::vector<uint32_t>* bins;  // per histogram
+  size_t sample;                // the group's first sample in the block
+};
+
+[[gnu::target_clones("avx2", "default")]] void AccumulateGroup(const GroupState& a, const double* y, const uint8_t* defined,
+                                                               unsigned lanes) {
   static const SimdMask kMasks[16] = {LaneMask(0),  LaneMask(1),  LaneMask(2),  LaneMask(3), LaneMask(4),  LaneMask(5),
                                       LaneMask(6),  LaneMask(7),  LaneMask(8),  LaneMask(9), LaneMask(10), LaneMask(11),
                                       LaneMask(12), LaneMask(13), LaneMask(14), LaneMask(15)};
+  // Locals the stores below cannot alias, so that the loop keeps them in registers.
+  double* __restrict shift = a.shift;
+  uint8_t* __restrict has_shift = a.has_shift;
+  SimdDouble* __restrict count = a.count;
+  SimdDouble* __restrict s1 = a.s1;
+  SimdDouble* __restrict s2 = a.s2;
+  SimdDouble* __restrict s3 = a.s3;
+  SimdDouble* __restrict s4 = a.s4;
+  SimdDouble* __restrict lo = a.lo;
+  SimdDouble* __restrict hi = a.hi;
+  const size_t n = a.num_outputs;
   const SimdDouble zero(0.0), one(1.0);
-  for (size_t k = 0; k < n; ++k) {
-    const unsigned bits = defined[k] & lanes;
-    if (bits == 0) continue;
+  auto add = [&](size_t k, unsigned bits, bool higher) {
+    if (!has_shift[k]) {
+      shift[k] = y[kLanes * k + std::countr_zero(bits)];
+      has_shift[k] = 1;
+    }
     const SimdMask m = kMasks[bits];
     const SimdDouble v = SimdDouble::Load(y + kLanes * k);
     const SimdDouble d = Select(m, v - shift[k], zero);
@@ -96,33 +118,43 @@ namespace {
     count[k] += Select(m, one, zero);
     s1[k] += d;
     s2[k] += d2;
-    s3[k] += d2 * d;
-    s4[k] += d2 * d2;
+    if (higher) {
+      s3[k] += d2 * d;
+      s4[k] += d2 * d2;
+    }
     lo[k] = Select(m && v < lo[k], v, lo[k]);
     hi[k] = Select(m && v > hi[k], v, hi[k]);
+  };
+  // The loop twice rather than a test per output: the plan fixes whether M₃, M₄ are kept.
+  if (a.higher_moments) {
+    for (size_t k = 0; k < n; ++k) {
+      if (const unsigned bits = defined[k] & lanes) add(k, bits, true);
+    }
+  } else {
+    for (size_t k = 0; k < n; ++k) {
+      if (const unsigned bits = defined[k] & lanes) add(k, bits, false);
+    }
+  }
+  const size_t histograms = a.plan->NumHistograms();
+  const HistogramSpec spec = *a.spec;
+  for (size_t h = 0; h < histograms; ++h) {
+    const size_t k = a.plan->HistogramOutput(h);
+    uint32_t* out = a.bins[h].data() + a.sample;
+    BinsOf4Inline(spec, y + kLanes * k, out);
+    for (int l = 0; l < 4; ++l) out[l] = (defined[k] >> l) & 1 ? out[l] : kNoBin;
   }
 }
 
 }  // namespace
 
 void BlockAccumulator::AddLanes(const double* y, const uint8_t* defined, size_t count, uint64_t incomplete) {
-  VSTCAL_CHECK(samples_ % kLanes == 0 && count >= 1 && count <= kLanes, "lanes out of step with the block");
+  VSTCAL_CHECK(samples_ % kLanes == 0 && count >= 1 && count <= kLanes && samples_ + count <= plan_->block_size,
+               "lanes out of step with the block");
   const unsigned lanes = (1u << count) - 1;
-  for (size_t k = 0; k < num_outputs_; ++k) {
-    const unsigned bits = defined[k] & lanes;
-    if (bits != 0 && !has_shift_[k]) {
-      shift_[k] = y[kLanes * k + std::countr_zero(bits)];
-      has_shift_[k] = 1;
-    }
-  }
-  AccumulateLanes(num_outputs_, y, defined, shift_.data(), count_.data(), s1_.data(), s2_.data(), s3_.data(), s4_.data(),
-                  min_.data(), max_.data(), lanes);
-  for (size_t h = 0; h < bins_.size(); ++h) {
-    const size_t k = plan_->HistogramOutput(h);
-    uint32_t bins[kLanes];
-    plan_->histogram.BinsOf4(y + kLanes * k, bins);
-    for (size_t l = 0; l < count; ++l) bins_[h].push_back((defined[k] >> l) & 1 ? bins[l] : kNoBin);
-  }
+  const GroupState state{num_outputs_, shift_.data(), has_shift_.data(), count_.data(), s1_.data(), s2_.data(),
+                         s3_.data(), s4_.data(), min_.data(), max_.data(), plan_->higher_moments, &plan_->histogram,
+                         plan_, bins_.data(), samples_};
+  AccumulateGroup(state, y, defined, lanes);
   samples_ += count;
   incomplete_ += incomplete;
 }
@@ -137,23 +169,27 @@ void BlockAccumulator::AddOne(size_t k, size_t lane, double value) {
   add(count_[k], 1.0);
   add(s1_[k], d);
   add(s2_[k], d2);
-  add(s3_[k], d2 * d);
-  add(s4_[k], d2 * d2);
+  if (plan_->higher_moments) {
+    add(s3_[k], d2 * d);
+    add(s4_[k], d2 * d2);
+  }
   if (value < min_[k].lane(static_cast<int>(lane))) min_[k].set_lane(static_cast<int>(lane), value);
   if (value > max_[k].lane(static_cast<int>(lane))) max_[k].set_lane(static_cast<int>(lane), value);
 }
 
 void BlockAccumulator::Add(const double* y, size_t stride) {
+  VSTCAL_CHECK(samples_ < plan_->block_size, "more samples than a block holds");
   const size_t lane = samples_ % kLanes;
   for (size_t k = 0; k < num_outputs_; ++k) AddOne(k, lane, y[k * stride]);
   for (size_t h = 0; h < bins_.size(); ++h) {
-    bins_[h].push_back(static_cast<uint32_t>(plan_->histogram.BinOf(y[plan_->HistogramOutput(h) * stride])));
+    bins_[h][samples_] = static_cast<uint32_t>(plan_->histogram.BinOf(y[plan_->HistogramOutput(h) * stride]));
   }
   ++samples_;
 }
 
 void BlockAccumulator::AddUndefined() {
-  for (auto& b : bins_) b.push_back(kNoBin);
+  VSTCAL_CHECK(samples_ < plan_->block_size, "more samples than a block holds");
+  for (auto& b : bins_) b[samples_] = kNoBin;
   ++samples_;
   ++incomplete_;
 }
@@ -244,9 +280,7 @@ void MonteCarloSummary::AddBlock(uint64_t block, const BlockAccumulator& accumul
   const uint64_t expected = std::min(plan_.block_size, plan_.total_samples - first);
   VSTCAL_CHECK(accumulator.samples_ == expected, "block " + std::to_string(block) + " holds the wrong number of samples");
   for (size_t h = 0; h < histograms_.size(); ++h) {
-    for (const uint32_t bin : accumulator.bins_[h]) {
-      if (bin != kNoBin) histograms_[h].AddBin(bin);
-    }
+    histograms_[h].AddBins(accumulator.bins_[h].data(), accumulator.samples_, kNoBin);
   }
   undefined_ += accumulator.incomplete_;
   Insert({0, block}, accumulator.Finish());

@@ -54,6 +54,7 @@ io::OrderedJson SummaryToJson(const MonteCarloSummary& summary) {
                     {"sub_bins_log2", plan.histogram.sub_bins_log2}};
   j["outputs"] = plan.output_names;
   j["percentile_outputs"] = plan.all_percentiles ? io::OrderedJson("all") : io::OrderedJson(plan.percentile_outputs);
+  j["higher_moments"] = plan.higher_moments;
   j["undefined_samples"] = summary.undefined_samples();
   io::OrderedJson nodes = io::OrderedJson::array();
   for (const auto& [key, moments] : summary.nodes()) {
@@ -98,6 +99,7 @@ MonteCarloSummary SummaryFromJson(const io::JsonNode& root) {
     plan.all_percentiles = false;
     for (size_t i = 0; i < percentiles.ArraySize(); ++i) plan.percentile_outputs.push_back(Count(percentiles.at(i)));
   }
+  plan.higher_moments = root.at("higher_moments").Boolean();
   try {
     plan.Validate();
   } catch (const InputError& e) {

@@ -4,7 +4,7 @@
 //
 //   {"format": "vstcal/mc-summary@2", "run_id", "total_samples", "block_size",
 //    "histogram": {"min_exponent", "max_exponent", "sub_bins_log2"}, "outputs": [names],
-//    "percentile_outputs": [indices] or "all",
+//    "percentile_outputs": [indices] or "all", "higher_moments": whether M₃, M₄ are kept,
 //    "undefined_samples",
 //    "nodes": [[level, index, [moments per output]], …],    (the block tree's nodes, mc_summary.h)
 //    "histograms": [[[first_bin, count, count, …], …] per histogram]}  (runs of non-empty bins)

@@ -99,7 +99,7 @@ void ApplyCovariance(const ChainSpec& spec, const ParameterCovariance& cov, int 
   for (int j = 0; j < model->layout.Size(Term::kLens, eye); ++j) {
     ChainParameter& p = model->parameters[offset + j];
     p.slot.name = std::string("camera_intrinsic.").append(kEyeNames[eye]).append(".mode[").append(std::to_string(j)).append("]");
-    p.slot.file_unit = "1";
+    p.slot.file_unit = FileUnit(TermUnit::kRelative, LengthUnit::kMillimetre, 0);  // "1" (GCC 12 -Wrestrict misfires on = "1")
     p.distribution = j < m ? Distribution::MakeNormal(0, 1) : Distribution::MakeFixed(0);
   }
 }
