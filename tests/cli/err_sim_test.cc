@@ -364,7 +364,7 @@ TEST_F(CliErrSim, TamperedShardIsNamed) {
   bad["scenarios"][0]["summary"]["nodes"][0][2][0] = {1, 2.0};
   WriteJson("in/t2.json", bad);
   EXPECT_TRUE(FailsWith(Run("err-sim", {"merge", "in/chain.json", "out/s0.json", "in/t2.json", "-o", "out/m.json"}), "err-sim",
-                        kBadInput, "in/t2.json: scenarios[0].summary.nodes[0][2][0]: ", {"expected 7 items, got 2"}));
+                        kBadInput, "in/t2.json: scenarios[0].summary.nodes[0][2][0]: ", {"expected 5 items, got 2"}));
   bad = good;
   bad["scenarios"][0]["summary"]["outputs"][0] = "renamed";
   WriteJson("in/t3.json", bad);

@@ -114,7 +114,7 @@ int main(int argc, char** argv) {
     } else {
       outcome = errsim::NormalizeErrSim(common.chain.chain, common.output, provenance);
     }
-    io::WriteFilesAtomically({{common.output, io::DumpJson(outcome.json)}});
+    io::WriteFilesAtomically({{common.output, outcome.Text()}});
     if (!common.quiet) std::cerr << outcome.text << "  wrote " << common.output << "\n";
     return 0;
   });

@@ -96,6 +96,8 @@ void RequireDefinedPoints(const ChainModel& model, const SimulationResult& resul
 
 }  // namespace
 
+std::string Outcome::Text() const { return compact ? io::DumpJsonCompact(json) : io::DumpJson(json); }
+
 ChainModel LoadChain(const ChainRequest& request) {
   const std::vector<Source> only = ParseSources(request.only, "--only");  // flags before files
   const std::vector<Source> without = ParseSources(request.without, "--without");
@@ -129,7 +131,7 @@ Outcome RunErrSim(const RunRequest& request, const io::Provenance& given, const 
   run.options.shard = request.shard;
   run.options.shards = request.shards;
   const SimulationResult result = RunSimulation(MakeScenarios(model, request.budget), run.options, run.digest, progress);
-  if (request.shards > 1) return {ShardToJson(result, run, provenance), ""};
+  if (request.shards > 1) return {ShardToJson(result, run, provenance), "", true};
   RequireDefinedPoints(model, result, request.chain.chain);
   const ChainEvaluator chain(model);
   return {ReportToJson(chain, result, run, provenance), ReportText(chain, result, run)};

@@ -41,6 +41,10 @@ ChainModel LoadChain(const ChainRequest& request);
 struct Outcome {
   io::OrderedJson json;  // the output file
   std::string text;      // the summary for stderr (empty for a shard)
+  bool compact = false;  // write it on one line (a shard file: a machine's, whose size matters)
+
+  // The file's text: indented (DumpJson), or on one line when compact.
+  std::string Text() const;
 };
 
 struct RunRequest {

@@ -21,6 +21,8 @@ OrderedJson RigidToJson(const Rigid3d& a_from_b) {
 
 std::string DumpJson(const OrderedJson& json) { return json.dump(2) + "\n"; }
 
+std::string DumpJsonCompact(const OrderedJson& json) { return json.dump() + "\n"; }
+
 namespace {
 
 // Writes `text` to a new temporary file beside `path`; returns the temporary's name.

@@ -264,6 +264,10 @@ void MonteCarloSummary::Insert(NodeKey node, std::vector<Moments> moments) {
     }
     nodes_.erase(it);
     node = parent;
+    // Without the higher moments, a merge's cross terms would make M₃ and M₄ up from nothing.
+    if (!plan_.higher_moments) {
+      for (Moments& m : moments) m.m3 = m.m4 = 0;
+    }
   }
   nodes_.emplace(node, std::move(moments));
 }

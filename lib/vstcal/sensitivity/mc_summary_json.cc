@@ -10,8 +10,10 @@ namespace {
 
 constexpr const char* kRegenerate = "regenerate the shard file (it was changed or truncated)";
 
-io::OrderedJson MomentsToJson(const Moments& m) {
+// [count, mean, m2, m3, m4, min, max], or [count, mean, m2, min, max] without the higher moments.
+io::OrderedJson MomentsToJson(const Moments& m, bool higher) {
   if (m.count == 0) return io::OrderedJson::array({0});
+  if (!higher) return io::OrderedJson::array({m.count, m.mean, m.m2, m.min, m.max});
   return io::OrderedJson::array({m.count, m.mean, m.m2, m.m3, m.m4, m.min, m.max});
 }
 
@@ -20,7 +22,7 @@ uint64_t Count(const io::JsonNode& node) {
   return node.json().get<uint64_t>();
 }
 
-Moments MomentsFromJson(const io::JsonNode& node) {
+Moments MomentsFromJson(const io::JsonNode& node, bool higher) {
   const size_t n = node.ArraySize();
   Moments m;
   m.count = Count(node.at(size_t{0}));
@@ -28,13 +30,16 @@ Moments MomentsFromJson(const io::JsonNode& node) {
     if (n != 1) node.Fail("an empty moment set has one number, [0]", kRegenerate);
     return m;
   }
-  node.ArraySize(7);
+  node.ArraySize(higher ? 7 : 5);
   m.mean = node.at(1).Number();
   m.m2 = node.at(2).NonNegativeNumber();
-  m.m3 = node.at(3).Number();
-  m.m4 = node.at(4).NonNegativeNumber();
-  m.min = node.at(5).Number();
-  m.max = node.at(6).Number();
+  const size_t extremes = higher ? 5 : 3;
+  if (higher) {
+    m.m3 = node.at(3).Number();
+    m.m4 = node.at(4).NonNegativeNumber();
+  }
+  m.min = node.at(extremes).Number();
+  m.max = node.at(extremes + 1).Number();
   if (m.min > m.max) node.Fail("min exceeds max", kRegenerate);
   if (m.mean < m.min || m.mean > m.max) node.Fail("the mean lies outside [min, max]", kRegenerate);
   return m;
@@ -59,7 +64,7 @@ io::OrderedJson SummaryToJson(const MonteCarloSummary& summary) {
   io::OrderedJson nodes = io::OrderedJson::array();
   for (const auto& [key, moments] : summary.nodes()) {
     io::OrderedJson list = io::OrderedJson::array();
-    for (const Moments& m : moments) list.push_back(MomentsToJson(m));
+    for (const Moments& m : moments) list.push_back(MomentsToJson(m, plan.higher_moments));
     nodes.push_back({key.first, key.second, std::move(list)});
   }
   j["nodes"] = std::move(nodes);
@@ -117,7 +122,7 @@ MonteCarloSummary SummaryFromJson(const io::JsonNode& root) {
     const io::JsonNode list = entry.at(2);
     list.ArraySize(m);
     std::vector<Moments> moments;
-    for (size_t k = 0; k < m; ++k) moments.push_back(MomentsFromJson(list.at(k)));
+    for (size_t k = 0; k < m; ++k) moments.push_back(MomentsFromJson(list.at(k), plan.higher_moments));
     if (!nodes.emplace(key, std::move(moments)).second) entry.Fail("repeats a node", kRegenerate);
   }
   std::vector<LogHistogram> histograms(plan.NumHistograms(), LogHistogram(plan.histogram));

@@ -8,7 +8,8 @@
 //    "undefined_samples",
 //    "nodes": [[level, index, [moments per output]], …],    (the block tree's nodes, mc_summary.h)
 //    "histograms": [[[first_bin, count, count, …], …] per histogram]}  (runs of non-empty bins)
-//   moments = [count, mean, m2, m3, m4, min, max]; an empty one is [0].
+//   moments = [count, mean, m2, m3, m4, min, max] ([count, mean, m2, min, max] without the higher
+//   moments); an empty one is [0].
 #pragma once
 
 #include "vstcal/json/json_reader.h"

@@ -12,11 +12,7 @@
 namespace vstcal::errsim {
 namespace {
 
-std::string Number(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.6g", v);
-  return buf;
-}
+using io::MessageNumber;
 
 std::string PointField(size_t k) { return "test_points[" + std::to_string(k) + "].world"; }
 
@@ -32,20 +28,20 @@ void CheckTestPointsVisible(const ChainSpec& spec, const ChainGeometry& g) {
       const auto q = camera.Project(x);
       if (!q) {
         io::FailField(spec.file, PointField(k),
-                      "lies behind the " + eye + " camera (depth " + Number(x.z()) + " " + std::string(LengthUnitName(g.length_unit)) + ")",
+                      "lies behind the " + eye + " camera (depth " + MessageNumber(x.z()) + " " + std::string(LengthUnitName(g.length_unit)) + ")",
                       "move the point in front of both cameras, or check frames (x_a = a_from_b · x_b)");
       }
       const double r2 = (x.x() * x.x() + x.y() * x.y()) / (x.z() * x.z());
       if (!(r2 <= camera.ValidRadiusSquared())) {
         io::FailField(spec.file, PointField(k),
-                      "lies " + Number(RadToDeg(std::atan(std::sqrt(r2)))) + "° off the " + eye +
+                      "lies " + MessageNumber(RadToDeg(std::atan(std::sqrt(r2)))) + "° off the " + eye +
                           " camera's axis, outside its lens model's valid domain (the distortion folds over beyond " +
-                          Number(RadToDeg(std::atan(std::sqrt(camera.ValidRadiusSquared())))) + "°)",
+                          MessageNumber(RadToDeg(std::atan(std::sqrt(camera.ValidRadiusSquared())))) + "°)",
                       "move the point into both cameras' field of view");
       }
       if (!camera.InImage(*q)) {
         io::FailField(spec.file, PointField(k),
-                      "projects outside the " + eye + " image, at (" + Number(q->x()) + ", " + Number(q->y()) + ") px in " +
+                      "projects outside the " + eye + " image, at (" + MessageNumber(q->x()) + ", " + MessageNumber(q->y()) + ") px in " +
                           std::to_string(camera.image_size.width) + "×" + std::to_string(camera.image_size.height),
                       "move the point into both cameras' field of view");
       }
