@@ -311,6 +311,19 @@ TEST_F(CliErrSim, SizeFlagsHaveMaximums) {
   WriteJson("in/many.json", many);
   EXPECT_TRUE(FailsWith(Run("err-sim", {"run", "in/many.json", "-o", "out/x.json"}), "err-sim", kBadInput,
                         "in/many.json: test_points: ", {"1004 test points", "at most 1000"}));
+  // A sweep grows with the test points squared (one disparity parameter per point): 300 points at
+  // the default 21 sweep points are (36 + 300) parameters × 22 × 3000 outputs (10 a point) =
+  // 22,176,000 values (36: 6 tracker alignment, 4 tracking, 4 extrinsic, 4 intrinsic, 6 eyepoint,
+  // 12 fiducial localisation), refused before any work.
+  Json wide = SmallChain();
+  for (int i = 0; i < 297; ++i) {
+    wide["test_points"].push_back({{"name", "w" + std::to_string(i)}, {"world", {5.0 * (i % 20), 5.0 * (i / 20), 0.0}}});
+  }
+  WriteJson("in/wide.json", wide);
+  EXPECT_TRUE(FailsWith(Run("err-sim", {"sweep", "in/wide.json", "-o", "out/x.json"}), "err-sim", kBadInput,
+                        "in/wide.json: --points: ", {"336 parameters at 21 points", "3000 outputs", "22176000 values",
+                                                     "more than the 10000000",
+                                                     "--parameter"}));
   EXPECT_TRUE(OutDirEmpty());
 }
 
