@@ -166,6 +166,25 @@ TEST_F(CliErrSim, MissingFrame) {
   EXPECT_TRUE(OutDirEmpty());
 }
 
+// A camera reference that leads nowhere names the chain's field as well as the path it resolved to.
+TEST_F(CliErrSim, CameraReferenceAndCountsNameTheChainsField) {
+  Json c = SmallChain();
+  c["cameras"]["left"] = {{"file", "nope.json"}};
+  WriteJson("in/missing.json", c);
+  EXPECT_TRUE(FailsWith(Run("err-sim", {"run", "in/missing.json", "-o", "out/r.json"}), "err-sim", kBadInput,
+                        "in/missing.json: cameras.left.file: ", {"names in/nope.json, which does not exist", "relative to the chain's folder"}));
+  c["cameras"]["left"] = {{"file", "."}};
+  WriteJson("in/dir.json", c);
+  EXPECT_TRUE(FailsWith(Run("err-sim", {"run", "in/dir.json", "-o", "out/r.json"}), "err-sim", kBadInput,
+                        "in/dir.json: cameras.left.file: ", {"a directory", "give the camera@1 file's path"}));
+  c = SmallChain();
+  c["samples"] = 0;
+  WriteJson("in/zero.json", c);
+  EXPECT_TRUE(FailsWith(Run("err-sim", {"run", "in/zero.json", "-o", "out/r.json"}), "err-sim", kBadInput,
+                        "in/zero.json: samples: ", {"expected a whole number from 1 to 10^12, got 0"}));
+  EXPECT_TRUE(OutDirEmpty());
+}
+
 TEST_F(CliErrSim, TestPointBehindACamera) {
   Json c = SmallChain();
   c["test_points"][1]["world"] = {0, 0, -1200};  // the hmd is 1 m in front of the origin, looking at it
