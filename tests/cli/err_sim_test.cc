@@ -166,6 +166,25 @@ TEST_F(CliErrSim, MissingFrame) {
   EXPECT_TRUE(OutDirEmpty());
 }
 
+// A camera reference that leads nowhere names the chain's field as well as the path it resolved to.
+TEST_F(CliErrSim, CameraReferenceAndCountsNameTheChainsField) {
+  Json c = SmallChain();
+  c["cameras"]["left"] = {{"file", "nope.json"}};
+  WriteJson("in/missing.json", c);
+  EXPECT_TRUE(FailsWith(Run("err-sim", {"run", "in/missing.json", "-o", "out/r.json"}), "err-sim", kBadInput,
+                        "in/missing.json: cameras.left.file: ", {"names in/nope.json, which does not exist", "relative to the chain's folder"}));
+  c["cameras"]["left"] = {{"file", "."}};
+  WriteJson("in/dir.json", c);
+  EXPECT_TRUE(FailsWith(Run("err-sim", {"run", "in/dir.json", "-o", "out/r.json"}), "err-sim", kBadInput,
+                        "in/dir.json: cameras.left.file: ", {"a directory", "give the camera@1 file's path"}));
+  c = SmallChain();
+  c["samples"] = 0;
+  WriteJson("in/zero.json", c);
+  EXPECT_TRUE(FailsWith(Run("err-sim", {"run", "in/zero.json", "-o", "out/r.json"}), "err-sim", kBadInput,
+                        "in/zero.json: samples: ", {"expected a whole number from 1 to 10^12, got 0"}));
+  EXPECT_TRUE(OutDirEmpty());
+}
+
 TEST_F(CliErrSim, TestPointBehindACamera) {
   Json c = SmallChain();
   c["test_points"][1]["world"] = {0, 0, -1200};  // the hmd is 1 m in front of the origin, looking at it
@@ -311,6 +330,19 @@ TEST_F(CliErrSim, SizeFlagsHaveMaximums) {
   WriteJson("in/many.json", many);
   EXPECT_TRUE(FailsWith(Run("err-sim", {"run", "in/many.json", "-o", "out/x.json"}), "err-sim", kBadInput,
                         "in/many.json: test_points: ", {"1004 test points", "at most 1000"}));
+  // A sweep grows with the test points squared (one disparity parameter per point): 300 points at
+  // the default 21 sweep points are (36 + 300) parameters × 22 × 3000 outputs (10 a point) =
+  // 22,176,000 values (36: 6 tracker alignment, 4 tracking, 4 extrinsic, 4 intrinsic, 6 eyepoint,
+  // 12 fiducial localisation), refused before any work.
+  Json wide = SmallChain();
+  for (int i = 0; i < 297; ++i) {
+    wide["test_points"].push_back({{"name", "w" + std::to_string(i)}, {"world", {5.0 * (i % 20), 5.0 * (i / 20), 0.0}}});
+  }
+  WriteJson("in/wide.json", wide);
+  EXPECT_TRUE(FailsWith(Run("err-sim", {"sweep", "in/wide.json", "-o", "out/x.json"}), "err-sim", kBadInput,
+                        "in/wide.json: --points: ", {"336 parameters at 21 points", "3000 outputs", "22176000 values",
+                                                     "more than the 10000000",
+                                                     "--parameter"}));
   EXPECT_TRUE(OutDirEmpty());
 }
 

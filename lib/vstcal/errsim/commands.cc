@@ -244,6 +244,14 @@ Outcome SweepErrSim(const SweepRequest& request, const io::Provenance& provenanc
       chosen.push_back(i);
     }
   }
+  const uint64_t outputs = VectorOutputNames(model).size();
+  const uint64_t values = chosen.size() * (request.points + 1) * outputs;
+  if (values > kMaxSweepValues) {
+    throw InputError(request.chain.chain + ": --points: sweeping " + std::to_string(chosen.size()) + " parameters at " +
+                     std::to_string(request.points) + " points (and their slopes) for " + std::to_string(outputs) +
+                     " outputs is " + std::to_string(values) + " values, more than the " + std::to_string(kMaxSweepValues) +
+                     " of one sweep; name fewer parameters with --parameter, give fewer --points, or split the test points");
+  }
   std::vector<ParameterSweep> sweeps;
   for (const size_t i : chosen) {
     const double per = model.parameters[i].slot.file_per_internal;

@@ -20,6 +20,11 @@ inline constexpr uint64_t kMaxSamples = 1'000'000'000'000;  // run, linear: memo
 inline constexpr uint64_t kMaxShards = 1'000'000;
 inline constexpr unsigned kMaxThreads = 256;
 inline constexpr size_t kMaxSweepPoints = 1001;
+// A sweep keeps parameters × points × outputs values and writes parameters × outputs slopes; the
+// random parameters include one disparity per test point, so both grow with the test points
+// squared (1,000 points at the default 21 sweep points took 2.3 GB). At most this many
+// parameters × (points + 1) × outputs: about 100 MB kept, seed 001's every parameter at 1001 points.
+inline constexpr uint64_t kMaxSweepValues = 10'000'000;
 inline constexpr size_t kMaxBootstrap = 10'000;
 inline constexpr uint64_t kMaxSobolSamples = uint64_t{1} << 24;
 inline constexpr double kMaxSobolBytes = 1 << 30;    // the evaluations Sobol's estimators keep: 8·N·(G + 2)·outputs

@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <set>
+#include <system_error>
 
 #include "vstcal/core/suggest.h"
 #include "vstcal/errsim/point_registration.h"
@@ -43,8 +45,9 @@ TransformSpec ReadTransform(const JsonNode& node) {
 uint64_t ReadCount(const JsonNode& node, double lo, double hi, const std::string& hi_text) {
   const double v = node.Number();
   if (v != std::floor(v) || v < lo || v > hi) {
-    node.Fail("expected a whole number from " + Number(lo) + " to " + hi_text + ", got " + node.json().dump(),
-              "write a whole number between " + Number(lo) + " and " + hi_text);
+    const std::string lo_text = std::to_string(static_cast<uint64_t>(lo));
+    node.Fail("expected a whole number from " + lo_text + " to " + hi_text + ", got " + node.json().dump(),
+              "write a whole number between " + lo_text + " and " + hi_text);
   }
   return static_cast<uint64_t>(v);
 }
@@ -56,8 +59,14 @@ CameraSpec ReadCameraSpec(const JsonNode& node, const std::filesystem::path& dir
   if (const auto file = node.find("file")) {
     ExpectKeys(node, {"file"}, "field of a camera reference");
     out.file = file->String();
-    if (out.file.empty()) file->Fail("is empty", "give the camera@1 file's path, relative to the chain's folder");
-    CalibratedCamera calibrated = io::CameraFromJson(io::JsonDocument::Load(directory / out.file));
+    const std::string fix = "give the camera@1 file's path, relative to the chain's folder";
+    if (out.file.empty()) file->Fail("is empty", fix);
+    // Here, where the chain's field can be named; the camera file's own problems name that file.
+    const std::filesystem::path path = directory / out.file;
+    std::error_code error;
+    if (!std::filesystem::exists(path, error)) file->Fail("names " + path.string() + ", which does not exist", fix);
+    if (std::filesystem::is_directory(path, error)) file->Fail("names " + path.string() + ", a directory", fix);
+    CalibratedCamera calibrated = io::CameraFromJson(io::JsonDocument::Load(path));
     out.camera = std::move(calibrated.camera);
     out.covariance = std::move(calibrated.covariance);
     return out;

@@ -1,0 +1,88 @@
+#include "err-sim/command_line.h"
+
+#include <cstdlib>
+#include <optional>
+#include <tuple>
+
+#include "common/progress.h"
+#include "common/scheduler.h"
+#include "common/validators.h"
+#include "vstcal/core/error.h"
+
+namespace vstcal::tools {
+
+CLI::App* ErrSimCommandLine::AddCommon(CLI::App* app, bool sources, bool sampling) {
+  app->add_option("CHAIN", chain_.chain, "vstcal/vst-chain@1 file")->required()->check(kNonEmpty);
+  app->add_option("-o,--output", output_, "file to write (JSON)")->required()->check(kNonEmpty);
+  if (sources) {
+    app->add_option("--only", chain_.only, "simulate only these sources (repeat or comma-separate)")->delimiter(',');
+    app->add_option("--without", chain_.without, "leave these sources out")->delimiter(',');
+  }
+  if (sampling) {
+    app->add_option("--samples", samples_, "samples (default: the chain's \"samples\"; at most 10^12)")->check(kPositiveCount);
+    app->add_option("--seed", seed_, "random seed (default: the chain's \"seed\")")->check(kSeed);
+    app->add_option("--threads", chain_.threads, "threads (0: all cores, at most 256; results do not depend on it)");
+  }
+  app->add_flag("-q,--quiet", quiet_, "print only errors (no summary)");
+  return app;
+}
+
+ErrSimCommandLine::ErrSimCommandLine(CLI::App& app) {
+  app.require_subcommand(1);
+  run_ = AddCommon(app.add_subcommand("run", "Monte Carlo: error statistics, contributions and the error budget"), true, true);
+  run_->add_flag("--no-budget", no_budget_, "skip the per-source scenarios (contributions and budget)");
+  run_->add_option("--budget-samples", budget_samples_, "samples per budget scenario (default: --samples)")->check(kPositiveCount);
+  run_->add_option("--shard", shard_, "run shard i of N (i/N), or \"auto\" from a Slurm array or Kubernetes Indexed Job, and write a shard file for `err-sim merge`");
+  run_->add_option("--shard-count", shard_count_, "with --shard auto under Kubernetes: the shard count (the Job's completions)")->check(kPositiveCount);
+
+  merge_ = app.add_subcommand("merge", "merge the shard files of one run into its report");
+  merge_->add_option("CHAIN", chain_.chain, "the chain the shards ran")->required()->check(kNonEmpty);
+  merge_->add_option("SHARDS", shards_, "shard files (vstcal/err-sim-shard@2)")->required()->check(CLI::ExistingFile);
+  merge_->add_option("-o,--output", output_, "report to write")->required()->check(kNonEmpty);
+  merge_->add_flag("-q,--quiet", quiet_, "print only errors (no summary)");
+
+  sweep_ = AddCommon(app.add_subcommand("sweep", "one-at-a-time sweeps with the local slope (autodiff)"), true, false);
+  sweep_->add_option("--parameter", sweep_request_.parameters, "parameter names (default: every random one)")->delimiter(',');
+  sweep_->add_option("--lo", sweep_request_.lo, "lower end of the range, in the parameter's unit (one --parameter; default: mean − 3σ or the support)")->check(kFinite);
+  sweep_->add_option("--hi", sweep_request_.hi, "upper end of the range (one --parameter; default: mean + 3σ or the support)")->check(kFinite);
+  sweep_->add_option("--points", sweep_request_.points, "points per sweep (2 … 1001)")->capture_default_str();
+
+  sobol_ = AddCommon(app.add_subcommand("sobol", "first-order and total Sobol indices per source"), true, true);
+  sobol_->add_option("--sampling", sobol_request_.sampling, "sobol or pseudo-random")->check(CLI::IsMember({"sobol", "pseudo-random"}))->capture_default_str();
+  sobol_->add_option("--bootstrap", sobol_request_.bootstrap, "bootstrap resamples for the intervals (0: none; at most 10000)")->capture_default_str();
+
+  linear_ = AddCommon(app.add_subcommand("linear", "first-order propagation (autodiff) compared with Monte Carlo"), true, true);
+  AddCommon(app.add_subcommand("normalize", "write the chain in the canonical vst-chain@1 layout, defaults spelled out"), false, false);
+}
+
+errsim::Outcome ErrSimCommandLine::Run(int argc, char** argv) {
+  CLI::App* used = run_->get_parent()->get_subcommands().front();
+  if (used->get_option_no_throw("--samples") && used->count("--samples")) chain_.samples = samples_;
+  if (used->get_option_no_throw("--seed") && used->count("--seed")) chain_.seed = seed_;
+  const io::Provenance provenance = io::MakeProvenance("err-sim", argc, argv, chain_.seed);
+  if (used == run_) {
+    errsim::RunRequest run;
+    run.chain = chain_;
+    run.budget = !no_budget_;
+    if (run_->count("--budget-samples")) run.budget_samples = budget_samples_;
+    if (run_->count("--shard-count") && shard_ != "auto") throw InputError("--shard-count: only with --shard auto; give --shard i/N or --shard auto");
+    const std::optional<uint64_t> count = run_->count("--shard-count") ? std::optional(shard_count_) : std::nullopt;
+    std::tie(run.shard, run.shards) = shard_ == "auto" ? ShardFromScheduler(std::getenv, count, "--shard-count")
+                                                       : ParseShard(shard_, "--shard");
+    ProgressBar bar("err-sim run", !quiet_);
+    return errsim::RunErrSim(run, provenance, [&](double f) { bar.Update(f); });
+  }
+  if (used == merge_) return errsim::MergeErrSim(chain_.chain, shards_, provenance);
+  if (used == sweep_) {
+    sweep_request_.chain = chain_;
+    return errsim::SweepErrSim(sweep_request_, provenance);
+  }
+  if (used == sobol_) {
+    sobol_request_.chain = chain_;
+    return errsim::SobolErrSim(sobol_request_, provenance);
+  }
+  if (used == linear_) return errsim::LinearErrSim(chain_, provenance);
+  return errsim::NormalizeErrSim(chain_.chain, output_, provenance);
+}
+
+}  // namespace vstcal::tools

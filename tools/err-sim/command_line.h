@@ -1,0 +1,45 @@
+// err-sim's command line (docs/tools/err-sim.md): its six subcommands and their flags declared on
+// one CLI11 app, and, once the app has parsed argv, the library call (errsim/commands.h) that the
+// chosen subcommand names. main only parses and writes the returned file.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "vstcal/errsim/commands.h"
+
+namespace vstcal::tools {
+
+class ErrSimCommandLine {
+ public:
+  // Declares the subcommands on `app`, which must outlive this object.
+  explicit ErrSimCommandLine(CLI::App& app);
+
+  // After app.parse: runs the chosen subcommand. InputError for flags that contradict each other.
+  errsim::Outcome Run(int argc, char** argv);
+  const std::string& output() const { return output_; }
+  bool quiet() const { return quiet_; }
+
+ private:
+  CLI::App* AddCommon(CLI::App* app, bool sources, bool sampling);
+
+  CLI::App *run_ = nullptr, *merge_ = nullptr, *sweep_ = nullptr, *sobol_ = nullptr, *linear_ = nullptr;
+  // Shared by every subcommand: the chain, which sources, samples, seed, threads, output.
+  errsim::ChainRequest chain_;
+  uint64_t samples_ = 0, seed_ = 0;
+  std::string output_;
+  bool quiet_ = false;
+  // run
+  std::string shard_ = "0/1";
+  uint64_t budget_samples_ = 0, shard_count_ = 0;
+  bool no_budget_ = false;
+  // merge, sweep, sobol
+  std::vector<std::string> shards_;
+  errsim::SweepRequest sweep_request_;
+  errsim::SobolRequest sobol_request_;
+};
+
+}  // namespace vstcal::tools
