@@ -2,7 +2,9 @@
 
 #include <set>
 
+#include "vstcal/core/limits.h"
 #include "vstcal/io/format_check.h"
+#include "vstcal/io/reader_common.h"
 
 namespace vstcal::io {
 namespace {
@@ -41,7 +43,13 @@ Observation ReadPoint(const JsonNode& node, const Correspondences& c) {
 
 ImageSize ReadImageSize(const JsonNode& node) {
   node.ArraySize(2);
-  return ImageSize{node.at(0).PositiveInteger(), node.at(1).PositiveInteger()};
+  auto side = [&](size_t i, std::string_view what) {
+    const JsonNode n = node.at(i);
+    const double v = n.Number();
+    if (const auto problem = ImageSideProblem(v, what)) n.Fail(problem->reason, problem->fix);
+    return static_cast<int>(v);
+  };
+  return ImageSize{side(0, "width"), side(1, "height")};
 }
 
 LengthUnit ReadLengthUnit(const JsonNode& node) {
@@ -61,6 +69,12 @@ Correspondences CorrespondencesFromJson(const JsonDocument& doc) {
   const JsonNode views = root.at("views");
   const size_t n_views = views.ArraySize();
   if (n_views == 0) views.Fail("no views", "add at least one view with points");
+  if (n_views > limits::kMaxViews) {
+    views.Fail(std::to_string(n_views) + " views, more than the " + std::to_string(limits::kMaxViews) +
+                   " vstcal calibrates from (docs/reliability.md#limits)",
+               "keep a subset of the views");
+  }
+  size_t n_points = 0;
   std::set<std::string> names;
   for (size_t i = 0; i < n_views; ++i) {
     const JsonNode v = views.at(i);
@@ -73,6 +87,12 @@ Correspondences CorrespondencesFromJson(const JsonDocument& doc) {
     const JsonNode points = v.at("points");
     const size_t n = points.ArraySize();
     if (n == 0) points.Fail("the view has no points", "remove the view or add its points");
+    n_points += n;
+    if (n_points > limits::kMaxPoints) {
+      points.Fail("the views hold more than the " + std::to_string(limits::kMaxPoints) +
+                      " points vstcal calibrates from (docs/reliability.md#limits)",
+                  "decimate the points or keep a subset of the views");
+    }
     view.observations.reserve(n);
     for (size_t k = 0; k < n; ++k) view.observations.push_back(ReadPoint(points.at(k), c));
     c.views.push_back(std::move(view));
