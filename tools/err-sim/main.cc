@@ -85,6 +85,7 @@ int main(int argc, char** argv) {
 
   return vstcal::tools::RunTool(app, argc, argv, [&] {
     using namespace vstcal;
+    io::DeclareOutputs({common.output});
     CLI::App* used = app.get_subcommands().front();
     common.Finish(used);
     const io::Provenance provenance = io::MakeProvenance("err-sim", argc, argv, common.chain.seed);
