@@ -158,8 +158,8 @@ TEST(Dlt, RefusesNonFinite) {
   auto scene = RandomVolumeScene(50, 0.0, 1);
   scene.observations[7].point.y() = NAN;
   EXPECT_EQ(SolveDlt(scene.observations).status, DltStatus::kNonFinite);
-  // Finite coordinates up to 1e308 (moved to the origin), whose differences overflow a double:
-  // say so instead of "coincide".
+  // Finite coordinates up to 1e308 (moved to the origin): the depths overflow a double. Say so,
+  // instead of "46 of 50 points lie behind the camera".
   auto huge = RandomVolumeScene(50, 0.0, 1);
   Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
   for (const auto& o : huge.observations) centroid += o.point / 50.0;
@@ -168,8 +168,9 @@ TEST(Dlt, RefusesNonFinite) {
   for (auto& o : huge.observations) o.point = (o.point - centroid) * (1e308 / largest);
   const DltResult r = SolveDlt(huge.observations);
   EXPECT_EQ(r.status, DltStatus::kNonFinite);
-  EXPECT_NE(r.message.find("the world coordinates' spread is beyond double precision"), std::string::npos) << r.message;
-  EXPECT_NE(r.message.find("another length unit"), std::string::npos) << r.message;
+  EXPECT_NE(r.message.find("the world coordinates are beyond double precision for the DLT"), std::string::npos)
+      << r.message;
+  EXPECT_NE(r.message.find("a larger length unit"), std::string::npos) << r.message;
 }
 
 // The DLT does not depend on the world's unit: coordinates scaled by 1e±150 and 1e±300 (where

@@ -11,6 +11,21 @@
 #include "vstcal/report/fit_summary.h"
 
 namespace vstcal::tools {
+namespace {
+
+void ExpectThree(const std::vector<double>& numbers, const std::string& flag, const std::string& form) {
+  if (numbers.size() == 3) return;
+  std::string got;
+  for (const double n : numbers) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%g", n);
+    got += (got.empty() ? "" : ",") + std::string(buf);
+  }
+  throw InputError(flag + ": expected three numbers " + form + ", got " + std::to_string(numbers.size()) + " (" + got +
+                   "); give each point as its own " + flag);
+}
+
+}  // namespace
 
 std::vector<CLI::Option*> CalibrationFlags::AddRefinement(CLI::App& app) {
   std::vector<CLI::Option*> options = {
@@ -90,8 +105,13 @@ io::UncertaintyRequest CalibrationFlags::Uncertainty(const Correspondences& corn
                      " cells, more than the " + std::to_string(limits::kMaxGridCells) +
                      " vstcal computes (docs/reliability.md#limits); give a coarser grid");
   }
-  for (const auto& [x, y, z] : at_world) r.world_points.emplace_back(x, y, z);
-  for (const auto& [u, v, depth] : at_pixel) {
+  for (const std::vector<double>& p : at_world) {
+    ExpectThree(p, "--uncertainty-at", "X,Y,Z (e.g. 0,0,1000)");
+    r.world_points.emplace_back(p[0], p[1], p[2]);
+  }
+  for (const std::vector<double>& p : at_pixel) {
+    ExpectThree(p, "--uncertainty-pixel", "U,V,DEPTH (e.g. 320,240,1000)");
+    const double u = p[0], v = p[1], depth = p[2];
     char point[120];
     std::snprintf(point, sizeof point, "%g,%g,%g", u, v, depth);
     if (!(depth > 0)) {

@@ -3,7 +3,6 @@
 // blocks, atomically, plus the stderr summary.
 #pragma once
 
-#include <array>
 #include <optional>
 #include <string>
 #include <vector>
@@ -24,8 +23,10 @@ struct CalibrationFlags {
 
   std::optional<double> grid_depth;
   std::string grid_size = "16x9";
-  std::vector<std::array<double, 3>> at_world;  // X,Y,Z per --uncertainty-at
-  std::vector<std::array<double, 3>> at_pixel;  // U,V,DEPTH per --uncertainty-pixel
+  // One list per occurrence of the flag (CLI11 2.1 would refill a std::array from the previous
+  // item's values when one occurrence gives 4 numbers): checked to be X,Y,Z and U,V,DEPTH.
+  std::vector<std::vector<double>> at_world;  // X,Y,Z per --uncertainty-at
+  std::vector<std::vector<double>> at_pixel;  // U,V,DEPTH per --uncertainty-pixel
 
   std::string residuals;
   bool quiet = false;

@@ -242,28 +242,34 @@ DltResult Fail(DltResult r, DltStatus status, std::string message) {
   return r;
 }
 
+// World coordinates so large that the DLT's numbers leave double precision: their differences
+// (beyond ~1e308) or the projection matrix and the depths (beyond ~1e305 / fx).
+DltResult FailBeyondRange(DltResult r, std::span<const Observation> obs) {
+  double largest = 0;
+  for (const Observation& o : obs) largest = std::max(largest, o.point.cwiseAbs().maxCoeff());
+  char buf[240];
+  std::snprintf(buf, sizeof buf,
+                "the world coordinates are beyond double precision for the DLT (largest |X|, |Y|, |Z| = %.3g); "
+                "express them in a larger length unit",
+                largest);
+  return Fail(r, DltStatus::kNonFinite, buf);
+}
+
 // Normalization fails when every point (or pixel) is the same, or when the world coordinates'
 // spread is beyond double precision (differences that overflow, or below the smallest normal
 // double); say which.
 DltResult FailNormalization(DltResult r, std::span<const Observation> obs) {
   bool same_point = true, same_pixel = true;
-  double largest = 0;
   for (const Observation& o : obs) {
     same_point = same_point && o.point == obs[0].point;
     same_pixel = same_pixel && o.pixel == obs[0].pixel;
-    largest = std::max(largest, o.point.cwiseAbs().maxCoeff());
   }
   if (same_point || same_pixel) {
     return Fail(r, DltStatus::kCoincident,
                 std::string(same_point ? "all points are the same 3-D point" : "all points project to the same pixel") +
                     "; DLT needs points spread over a volume (docs/math/dlt.md#degeneracy)");
   }
-  char buf[240];
-  std::snprintf(buf, sizeof buf,
-                "the world coordinates' spread is beyond double precision (largest |X|, |Y|, |Z| = %.3g); express "
-                "them in another length unit",
-                largest);
-  return Fail(r, DltStatus::kNonFinite, buf);
+  return FailBeyondRange(r, obs);
 }
 
 // Below this relative thickness a cloud is coplanar to the precision of the moments (the
@@ -371,14 +377,18 @@ DltResult SolveDlt(std::span<const Observation> obs, const DltOptions& options) 
   // Scale and sign: unit third row, the majority of points in front. Counting is one cheap pass;
   // only when some point lies on the other side does a second pass find the deepest to report.
   Matrix34d P = NormalizeProjectionScale(Denormalize(m, n));
+  if (!P.allFinite()) return FailBeyondRange(r, obs);
   const Eigen::Vector3d depth_dir = P.block<1, 3>(2, 0).transpose();
   const double depth_offset = P(2, 3);
   size_t positive = 0, negative = 0;
+  bool finite = true;
   for (const Observation& o : obs) {
     const double depth = depth_dir.dot(o.point) + depth_offset;
     positive += depth > 0;
     negative += depth < 0;
+    finite = finite && std::isfinite(depth);
   }
+  if (!finite) return FailBeyondRange(r, obs);
   if (negative > positive) {
     P = -P;
     std::swap(positive, negative);
