@@ -60,4 +60,13 @@ Camera MakeSyntheticCamera(const SyntheticCameraSpec& spec) {
   return CameraFromOpenCv(K, ImageSize{w, h}, spec.distortion);
 }
 
+CalibratedCamera SyntheticTruth(const Camera& camera, const std::string& name, LengthUnit unit) {
+  CalibratedCamera truth;
+  truth.name = name;
+  truth.camera = camera;
+  truth.length_unit = unit;
+  truth.method = "synthetic";
+  return truth;
+}
+
 }  // namespace vstcal

@@ -4,8 +4,10 @@
 #pragma once
 
 #include <optional>
+#include <string>
 #include <vector>
 
+#include "vstcal/calib/calibrated_camera.h"
 #include "vstcal/camera/camera.h"
 
 namespace vstcal {
@@ -25,5 +27,10 @@ struct SyntheticCameraSpec {
 // (--image-size, --fx, --hfov-deg, --fy, --cx, --cy, --skew-deg, --distortion) for an impossible
 // or non-finite value, or a focal length or principal point beyond limits::kMaxSyntheticScale.
 Camera MakeSyntheticCamera(const SyntheticCameraSpec& spec);
+
+// A ground-truth camera as calib-synth writes it: `camera`, named `name`, in `unit`, with method
+// "synthetic"; the pose (or the board poses) and the fit are added by VolumeTruthCamera and
+// PlanarViewsTruthCamera.
+CalibratedCamera SyntheticTruth(const Camera& camera, const std::string& name, LengthUnit unit);
 
 }  // namespace vstcal

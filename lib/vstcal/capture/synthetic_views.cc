@@ -5,6 +5,7 @@
 
 #include "vstcal/calib/zhang.h"
 #include "vstcal/calib/fit.h"
+#include "vstcal/capture/synthetic_camera.h"
 #include "vstcal/core/error.h"
 #include "vstcal/core/limits.h"
 #include "vstcal/random/philox.h"
@@ -104,11 +105,7 @@ SyntheticViews SynthesizePlanarViews(const Camera& camera, const PlanarViewsSpec
 }
 
 CalibratedCamera PlanarViewsTruthCamera(const Camera& camera, const PlanarViewsSpec& spec, const SyntheticViews& views) {
-  CalibratedCamera truth;
-  truth.name = spec.camera_name;
-  truth.camera = camera;
-  truth.length_unit = spec.length_unit;
-  truth.method = "synthetic";
+  CalibratedCamera truth = SyntheticTruth(camera, spec.camera_name, spec.length_unit);
   truth.fit = ComputeViewsFit(camera, views.camera_from_board, views.correspondences);
   for (size_t v = 0; v < views.camera_from_board.size(); ++v) {
     truth.views.push_back({views.correspondences.views[v].name, views.camera_from_board[v], truth.fit->views[v].stats.rms_px});

@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include "vstcal/calib/fit.h"
+#include "vstcal/capture/synthetic_camera.h"
 #include "vstcal/core/error.h"
 #include "vstcal/core/limits.h"
 #include "vstcal/random/philox.h"
@@ -141,11 +142,7 @@ SyntheticVolume SynthesizeVolume(const Camera& camera, const VolumeSpec& spec, s
 }
 
 CalibratedCamera VolumeTruthCamera(const Camera& camera, const VolumeSpec& spec, const SyntheticVolume& volume) {
-  CalibratedCamera truth;
-  truth.name = spec.camera_name;
-  truth.camera = camera;
-  truth.length_unit = spec.length_unit;
-  truth.method = "synthetic";
+  CalibratedCamera truth = SyntheticTruth(camera, spec.camera_name, spec.length_unit);
   truth.camera_from_world = volume.camera_from_world;
   truth.fit = ComputeVolumeFit(camera, volume.camera_from_world, volume.correspondences);
   return truth;

@@ -209,11 +209,15 @@ JsonDocument JsonDocument::Parse(const std::string& text, std::string name) {
   JsonDocument doc;
   doc.name_ = std::move(name);
   if (IsBlank(text)) throw InputError(doc.name_ + ": the file is empty; expected a JSON object");
+  StrictBuilder first(&doc.json_);
+  if (nlohmann::json::sax_parse(text.data(), text.data() + text.size(), &first)) return doc;
+  // It failed: parse again, tracking how far the lexer reads, to say where (the fast path above
+  // pays nothing for positions).
+  nlohmann::json partial;
+  StrictBuilder builder(&partial);
   const char* read_to = text.data();
-  StrictBuilder builder(&doc.json_);
-  const bool ok = nlohmann::json::sax_parse(TrackedIterator(text.data(), &read_to),
-                                            TrackedIterator(text.data() + text.size(), &read_to), &builder);
-  if (ok) return doc;
+  nlohmann::json::sax_parse(TrackedIterator(text.data(), &read_to), TrackedIterator(text.data() + text.size(), &read_to),
+                            &builder);
   const size_t read = static_cast<size_t>(read_to - text.data());  // bytes the lexer consumed
   switch (builder.problem()) {
     case StrictBuilder::Problem::kDuplicateKey: {
