@@ -106,7 +106,7 @@ TEST_F(CliInputsSacred, ErrSimRunOutputIsTheChainOrItsCamera) {
                 "in/zedmini/clean.truth.json");
 }
 
-TEST_F(CliInputsSacred, ErrSimSensitivityCommandsOutputIsTheChain) {
+TEST_F(CliInputsSacred, ErrSimSensitivityAndNormalizeOutputIsTheChain) {
   CopyChain();
   ExpectRefused("err-sim", {"sweep", "in/vst/chain.json", "-o", "in/vst/chain.json", "--points", "3"},
                 "in/vst/chain.json", "in/vst/chain.json");
@@ -114,6 +114,10 @@ TEST_F(CliInputsSacred, ErrSimSensitivityCommandsOutputIsTheChain) {
                 "in/vst/chain.json", "./in/vst/chain.json");
   ExpectRefused("err-sim", {"linear", "in/vst/chain.json", "-o", "in/vst/chain.json", "--samples", "100"},
                 "in/vst/chain.json", "in/vst/chain.json");
+  // normalize rewrites a chain: "in place" through a hard link is still the input.
+  fs::create_hard_link(Path("in/vst/chain.json"), Path("in/vst/link.json"));
+  ExpectRefused("err-sim", {"normalize", "in/vst/chain.json", "-o", "in/vst/link.json"}, "in/vst/chain.json",
+                "in/vst/link.json");
 }
 
 TEST_F(CliInputsSacred, ErrSimMergeOutputIsAShard) {

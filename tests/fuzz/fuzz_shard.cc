@@ -1,7 +1,7 @@
-// vstcal/err-sim-shard@1: the reader (`err-sim merge`) and the writer's fixed point
+// vstcal/err-sim-shard@2: the reader (`err-sim merge`) and the writer's fixed point
 // (docs/formats.md#err-sim-shard).
 #include "harness.h"
-#include "vstcal/errsim/report.h"
+#include "vstcal/errsim/formats/shard_format.h"
 
 namespace {
 

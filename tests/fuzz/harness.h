@@ -20,7 +20,7 @@
 #include <functional>
 #include <string>
 
-#include "vstcal/io/provenance.h"
+#include "vstcal/json/provenance.h"
 
 namespace vstcal::fuzz {
 

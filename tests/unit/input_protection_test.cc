@@ -8,9 +8,9 @@
 #include <stdlib.h>
 
 #include "vstcal/core/error.h"
-#include "vstcal/io/input_protection.h"
-#include "vstcal/io/json_writer.h"
-#include "vstcal/io/reader_common.h"
+#include "vstcal/json/input_protection.h"
+#include "vstcal/json/json_writer.h"
+#include "vstcal/json/reader_common.h"
 
 namespace vstcal {
 namespace {

@@ -63,9 +63,17 @@ TEST(ReaderLimits, ImageSideBeyondTheLimitSaysSoInEveryFormat) {
   const std::string yaml = "%YAML:1.0\n---\nimage_width: 10000000000\nimage_height: 480\n"
                            "camera_matrix: !!opencv-matrix\n   rows: 3\n   cols: 3\n   dt: d\n"
                            "   data: [ 600., 0., 319.5, 0., 600., 239.5, 0., 0., 1. ]\n";
-  EXPECT_NE(YamlError(yaml).find("image_width: 10000000000 px is more than the 1000000 px per side"),
+  // cv::FileStorage would read 10000000000 as 1410065408, and 4294967936 as 640: refused first.
+  EXPECT_NE(YamlError(yaml).find("line 3, column 14: the integer 10000000000 is beyond the 32-bit integers"),
             std::string::npos)
       << YamlError(yaml);
+  std::string wraps_to_640 = yaml;
+  wraps_to_640.replace(wraps_to_640.find("10000000000"), 11, "4294967936");
+  EXPECT_NE(YamlError(wraps_to_640).find("the integer 4294967936 is beyond"), std::string::npos) << YamlError(wraps_to_640);
+  std::string beyond_limit = yaml;
+  beyond_limit.replace(beyond_limit.find("10000000000"), 11, "2000000");
+  EXPECT_NE(YamlError(beyond_limit).find("image_width: 2000000 px is more than the 1000000 px per side"), std::string::npos)
+      << YamlError(beyond_limit);
   const std::string mrcal = "{'lensmodel': 'LENSMODEL_PINHOLE', 'intrinsics': [600, 600, 319.5, 239.5], "
                             "'extrinsics': [0, 0, 0, 0, 0, 0], 'imagersize': [640, 10000000000]}";
   EXPECT_NE(MrcalError(mrcal).find("imagersize[1]: 10000000000 px is more than the 1000000 px per side"),

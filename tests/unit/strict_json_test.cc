@@ -8,8 +8,8 @@
 
 #include "vstcal/core/error.h"
 #include "vstcal/core/limits.h"
-#include "vstcal/io/json_reader.h"
-#include "vstcal/io/json_writer.h"
+#include "vstcal/json/json_reader.h"
+#include "vstcal/json/json_writer.h"
 
 namespace vstcal {
 namespace {

@@ -8,7 +8,7 @@
 
 #include "vstcal/core/error.h"
 #include "vstcal/core/version.h"
-#include "vstcal/io/input_protection.h"
+#include "vstcal/json/input_protection.h"
 
 namespace vstcal::tools {
 namespace {

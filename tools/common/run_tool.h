@@ -7,7 +7,7 @@
 
 #include <CLI/CLI.hpp>
 
-#include "vstcal/io/input_protection.h"
+#include "vstcal/json/input_protection.h"
 
 namespace vstcal::tools {
 

@@ -12,16 +12,14 @@
 #include "vstcal/camera/intrinsics.h"
 #include "vstcal/core/limits.h"
 #include "vstcal/core/suggest.h"
-#include "vstcal/io/correspondences_io.h"
-#include "vstcal/io/format_check.h"
+#include "vstcal/json/fields.h"
+#include "vstcal/json/format_check.h"
 
 namespace vstcal::io {
 namespace {
 
 constexpr std::string_view kFormat = "vstcal/camera@1";
 constexpr double kAgreement = 1e-6;  // relative agreement required between redundant fields
-// A rotation read is kept as written when ‖RᵀR − I‖_max is below this (rounding of a computed R).
-constexpr double kRotationRounding = 1e-12;
 
 bool Agrees(double a, double b, double scale) { return std::abs(a - b) <= kAgreement * std::max(1.0, scale); }
 
@@ -112,20 +110,6 @@ void CheckTangentPoseExists(const JsonNode& name_node, const std::string& name, 
 }
 
 }  // namespace
-
-Rigid3d ReadRigid(const JsonNode& node) {
-  Rigid3d pose;
-  const JsonNode R = node.at("R");
-  pose.R = R.Matrix<3, 3>();
-  if (!IsRotation(pose.R, 1e-6)) {
-    R.Fail("not a rotation matrix (RᵀR ≠ I or det R < 0, tolerance 1e-6)", "write R with at least 7 significant digits");
-  }
-  // Re-orthonormalized unless it already is one to rounding, as every writer leaves it: the SVD
-  // would change its last bits on every pass, and a file read and written again must be the same.
-  if (!IsRotation(pose.R, kRotationRounding)) pose.R = NearestRotation(pose.R);
-  pose.t = node.at("t").Vector<3>();
-  return pose;
-}
 
 ParameterCovariance ReadCovariance(const JsonNode& node, const Camera& camera, const std::optional<CovariancePoses>& poses) {
   ParameterCovariance cov;

@@ -3,8 +3,8 @@
 #include <set>
 
 #include "vstcal/core/limits.h"
-#include "vstcal/io/format_check.h"
-#include "vstcal/io/reader_common.h"
+#include "vstcal/json/fields.h"
+#include "vstcal/json/format_check.h"
 
 namespace vstcal::io {
 namespace {
@@ -40,21 +40,6 @@ Observation ReadPoint(const JsonNode& node, const Correspondences& c) {
 }
 
 }  // namespace
-
-ImageSize ReadImageSize(const JsonNode& node) {
-  node.ArraySize(2);
-  auto side = [&](size_t i, std::string_view what) {
-    const JsonNode n = node.at(i);
-    const double v = n.Number();
-    if (const auto problem = ImageSideProblem(v, what)) n.Fail(problem->reason, problem->fix);
-    return static_cast<int>(v);
-  };
-  return ImageSize{side(0, "width"), side(1, "height")};
-}
-
-LengthUnit ReadLengthUnit(const JsonNode& node) {
-  return *LengthUnitFromName(node.OneOf({"mm", "cm", "m"}));
-}
 
 Correspondences CorrespondencesFromJson(const JsonDocument& doc) {
   const JsonNode root = doc.root();

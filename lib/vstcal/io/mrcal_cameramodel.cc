@@ -6,7 +6,7 @@
 #include "vstcal/core/error.h"
 #include "vstcal/io/camera_io.h"
 #include "vstcal/io/python_literal.h"
-#include "vstcal/io/reader_common.h"
+#include "vstcal/json/reader_common.h"
 
 namespace vstcal::io {
 namespace {

@@ -1,6 +1,7 @@
 #include "vstcal/io/opencv_yaml.h"
 
 #include <cmath>
+#include <cstdlib>
 #include <limits>
 #include <regex>
 
@@ -10,7 +11,7 @@
 #include "vstcal/core/error.h"
 #include "vstcal/core/limits.h"
 #include "vstcal/io/camera_io.h"
-#include "vstcal/io/reader_common.h"
+#include "vstcal/json/reader_common.h"
 
 namespace vstcal::io {
 namespace {
@@ -98,6 +99,46 @@ void CheckNesting(const std::string& text, const std::string& name) {
   }
 }
 
+// cv::FileStorage reads a plain integer with (int)strtol: 10000000000 becomes 1410065408 and
+// 4294967936 becomes 640, silently. Integers beyond 32 bits are refused here, before OpenCV sees
+// them; quoted strings and comments are skipped, and a number with a '.', 'e' or 'E' is a real.
+void CheckIntegers(const std::string& text, const std::string& name) {
+  char quote = 0;
+  for (size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (quote) {
+      if (c == quote || c == '\n') quote = 0;
+      continue;
+    }
+    const char prev = i > 0 ? text[i - 1] : '\n';
+    const bool token_start = prev == ' ' || prev == '\t' || prev == '\n' || prev == '[' || prev == '{' || prev == ',' ||
+                             prev == ':';
+    if (c == '#' && (prev == ' ' || prev == '\t' || prev == '\n')) {
+      while (i + 1 < text.size() && text[i + 1] != '\n') ++i;
+      continue;
+    }
+    if ((c == '"' || c == '\'') && token_start) {
+      quote = c;
+      continue;
+    }
+    if (!token_start) continue;
+    size_t end = i + (c == '-' || c == '+');
+    const size_t digits = end;
+    while (end < text.size() && text[end] >= '0' && text[end] <= '9') ++end;
+    if (end == digits) continue;
+    const char after = end < text.size() ? text[end] : '\n';
+    if (after == '.' || after == 'e' || after == 'E' || after == 'x' || after == 'X') continue;
+    const std::string literal = text.substr(i, end - i);
+    if (std::abs(std::strtod(literal.c_str(), nullptr)) > 2147483647.0) {
+      FailSyntax(name, text, i,
+                 "the integer " + literal + " is beyond the 32-bit integers cv::FileStorage reads (it would wrap around)",
+                 "write a whole number from -2147483647 to 2147483647 (an image side: at most " +
+                     std::to_string(limits::kMaxImageSide) + ")");
+    }
+    i = end - 1;
+  }
+}
+
 cv::FileStorage Open(const std::string& text, const std::string& name) {
   if (IsBlank(text)) throw InputError(name + ": the file is empty; expected OpenCV FileStorage YAML");
   if (text.size() > limits::kMaxOpenCvYamlBytes) {
@@ -105,6 +146,7 @@ cv::FileStorage Open(const std::string& text, const std::string& name) {
                      " MiB vstcal reads as OpenCV YAML (docs/reliability.md#limits); check that it is a camera file");
   }
   CheckNesting(text, name);
+  CheckIntegers(text, name);
   try {
     cv::FileStorage fs(text, cv::FileStorage::READ | cv::FileStorage::MEMORY | cv::FileStorage::FORMAT_YAML);
     if (!fs.isOpened() || !fs.root().isMap()) {

@@ -8,7 +8,7 @@
 
 #include "vstcal/core/limits.h"
 
-#include "vstcal/io/reader_common.h"
+#include "vstcal/json/reader_common.h"
 
 namespace vstcal::io {
 namespace {

@@ -1,4 +1,4 @@
-#include "vstcal/io/json_writer.h"
+#include "vstcal/json/json_writer.h"
 
 #include <sys/stat.h>
 #include <unistd.h>
@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "vstcal/core/error.h"
-#include "vstcal/io/input_protection.h"
+#include "vstcal/json/input_protection.h"
 
 namespace vstcal::io {
 
@@ -46,6 +46,8 @@ std::string ShortestDecimal(double v) {
   VSTCAL_CHECK(std::isfinite(v), "a non-finite number would be written");
   return OrderedJson(v).dump();
 }
+
+std::string DumpJsonCompact(const OrderedJson& json) { return json.dump() + "\n"; }
 
 namespace {
 

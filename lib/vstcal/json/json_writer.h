@@ -44,6 +44,9 @@ std::string ShortestDecimal(double v);
 // InternalError naming the field when a number is NaN or infinite (nlohmann would write null):
 // the last line of defence behind the checks of every input.
 std::string DumpJson(const OrderedJson& json);
+// The same on one line (and a final newline): for machine-to-machine files whose size matters
+// (err-sim's shard files), where the indentation would triple it.
+std::string DumpJsonCompact(const OrderedJson& json);
 
 // Writes text to `path` through a temporary file in the same directory and a rename, so the
 // path either holds the complete new file or is untouched. Throws InputError when the directory

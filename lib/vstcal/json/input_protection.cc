@@ -1,4 +1,4 @@
-#include "vstcal/io/input_protection.h"
+#include "vstcal/json/input_protection.h"
 
 #include <sys/stat.h>
 

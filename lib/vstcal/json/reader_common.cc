@@ -1,4 +1,4 @@
-#include "vstcal/io/reader_common.h"
+#include "vstcal/json/reader_common.h"
 
 #include <cerrno>
 #include <cmath>
@@ -8,7 +8,7 @@
 
 #include "vstcal/core/error.h"
 #include "vstcal/core/limits.h"
-#include "vstcal/io/input_protection.h"
+#include "vstcal/json/input_protection.h"
 
 namespace vstcal::io {
 
@@ -68,6 +68,12 @@ std::optional<FieldProblem> ImageSideProblem(double v, std::string_view what) {
                         fix};
   }
   return std::nullopt;
+}
+
+std::string MessageNumber(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.6g", v);
+  return buf;
 }
 
 void FailField(std::string_view file, std::string_view field, std::string_view reason, std::string_view fix) {

@@ -1,4 +1,4 @@
-#include "vstcal/io/json_reader.h"
+#include "vstcal/json/json_reader.h"
 
 #include <cctype>
 #include <cmath>
@@ -7,7 +7,7 @@
 
 #include "vstcal/core/error.h"
 #include "vstcal/core/limits.h"
-#include "vstcal/io/reader_common.h"
+#include "vstcal/json/reader_common.h"
 
 namespace vstcal::io {
 namespace {
