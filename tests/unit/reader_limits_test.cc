@@ -5,6 +5,7 @@
 
 #include <string>
 
+#include "support/error_of.h"
 #include "vstcal/core/error.h"
 #include "vstcal/core/limits.h"
 #include "vstcal/io/mrcal_cameramodel.h"
@@ -14,21 +15,11 @@ namespace vstcal {
 namespace {
 
 std::string YamlError(const std::string& text) {
-  try {
-    io::OpenCvYamlFromText(text, "t.yaml", LengthUnit::kMillimetre);
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
+  return testing::ErrorOf([&] { io::OpenCvYamlFromText(text, "t.yaml", LengthUnit::kMillimetre); });
 }
 
 std::string MrcalError(const std::string& text) {
-  try {
-    io::MrcalCameramodelFromText(text, "t.cameramodel", std::nullopt);
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
+  return testing::ErrorOf([&] { io::MrcalCameramodelFromText(text, "t.cameramodel", std::nullopt); });
 }
 
 // The bound 2·(indentation + indicators) + brackets + 1 against 64: after "a: " (one indicator),
