@@ -9,8 +9,8 @@ find_package(Threads REQUIRED)
 # Boost.Random (header-only) for the Sobol quasi-random sequence of lib/vstcal/sensitivity.
 find_package(Boost 1.74 REQUIRED)
 
-# libmrcal 2.2 ships neither CMake nor pkg-config files, and its headers have no
-# extern "C" guards: include them inside extern "C" { } (see lib/vstcal/io/mrcal_c.h).
+# libmrcal 2.2 ships neither CMake nor pkg-config files, and its headers have no extern "C"
+# guards: tests/support/mrcal.h, the one place that includes them, wraps them in extern "C" { }.
 find_library(MRCAL_LIBRARY NAMES mrcal REQUIRED)
 find_path(MRCAL_INCLUDE_DIR NAMES mrcal/mrcal.h REQUIRED)
 add_library(vstcal_mrcal INTERFACE)

@@ -241,7 +241,7 @@ std::vector<BadVolume> BadVolumes() {
       {"ImageSizeNegative",
        kBadInput,
        "image_size[0]",
-       {"must be a positive integer, got -640", "whole number > 0"},
+       {"must be a positive integer, got -640", "give the image width in pixels, a whole number from 1 to 1000000"},
        [](Json& d, const Pinhole&) {
          d["image_size"] = {-640, 480};
        }},
@@ -255,7 +255,7 @@ std::vector<BadVolume> BadVolumes() {
       {"ImageSizeNotInteger",
        kBadInput,
        "image_size[0]",
-       {"expected an integer, got 640.5", "write a whole number"},
+       {"expected an integer, got 640.5", "give the image width in pixels, a whole number from 1 to 1000000"},
        [](Json& d, const Pinhole&) {
          d["image_size"] = {640.5, 480};
        }},

@@ -158,15 +158,38 @@ TEST(Dlt, RefusesNonFinite) {
   auto scene = RandomVolumeScene(50, 0.0, 1);
   scene.observations[7].point.y() = NAN;
   EXPECT_EQ(SolveDlt(scene.observations).status, DltStatus::kNonFinite);
-  // Finite, but the squared spread overflows: say so instead of "coincide".
+  // Finite coordinates up to 1e308 (moved to the origin): the depths overflow a double. Say so,
+  // instead of "46 of 50 points lie behind the camera".
   auto huge = RandomVolumeScene(50, 0.0, 1);
-  for (auto& o : huge.observations) o.point *= 1e160;
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+  for (const auto& o : huge.observations) centroid += o.point / 50.0;
+  double largest = 0;
+  for (const auto& o : huge.observations) largest = std::max(largest, (o.point - centroid).cwiseAbs().maxCoeff());
+  for (auto& o : huge.observations) o.point = (o.point - centroid) * (1e308 / largest);
   const DltResult r = SolveDlt(huge.observations);
   EXPECT_EQ(r.status, DltStatus::kNonFinite);
-  EXPECT_NE(r.message.find("another length unit"), std::string::npos) << r.message;
-  auto tiny = RandomVolumeScene(50, 0.0, 1);
-  for (auto& o : tiny.observations) o.point *= 1e-200;  // underflow: the spread squares to 0
-  EXPECT_EQ(SolveDlt(tiny.observations).status, DltStatus::kNonFinite);
+  EXPECT_NE(r.message.find("the world coordinates are beyond double precision for the DLT"), std::string::npos)
+      << r.message;
+  EXPECT_NE(r.message.find("a larger length unit"), std::string::npos) << r.message;
+}
+
+// The DLT does not depend on the world's unit: coordinates scaled by 1e±150 and 1e±300 (where
+// their squares overflow or underflow) give the same K and R and a scaled t, with both solvers.
+// They used to give NaN and "points behind the camera", or a refusal quoting the pixels.
+TEST(Dlt, ScaledCoordinatesGiveTheSameCamera) {
+  const auto scene = RandomVolumeScene(60, 0.0, 5);
+  for (const double scale : {1e-300, 1e-150, 1e150, 1e300}) {
+    auto scaled = scene.observations;
+    for (auto& o : scaled) o.point *= scale;
+    for (auto solver : {DltOptions::Solver::kNormalEquations, DltOptions::Solver::kFullSvd}) {
+      DltOptions options;
+      options.solver = solver;
+      const auto d = Solve(scaled, options);
+      EXPECT_LT(RelativeError(d.K, scene.camera.K()), 1e-9) << scale;
+      EXPECT_LT(AngleBetween(d.camera_from_world.R, scene.camera_from_world.R), 1e-9) << scale;
+      EXPECT_LT(RelativeError(d.camera_from_world.t / scale, scene.camera_from_world.t), 1e-9) << scale;
+    }
+  }
 }
 
 // Depth exactly 0 (a point in the camera's principal plane) counts as not in front.

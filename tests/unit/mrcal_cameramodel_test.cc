@@ -149,7 +149,7 @@ TEST(MrcalCameramodel, ReadsFilesLibmrcalWrites) {
 TEST(MrcalCameramodel, LensModelOnRequest) {
   const CalibratedCamera rt_k3_zero = InteropCameras()[2];
   for (const char* model : {"LENSMODEL_OPENCV4", "LENSMODEL_OPENCV5", "LENSMODEL_OPENCV8"}) {
-    const std::string text = WriteText(rt_k3_zero, {model, std::nullopt});
+    const std::string text = WriteText(rt_k3_zero, {model, std::nullopt, std::nullopt});
     EXPECT_NE(text.find(std::string("'lensmodel': '") + model + "'"), std::string::npos);
     const Camera back = ReadText(text).camera.camera;
     // The coefficients are the same numbers, padded with zeros in a larger model.
@@ -157,12 +157,12 @@ TEST(MrcalCameramodel, LensModelOnRequest) {
       EXPECT_EQ(back.distortion()[i], rt_k3_zero.camera.distortion()[i]);
     }
   }
-  const std::string e = ErrorOf([&] { WriteText(InteropCameras()[1], {"LENSMODEL_OPENCV4", std::nullopt}); });
+  const std::string e = ErrorOf([&] { WriteText(InteropCameras()[1], {"LENSMODEL_OPENCV4", std::nullopt, std::nullopt}); });
   EXPECT_NE(e.find("cam.json: distortion.k3: LENSMODEL_OPENCV4 has no k3, and this camera's is 3e-05; write "
                    "LENSMODEL_OPENCV5, which holds it"),
             std::string::npos)
       << e;
-  const std::string r = ErrorOf([&] { WriteText(InteropCameras()[3], {"LENSMODEL_OPENCV5", std::nullopt}); });
+  const std::string r = ErrorOf([&] { WriteText(InteropCameras()[3], {"LENSMODEL_OPENCV5", std::nullopt, std::nullopt}); });
   EXPECT_NE(r.find("cam.json: distortion.k4: LENSMODEL_OPENCV5 has no k4"), std::string::npos) << r;
 }
 
@@ -186,7 +186,7 @@ TEST(MrcalCameramodel, LengthUnits) {
   EXPECT_EQ(ReadText(in_metres).camera.length_unit, LengthUnit::kMetre);
   ASSERT_NE(MrcalRead(in_metres), nullptr);
 
-  const std::string in_mm = WriteText(c, {std::nullopt, LengthUnit::kMillimetre});
+  const std::string in_mm = WriteText(c, {std::nullopt, LengthUnit::kMillimetre, std::nullopt});
   const io::ImportedCamera back = ReadText(in_mm);
   EXPECT_EQ(back.camera.length_unit, LengthUnit::kMillimetre);
   EXPECT_EQ(back.camera.camera_from_world->t, Eigen::Vector3d(250, -500, 2000));

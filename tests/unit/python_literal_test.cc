@@ -78,7 +78,7 @@ TEST(PythonLiteral, SyntaxErrorsNameLineAndColumn) {
       {"{'a': 'x\n'}", "line 1, column 7", "the string is not closed"},
       {"{'a': 1} {}", "line 1, column 10", "unexpected text after the dict's closing '}'"},
       {"{'a': @}", "line 1, column 7", "unexpected '@'"},
-      {"{'a':" + std::string(100, '[') + std::string(100, ']') + "}", "line 1, column ", "nested too deeply"},
+      {"{'a':" + std::string(100, '[') + std::string(100, ']') + "}", "line 1, column ", "nested more than 64 levels deep"},
   };
   for (const BadText& c : cases) {
     const std::string e = ErrorOf(c.text);

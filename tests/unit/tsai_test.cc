@@ -91,6 +91,28 @@ TEST(Tsai, CoplanarRecoversATiltedBoard) {
   EXPECT_LT(r.plane_rms, 1e-9);
 }
 
+// Tsai's method does not depend on the world's unit: coordinates scaled by 1e±150 and 1e±300,
+// whose squares overflow or underflow, give the same f, κ₁ and R and a scaled t (they used to
+// give a wrong planarity verdict and no camera).
+TEST(Tsai, ScaledCoordinatesGiveTheSameCamera) {
+  const TsaiTruth truth = Truth();
+  const std::vector<Observation> obs = TsaiPixels(truth, Volume());
+  const TsaiResult reference = SolveTsai(obs, ImageSize{1280, 1024});
+  ASSERT_EQ(reference.status, TsaiStatus::kOk) << reference.message;
+  for (const double scale : {1e-300, 1e-150, 1e150, 1e300}) {
+    std::vector<Observation> scaled = obs;
+    for (Observation& o : scaled) o.point *= scale;
+    const TsaiResult r = SolveTsai(scaled, ImageSize{1280, 1024});
+    ASSERT_EQ(r.status, TsaiStatus::kOk) << scale << ": " << r.message;
+    EXPECT_EQ(r.variant, TsaiOptions::Variant::kNonCoplanar);
+    EXPECT_NEAR(r.f, reference.f, 1e-9 * reference.f) << scale;
+    EXPECT_NEAR(r.kappa1, reference.kappa1, 1e-6 * std::abs(reference.kappa1)) << scale;
+    EXPECT_LT(AngleBetween(r.camera_from_world.R, reference.camera_from_world.R), 1e-9) << scale;
+    EXPECT_LT((r.camera_from_world.t / scale - reference.camera_from_world.t).norm(),
+              1e-9 * reference.camera_from_world.t.norm()) << scale;
+  }
+}
+
 // With noise the estimates scatter around the truth; a loose, derived check (f to 0.1 % for
 // 0.2 px noise on 378 points) guards the whole pipeline, the refinement does the rest.
 TEST(Tsai, NoisyVolumeIsClose) {

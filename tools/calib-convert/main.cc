@@ -20,8 +20,17 @@ CameraFileFormat InputFormat(const std::string& input) {
 }
 
 CameraFileFormat OutputFormat(const std::string& output, const std::string& to) {
-  if (!to.empty()) return *vstcal::io::CameraFileFormatFromName(to);
-  if (const auto f = vstcal::io::CameraFileFormatFromPath(output)) return *f;
+  const auto named = vstcal::io::CameraFileFormatFromPath(output);
+  if (!to.empty()) {
+    const CameraFileFormat format = *vstcal::io::CameraFileFormatFromName(to);
+    if (named && *named != format) {
+      throw InputError("--to: " + to + " contradicts the output's name " + output + ", which says " +
+                       std::string(vstcal::io::CameraFileFormatDescription(*named)) +
+                       "; rename the output or drop --to");
+    }
+    return format;
+  }
+  if (named) return *named;
   throw InputError(output +
                    ": cannot tell the output format from the file name; name it .json, .yaml, .yml or "
                    ".cameramodel, or give --to camera|opencv|mrcal");
@@ -71,6 +80,7 @@ int main(int argc, char** argv) {
 
   return vstcal::tools::RunTool(app, argc, argv, [&] {
     using namespace vstcal;
+    io::DeclareOutputs({output});
     const io::CameraFileFormat from = InputFormat(input), to_format = OutputFormat(output, to);
     CheckFlagsApply(from, to_format, !unit.empty(), !mrcal_model.empty());
     io::ConvertOptions options;

@@ -41,6 +41,7 @@ int main(int argc, char** argv) {
 
   return vstcal::tools::RunTool(app, argc, argv, [&] {
     using namespace vstcal;
+    io::DeclareOutputs({output, flags.residuals});
     options.dlt.exact_diagnostics = true;  // the camera file reports sigma_11
     options.dlt.solver = solver == "svd" ? DltOptions::Solver::kFullSvd : DltOptions::Solver::kNormalEquations;
     options.refinement = flags.Refinement();

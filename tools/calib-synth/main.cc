@@ -1,67 +1,22 @@
 // calib-synth: synthetic calibration volumes with ground truth (docs/tools/calib-synth.md).
-#include <cmath>
-#include <cstdio>
+#include <filesystem>
 #include <iostream>
-#include <optional>
 
 #include "common/run_tool.h"
 #include "common/validators.h"
-#include "vstcal/camera/intrinsics.h"
+#include "vstcal/capture/synthetic_camera.h"
 #include "vstcal/capture/synthetic_views.h"
 #include "vstcal/capture/synthetic_volume.h"
 #include "vstcal/core/error.h"
+#include "vstcal/core/limits.h"
 #include "vstcal/io/camera_io.h"
 #include "vstcal/io/correspondences_io.h"
 
 namespace {
 
-using vstcal::InputError;
 using vstcal::tools::kFinite;
 using vstcal::tools::kNonEmpty;
 using vstcal::tools::kSeed;
-using vstcal::tools::ParseSize;
-
-struct CameraFlags {
-  std::string file, image_size, distortion;
-  std::optional<double> fx, fy, hfov_deg, cx, cy;
-  double skew_deg = 90;
-};
-
-vstcal::Camera MakeCamera(const CameraFlags& f) {
-  using namespace vstcal;
-  if (!f.file.empty()) return io::ReadCamera(f.file).camera;
-  if (f.image_size.empty()) throw InputError("--image-size: required without --camera (e.g. --image-size 1280x720)");
-  const auto [w, h] = ParseSize(f.image_size, "--image-size", "WxH (e.g. 1280x720)");
-  if (f.fx.has_value() == f.hfov_deg.has_value()) throw InputError("--fx/--hfov-deg: give exactly one of them");
-  if (f.hfov_deg && !(*f.hfov_deg > 0 && *f.hfov_deg < 180)) {
-    char got[40];
-    std::snprintf(got, sizeof got, "%.6g", *f.hfov_deg);
-    throw InputError(std::string("--hfov-deg: must lie in (0, 180) degrees for a pinhole camera, got ") + got);
-  }
-  if (!(f.skew_deg > 0 && f.skew_deg < 180)) throw InputError("--skew-deg: must lie in (0, 180); 90 means no skew");
-  const double fx = f.fx ? *f.fx : FocalFromHorizontalFov(w, DegToRad(*f.hfov_deg));
-  if (!(fx > 0) || !(f.fy.value_or(fx) > 0)) throw InputError("--fx/--fy/--hfov-deg: focal lengths must be positive");
-  Eigen::Matrix3d K;
-  K << fx, f.skew_deg == 90 ? 0.0 : -fx / std::tan(DegToRad(f.skew_deg)), f.cx.value_or(0.5 * (w - 1)),  //
-      0, f.fy.value_or(fx), f.cy.value_or(0.5 * (h - 1)),                                                 //
-      0, 0, 1;
-  std::vector<double> coefficients;
-  AnyLensModel model = PinholeModel{};
-  if (!f.distortion.empty()) {
-    model = RadialTangentialModel{};
-    for (const std::string& item : CLI::detail::split(f.distortion, ',')) {
-      // The whole item must be one finite number: std::stod alone would take "0.1x" as 0.1.
-      char* end = nullptr;
-      const double v = std::strtod(item.c_str(), &end);
-      if (item.empty() || end != item.c_str() + item.size() || !std::isfinite(v)) {
-        throw InputError("--distortion: \"" + item + "\" is not a finite number; give k1,k2,p1,p2,k3");
-      }
-      coefficients.push_back(v);
-    }
-    if (coefficients.size() != 5) throw InputError("--distortion: expected 5 numbers k1,k2,p1,p2,k3");
-  }
-  return Camera::FromK(K, ImageSize{w, h}, model, coefficients);
-}
 
 }  // namespace
 
@@ -73,16 +28,16 @@ int main(int argc, char** argv) {
       "--views poses spread over the field of view. Gaussian pixel noise from a counter-based stream.\n"
       "Exit codes: 0 ok, 1 internal error, 2 bad usage or input.",
       "calib-synth"};
-  std::string output, truth, grid = "13x9";
-  CameraFlags cam;
+  std::string output, truth, grid = "13x9", camera_path, image_size;
+  vstcal::SyntheticCameraSpec cam;
   vstcal::VolumeSpec spec;
   std::string unit = "mm";
   bool no_test_points = false;
   app.add_option("-o,--output", output, "correspondences file to write")->required()->check(kNonEmpty);
   app.add_option("--truth", truth, "ground-truth camera file (default: OUTPUT with .truth.json)")->check(kNonEmpty);
-  auto* camera_file = app.add_option("--camera", cam.file, "take K, distortion and image size from a camera@1 file")
+  auto* camera_file = app.add_option("--camera", camera_path, "take K, distortion and image size from a camera@1 file")
                           ->check(kNonEmpty);
-  for (auto* o : {app.add_option("--image-size", cam.image_size, "WxH in px, e.g. 1280x720")->check(kNonEmpty),
+  for (auto* o : {app.add_option("--image-size", image_size, "WxH in px, e.g. 1280x720")->check(kNonEmpty),
                   app.add_option("--fx", cam.fx, "K's fx, px")->check(kFinite),
                   app.add_option("--fy", cam.fy, "K's fy, px (default fx)")->check(kFinite),
                   app.add_option("--hfov-deg", cam.hfov_deg, "horizontal field of view instead of --fx")
@@ -92,8 +47,10 @@ int main(int argc, char** argv) {
                   app.add_option("--skew-deg", cam.skew_deg, "angle between pixel axes, 90 = no skew")
                       ->check(kFinite)
                       ->capture_default_str(),
-                  app.add_option("--distortion", cam.distortion, "k1,k2,p1,p2,k3 (radial-tangential)")
-                      ->check(kNonEmpty)}) {
+                  app.add_option("--distortion", cam.distortion,
+                                 "k1,k2,p1,p2,k3 (radial-tangential) or k1,k2,p1,p2,k3,k4,k5,k6 (rational)")
+                      ->delimiter(',')
+                      ->check(kFinite)}) {
     o->excludes(camera_file);
   }
   std::string rig = "volume";
@@ -138,15 +95,19 @@ int main(int argc, char** argv) {
         throw InputError(flag + ": applies to --rig " + (planar ? "volume" : "planar-views") + " only; remove it or change --rig");
       }
     }
-    std::tie(spec.grid_cols, spec.grid_rows) = ParseSize(grid, "--grid", "COLSxROWS (e.g. 13x9)");
+    std::tie(spec.grid_cols, spec.grid_rows) =
+        tools::ParseSize(grid, "--grid", "COLSxROWS (e.g. 13x9)", static_cast<int>(limits::kMaxPoints));
     spec.length_unit = *LengthUnitFromName(unit);
-    const Camera camera = MakeCamera(cam);
+    if (truth.empty()) truth = std::filesystem::path(output).replace_extension(".truth.json").string();
+    io::DeclareOutputs({output, truth});
+    if (camera_path.empty()) {
+      if (image_size.empty()) throw InputError("--image-size: required without --camera (e.g. --image-size 1280x720)");
+      const auto [w, h] = tools::ParseSize(image_size, "--image-size", "WxH (e.g. 1280x720)", limits::kMaxImageSide);
+      cam.image_size = ImageSize{w, h};
+    }
+    const Camera camera = camera_path.empty() ? MakeSyntheticCamera(cam) : io::ReadCamera(camera_path).camera;
 
     CalibratedCamera truth_camera;
-    truth_camera.name = spec.camera_name;
-    truth_camera.camera = camera;
-    truth_camera.length_unit = spec.length_unit;
-    truth_camera.method = "synthetic";
     Correspondences corners;
     if (planar) {
       views.grid_cols = spec.grid_cols;
@@ -158,24 +119,15 @@ int main(int argc, char** argv) {
       views.camera_name = spec.camera_name;
       const SyntheticViews synthetic = SynthesizePlanarViews(camera, views);
       for (const std::string& w : synthetic.warnings) std::cerr << "calib-synth: warning: " << w << "\n";
+      truth_camera = PlanarViewsTruthCamera(camera, views, synthetic);
       corners = synthetic.correspondences;
-      for (size_t v = 0; v < corners.views.size(); ++v) {
-        truth_camera.views.push_back({corners.views[v].name, synthetic.camera_from_board[v], 0});
-      }
-      truth_camera.fit = ComputeViewsFit(camera, synthetic.camera_from_board, corners);
-      for (size_t v = 0; v < corners.views.size(); ++v) truth_camera.views[v].rms_px = truth_camera.fit->views[v].stats.rms_px;
     } else {
       const SyntheticVolume volume =
           SynthesizeVolume(camera, spec, no_test_points ? std::vector<TestPoint>{} : Seed000TestPoints(spec));
+      truth_camera = VolumeTruthCamera(camera, spec, volume);
       corners = volume.correspondences;
-      truth_camera.camera_from_world = volume.camera_from_world;
-      truth_camera.fit = ComputeVolumeFit(camera, volume.camera_from_world, corners);
     }
 
-    if (truth.empty()) {
-      const std::filesystem::path p(output);
-      truth = (p.parent_path() / (p.stem().string() + ".truth.json")).string();
-    }
     const io::Provenance provenance = io::MakeProvenance("calib-synth", argc, argv, spec.seed);
     io::WriteFilesAtomically({{output, io::DumpJson(io::CorrespondencesToJson(corners, provenance))},
                               {truth, io::DumpJson(io::CameraToJson(truth_camera, provenance))}});

@@ -3,6 +3,7 @@
 #include "common/calibration_flags.h"
 #include "common/run_tool.h"
 #include "common/validators.h"
+#include "vstcal/core/limits.h"
 #include "vstcal/io/correspondences_io.h"
 
 int main(int argc, char** argv) {
@@ -18,7 +19,7 @@ int main(int argc, char** argv) {
       "no convergence.",
       "calib-tsai"};
   std::string input, output, variant = "auto";
-  std::optional<std::string> principal_point;
+  std::array<double, 2> principal_point{};
   bool no_refine = false;
   vstcal::CalibrationOptions options;
   vstcal::tools::CalibrationFlags flags;
@@ -27,7 +28,10 @@ int main(int argc, char** argv) {
   app.add_option("--variant", variant, "Tsai's variant for volumes: auto, coplanar or non-coplanar")
       ->check(CLI::IsMember({"auto", "coplanar", "non-coplanar"}))
       ->capture_default_str();
-  app.add_option("--principal-point", principal_point, "U,V in px for Tsai's stages (default: the image centre)");
+  app.add_option("--principal-point", principal_point, "U,V in px for Tsai's stages (default: the image centre)")
+      ->delimiter(',')
+      ->check(vstcal::tools::kFinite)
+      ->type_name("U,V");
   app.add_option("--sx", options.tsai.sx, "the coplanar variant's fixed horizontal scale factor")
       ->check(vstcal::tools::kPositiveFinite)
       ->capture_default_str();
@@ -38,13 +42,21 @@ int main(int argc, char** argv) {
 
   return vstcal::tools::RunTool(app, argc, argv, [&] {
     using namespace vstcal;
+    io::DeclareOutputs({output, flags.residuals});
     options.refine = !no_refine;
     options.refinement = flags.Refinement();
     options.tsai.variant = variant == "coplanar"       ? TsaiOptions::Variant::kCoplanar
                            : variant == "non-coplanar" ? TsaiOptions::Variant::kNonCoplanar
                                                        : TsaiOptions::Variant::kAuto;
-    if (principal_point) options.tsai.principal_point = tools::ParsePoint2(*principal_point, "--principal-point");
+    if (app.count("--principal-point") > 0) {
+      options.tsai.principal_point = Eigen::Vector2d(principal_point[0], principal_point[1]);
+    }
     Correspondences corners = io::ReadCorrespondences(input);
+    if (corners.rig == Rig::kPlanarViews && options.refine && corners.views.size() > limits::kMaxPlanarRefinementViews) {
+      throw InputError(input + ": views: " + std::to_string(corners.views.size()) + " views, more than the " +
+                       std::to_string(limits::kMaxPlanarRefinementViews) + " a planar-views refinement takes " +
+                       "(docs/reliability.md#limits); keep a subset of the views, or use --no-refine");
+    }
     if (corners.rig == Rig::kPlanarViews) {
       for (const char* flag : {"--variant", "--principal-point", "--sx"}) {
         if (app.count(flag) > 0) {
@@ -55,6 +67,10 @@ int main(int argc, char** argv) {
     }
     const io::UncertaintyRequest request = flags.Uncertainty(corners);
     const CalibrationResult result = Calibrate(std::move(corners), options);
+    if (app.count("--sx") > 0 && result.tsai && result.tsai->variant == TsaiOptions::Variant::kNonCoplanar) {
+      throw InputError("--sx: the points are not coplanar, so Tsai's non-coplanar variant estimates sx and --sx would "
+                       "not be used; drop it, or force --variant coplanar");
+    }
     return tools::FinishCalibration("calib-tsai", input, output, result, options, flags, request, argc, argv);
   });
 }

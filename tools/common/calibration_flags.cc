@@ -5,6 +5,7 @@
 #include <iostream>
 
 #include "common/validators.h"
+#include "vstcal/core/limits.h"
 #include "vstcal/io/camera_io.h"
 #include "vstcal/io/residuals_io.h"
 #include "vstcal/report/fit_summary.h"
@@ -12,49 +13,55 @@
 namespace vstcal::tools {
 namespace {
 
-// "1,2,3" → the numbers, exactly `count` of them, finite; else an InputError naming the flag and
-// showing `form` (e.g. "three numbers X,Y,Z (e.g. 0,0,1000)").
-std::vector<double> ParseNumbers(const std::string& text, size_t count, const std::string& flag, const std::string& form) {
-  std::vector<double> values;
-  for (const std::string& item : CLI::detail::split(text, ',')) {
-    char* end = nullptr;
-    const double v = std::strtod(item.c_str(), &end);
-    if (item.empty() || end != item.c_str() + item.size() || !std::isfinite(v)) break;
-    values.push_back(v);
+void ExpectThree(const std::vector<double>& numbers, const std::string& flag, const std::string& form) {
+  if (numbers.size() == 3) return;
+  std::string got;
+  for (const double n : numbers) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%g", n);
+    got += (got.empty() ? "" : ",") + std::string(buf);
   }
-  if (values.size() != count || static_cast<size_t>(std::count(text.begin(), text.end(), ',')) != count - 1) {
-    throw InputError(flag + ": expected " + form + ", got \"" + text + "\"");
-  }
-  return values;
+  throw InputError(flag + ": expected three numbers " + form + ", got " + std::to_string(numbers.size()) + " (" + got +
+                   "); give each point as its own " + flag);
 }
 
 }  // namespace
 
 std::vector<CLI::Option*> CalibrationFlags::AddRefinement(CLI::App& app) {
-  return {
+  std::vector<CLI::Option*> options = {
       app.add_option("--distortion", distortion,
                      "distortion terms to estimate, comma-separated names (k1,k2,p1,p2,k3) or \"none\"")
           ->capture_default_str(),
       app.add_flag("--skew", skew, "also estimate the skew s (K[0][1])"),
       app.add_option("--loss", loss, "robust loss: none, huber or cauchy")
           ->check(CLI::IsMember({"none", "huber", "cauchy"}))
-          ->capture_default_str(),
-      app.add_option("--loss-scale", loss_scale_px, "where the robust loss departs from the square, px")
-          ->check(kPositiveFinite)
-          ->capture_default_str(),
-      app.add_option("--max-iterations", max_iterations, "refinement iteration limit")
-          ->check(CLI::Range(1, 100000))
           ->capture_default_str()};
+  loss_scale_option = app.add_option("--loss-scale", loss_scale_px, "where the robust loss departs from the square, px")
+                          ->check(kPositiveFinite)
+                          ->capture_default_str();
+  options.push_back(loss_scale_option);
+  options.push_back(app.add_option("--max-iterations", max_iterations, "refinement iteration limit")
+                        ->check(CLI::Range(1, 100000))
+                        ->capture_default_str());
+  return options;
 }
 
 std::vector<CLI::Option*> CalibrationFlags::AddUncertainty(CLI::App& app) {
-  return {
-      app.add_option("--uncertainty-grid", grid_depth,
-                     "report the projection's 1-sigma ellipse over a grid of the image at this depth (length unit)")
-          ->check(kPositiveFinite),
-      app.add_option("--grid-size", grid_size, "COLSxROWS of --uncertainty-grid")->capture_default_str(),
-      app.add_option("--uncertainty-at", at_world, "report the ellipse at world point X,Y,Z (repeatable)"),
-      app.add_option("--uncertainty-pixel", at_pixel, "report the ellipse at pixel U,V and depth D: U,V,D (repeatable)")};
+  CLI::Option* grid = app.add_option("--uncertainty-grid", grid_depth,
+                                     "report the projection's 1-sigma ellipse over a grid of the image at this depth "
+                                     "(length unit)")
+                          ->check(kPositiveFinite);
+  return {grid,
+          app.add_option("--grid-size", grid_size, "COLSxROWS of --uncertainty-grid")->capture_default_str()->needs(grid),
+          app.add_option("--uncertainty-at", at_world, "report the ellipse at world point X,Y,Z (repeatable)")
+              ->delimiter(',')
+              ->check(kFinite)
+              ->type_name("X,Y,Z"),
+          app.add_option("--uncertainty-pixel", at_pixel,
+                         "report the ellipse at pixel U,V and depth D: U,V,D (repeatable)")
+              ->delimiter(',')
+              ->check(kFinite)
+              ->type_name("U,V,DEPTH")};
 }
 
 void CalibrationFlags::AddOutput(CLI::App& app) {
@@ -76,6 +83,9 @@ RefineOptions CalibrationFlags::Refinement() const {
   }
   o.free_skew = skew;
   o.loss = loss == "huber" ? RefineOptions::Loss::kHuber : loss == "cauchy" ? RefineOptions::Loss::kCauchy : RefineOptions::Loss::kNone;
+  if (o.loss == RefineOptions::Loss::kNone && loss_scale_option != nullptr && loss_scale_option->count() > 0) {
+    throw InputError("--loss-scale: has no effect with --loss none; give --loss huber or --loss cauchy, or drop it");
+  }
   o.loss_scale_px = loss_scale_px;
   o.max_iterations = max_iterations;
   return o;
@@ -87,25 +97,35 @@ io::UncertaintyRequest CalibrationFlags::Uncertainty(const Correspondences& corn
     throw InputError("--uncertainty-at: planar views have no world frame; use --uncertainty-pixel U,V,DEPTH");
   }
   r.grid_depth = grid_depth;
-  std::tie(r.grid_cols, r.grid_rows) = ParseSize(grid_size, "--grid-size", "COLSxROWS (e.g. 16x9)");
-  for (const std::string& p : at_world) {
-    const auto v = ParseNumbers(p, 3, "--uncertainty-at", "three finite numbers X,Y,Z (e.g. 0,0,1000)");
-    r.world_points.emplace_back(v[0], v[1], v[2]);
+  std::tie(r.grid_cols, r.grid_rows) =
+      ParseSize(grid_size, "--grid-size", "COLSxROWS (e.g. 16x9)", static_cast<int>(limits::kMaxGridCells));
+  if (static_cast<size_t>(r.grid_cols) * static_cast<size_t>(r.grid_rows) > limits::kMaxGridCells) {
+    throw InputError("--grid-size: " + grid_size + " is " +
+                     std::to_string(static_cast<size_t>(r.grid_cols) * static_cast<size_t>(r.grid_rows)) +
+                     " cells, more than the " + std::to_string(limits::kMaxGridCells) +
+                     " vstcal computes (docs/reliability.md#limits); give a coarser grid");
   }
-  for (const std::string& p : at_pixel) {
-    const auto v = ParseNumbers(p, 3, "--uncertainty-pixel", "three finite numbers U,V,DEPTH (e.g. 320,240,1000)");
-    if (!(v[2] > 0)) {
-      throw InputError("--uncertainty-pixel: the depth in \"" + p + "\" must be positive; give the distance along the "
-                       "optical axis in the length unit");
+  for (const std::vector<double>& p : at_world) {
+    ExpectThree(p, "--uncertainty-at", "X,Y,Z (e.g. 0,0,1000)");
+    r.world_points.emplace_back(p[0], p[1], p[2]);
+  }
+  for (const std::vector<double>& p : at_pixel) {
+    ExpectThree(p, "--uncertainty-pixel", "U,V,DEPTH (e.g. 320,240,1000)");
+    const double u = p[0], v = p[1], depth = p[2];
+    char point[120];
+    std::snprintf(point, sizeof point, "%g,%g,%g", u, v, depth);
+    if (!(depth > 0)) {
+      throw InputError("--uncertainty-pixel: the depth in \"" + std::string(point) +
+                       "\" must be positive; give the distance along the optical axis in the length unit");
     }
     const ImageSize& size = corners.image_size;
-    if (v[0] < -0.5 || v[0] > size.width - 0.5 || v[1] < -0.5 || v[1] > size.height - 0.5) {
+    if (u < -0.5 || u > size.width - 0.5 || v < -0.5 || v > size.height - 0.5) {
       char buf[200];
       std::snprintf(buf, sizeof buf, "--uncertainty-pixel: (%g, %g) lies outside the %d×%d image; give U in [-0.5, %g] "
-                    "and V in [-0.5, %g]", v[0], v[1], size.width, size.height, size.width - 0.5, size.height - 0.5);
+                    "and V in [-0.5, %g]", u, v, size.width, size.height, size.width - 0.5, size.height - 0.5);
       throw InputError(buf);
     }
-    r.pixel_depths.emplace_back(v[0], v[1], v[2]);
+    r.pixel_depths.emplace_back(u, v, depth);
   }
   return r;
 }

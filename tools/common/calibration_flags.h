@@ -23,11 +23,15 @@ struct CalibrationFlags {
 
   std::optional<double> grid_depth;
   std::string grid_size = "16x9";
-  std::vector<std::string> at_world;  // "X,Y,Z"
-  std::vector<std::string> at_pixel;  // "U,V,DEPTH"
+  // One list per occurrence of the flag (CLI11 2.1 would refill a std::array from the previous
+  // item's values when one occurrence gives 4 numbers): checked to be X,Y,Z and U,V,DEPTH.
+  std::vector<std::vector<double>> at_world;  // X,Y,Z per --uncertainty-at
+  std::vector<std::vector<double>> at_pixel;  // U,V,DEPTH per --uncertainty-pixel
 
   std::string residuals;
   bool quiet = false;
+
+  CLI::Option* loss_scale_option = nullptr;  // set by AddRefinement: --loss-scale needs a robust --loss
 
   // Add the refinement and the uncertainty flags; return them so a tool can tie them to its own
   // switch (calib-dlt: they need --refine; calib-tsai: they exclude --no-refine).
@@ -35,6 +39,7 @@ struct CalibrationFlags {
   std::vector<CLI::Option*> AddUncertainty(CLI::App& app);
   void AddOutput(CLI::App& app);
 
+  // Throws InputError for a flag that would do nothing (--loss-scale with --loss none).
   RefineOptions Refinement() const;
   // The uncertainty flags checked against the data before any solve: throws InputError naming the
   // flag for malformed values, pixels outside the image, and world points for planar views.

@@ -2,7 +2,6 @@
 
 #include <charconv>
 #include <cmath>
-#include <cstdio>
 #include <cstdlib>
 
 #include "vstcal/core/error.h"
@@ -25,10 +24,11 @@ const CLI::Validator kNonEmpty([](std::string& text) -> std::string { return tex
 const CLI::Validator kFinite(
     [](std::string& text) -> std::string {
       double v = 0;
-      if (ParseNumber(text, &v) && !std::isfinite(v)) return "must be a finite number, got " + text;
-      return "";  // anything else is for CLI11's own conversion to judge
+      if (!ParseNumber(text, &v)) return "expected a number, got \"" + text + "\"";
+      if (!std::isfinite(v)) return "must be a finite number, got " + text;
+      return "";
     },
-    "FINITE");
+    "");  // no name: CLI11 would append it to the type in its messages ("X,Y,Z:FINITE")
 
 const CLI::Validator kPositiveFinite(
     [](std::string& text) -> std::string {
@@ -75,22 +75,29 @@ std::pair<uint64_t, uint64_t> ParseShard(const std::string& text, const std::str
   return {i, n};
 }
 
-std::pair<int, int> ParseSize(const std::string& text, const std::string& flag, const std::string& example) {
-  int a = 0, b = 0;
-  char x = 0, extra = 0;
-  if (std::sscanf(text.c_str(), "%d%c%d%c", &a, &x, &b, &extra) != 3 || (x != 'x' && x != 'X') || a <= 0 || b <= 0) {
+std::pair<int, int> ParseSize(const std::string& text, const std::string& flag, const std::string& example,
+                              int max_side) {
+  // Each side as digits only; a side beyond any integer type is "too large", not malformed.
+  const size_t x = text.find_first_of("xX");
+  bool too_large = false;
+  auto side = [&](std::string_view digits) -> long long {
+    long long v = 0;
+    const auto [ptr, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), v);
+    if (digits.empty() || ptr != digits.data() + digits.size() || digits[0] == '-') return 0;
+    if (ec == std::errc::result_out_of_range) too_large = true;
+    return ec == std::errc() ? v : 0;
+  };
+  const std::string_view all(text);
+  const long long a = x == std::string::npos ? 0 : side(all.substr(0, x));
+  const long long b = x == std::string::npos ? 0 : side(all.substr(x + 1));
+  if (too_large || a > max_side || b > max_side) {
+    throw InputError(flag + ": " + text + " exceeds the largest side vstcal accepts, " + std::to_string(max_side) +
+                     " (docs/reliability.md#limits); give a smaller size");
+  }
+  if (a <= 0 || b <= 0) {
     throw InputError(flag + ": expected two positive integers as " + example + ", got \"" + text + "\"");
   }
-  return {a, b};
-}
-
-Eigen::Vector2d ParsePoint2(const std::string& text, const std::string& flag) {
-  const auto items = CLI::detail::split(text, ',');
-  Eigen::Vector2d p;
-  bool ok = items.size() == 2;
-  for (size_t i = 0; ok && i < 2; ++i) ok = ParseNumber(items[i], &p(i)) && std::isfinite(p(i));
-  if (!ok) throw InputError(flag + ": expected two numbers U,V (e.g. 640.5,360), got \"" + text + "\"");
-  return p;
+  return {static_cast<int>(a), static_cast<int>(b)};
 }
 
 }  // namespace vstcal::tools

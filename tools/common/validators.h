@@ -1,17 +1,18 @@
 // CLI11 validators shared by the tools. CLI11 alone reads "nan"/"inf" as doubles, wraps "-1" into
 // unsigned integers and quotes DBL_MAX in its range messages; these say what is wanted instead.
+// Lists of numbers ("X,Y,Z") are CLI11 options of typed vectors or arrays with ->delimiter(',')
+// and ->check(kFinite), which CLI11 applies to every item.
 #pragma once
 
 #include <cstdint>
 #include <utility>
 
 #include <CLI/CLI.hpp>
-#include <Eigen/Core>
 
 namespace vstcal::tools {
 
 extern const CLI::Validator kNonEmpty;       // a string flag given as ""
-extern const CLI::Validator kFinite;         // a number flag: no nan/inf
+extern const CLI::Validator kFinite;         // a number (or each item of a list): no nan/inf, no "0.1x"
 extern const CLI::Validator kPositiveFinite;  // a number flag > 0, finite
 extern const CLI::Validator kSeed;           // a whole number in [0, 2^64)
 extern const CLI::Validator kPositiveCount;  // a whole number ≥ 1 (sample counts)
@@ -19,10 +20,9 @@ extern const CLI::Validator kPositiveCount;  // a whole number ≥ 1 (sample cou
 // "i/N" with 0 ≤ i < N → {i, N}; throws InputError naming `flag` otherwise.
 std::pair<uint64_t, uint64_t> ParseShard(const std::string& text, const std::string& flag);
 
-// "1280x720" → {1280, 720}; throws InputError naming `flag` and showing `example` otherwise.
-std::pair<int, int> ParseSize(const std::string& text, const std::string& flag, const std::string& example);
-
-// "640.5,360" → (640.5, 360); throws InputError naming `flag` otherwise.
-Eigen::Vector2d ParsePoint2(const std::string& text, const std::string& flag);
+// "1280x720" → {1280, 720}: two whole numbers from 1 to `max_side`; throws InputError naming
+// `flag` and showing `example` otherwise.
+std::pair<int, int> ParseSize(const std::string& text, const std::string& flag, const std::string& example,
+                              int max_side);
 
 }  // namespace vstcal::tools

@@ -4,6 +4,7 @@
 
 #include "common/run_tool.h"
 #include "err-sim/command_line.h"
+#include "vstcal/json/input_protection.h"
 #include "vstcal/json/json_writer.h"
 
 int main(int argc, char** argv) {
@@ -15,6 +16,7 @@ int main(int argc, char** argv) {
                "err-sim"};
   vstcal::tools::ErrSimCommandLine command_line(app);
   return vstcal::tools::RunTool(app, argc, argv, [&] {
+    vstcal::io::DeclareOutputs({command_line.output()});
     const vstcal::errsim::Outcome outcome = command_line.Run(argc, argv);
     vstcal::io::WriteFilesAtomically({{command_line.output(), outcome.Text()}});
     if (!command_line.quiet()) std::cerr << outcome.text << "  wrote " << command_line.output() << "\n";

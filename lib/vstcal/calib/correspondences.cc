@@ -1,5 +1,8 @@
 #include "vstcal/calib/correspondences.h"
 
+#include <algorithm>
+#include <cmath>
+
 namespace vstcal {
 
 size_t NumObservations(const Correspondences& c) {
@@ -13,6 +16,13 @@ std::vector<Observation> AllObservations(const Correspondences& c) {
   all.reserve(NumObservations(c));
   for (const View& v : c.views) all.insert(all.end(), v.observations.begin(), v.observations.end());
   return all;
+}
+
+double WorldCoordinateScale(std::span<const Observation> observations, const Eigen::Vector3d& origin) {
+  double largest = 0;
+  for (const Observation& o : observations) largest = std::max(largest, (o.point - origin).cwiseAbs().maxCoeff());
+  if (!(largest > 0 && std::isfinite(largest)) || (largest > 1e-100 && largest < 1e100)) return 1.0;
+  return std::ldexp(1.0, -std::ilogb(largest));
 }
 
 }  // namespace vstcal

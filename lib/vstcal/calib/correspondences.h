@@ -2,6 +2,7 @@
 #pragma once
 
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -48,6 +49,12 @@ struct Correspondences {
 };
 
 size_t NumObservations(const Correspondences& c);
+
+// A power of two by which solvers scale world coordinates far from 1 before summing or squaring
+// them: 2^−e with e = ilogb of the largest |point − origin|, when that is beyond 1e±100 (the
+// coordinates of a file scaled by 1e±300); 1 otherwise, so that ordinary data are solved exactly
+// as given. Scaling by a power of two is exact: a solver undoes it on its lengths at the end.
+double WorldCoordinateScale(std::span<const Observation> observations, const Eigen::Vector3d& origin);
 // All observations of all views in order, for solvers of a single pose.
 std::vector<Observation> AllObservations(const Correspondences& c);
 

@@ -49,11 +49,13 @@ typedef double Lane4 __attribute__((vector_size(32)));
 // is a plain left-to-right sum over points; the four sums of one monomial share a 4-lane vector
 // and lanes never mix, so the avx2 and default (SSE2) clones give identical bits.
 __attribute__((target_clones("avx2", "default"))) void AccumulateMoments(const Observation* obs, size_t n,
-                                                                         const double* shift, double* out) {
+                                                                         const double* shift, double scale,
+                                                                         double* out) {
   Lane4 acc[10] = {};
   const double x0 = shift[0], y0 = shift[1], z0 = shift[2], u0 = shift[3], v0 = shift[4];
   for (size_t i = 0; i < n; ++i) {
-    const double x = obs[i].point.x() - x0, y = obs[i].point.y() - y0, z = obs[i].point.z() - z0;
+    const double x = (obs[i].point.x() - x0) * scale, y = (obs[i].point.y() - y0) * scale,
+                 z = (obs[i].point.z() - z0) * scale;
     const double du = obs[i].pixel.x() - u0, dv = obs[i].pixel.y() - v0;
     const Lane4 f = {1.0, du, dv, du * du + dv * dv};
     acc[0] += (x * x) * f;
@@ -79,8 +81,9 @@ __attribute__((target_clones("avx2", "default"))) void AccumulateMoments(const O
 //   M_w = s₂² T (R₃ − 2c_u R₁ − 2c_v R₂ + (c_u² + c_v²) R₀) Tᵀ   (docs/math/dlt.md#moments).
 NormalizedMoments MomentsOnePass(std::span<const Observation> obs, Normalization* n) {
   const double shift[5] = {obs[0].point.x(), obs[0].point.y(), obs[0].point.z(), obs[0].pixel.x(), obs[0].pixel.y()};
+  const double pre = WorldCoordinateScale(obs, obs[0].point);  // X = pre·(p − p₀), exact; 1 usually
   double r[40];
-  AccumulateMoments(obs.data(), obs.size(), shift, r);
+  AccumulateMoments(obs.data(), obs.size(), shift, pre, r);
   auto raw = [&r](int g) {
     Eigen::Matrix4d M;
     M << r[0 + g], r[4 + g], r[8 + g], r[12 + g],  //
@@ -96,14 +99,15 @@ NormalizedMoments MomentsOnePass(std::span<const Observation> obs, Normalization
   const double var3 = R0.topLeftCorner<3, 3>().trace() / count - c.squaredNorm();
   const double var2 = R3(3, 3) / count - cu * cu - cv * cv;
   n->valid = var3 > 0 && var2 > 0 && std::isfinite(var3) && std::isfinite(var2);
-  n->world_scale = n->valid ? std::sqrt(3.0 / var3) : 1.0;
+  const double s3 = n->valid ? std::sqrt(3.0 / var3) : 1.0;  // for the scaled points
+  n->world_scale = s3 * pre;
   n->pixel_scale = n->valid ? std::sqrt(2.0 / var2) : 1.0;
-  n->world_centroid = Eigen::Vector3d(shift[0], shift[1], shift[2]) + c;
+  n->world_centroid = Eigen::Vector3d(shift[0], shift[1], shift[2]) + c / pre;
   n->pixel_centroid = Eigen::Vector2d(shift[3], shift[4]) + Eigen::Vector2d(cu, cv);
 
   Eigen::Matrix4d T = Eigen::Matrix4d::Identity();
-  T.topLeftCorner<3, 3>() *= n->world_scale;
-  T.block<3, 1>(0, 3) = -n->world_scale * c;
+  T.topLeftCorner<3, 3>() *= s3;
+  T.block<3, 1>(0, 3) = -s3 * c;
   const double s2 = n->pixel_scale;
   NormalizedMoments m;
   m.M0 = T * R0 * T.transpose();
@@ -125,13 +129,14 @@ Normalization DirectNormalization(std::span<const Observation> obs) {
   const double count = static_cast<double>(obs.size());
   n.world_centroid = sum3 / count;
   n.pixel_centroid = sum2 / count;
+  const double pre = WorldCoordinateScale(obs, n.world_centroid);  // squares of 1e±300 coordinates
   double ss3 = 0, ss2 = 0;
   for (const Observation& o : obs) {
-    ss3 += (o.point - n.world_centroid).squaredNorm();
+    ss3 += ((o.point - n.world_centroid) * pre).squaredNorm();
     ss2 += (o.pixel - n.pixel_centroid).squaredNorm();
   }
   n.valid = ss3 > 0 && ss2 > 0 && std::isfinite(ss3) && std::isfinite(ss2);
-  n.world_scale = n.valid ? std::sqrt(3.0 * count / ss3) : 1.0;
+  n.world_scale = n.valid ? std::sqrt(3.0 * count / ss3) * pre : 1.0;
   n.pixel_scale = n.valid ? std::sqrt(2.0 * count / ss2) : 1.0;
   return n;
 }
@@ -237,27 +242,34 @@ DltResult Fail(DltResult r, DltStatus status, std::string message) {
   return r;
 }
 
-// Normalization fails when every point (or pixel) is the same, or when the coordinates are so large
-// or small that their squared spread overflows or underflows double precision; say which.
+// World coordinates so large that the DLT's numbers leave double precision: their differences
+// (beyond ~1e308) or the projection matrix and the depths (beyond ~1e305 / fx).
+DltResult FailBeyondRange(DltResult r, std::span<const Observation> obs) {
+  double largest = 0;
+  for (const Observation& o : obs) largest = std::max(largest, o.point.cwiseAbs().maxCoeff());
+  char buf[240];
+  std::snprintf(buf, sizeof buf,
+                "the world coordinates are beyond double precision for the DLT (largest |X|, |Y|, |Z| = %.3g); "
+                "express them in a larger length unit",
+                largest);
+  return Fail(r, DltStatus::kNonFinite, buf);
+}
+
+// Normalization fails when every point (or pixel) is the same, or when the world coordinates'
+// spread is beyond double precision (differences that overflow, or below the smallest normal
+// double); say which.
 DltResult FailNormalization(DltResult r, std::span<const Observation> obs) {
   bool same_point = true, same_pixel = true;
-  double largest = 0;
   for (const Observation& o : obs) {
     same_point = same_point && o.point == obs[0].point;
     same_pixel = same_pixel && o.pixel == obs[0].pixel;
-    largest = std::max({largest, o.point.cwiseAbs().maxCoeff(), o.pixel.cwiseAbs().maxCoeff()});
   }
   if (same_point || same_pixel) {
     return Fail(r, DltStatus::kCoincident,
                 std::string(same_point ? "all points are the same 3-D point" : "all points project to the same pixel") +
                     "; DLT needs points spread over a volume (docs/math/dlt.md#degeneracy)");
   }
-  char buf[200];
-  std::snprintf(buf, sizeof buf,
-                "the coordinates' spread cannot be squared in double precision (largest |coordinate| %.3g); express "
-                "them in another length unit",
-                largest);
-  return Fail(r, DltStatus::kNonFinite, buf);
+  return FailBeyondRange(r, obs);
 }
 
 // Below this relative thickness a cloud is coplanar to the precision of the moments (the
@@ -365,14 +377,18 @@ DltResult SolveDlt(std::span<const Observation> obs, const DltOptions& options) 
   // Scale and sign: unit third row, the majority of points in front. Counting is one cheap pass;
   // only when some point lies on the other side does a second pass find the deepest to report.
   Matrix34d P = NormalizeProjectionScale(Denormalize(m, n));
+  if (!P.allFinite()) return FailBeyondRange(r, obs);
   const Eigen::Vector3d depth_dir = P.block<1, 3>(2, 0).transpose();
   const double depth_offset = P(2, 3);
   size_t positive = 0, negative = 0;
+  bool finite = true;
   for (const Observation& o : obs) {
     const double depth = depth_dir.dot(o.point) + depth_offset;
     positive += depth > 0;
     negative += depth < 0;
+    finite = finite && std::isfinite(depth);
   }
+  if (!finite) return FailBeyondRange(r, obs);
   if (negative > positive) {
     P = -P;
     std::swap(positive, negative);

@@ -42,7 +42,7 @@ struct DltOptions {
 enum class DltStatus {
   kOk,
   kTooFewPoints,    // fewer than 6 correspondences
-  kNonFinite,       // NaN or infinite coordinates, or so large that their squares overflow
+  kNonFinite,       // NaN or infinite coordinates, or a spread beyond double precision
   kCoincident,      // all points (or all pixels) at one place
   kCollinear,       // points on (or near) a line
   kCoplanar,        // points on (or near) a plane

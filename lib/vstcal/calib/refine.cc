@@ -13,6 +13,9 @@
 namespace vstcal {
 namespace {
 
+// A residual below this is rounding, never an outlier (px).
+constexpr double kRoundingResidualPx = 1e-9;
+
 // χ²₂ quantile: P(χ²₂ > x) = e^{−x/2}.
 double ChiSquare2Quantile(double tail_probability) { return -2.0 * std::log(tail_probability); }
 
@@ -225,10 +228,13 @@ Refinement RefineWith(const Correspondences& c, Problem* p, const RefineOptions&
   std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
   out.robust_sigma_px = sorted[sorted.size() / 2] / std::sqrt(2 * std::log(2.0));
   const double threshold = ChiSquare2Quantile(options.outlier_false_alarm / static_cast<double>(norms.size()));
+  // Noise-free data fit exactly (a median residual of 0): residuals of rounding size are no
+  // outliers, and a zero σ would make every ‖r‖/σ infinite.
+  const double sigma_for_outliers = std::max(out.robust_sigma_px, kRoundingResidualPx);
   for (size_t v = 0; v < out.fit.views.size(); ++v) {
     const auto& residuals = out.fit.views[v].residuals_px;
     for (size_t k = 0; k < residuals.size(); ++k) {
-      const double z2 = residuals[k].squaredNorm() / (out.robust_sigma_px * out.robust_sigma_px);
+      const double z2 = residuals[k].squaredNorm() / (sigma_for_outliers * sigma_for_outliers);
       if (residuals[k].allFinite() && z2 > threshold) out.outliers.push_back({v, k, residuals[k], std::sqrt(z2)});
     }
   }

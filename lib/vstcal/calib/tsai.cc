@@ -336,8 +336,9 @@ TsaiResult SolveTsai(std::span<const Observation> obs, ImageSize size, const Tsa
   Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
   for (const Observation& o : obs) centroid += o.point;
   centroid /= std::max<double>(1.0, static_cast<double>(obs.size()));
+  const double pre = WorldCoordinateScale(obs, centroid);  // 1e±300 solved near 1; 1 usually
   Eigen::Matrix3d scatter = Eigen::Matrix3d::Zero();
-  for (const Observation& o : obs) scatter += (o.point - centroid) * (o.point - centroid).transpose();
+  for (const Observation& o : obs) scatter += ((o.point - centroid) * pre) * ((o.point - centroid) * pre).transpose();
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(scatter);
   const Eigen::Vector3d extents = eig.eigenvalues().cwiseMax(0.0).cwiseSqrt();  // ascending
   const bool planar = extents(0) < options.min_extent_ratio * extents(2);
@@ -387,7 +388,7 @@ TsaiResult SolveTsai(std::span<const Observation> obs, ImageSize size, const Tsa
   std::vector<SensorPoint> points(obs.size());
   double plane_ss = 0;
   for (size_t i = 0; i < obs.size(); ++i) {
-    points[i].X = work_from_world * obs[i].point;
+    points[i].X = (work_from_world * obs[i].point) * pre;
     if (out.variant == Variant::kCoplanar) {
       plane_ss += points[i].X.z() * points[i].X.z();
       points[i].X.z() = 0;
@@ -395,7 +396,7 @@ TsaiResult SolveTsai(std::span<const Observation> obs, ImageSize size, const Tsa
     points[i].xd = obs[i].pixel.x() - c.x();  // divided by sx below, once sx is known
     points[i].yd = obs[i].pixel.y() - c.y();
   }
-  out.plane_rms = std::sqrt(plane_ss / static_cast<double>(obs.size()));
+  out.plane_rms = std::sqrt(plane_ss / static_cast<double>(obs.size())) / pre;
 
   Rigid3d camera_from_work;
   TsaiStatus status;
@@ -412,6 +413,7 @@ TsaiResult SolveTsai(std::span<const Observation> obs, ImageSize size, const Tsa
     out.status = status;
     return out;
   }
+  camera_from_work.t /= pre;  // back from the scaled working frame: x_cam = R X + t'/pre
   out.camera_from_world = camera_from_work * work_from_world;
 
   // vstcal's camera: K from f, sx and the principal point; κ₁ converted over the image.

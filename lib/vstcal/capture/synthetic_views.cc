@@ -4,7 +4,10 @@
 #include <cstdio>
 
 #include "vstcal/calib/zhang.h"
+#include "vstcal/calib/fit.h"
+#include "vstcal/capture/synthetic_camera.h"
 #include "vstcal/core/error.h"
+#include "vstcal/core/limits.h"
 #include "vstcal/random/philox.h"
 
 namespace vstcal {
@@ -50,8 +53,19 @@ Rigid3d PlanarViewPose(const Camera& camera, const PlanarViewsSpec& spec, int vi
 SyntheticViews SynthesizePlanarViews(const Camera& camera, const PlanarViewsSpec& spec) {
   Require(spec.grid_cols >= 2 && spec.grid_rows >= 2, "--grid: the board needs at least 2×2 corners");
   Require(spec.spacing > 0, "--spacing: must be positive");
-  Require(spec.num_views >= 1 && spec.num_views <= 10000, "--views: give 1 to 10000 views");
+  Require(spec.num_views >= 1 && static_cast<size_t>(spec.num_views) <= limits::kMaxViews,
+          "--views: give 1 to " + std::to_string(limits::kMaxViews) + " views");
   Require(spec.distance > 0, "--distance: must be positive");
+  for (const auto& [flag, value] : {std::pair<const char*, double>{"--spacing", spec.spacing},
+                                    {"--distance", spec.distance}, {"--noise", spec.noise_px}}) {
+    Require(std::abs(value) <= limits::kMaxSyntheticScale,
+            std::string(flag) + ": beyond ±1e9 (docs/reliability.md#limits); give a realistic value");
+  }
+  const double points = static_cast<double>(spec.num_views) * spec.grid_cols * spec.grid_rows;
+  Require(points <= static_cast<double>(limits::kMaxPoints),
+          "--grid/--views: " + std::to_string(spec.grid_cols) + "×" + std::to_string(spec.grid_rows) + " corners in " +
+              std::to_string(spec.num_views) + " views is more than the " + std::to_string(limits::kMaxPoints) +
+              " points a file may hold (docs/reliability.md#limits); use fewer corners or views");
   Require(spec.max_tilt_deg >= 0 && spec.max_tilt_deg < 80, "--max-tilt-deg: must lie in [0, 80)");
   Require(spec.noise_px >= 0, "--noise: σ must not be negative");
 
@@ -88,6 +102,15 @@ SyntheticViews SynthesizePlanarViews(const Camera& camera, const PlanarViewsSpec
   }
   Require(!c.views.empty(), "--distance/--max-tilt-deg: no view shows the board; move it into the field of view");
   return out;
+}
+
+CalibratedCamera PlanarViewsTruthCamera(const Camera& camera, const PlanarViewsSpec& spec, const SyntheticViews& views) {
+  CalibratedCamera truth = SyntheticTruth(camera, spec.camera_name, spec.length_unit);
+  truth.fit = ComputeViewsFit(camera, views.camera_from_board, views.correspondences);
+  for (size_t v = 0; v < views.camera_from_board.size(); ++v) {
+    truth.views.push_back({views.correspondences.views[v].name, views.camera_from_board[v], truth.fit->views[v].stats.rms_px});
+  }
+  return truth;
 }
 
 }  // namespace vstcal

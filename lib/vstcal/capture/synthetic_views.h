@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "vstcal/calib/calibrated_camera.h"
 #include "vstcal/calib/correspondences.h"
 #include "vstcal/camera/camera.h"
 #include "vstcal/geometry/rigid3.h"
@@ -38,7 +39,13 @@ struct SyntheticViews {
 // central 70 % of the image, at depth distance·(0.8 … 1.2), tilted and rolled by Philox draws.
 Rigid3d PlanarViewPose(const Camera& camera, const PlanarViewsSpec& spec, int view);
 
-// Throws InputError for impossible specs (non-positive sizes, a tilt ≥ 80°, no visible view).
+// Throws InputError for impossible specs (non-positive sizes, a tilt ≥ 80°, no visible view, a
+// length beyond limits::kMaxSyntheticScale, more views than limits::kMaxViews or points than
+// limits::kMaxPoints).
 SyntheticViews SynthesizePlanarViews(const Camera& camera, const PlanarViewsSpec& spec);
+
+// The ground truth as a vstcal/camera@1 file holds it: the camera, one board pose per view kept
+// (with its RMS against the noisy pixels), method "synthetic", and the fit of the true camera.
+CalibratedCamera PlanarViewsTruthCamera(const Camera& camera, const PlanarViewsSpec& spec, const SyntheticViews& views);
 
 }  // namespace vstcal

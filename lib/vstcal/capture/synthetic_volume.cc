@@ -3,7 +3,10 @@
 #include <cmath>
 #include <cstdio>
 
+#include "vstcal/calib/fit.h"
+#include "vstcal/capture/synthetic_camera.h"
 #include "vstcal/core/error.h"
+#include "vstcal/core/limits.h"
 #include "vstcal/random/philox.h"
 
 namespace vstcal {
@@ -67,8 +70,24 @@ SyntheticVolume SynthesizeVolume(const Camera& camera, const VolumeSpec& spec, s
   Require(spec.camera_distance > 0, "--camera-distance: must be positive, got " + Num(spec.camera_distance));
   Require(spec.noise_px >= 0, "--noise: σ must not be negative, got " + Num(spec.noise_px));
   Require(std::abs(spec.tilt_deg) < 80, "--tilt-deg: must lie within ±80°, got " + Num(spec.tilt_deg));
-  const size_t n_planes = static_cast<size_t>(std::floor((spec.far - spec.near) / spec.interval + 1e-9)) + 1;
-  Require(n_planes <= 10000, "--interval: " + std::to_string(n_planes) + " template positions is too many; use a larger interval");
+  for (const auto& [flag, value] : {std::pair<const char*, double>{"--spacing", spec.spacing}, {"--near", spec.near},
+                                    {"--far", spec.far}, {"--interval", spec.interval},
+                                    {"--camera-distance", spec.camera_distance}, {"--noise", spec.noise_px}}) {
+    Require(std::abs(value) <= limits::kMaxSyntheticScale,
+            std::string(flag) + ": " + Num(value) + " is beyond ±" + Num(limits::kMaxSyntheticScale) +
+                " (docs/reliability.md#limits); give a realistic value");
+  }
+  // Counted in double before any loop: a tiny interval would otherwise ask for 1e300 planes.
+  const double planes = std::floor((spec.far - spec.near) / spec.interval + 1e-9) + 1;
+  Require(planes <= static_cast<double>(limits::kMaxViews),
+          "--interval: " + Num(planes) + " template positions, more than the " + std::to_string(limits::kMaxViews) +
+              " views a file may hold (docs/reliability.md#limits); use a larger interval");
+  const size_t n_planes = static_cast<size_t>(planes);
+  const double points = planes * spec.grid_cols * spec.grid_rows;
+  Require(points <= static_cast<double>(limits::kMaxPoints),
+          "--grid: " + std::to_string(spec.grid_cols) + "×" + std::to_string(spec.grid_rows) + " corners on " +
+              std::to_string(n_planes) + " planes is " + Num(points) + " points, more than the " +
+              std::to_string(limits::kMaxPoints) + " a file may hold (docs/reliability.md#limits); use fewer corners");
 
   SyntheticVolume out;
   out.camera_from_world = VolumeCameraPose(spec);
@@ -120,6 +139,13 @@ SyntheticVolume SynthesizeVolume(const Camera& camera, const VolumeSpec& spec, s
   }
   c.test_points = std::move(test_points);
   return out;
+}
+
+CalibratedCamera VolumeTruthCamera(const Camera& camera, const VolumeSpec& spec, const SyntheticVolume& volume) {
+  CalibratedCamera truth = SyntheticTruth(camera, spec.camera_name, spec.length_unit);
+  truth.camera_from_world = volume.camera_from_world;
+  truth.fit = ComputeVolumeFit(camera, volume.camera_from_world, volume.correspondences);
+  return truth;
 }
 
 }  // namespace vstcal

@@ -47,8 +47,14 @@ Rigid3d VolumeCameraPose(const VolumeSpec& spec);
 std::vector<TestPoint> Seed000TestPoints(const VolumeSpec& spec);
 
 // Throws InputError (naming the flag-like field) for impossible specs: non-positive spacing or
-// interval, far < near, a camera inside the volume, no visible point, a test point outside the
-// image or behind the camera.
+// interval, far < near, a length beyond limits::kMaxSyntheticScale, more planes than
+// limits::kMaxViews or points than limits::kMaxPoints, a camera inside the volume, no visible
+// point, a test point outside the image or behind the camera.
 SyntheticVolume SynthesizeVolume(const Camera& camera, const VolumeSpec& spec, std::vector<TestPoint> test_points);
+
+// The ground truth as a vstcal/camera@1 file holds it: the camera, camera_from_world (P = K[R | t]
+// is written from them), method "synthetic", and the fit of the true camera to the noisy pixels
+// (its rms_px is the noise actually drawn, about σ·√2).
+CalibratedCamera VolumeTruthCamera(const Camera& camera, const VolumeSpec& spec, const SyntheticVolume& volume);
 
 }  // namespace vstcal

@@ -1,7 +1,8 @@
 // Rotation parametrisations (docs/conventions.md#rotations).
 //
-// Templated functions run with double and with ceres::Jet (tests/unit/rotation_test.cc
-// instantiates them with Jets). Rotation vector r = θ·axis in radians; quaternions are [w, x, y, z].
+// Templated functions run with double and with ceres::Jet (tests/unit/geometry_test.cc,
+// Rotation.JetDerivatives, instantiates them with Jets). Rotation vector r = θ·axis in radians;
+// quaternions are [w, x, y, z].
 #pragma once
 
 #include <Eigen/Core>

@@ -57,7 +57,8 @@ Conversion ConvertCamera(const std::filesystem::path& input, CameraFileFormat fr
       out = OpenCvYamlText(in.camera, source, provenance);
       break;
     case CameraFileFormat::kMrcal:
-      out = MrcalCameramodelText(in.camera, source, {options.mrcal_lensmodel, options.length_unit}, provenance);
+      out = MrcalCameramodelText(in.camera, source, {options.mrcal_lensmodel, options.length_unit, in.rotation_vector},
+                                 provenance);
       break;
   }
   Conversion c{std::move(out.text), std::move(in.notes)};

@@ -5,10 +5,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <string>
 
 #include "vstcal/calib/decompose.h"
 #include "vstcal/camera/intrinsics.h"
+#include "vstcal/core/limits.h"
 #include "vstcal/core/suggest.h"
 #include "vstcal/json/fields.h"
 #include "vstcal/json/format_check.h"
@@ -177,6 +179,12 @@ std::optional<FieldProblem> CameraMatrixProblem(const Eigen::Matrix3d& K) {
   return std::nullopt;
 }
 
+std::optional<FieldProblem> PoseProblem(const Eigen::Matrix3d& K, const Rigid3d& camera_from_world) {
+  if (ProjectionMatrix(K, camera_from_world).allFinite()) return std::nullopt;
+  return FieldProblem{"the translation is so large that K [R | t] overflows a double",
+                      "give the translation in a larger length unit"};
+}
+
 Camera ReadCameraIntrinsics(const JsonNode& node) {
   const ImageSize size = ReadImageSize(node.at("image_size"));
   const Eigen::Matrix3d K = ReadK(node.at("K"));
@@ -195,9 +203,16 @@ CalibratedCamera CameraFromJson(const JsonDocument& doc) {
   c.length_unit = ReadLengthUnit(root.at("length_unit"));
   c.method = root.at("method").String();
   c.camera = ReadCameraIntrinsics(root);
-  if (auto pose = root.find("camera_from_world")) c.camera_from_world = ReadRigid(*pose);
+  if (auto pose = root.find("camera_from_world")) {
+    c.camera_from_world = ReadRigid(*pose);
+    if (const auto problem = PoseProblem(c.camera.K(), *c.camera_from_world)) pose->at("t").Fail(problem->reason, problem->fix);
+  }
   if (auto views = root.find("views")) {
     const size_t n = views->ArraySize();
+    if (n > limits::kMaxViews) {
+      views->Fail(std::to_string(n) + " views, more than the " + std::to_string(limits::kMaxViews) + " vstcal reads",
+                  "keep a subset of the views");
+    }
     for (size_t i = 0; i < n; ++i) {
       const JsonNode v = views->at(i);
       ViewPose pose;
@@ -216,8 +231,19 @@ CalibratedCamera CameraFromJson(const JsonDocument& doc) {
     if (!(std::abs(det) > 0) || !(m.row(2).head<3>().norm() > 0)) {
       P->Fail("P(:, 0:3) is singular", "write a valid projection matrix K [R | t]");
     }
-    // The overall sign of a stored P is free: the canonical one has det P(:, 0:3) > 0.
-    m = NormalizeProjectionScale(m, det > 0 ? 1.0 : -1.0);
+    // The overall sign of a stored P is free: the canonical one has det P(:, 0:3) > 0. A P already
+    // scaled to a unit third row (to 4 ulps, as written) keeps its bits: dividing by a norm of
+    // 1 ± 1 ulp would change them on every read.
+    const double sign = det > 0 ? 1.0 : -1.0;
+    if (std::abs(m.row(2).head<3>().norm() - 1) <= 4 * std::numeric_limits<double>::epsilon()) {
+      m *= sign;
+    } else {
+      m = NormalizeProjectionScale(m, sign);
+    }
+    if (!m.allFinite() || std::abs(m.row(2).head<3>().norm() - 1) > kAgreement) {
+      P->Fail("its third row cannot be scaled to unit length (entries near the limits of a double)",
+              "write P scaled so that the first three entries of its third row have unit norm");
+    }
     const auto decomposed = DecomposeProjection(m);
     const Matrix34d expected = c.camera_from_world ? ProjectionMatrix(c.camera.K(), *c.camera_from_world)
                                                    : decomposed ? ProjectionMatrix(decomposed->K, decomposed->camera_from_world)

@@ -29,6 +29,10 @@ OrderedJson FitToJson(const Fit& fit);
 // Every format's reader applies it, so that K is refused in the same words everywhere.
 std::optional<FieldProblem> CameraMatrixProblem(const Eigen::Matrix3d& K);
 
+// Why a pose cannot go with K, or nullopt: P = K [R | t] overflows a double (a translation near
+// 1e308 / fx), so the camera could not be written back. Every format's reader applies it.
+std::optional<FieldProblem> PoseProblem(const Eigen::Matrix3d& K, const Rigid3d& camera_from_world);
+
 // The "distortion" object alone, and a Camera (K, distortion, image size) from a JSON object that
 // has image_size, K and distortion (used by other formats that embed a camera).
 OrderedJson DistortionToJson(const Camera& camera);

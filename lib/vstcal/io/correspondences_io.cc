@@ -2,6 +2,7 @@
 
 #include <set>
 
+#include "vstcal/core/limits.h"
 #include "vstcal/json/fields.h"
 #include "vstcal/json/format_check.h"
 
@@ -53,6 +54,12 @@ Correspondences CorrespondencesFromJson(const JsonDocument& doc) {
   const JsonNode views = root.at("views");
   const size_t n_views = views.ArraySize();
   if (n_views == 0) views.Fail("no views", "add at least one view with points");
+  if (n_views > limits::kMaxViews) {
+    views.Fail(std::to_string(n_views) + " views, more than the " + std::to_string(limits::kMaxViews) +
+                   " vstcal calibrates from (docs/reliability.md#limits)",
+               "keep a subset of the views");
+  }
+  size_t n_points = 0;
   std::set<std::string> names;
   for (size_t i = 0; i < n_views; ++i) {
     const JsonNode v = views.at(i);
@@ -65,6 +72,12 @@ Correspondences CorrespondencesFromJson(const JsonDocument& doc) {
     const JsonNode points = v.at("points");
     const size_t n = points.ArraySize();
     if (n == 0) points.Fail("the view has no points", "remove the view or add its points");
+    n_points += n;
+    if (n_points > limits::kMaxPoints) {
+      points.Fail("the views hold more than the " + std::to_string(limits::kMaxPoints) +
+                      " points vstcal calibrates from (docs/reliability.md#limits)",
+                  "decimate the points or keep a subset of the views");
+    }
     view.observations.reserve(n);
     for (size_t k = 0; k < n; ++k) view.observations.push_back(ReadPoint(points.at(k), c));
     c.views.push_back(std::move(view));

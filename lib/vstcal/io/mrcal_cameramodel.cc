@@ -4,6 +4,7 @@
 
 #include "vstcal/camera/opencv_distortion.h"
 #include "vstcal/core/error.h"
+#include "vstcal/io/camera_io.h"
 #include "vstcal/io/python_literal.h"
 #include "vstcal/json/reader_common.h"
 
@@ -11,6 +12,9 @@ namespace vstcal::io {
 namespace {
 
 constexpr std::string_view kUnitKey = "vstcal_length_unit";
+// Longer rotation vectors are refused: the angle's square would overflow near 1e154 rad, and
+// rounding has long since made the rotation meaningless.
+constexpr double kMaxRotvecNorm = 1e6;
 
 const MrcalLensModel* FindLensModel(std::string_view name) {
   for (const MrcalLensModel& m : kMrcalLensModels) {
@@ -55,11 +59,13 @@ std::string List(const std::vector<double>& values) {
   return s + " ]";
 }
 
-int PositiveInteger(const PyNode& node, std::string_view fix) {
+// An image side: an integer literal (mrcal writes them so) from 1 to limits::kMaxImageSide.
+int ImageSide(const PyNode& node, std::string_view what) {
   const double v = node.Number();
-  if (!node.value().integral || !(v > 0) || v > 2147483647.0) {
-    node.Fail("must be a positive integer, got " + node.value().text, fix);
+  if (!node.value().integral) {
+    node.Fail("must be a positive integer, got " + node.value().text, "give the image " + std::string(what) + " in pixels");
   }
+  if (const auto problem = ImageSideProblem(v, what)) node.Fail(problem->reason, problem->fix);
   return static_cast<int>(v);
 }
 
@@ -139,6 +145,11 @@ ImportedCamera MrcalCameramodelFromText(std::string_view text, const std::string
   }
   Eigen::Matrix<double, 6, 1> rt;
   for (int i = 0; i < 6; ++i) rt(i) = extrinsics.at(i).Number();
+  if (!(rt.head<3>().norm() <= kMaxRotvecNorm)) {
+    extrinsics.Fail("the rotation vector's length, its angle, is " + ShortestDecimal(rt.head<3>().norm()) + " rad",
+                    "give the rotation with an angle of at most " + ShortestDecimal(kMaxRotvecNorm) +
+                        " rad (mrcal writes it in [0, π])");
+  }
 
   const PyNode imagersize =
       root.at("imagersize", "add 'imagersize': [width, height], the size in pixels of the calibration images");
@@ -146,8 +157,7 @@ ImportedCamera MrcalCameramodelFromText(std::string_view text, const std::string
     imagersize.Fail("expected 2 integers, got " + std::to_string(imagersize.ListSize()),
                     "write [width, height] in pixels");
   }
-  const ImageSize size{PositiveInteger(imagersize.at(0), "give the image width in pixels"),
-                       PositiveInteger(imagersize.at(1), "give the image height in pixels")};
+  const ImageSize size{ImageSide(imagersize.at(0), "width"), ImageSide(imagersize.at(1), "height")};
 
   ImportedCamera out;
   CalibratedCamera& c = out.camera;
@@ -159,6 +169,8 @@ ImportedCamera MrcalCameramodelFromText(std::string_view text, const std::string
   // All zeros is mrcal's "this camera is the reference frame": no pose of its own.
   if (!rt.isZero(0)) {
     c.camera_from_world = Rigid3d::FromRotvec(Eigen::Vector3d(rt.head<3>()), Eigen::Vector3d(rt.tail<3>()));
+    out.rotation_vector = rt.head<3>();
+    if (const auto problem = PoseProblem(K, *c.camera_from_world)) extrinsics.Fail(problem->reason, problem->fix);
   }
   return out;
 }
@@ -189,9 +201,18 @@ ExportedCamera MrcalCameramodelText(const CalibratedCamera& camera, std::string_
   const LengthUnit unit = options.length_unit.value_or(camera.length_unit);
   Eigen::Matrix<double, 6, 1> rt = Eigen::Matrix<double, 6, 1>::Zero();
   if (camera.camera_from_world) {
-    rt.head<3>() = RotvecFromRotation(camera.camera_from_world->R);
+    // The rotation vector read with this pose, when it still gives R exactly: RotvecFromRotation
+    // and RotationFromRotvec are inverse only to rounding, and a file read and written again
+    // must keep its bits.
+    const auto& r = options.rotation_vector;
+    const bool as_read = r && RotationFromRotvec(Eigen::Vector3d(*r)) == camera.camera_from_world->R;
+    rt.head<3>() = as_read ? *r : RotvecFromRotation(camera.camera_from_world->R);
     rt.tail<3>() = camera.camera_from_world->t;
     if (unit != camera.length_unit) rt.tail<3>() *= MetresPer(camera.length_unit) / MetresPer(unit);
+    if (!rt.allFinite()) {
+      throw InputError(std::string(source) + ": camera_from_world.t: too large to be written in " +
+                       std::string(LengthUnitName(unit)) + "; write the .cameramodel in a larger length unit");
+    }
   }
 
   const Eigen::Matrix3d K = c.K();

@@ -43,6 +43,10 @@ struct MrcalWriteOptions {
   std::optional<std::string> lensmodel;
   // Unit of the written translation (converted from the camera's); default: the camera's.
   std::optional<LengthUnit> length_unit;
+  // The rotation vector the pose was read with (ImportedCamera::rotation_vector): written as it is
+  // while it still gives the camera's R exactly, so that a file read and written again keeps its
+  // bits; otherwise the rotation vector of R.
+  std::optional<Eigen::Vector3d> rotation_vector;
 };
 
 // The file's text. Refuses (InputError naming `source`) a camera with skew, and a lens model

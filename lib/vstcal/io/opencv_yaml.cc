@@ -1,6 +1,7 @@
 #include "vstcal/io/opencv_yaml.h"
 
 #include <cmath>
+#include <cstdlib>
 #include <limits>
 #include <regex>
 
@@ -8,6 +9,7 @@
 
 #include "vstcal/camera/opencv_distortion.h"
 #include "vstcal/core/error.h"
+#include "vstcal/core/limits.h"
 #include "vstcal/io/camera_io.h"
 #include "vstcal/json/reader_common.h"
 
@@ -61,8 +63,90 @@ struct Field {
             "give a file written by cv::FileStorage, starting with \"%YAML:1.0\"");
 }
 
+// cv::FileStorage parses YAML by recursion, one call per level: 50,000 levels overflow the stack.
+// This bounds the depth from above without parsing, and refuses the text before OpenCV sees it.
+// A block collection nests deeper than its parent only by indenting further or after an indicator
+// ("- ", "? ", ": ") on the same line, and a sequence written at its key's indentation is followed
+// by deeper indentation, so the depth at any point of a line is at most
+//   2 · (indentation + indicators so far on the line) + open flow brackets ([, {) + 1.
+// Quotes and comments are not skipped: brackets inside them only make the bound larger.
+void CheckNesting(const std::string& text, const std::string& name) {
+  int flow = 0, indent = 0, indicators = 0;
+  bool line_start = true;
+  for (size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (c == '\n') {
+      line_start = true;
+      indent = indicators = 0;
+      continue;
+    }
+    if (line_start && (c == ' ' || c == '\t')) {
+      ++indent;
+    } else {
+      line_start = false;
+      const char next = i + 1 < text.size() ? text[i + 1] : '\n';
+      const bool blank_follows = next == ' ' || next == '\t' || next == '\n' || next == '\r';
+      if ((c == '-' || c == '?' || c == ':') && blank_follows) ++indicators;
+      if (c == '[' || c == '{') ++flow;
+      if ((c == ']' || c == '}') && flow > 0) --flow;
+    }
+    if (2 * (indent + indicators) + flow + 1 > limits::kMaxNesting) {
+      FailSyntax(name, text, i,
+                 "nested too deeply for OpenCV's parser (indentation, indicators and brackets allow more than " +
+                     std::to_string(limits::kMaxNesting) + " levels)",
+                 "an OpenCV camera file needs 3 levels; check that this is the right file");
+    }
+  }
+}
+
+// cv::FileStorage reads a plain integer with (int)strtol: 10000000000 becomes 1410065408 and
+// 4294967936 becomes 640, silently. Integers beyond 32 bits are refused here, before OpenCV sees
+// them; quoted strings and comments are skipped, and a number with a '.', 'e' or 'E' is a real.
+void CheckIntegers(const std::string& text, const std::string& name) {
+  char quote = 0;
+  for (size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (quote) {
+      if (c == quote || c == '\n') quote = 0;
+      continue;
+    }
+    const char prev = i > 0 ? text[i - 1] : '\n';
+    const bool token_start = prev == ' ' || prev == '\t' || prev == '\n' || prev == '[' || prev == '{' || prev == ',' ||
+                             prev == ':';
+    if (c == '#' && (prev == ' ' || prev == '\t' || prev == '\n')) {
+      while (i + 1 < text.size() && text[i + 1] != '\n') ++i;
+      continue;
+    }
+    if ((c == '"' || c == '\'') && token_start) {
+      quote = c;
+      continue;
+    }
+    if (!token_start) continue;
+    size_t end = i + (c == '-' || c == '+');
+    const size_t digits = end;
+    while (end < text.size() && text[end] >= '0' && text[end] <= '9') ++end;
+    if (end == digits) continue;
+    const char after = end < text.size() ? text[end] : '\n';
+    if (after == '.' || after == 'e' || after == 'E' || after == 'x' || after == 'X') continue;
+    const std::string literal = text.substr(i, end - i);
+    if (std::abs(std::strtod(literal.c_str(), nullptr)) > 2147483647.0) {
+      FailSyntax(name, text, i,
+                 "the integer " + literal + " is beyond the 32-bit integers cv::FileStorage reads (it would wrap around)",
+                 "write a whole number from -2147483647 to 2147483647 (an image side: at most " +
+                     std::to_string(limits::kMaxImageSide) + ")");
+    }
+    i = end - 1;
+  }
+}
+
 cv::FileStorage Open(const std::string& text, const std::string& name) {
   if (IsBlank(text)) throw InputError(name + ": the file is empty; expected OpenCV FileStorage YAML");
+  if (text.size() > limits::kMaxOpenCvYamlBytes) {
+    throw InputError(name + ": larger than the " + std::to_string(limits::kMaxOpenCvYamlBytes >> 20) +
+                     " MiB vstcal reads as OpenCV YAML (docs/reliability.md#limits); check that it is a camera file");
+  }
+  CheckNesting(text, name);
+  CheckIntegers(text, name);
   try {
     cv::FileStorage fs(text, cv::FileStorage::READ | cv::FileStorage::MEMORY | cv::FileStorage::FORMAT_YAML);
     if (!fs.isOpened() || !fs.root().isMap()) {
@@ -173,12 +257,9 @@ int ReadImageDimension(const Field& f, std::string_view what) {
     f.Fail("missing field",
            "add image_width and image_height: the size in pixels of the images the camera was calibrated with");
   }
-  const int v = f.Integer("give the image " + std::string(what) + " in pixels");
-  if (v <= 0) {
-    f.Fail("must be a positive integer, got " + std::to_string(v),
-           "give the image " + std::string(what) + " in pixels");
-  }
-  return v;
+  const double v = f.Number();
+  if (const auto problem = ImageSideProblem(v, what)) f.Fail(problem->reason, problem->fix);
+  return static_cast<int>(v);
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 // .cameramodel) share: their results, the refusal of skew, and the provenance comment.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -16,6 +17,9 @@ namespace vstcal::io {
 struct ImportedCamera {
   CalibratedCamera camera;  // method names the source: "opencv", "mrcal"
   std::vector<std::string> notes;
+  // The pose's rotation as the file wrote it (a .cameramodel's rotation vector), for writing it
+  // back bit for bit (MrcalWriteOptions::rotation_vector).
+  std::optional<Eigen::Vector3d> rotation_vector;
 };
 
 // A camera written for another tool. `notes` say what the format could not hold.

@@ -4,13 +4,14 @@
 #include <cctype>
 #include <cmath>
 #include <cstdlib>
+#include <unordered_set>
+
+#include "vstcal/core/limits.h"
 
 #include "vstcal/json/reader_common.h"
 
 namespace vstcal::io {
 namespace {
-
-constexpr int kMaxDepth = 64;  // deeper nesting is no camera model, and would exhaust the stack
 
 bool IsIdentifierStart(char c) { return std::isalpha(static_cast<unsigned char>(c)) || c == '_'; }
 bool IsIdentifierChar(char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; }
@@ -70,7 +71,16 @@ class Parser {
   bool AtString() const { return Peek() == '\'' || Peek() == '"' || StringPrefixLength() > 0; }
 
   PyValue Value(int depth) {
-    if (depth > kMaxDepth) Fail(pos_, "nested too deeply", "a camera model needs a few levels at most");
+    // The parser recurses once a level: deeper nesting would exhaust the stack, and more values the
+    // memory (docs/reliability.md#limits).
+    if (depth > limits::kMaxNesting) {
+      Fail(pos_, "nested more than " + std::to_string(limits::kMaxNesting) + " levels deep",
+           "a camera model needs a few levels at most");
+    }
+    if (++values_ > limits::kMaxLiteralValues) {
+      Fail(pos_, "more than " + std::to_string(limits::kMaxLiteralValues) + " values",
+           "a camera model holds a few dozen; check that this is the right file");
+    }
     SkipBlank();
     const size_t start = pos_;
     if (AtEnd()) Fail(pos_, "unexpected end of file: a value is missing", "complete the file (is it truncated?)");
@@ -96,15 +106,14 @@ class Parser {
   PyValue Dict(int depth) {
     PyValue v;
     v.kind = PyValue::Kind::kDict;
+    std::unordered_set<std::string> keys;
     ++pos_;  // '{'
     SkipBlank();
     while (Peek() != '}') {
       const size_t key_at = pos_;
       PyValue key = Value(depth + 1);
       if (key.kind != PyValue::Kind::kString) Fail(key_at, "a key must be a string", "quote the key: 'name'");
-      for (const auto& [existing, _] : v.members) {
-        if (existing == key.text) Fail(key_at, "duplicate key " + Quote(key.text), "keep one of them");
-      }
+      if (!keys.insert(key.text).second) Fail(key_at, "duplicate key " + Quote(key.text), "keep one of them");
       SkipBlank();
       if (Peek() != ':') Fail(pos_, "expected ':' after the key " + Quote(key.text), "write 'key': value");
       ++pos_;
@@ -268,6 +277,7 @@ class Parser {
   std::string_view text_;
   const std::string& name_;
   size_t pos_ = 0;
+  size_t values_ = 0;
 };
 
 }  // namespace

@@ -2,8 +2,11 @@
 
 #include <cctype>
 #include <cmath>
+#include <iterator>
+#include <vector>
 
 #include "vstcal/core/error.h"
+#include "vstcal/core/limits.h"
 #include "vstcal/json/reader_common.h"
 
 namespace vstcal::io {
@@ -30,37 +33,170 @@ std::string Quote(const std::string& token) {
   return "'" + (token.size() <= 24 ? token : token.substr(0, 20) + "...") + "'";
 }
 
-// A SAX handler that builds nothing and only records where parsing failed. Used to find the
-// position of a number overflow, which nlohmann reports without one (out_of_range.406).
-class ErrorLocator : public nlohmann::json_sax<nlohmann::json> {
- public:
-  bool null() override { return true; }
-  bool boolean(bool) override { return true; }
-  bool number_integer(number_integer_t) override { return true; }
-  bool number_unsigned(number_unsigned_t) override { return true; }
-  bool number_float(number_float_t, const string_t&) override { return true; }
-  bool string(string_t&) override { return true; }
-  bool binary(binary_t&) override { return true; }
-  bool start_object(std::size_t) override { return true; }
-  bool key(string_t&) override { return true; }
-  bool end_object() override { return true; }
-  bool start_array(std::size_t) override { return true; }
-  bool end_array() override { return true; }
-  bool parse_error(std::size_t position, const std::string&, const nlohmann::json::exception&) override {
-    position_ = position;
-    return false;
-  }
-  size_t position() const { return position_; }
-
- private:
-  size_t position_ = 0;
-};
-
 bool IsNonFiniteToken(const std::string& token) {
   for (const char* word : {"NaN", "nan", "Infinity", "-Infinity", "inf", "-inf", "Inf", "-Inf", "-NaN", "-nan"}) {
     if (token == word) return true;
   }
   return false;
+}
+
+// A pointer into the text that records how far nlohmann's lexer has read: the SAX callbacks carry
+// no position, and a duplicate key or a too-deep bracket is reported by line and column.
+class TrackedIterator {
+ public:
+  using iterator_category = std::input_iterator_tag;
+  using value_type = char;
+  using difference_type = std::ptrdiff_t;
+  using pointer = const char*;
+  using reference = const char&;
+
+  TrackedIterator(const char* p, const char** read_to) : p_(p), read_to_(read_to) {}
+  reference operator*() const { return *p_; }
+  TrackedIterator& operator++() {
+    *read_to_ = ++p_;
+    return *this;
+  }
+  TrackedIterator operator++(int) {
+    TrackedIterator old = *this;
+    ++*this;
+    return old;
+  }
+  bool operator==(const TrackedIterator& o) const { return p_ == o.p_; }
+  bool operator!=(const TrackedIterator& o) const { return p_ != o.p_; }
+
+ private:
+  const char* p_;
+  const char** read_to_;
+};
+
+// Builds the document as nlohmann's own DOM parser does, but strictly: a key given twice in one
+// object, nesting deeper than limits::kMaxNesting and more than limits::kMaxJsonValues values
+// stop the parse (nlohmann alone keeps the last duplicate silently).
+class StrictBuilder {
+ public:
+  using Json = nlohmann::json;
+  using number_integer_t = Json::number_integer_t;
+  using number_unsigned_t = Json::number_unsigned_t;
+  using number_float_t = Json::number_float_t;
+  using string_t = Json::string_t;
+  using binary_t = Json::binary_t;
+
+  enum class Problem { kNone, kSyntax, kDuplicateKey, kTooDeep, kTooManyValues };
+
+  explicit StrictBuilder(Json* root) : root_(root) {}
+
+  bool null() { return Add(nullptr); }
+  bool boolean(bool v) { return Add(v); }
+  bool number_integer(number_integer_t v) { return Add(v); }
+  bool number_unsigned(number_unsigned_t v) { return Add(v); }
+  bool number_float(number_float_t v, const string_t&) { return Add(v); }
+  bool string(string_t& v) { return Add(std::move(v)); }
+  bool binary(binary_t&) { return Fail(Problem::kSyntax); }  // not produced by JSON text
+  bool start_object(std::size_t) { return Open(Json::value_t::object); }
+  bool start_array(std::size_t) { return Open(Json::value_t::array); }
+  bool end_object() { return Close(); }
+  bool end_array() { return Close(); }
+  bool key(string_t& k) {
+    Level& top = stack_.back();
+    auto& members = top.node->get_ref<Json::object_t&>();
+    const auto [it, inserted] = members.emplace(k, nullptr);
+    if (!inserted) {
+      duplicate_ = k;
+      return Fail(Problem::kDuplicateKey);
+    }
+    top.key = &it->first;
+    element_ = &it->second;
+    return true;
+  }
+  bool parse_error(std::size_t position, const std::string&, const Json::exception& e) {
+    error_position_ = position;
+    error_id_ = e.id;
+    return Fail(Problem::kSyntax);
+  }
+
+  Problem problem() const { return problem_; }
+  size_t error_position() const { return error_position_; }
+  int error_id() const { return error_id_; }
+  const std::string& duplicate() const { return duplicate_; }
+  // The path of the object being filled ("views[2]"), for the duplicate-key message.
+  std::string Path() const {
+    std::string path;
+    for (size_t i = 1; i < stack_.size(); ++i) {
+      const Level& parent = stack_[i - 1];
+      if (parent.node->is_array()) {
+        path += "[" + std::to_string(parent.node->size() - 1) + "]";
+      } else {
+        path += (path.empty() ? "" : ".") + *parent.key;
+      }
+    }
+    return path;
+  }
+
+ private:
+  struct Level {
+    Json* node;
+    const std::string* key = nullptr;  // the member being filled, for objects
+  };
+
+  bool Fail(Problem p) {
+    problem_ = p;
+    return false;
+  }
+
+  // Places a value where the parser is: the root, the next array item or the current member.
+  template <typename Value>
+  Json* Place(Value&& v) {
+    if (++values_ > limits::kMaxJsonValues) return nullptr;
+    if (stack_.empty()) {
+      *root_ = Json(std::forward<Value>(v));
+      return root_;
+    }
+    Json& top = *stack_.back().node;
+    if (top.is_array()) {
+      top.get_ref<Json::array_t&>().emplace_back(std::forward<Value>(v));
+      return &top.get_ref<Json::array_t&>().back();
+    }
+    *element_ = Json(std::forward<Value>(v));
+    return element_;
+  }
+
+  template <typename Value>
+  bool Add(Value&& v) {
+    return Place(std::forward<Value>(v)) != nullptr || Fail(Problem::kTooManyValues);
+  }
+
+  bool Open(Json::value_t type) {
+    if (stack_.size() >= static_cast<size_t>(limits::kMaxNesting)) return Fail(Problem::kTooDeep);
+    Json* node = Place(type);
+    if (node == nullptr) return Fail(Problem::kTooManyValues);
+    stack_.push_back({node});
+    return true;
+  }
+
+  bool Close() {
+    stack_.pop_back();
+    return true;
+  }
+
+  Json* root_;
+  std::vector<Level> stack_;
+  Json* element_ = nullptr;
+  size_t values_ = 0;
+  Problem problem_ = Problem::kNone;
+  size_t error_position_ = 0;
+  int error_id_ = 0;
+  std::string duplicate_;
+};
+
+// The byte where the string that ends at `close` (its closing quote) begins.
+size_t StringStart(const std::string& text, size_t close) {
+  for (size_t i = close; i-- > 0;) {
+    if (text[i] != '"') continue;
+    size_t backslashes = 0;
+    while (backslashes < i && text[i - 1 - backslashes] == '\\') ++backslashes;
+    if (backslashes % 2 == 0) return i;
+  }
+  return 0;
 }
 
 }  // namespace
@@ -73,26 +209,47 @@ JsonDocument JsonDocument::Parse(const std::string& text, std::string name) {
   JsonDocument doc;
   doc.name_ = std::move(name);
   if (IsBlank(text)) throw InputError(doc.name_ + ": the file is empty; expected a JSON object");
-  // nlohmann reports the byte after the offending token; `where` finds the token and its first byte.
-  auto where = [&](size_t position) { return TokenNear(text, position > 0 ? position - 1 : 0); };
-  try {
-    doc.json_ = nlohmann::json::parse(text);
-  } catch (const nlohmann::json::parse_error& e) {
-    const auto [token, at] = where(e.byte);
-    if (IsNonFiniteToken(token)) {
-      FailSyntax(doc.name_, text, at, Quote(token) + " is not a JSON number",
-                 "every value must be a finite number (remove or fix the point)");
+  StrictBuilder first(&doc.json_);
+  if (nlohmann::json::sax_parse(text.data(), text.data() + text.size(), &first)) return doc;
+  // It failed: parse again, tracking how far the lexer reads, to say where (the fast path above
+  // pays nothing for positions).
+  nlohmann::json partial;
+  StrictBuilder builder(&partial);
+  const char* read_to = text.data();
+  nlohmann::json::sax_parse(TrackedIterator(text.data(), &read_to), TrackedIterator(text.data() + text.size(), &read_to),
+                            &builder);
+  const size_t read = static_cast<size_t>(read_to - text.data());  // bytes the lexer consumed
+  switch (builder.problem()) {
+    case StrictBuilder::Problem::kDuplicateKey: {
+      const std::string path = builder.Path();
+      FailSyntax(doc.name_, text, StringStart(text, read - 1),
+                 "duplicate key \"" + builder.duplicate() + "\" in " +
+                     (path.empty() ? std::string("the top-level object") : path),
+                 "keep one of them (JSON readers disagree on which one counts)");
     }
-    FailSyntax(doc.name_, text, at, "not valid JSON", "fix the syntax there");
-  } catch (const nlohmann::json::out_of_range&) {
-    // A number too large for a double (1e999): parse again to find where.
-    ErrorLocator locator;
-    nlohmann::json::sax_parse(text, &locator);
-    const auto [token, at] = where(locator.position());
+    case StrictBuilder::Problem::kTooDeep:
+      FailSyntax(doc.name_, text, read - 1,
+                 "nested more than " + std::to_string(limits::kMaxNesting) + " levels deep",
+                 "vstcal's formats need a few levels; check that this is the right file");
+    case StrictBuilder::Problem::kTooManyValues:
+      FailSyntax(doc.name_, text, read > 0 ? read - 1 : 0,
+                 "more than " + std::to_string(limits::kMaxJsonValues) + " values",
+                 "split the data into smaller files");
+    default:
+      break;
+  }
+  // nlohmann reports the byte after the offending token; TokenNear finds the token and its start.
+  const size_t position = builder.error_position();
+  const auto [token, at] = TokenNear(text, position > 0 ? position - 1 : 0);
+  if (builder.error_id() == 406) {  // out_of_range.406: a number too large for a double (1e999)
     FailSyntax(doc.name_, text, at, Quote(token) + " is too large for a double",
                "every value must be a finite number (remove or fix the point)");
   }
-  return doc;
+  if (IsNonFiniteToken(token)) {
+    FailSyntax(doc.name_, text, at, Quote(token) + " is not a JSON number",
+               "every value must be a finite number (remove or fix the point)");
+  }
+  FailSyntax(doc.name_, text, at, "not valid JSON", "fix the syntax there");
 }
 
 JsonNode JsonDocument::root() const { return JsonNode(&json_, "", &name_); }
@@ -155,7 +312,10 @@ double JsonNode::NonNegativeNumber() const {
 
 int JsonNode::Integer() const {
   const double v = Number();
-  if (v != std::floor(v) || std::abs(v) > 2147483647.0) Fail("expected an integer, got " + value_->dump(), "write a whole number");
+  if (v != std::floor(v)) Fail("expected an integer, got " + value_->dump(), "write a whole number");
+  if (std::abs(v) > 2147483647.0) {
+    Fail("the integer " + value_->dump() + " is out of range", "write a whole number from -2147483647 to 2147483647");
+  }
   return static_cast<int>(v);
 }
 

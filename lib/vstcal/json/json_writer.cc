@@ -4,11 +4,13 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <vector>
 
 #include "vstcal/core/error.h"
+#include "vstcal/json/input_protection.h"
 
 namespace vstcal::io {
 
@@ -19,7 +21,31 @@ OrderedJson RigidToJson(const Rigid3d& a_from_b) {
   return j;
 }
 
-std::string DumpJson(const OrderedJson& json) { return json.dump(2) + "\n"; }
+namespace {
+
+// NaN and infinity are not JSON numbers: nlohmann would write them as null, silently.
+void CheckFinite(const OrderedJson& json, const std::string& path) {
+  if (json.is_number_float()) {
+    VSTCAL_CHECK(std::isfinite(json.get<double>()), "a non-finite number at " + (path.empty() ? "(top level)" : path) +
+                                                        " would be written as null");
+  } else if (json.is_object()) {
+    for (const auto& [key, value] : json.items()) CheckFinite(value, path.empty() ? key : path + "." + key);
+  } else if (json.is_array()) {
+    for (size_t i = 0; i < json.size(); ++i) CheckFinite(json[i], path + "[" + std::to_string(i) + "]");
+  }
+}
+
+}  // namespace
+
+std::string DumpJson(const OrderedJson& json) {
+  CheckFinite(json, "");
+  return json.dump(2) + "\n";
+}
+
+std::string ShortestDecimal(double v) {
+  VSTCAL_CHECK(std::isfinite(v), "a non-finite number would be written");
+  return OrderedJson(v).dump();
+}
 
 std::string DumpJsonCompact(const OrderedJson& json) { return json.dump() + "\n"; }
 
@@ -71,23 +97,14 @@ std::string WriteTemporary(const std::filesystem::path& path, const std::string&
 }  // namespace
 
 void WriteFilesAtomically(const std::vector<std::pair<std::filesystem::path, std::string>>& files) {
-  // Refuse before writing anything: an empty name, or one file given for two outputs (the second
-  // rename would silently replace the first output).
-  std::vector<std::filesystem::path> resolved;
+  // Refuse before writing anything: an empty name, one file given for two outputs (the second
+  // rename would silently replace the first output), an output that is an input of the run.
+  std::vector<std::filesystem::path> paths;
   for (const auto& [path, text] : files) {
     if (path.empty()) throw InputError("an output file name is empty; give a file name");
-    std::error_code ec;
-    std::filesystem::path p = std::filesystem::absolute(path, ec);
-    if (!ec) p = std::filesystem::weakly_canonical(p, ec);
-    if (ec) p = path.lexically_normal();
-    for (size_t i = 0; i < resolved.size(); ++i) {
-      if (resolved[i] == p) {
-        throw InputError(path.string() + ": the same file is given for two outputs (" + files[i].first.string() +
-                         " and " + path.string() + "); give each output its own file name");
-      }
-    }
-    resolved.push_back(std::move(p));
+    paths.push_back(path);
   }
+  CheckOutputs(paths);
   std::vector<std::string> temporaries;
   try {
     for (const auto& [path, text] : files) temporaries.push_back(WriteTemporary(path, text));

@@ -36,10 +36,13 @@ OrderedJson MatrixToJson(const Eigen::MatrixBase<Derived>& m) {
 OrderedJson RigidToJson(const Rigid3d& a_from_b);
 
 // A double in the shortest decimal form that reads back to the same bits, as every vstcal file
-// writes numbers ("0.1", "1e-12", "640.0").
-inline std::string ShortestDecimal(double v) { return OrderedJson(v).dump(); }
+// writes numbers ("0.1", "1e-12", "640.0"). A NaN or an infinity is a bug upstream (inputs are
+// checked before they reach a writer): it throws InternalError instead of printing "null".
+std::string ShortestDecimal(double v);
 
-// Two-space indented text with a final newline; doubles in shortest round-trip form.
+// Two-space indented text with a final newline; doubles in shortest round-trip form. Throws
+// InternalError naming the field when a number is NaN or infinite (nlohmann would write null):
+// the last line of defence behind the checks of every input.
 std::string DumpJson(const OrderedJson& json);
 // The same on one line (and a final newline): for machine-to-machine files whose size matters
 // (err-sim's shard files), where the indentation would triple it.
@@ -53,7 +56,8 @@ void WriteFileAtomically(const std::filesystem::path& path, const std::string& t
 // Writes several files all-or-nothing: every text goes to a temporary file first; only when all
 // are written are they renamed into place, so a failure leaves none of the outputs behind (if a
 // rename fails midway, the outputs already renamed are removed). Refuses, before writing, an
-// empty name or one file named for two outputs.
+// empty name, one file named for two outputs, or an output that is an input (CheckOutputs,
+// input_protection.h).
 void WriteFilesAtomically(const std::vector<std::pair<std::filesystem::path, std::string>>& files);
 
 inline void WriteJsonFile(const std::filesystem::path& path, const OrderedJson& json) {

@@ -1,12 +1,14 @@
 #include "vstcal/json/reader_common.h"
 
 #include <cerrno>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
-#include <sstream>
 
 #include "vstcal/core/error.h"
+#include "vstcal/core/limits.h"
+#include "vstcal/json/input_protection.h"
 
 namespace vstcal::io {
 
@@ -17,11 +19,25 @@ std::string ReadInputFile(const std::filesystem::path& path, std::string_view ki
   if (std::filesystem::is_directory(path, ec)) {
     throw InputError(name + ": is a directory, not " + std::string(kind) + "; give the file's path");
   }
+  const std::string too_large = name + ": larger than the " + std::to_string(limits::kMaxInputFileBytes >> 20) +
+                                " MiB vstcal reads (docs/reliability.md#limits); check that it is " +
+                                std::string(kind) + ", or split the data";
+  // The size is checked before reading, and again while reading: a device or a pipe (/dev/zero)
+  // has no size and never ends.
+  if (std::filesystem::is_regular_file(path, ec) && std::filesystem::file_size(path, ec) > limits::kMaxInputFileBytes) {
+    throw InputError(too_large);
+  }
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(name + ": cannot open (" + std::strerror(errno) + "); check its permissions");
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
-  return buffer.str();
+  NoteInputFile(path);
+  std::string text;
+  char buffer[1 << 16];
+  while (in.read(buffer, sizeof buffer) || in.gcount() > 0) {
+    text.append(buffer, static_cast<size_t>(in.gcount()));
+    if (text.size() > limits::kMaxInputFileBytes) throw InputError(too_large);
+  }
+  if (in.bad()) throw InputError(name + ": cannot read (" + std::strerror(errno) + "); check the file");
+  return text;
 }
 
 bool IsBlank(std::string_view text) { return text.find_first_not_of(" \t\r\n") == std::string_view::npos; }
@@ -37,6 +53,21 @@ std::string LineColumn(std::string_view text, size_t offset) {
     }
   }
   return "line " + std::to_string(line) + ", column " + std::to_string(column);
+}
+
+std::optional<FieldProblem> ImageSideProblem(double v, std::string_view what) {
+  const std::string fix = "give the image " + std::string(what) + " in pixels, a whole number from 1 to " +
+                          std::to_string(limits::kMaxImageSide);
+  char got[40];
+  std::snprintf(got, sizeof got, "%.17g", v);
+  if (v != std::floor(v)) return FieldProblem{"expected an integer, got " + std::string(got), fix};
+  if (v <= 0) return FieldProblem{"must be a positive integer, got " + std::string(got), fix};
+  if (v > limits::kMaxImageSide) {
+    return FieldProblem{std::string(got) + " px is more than the " + std::to_string(limits::kMaxImageSide) +
+                            " px per side vstcal accepts",
+                        fix};
+  }
+  return std::nullopt;
 }
 
 std::string MessageNumber(double v) {

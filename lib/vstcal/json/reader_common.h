@@ -6,6 +6,7 @@
 #pragma once
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -29,6 +30,10 @@ struct FieldProblem {
   std::string reason;  // what is wrong
   std::string fix;     // how to fix it
 };
+
+// Why `v` cannot be an image side (`what`: "width" or "height"): it must be a whole number of
+// pixels from 1 to limits::kMaxImageSide. nullopt when it can. Every format's reader applies it.
+std::optional<FieldProblem> ImageSideProblem(double v, std::string_view what);
 
 // An empty field names the top level.
 [[noreturn]] void FailField(std::string_view file, std::string_view field, std::string_view reason,

@@ -1,0 +1,56 @@
+// vstcal/vst-chain@1 with the camera@1 file it references (docs/formats.md#vst-chain). The input
+// is the chain's text, then a line "%%", then the camera file's text, which the harness writes to
+// camera.json beside the chain (a chain names it {"file": "camera.json"}). The canonical writer's
+// output must be a fixed point (`err-sim normalize`), and what is read goes through a tiny Monte
+// Carlo run (8 samples, one thread) whose report must hold only finite numbers.
+#include <stdlib.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "harness.h"
+#include "vstcal/errsim/chain.h"
+#include "vstcal/errsim/formats/chain_reader.h"
+#include "vstcal/errsim/formats/chain_writer.h"
+#include "vstcal/errsim/formats/report_format.h"
+
+namespace {
+
+// A private directory for camera.json, made once per process.
+const std::filesystem::path& Directory() {
+  static const std::filesystem::path dir = [] {
+    std::string tmpl = (std::filesystem::temp_directory_path() / "vstcal-fuzz-chain-XXXXXX").string();
+    vstcal::fuzz::Require(::mkdtemp(tmpl.data()) != nullptr, "cannot create a temporary directory");
+    return std::filesystem::path(tmpl);
+  }();
+  return dir;
+}
+
+vstcal::errsim::ChainSpec Read(const std::string& chain_text) {
+  return vstcal::errsim::ChainSpecFromJson(vstcal::io::JsonDocument::Parse(chain_text, "fuzz.json"), Directory());
+}
+
+std::string Pass(const std::string& chain_text) {
+  return vstcal::io::DumpJson(vstcal::errsim::ChainSpecToJson(Read(chain_text), vstcal::fuzz::kProvenance));
+}
+
+}  // namespace
+
+VSTCAL_FUZZ_TARGET(text) {
+  using namespace vstcal;
+  const size_t split = text.find("\n%%\n");
+  std::ofstream(Directory() / "camera.json", std::ios::binary | std::ios::trunc)
+      << (split == std::string::npos ? std::string() : text.substr(split + 4));
+  const std::string chain_text = text.substr(0, split);
+  errsim::ChainModel model = errsim::BuildChainModel(Read(chain_text));
+  fuzz::RequireFixedPoint(chain_text, Pass);
+  errsim::SimulationOptions options;
+  options.samples = 8;
+  options.seed = model.seed;
+  options.budget = false;
+  options.threads = 1;
+  model.samples = options.samples;
+  errsim::RunDescription run{"fuzz.json", errsim::ChainDigest(model), {}, {}, options};
+  const errsim::SimulationResult result = errsim::RunSimulation(errsim::MakeScenarios(model, false), options, run.digest);
+  io::DumpJson(errsim::ReportToJson(errsim::ChainEvaluator(model), result, run, fuzz::kProvenance));
+}

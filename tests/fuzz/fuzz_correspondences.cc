@@ -1,0 +1,27 @@
+// vstcal/correspondences@1: the reader, the writer's fixed point, and the DLT on what was read
+// (docs/formats.md#correspondences).
+#include "harness.h"
+#include "vstcal/calib/dlt.h"
+#include "vstcal/io/correspondences_io.h"
+
+namespace {
+
+std::string Pass(const std::string& text) {
+  using namespace vstcal;
+  const Correspondences c = io::CorrespondencesFromJson(io::JsonDocument::Parse(text, "fuzz.json"));
+  return io::DumpJson(io::CorrespondencesToJson(c, fuzz::kProvenance));
+}
+
+}  // namespace
+
+VSTCAL_FUZZ_TARGET(text) {
+  using namespace vstcal;
+  const Correspondences c = io::CorrespondencesFromJson(io::JsonDocument::Parse(text, "fuzz.json"));
+  fuzz::RequireFixedPoint(text, Pass);
+  if (c.rig == Rig::kVolume) {
+    DltOptions options;
+    options.exact_diagnostics = true;
+    const DltResult dlt = SolveDlt(AllObservations(c), options);
+    fuzz::Require(dlt.status != DltStatus::kOk || dlt.P.allFinite(), "DLT returned a non-finite P with status ok");
+  }
+}

@@ -1,0 +1,38 @@
+#include "harness.h"
+
+#include <cstdio>
+#include <cstdlib>
+#include <exception>
+
+#include "vstcal/core/error.h"
+
+namespace vstcal::fuzz {
+
+const io::Provenance kProvenance{"fuzz", {"--fuzz"}, std::nullopt};
+
+void RunOne(const uint8_t* data, size_t size, void (*body)(const std::string&)) {
+  const std::string text(reinterpret_cast<const char*>(data), size);
+  try {
+    body(text);
+  } catch (const InputError&) {
+    // The documented answer to bad input (exit code 2).
+  } catch (const DegenerateError&) {
+    // The documented answer to degenerate data (exit code 3).
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "fuzz: unexpected exception (a bug): %s\n", e.what());
+    std::abort();
+  }
+}
+
+void Require(bool ok, const char* what) {
+  if (ok) return;
+  std::fprintf(stderr, "fuzz: %s\n", what);
+  std::abort();
+}
+
+void RequireFixedPoint(const std::string& text, const std::function<std::string(const std::string&)>& pass) {
+  const std::string once = pass(text);
+  Require(pass(once) == once, "a file read and written again changed on the second pass");
+}
+
+}  // namespace vstcal::fuzz

@@ -1,0 +1,48 @@
+// What every fuzz harness shares (docs/reliability.md#fuzzing). A harness is one file
+// tests/fuzz/fuzz_<name>.cc holding
+//
+//   #include "harness.h"
+//   VSTCAL_FUZZ_TARGET(text) {
+//     const Thing t = vstcal::io::ThingFromJson(vstcal::io::JsonDocument::Parse(text, "fuzz.json"));
+//     vstcal::fuzz::RequireFixedPoint(text, [](const std::string& s) { return Write(Read(s)); });
+//   }
+//
+// and its seed corpus in tests/fuzz/corpus/<name>/ (a few small valid files): tests/fuzz/
+// CMakeLists.txt finds it, ctest replays the corpus (fuzz_replay.<name>) and scripts/fuzz runs it
+// under libFuzzer. The body receives the input as text; InputError and DegenerateError are the
+// documented answers to bad input, so they end the input quietly; any other exception (an
+// InternalError, a non-finite number on its way to a file, a round trip that is no fixed point)
+// aborts, which libFuzzer reports as a crash with the input that caused it.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <string>
+
+#include "vstcal/json/provenance.h"
+
+namespace vstcal::fuzz {
+
+// The provenance written by harnesses (fixed, so that written texts can be compared).
+extern const io::Provenance kProvenance;
+
+// Runs `body` on the input as described above.
+void RunOne(const uint8_t* data, size_t size, void (*body)(const std::string&));
+
+// Aborts with `what` on stderr unless `ok`.
+void Require(bool ok, const char* what);
+
+// pass(text) is a read and a write. Aborts unless pass(pass(text)) == pass(text): a file read and
+// written again is the same bytes on the second pass (docs/reliability.md#round-trips).
+void RequireFixedPoint(const std::string& text, const std::function<std::string(const std::string&)>& pass);
+
+}  // namespace vstcal::fuzz
+
+#define VSTCAL_FUZZ_TARGET(text)                                                  \
+  static void VstcalFuzzBody(const std::string& text);                            \
+  extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {      \
+    ::vstcal::fuzz::RunOne(data, size, &VstcalFuzzBody);                          \
+    return 0;                                                                     \
+  }                                                                               \
+  static void VstcalFuzzBody(const std::string& text)
