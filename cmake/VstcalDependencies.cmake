@@ -1,7 +1,7 @@
 # Every dependency comes from a Debian bookworm package; scripts/setup installs them.
 find_package(Eigen3 3.4 REQUIRED NO_MODULE)
 find_package(Ceres REQUIRED)
-find_package(OpenCV REQUIRED COMPONENTS core calib3d imgproc imgcodecs)
+find_package(OpenCV REQUIRED COMPONENTS core calib3d imgproc imgcodecs videoio aruco)
 find_package(nlohmann_json 3.10 REQUIRED)
 find_package(CLI11 REQUIRED)
 find_package(apriltag REQUIRED)

@@ -1,0 +1,187 @@
+#include "vstcal/capture/corner_refinement.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "vstcal/capture/image_sampling.h"
+
+namespace vstcal::capture {
+namespace {
+
+constexpr int kMaxIterations = 12;
+constexpr double kConvergedPx = 1e-3;
+// The patch is smoothed by a Gaussian of this σ (px) first: the point symmetry is untouched (the
+// kernel is itself symmetric) and bilinear interpolation, exact to first order only, meets a
+// smooth surface instead of the kinks of a sharp edge (docs/math/corners.md#presmoothing).
+constexpr double kPresmoothPx = 0.7;
+constexpr int kKernelRadius = 2;
+
+// A window of the image smoothed by the Gaussian above, as doubles, with bilinear reads.
+class SmoothedPatch {
+ public:
+  // The square of pixels within `half` of `centre` (clipped to the image).
+  SmoothedPatch(const GrayImage& image, const Eigen::Vector2d& centre, int half) {
+    x0_ = std::max(0, static_cast<int>(std::floor(centre.x())) - half);
+    y0_ = std::max(0, static_cast<int>(std::floor(centre.y())) - half);
+    const int x1 = std::min(image.width - 1, static_cast<int>(std::floor(centre.x())) + half + 1);
+    const int y1 = std::min(image.height - 1, static_cast<int>(std::floor(centre.y())) + half + 1);
+    w_ = x1 - x0_ + 1;
+    h_ = y1 - y0_ + 1;
+    if (w_ < 2 || h_ < 2) {
+      w_ = h_ = 0;
+      return;
+    }
+    static const std::array<double, 2 * kKernelRadius + 1> kernel = [] {
+      std::array<double, 2 * kKernelRadius + 1> k{};
+      double sum = 0;
+      for (int i = -kKernelRadius; i <= kKernelRadius; ++i) sum += k[i + kKernelRadius] = std::exp(-0.5 * i * i / (kPresmoothPx * kPresmoothPx));
+      for (double& v : k) v /= sum;
+      return k;
+    }();
+    // Rows first over the patch's rows plus the kernel's reach (replicating the image's border).
+    const int ty0 = y0_ - kKernelRadius, th = h_ + 2 * kKernelRadius;
+    std::vector<double> rows(static_cast<size_t>(w_) * th);
+    for (int j = 0; j < th; ++j) {
+      const int v = std::clamp(ty0 + j, 0, image.height - 1);
+      for (int i = 0; i < w_; ++i) {
+        double acc = 0;
+        for (int k = -kKernelRadius; k <= kKernelRadius; ++k) acc += kernel[k + kKernelRadius] * image.at(std::clamp(x0_ + i + k, 0, image.width - 1), v);
+        rows[static_cast<size_t>(j) * w_ + i] = acc;
+      }
+    }
+    values_.resize(static_cast<size_t>(w_) * h_);
+    for (int j = 0; j < h_; ++j) {
+      for (int i = 0; i < w_; ++i) {
+        double acc = 0;
+        for (int k = -kKernelRadius; k <= kKernelRadius; ++k) acc += kernel[k + kKernelRadius] * rows[static_cast<size_t>(j + kKernelRadius + k) * w_ + i];
+        values_[static_cast<size_t>(j) * w_ + i] = acc;
+      }
+    }
+  }
+
+  // True when the square of half-size r around c can be read (bilinear needs the next pixel).
+  bool Holds(const Eigen::Vector2d& c, double r) const {
+    return w_ > 0 && c.x() - r >= x0_ && c.y() - r >= y0_ && c.x() + r <= x0_ + w_ - 1 && c.y() + r <= y0_ + h_ - 1;
+  }
+
+  struct Sample {
+    double value, dx, dy;
+  };
+  // Bilinear value and gradient at image point (x, y), which Holds.
+  Sample At(double x, double y) const {
+    const double px = x - x0_, py = y - y0_;
+    const int u = std::min(static_cast<int>(px), w_ - 2), v = std::min(static_cast<int>(py), h_ - 2);
+    const double fx = px - u, fy = py - v;
+    const double* row0 = &values_[static_cast<size_t>(v) * w_ + u];
+    const double* row1 = row0 + w_;
+    const double a = row0[0], b = row0[1], c = row1[0], d = row1[1];
+    return {(1 - fy) * ((1 - fx) * a + fx * b) + fy * ((1 - fx) * c + fx * d), (1 - fy) * (b - a) + fy * (d - c),
+            (1 - fx) * (c - a) + fx * (d - b)};
+  }
+
+ private:
+  int x0_ = 0, y0_ = 0, w_ = 0, h_ = 0;
+  std::vector<double> values_;
+};
+
+// Half the disc of integer offsets of radius `radius` ((y > 0) or (y = 0 and x > 0); the other
+// half are their mirrors) with Gaussian weights of σ = radius / 2.
+struct Offset {
+  double x, y, w;
+};
+std::vector<Offset> HalfDisc(double radius) {
+  const int r = static_cast<int>(std::floor(radius));
+  std::vector<Offset> offsets;
+  const double inv_two_sigma2 = 2.0 / (radius * radius);
+  for (int y = 0; y <= r; ++y) {
+    for (int x = -r; x <= r; ++x) {
+      if ((y == 0 && x <= 0) || x * x + y * y > radius * radius) continue;
+      offsets.push_back({static_cast<double>(x), static_cast<double>(y), std::exp(-(x * x + y * y) * inv_two_sigma2)});
+    }
+  }
+  return offsets;
+}
+
+}  // namespace
+
+std::optional<SymmetryRefinement> RefineCornerBySymmetry(const GrayImage& image, const Eigen::Vector2d& start, double radius) {
+  const int r = static_cast<int>(std::floor(radius));
+  if (r < 2 || image.width < 2 || image.height < 2) return std::nullopt;
+  const std::vector<Offset> offsets = HalfDisc(radius);
+  // c stays within r of the start (or the refinement fails), so c ± p stays within 2r.
+  const SmoothedPatch patch(image, start, 2 * r + 1);
+  Eigen::Vector2d c = start;
+  for (int iteration = 1; iteration <= kMaxIterations; ++iteration) {
+    if (!patch.Holds(c, r)) return std::nullopt;
+    Eigen::Matrix2d JtJ = Eigen::Matrix2d::Zero();
+    Eigen::Vector2d Jtr = Eigen::Vector2d::Zero();
+    for (const Offset& o : offsets) {
+      const auto plus = patch.At(c.x() + o.x, c.y() + o.y);
+      const auto minus = patch.At(c.x() - o.x, c.y() - o.y);
+      const double residual = plus.value - minus.value;
+      const Eigen::Vector2d J(plus.dx - minus.dx, plus.dy - minus.dy);
+      JtJ += o.w * J * J.transpose();
+      Jtr += o.w * residual * J;
+    }
+    if (!(JtJ.determinant() > 1e-12 * JtJ.squaredNorm())) return std::nullopt;
+    const Eigen::Vector2d step = -JtJ.ldlt().solve(Jtr);
+    c += step;
+    if (!(step.norm() < radius) || !c.allFinite() || (c - start).norm() > radius) return std::nullopt;
+    if (step.norm() < kConvergedPx) return SymmetryRefinement{c, iteration};
+  }
+  return SymmetryRefinement{c, kMaxIterations};
+}
+
+std::optional<double> Asymmetry(const GrayImage& image, const Eigen::Vector2d& c, double radius) {
+  const int r = static_cast<int>(std::floor(radius));
+  if (r < 2 || image.width < 2 || image.height < 2) return std::nullopt;
+  const SmoothedPatch patch(image, c, r + 1);
+  if (!patch.Holds(c, r)) return std::nullopt;
+  double sum = 0, weights = 0, lo = 255, hi = 0;
+  for (const Offset& o : HalfDisc(radius)) {
+    const double plus = patch.At(c.x() + o.x, c.y() + o.y).value;
+    const double minus = patch.At(c.x() - o.x, c.y() - o.y).value;
+    sum += o.w * (plus - minus) * (plus - minus);
+    weights += o.w;
+    lo = std::min({lo, plus, minus});
+    hi = std::max({hi, plus, minus});
+  }
+  if (!(hi - lo > 0)) return std::nullopt;
+  return std::sqrt(sum / weights) / (hi - lo);
+}
+
+std::optional<double> EdgeBlur(const GrayImage& image, const Eigen::Vector2d& a, const Eigen::Vector2d& b, double reach) {
+  const Eigen::Vector2d along = b - a;
+  if (!(along.norm() > 0)) return std::nullopt;
+  const Eigen::Vector2d mid = 0.5 * (a + b), normal = Eigen::Vector2d(-along.y(), along.x()).normalized();
+  const int n = static_cast<int>(std::floor(4 * reach));
+  if (n < 4) return std::nullopt;
+  std::vector<double> profile(2 * n + 1);
+  for (int k = -n; k <= n; ++k) {
+    const Eigen::Vector2d p = mid + 0.25 * k * normal;
+    if (p.x() < 0 || p.y() < 0 || p.x() > image.width - 1 || p.y() > image.height - 1) return std::nullopt;
+    profile[k + n] = SampleBilinear(image, p);
+  }
+  const auto [lo_it, hi_it] = std::minmax_element(profile.begin(), profile.end());
+  const double lo = *lo_it, hi = *hi_it;
+  if (hi - lo < 16) return std::nullopt;
+  // Orient the profile to rise, then find where it first crosses 10 % and last crosses 90 %.
+  if (profile.front() > profile.back()) std::reverse(profile.begin(), profile.end());
+  auto crossing = [&](double level, bool first) -> std::optional<double> {
+    for (int i = 0; i + 1 < static_cast<int>(profile.size()); ++i) {
+      const int k = first ? i : static_cast<int>(profile.size()) - 2 - i;
+      const double p0 = profile[k], p1 = profile[k + 1];
+      if ((p0 - level) * (p1 - level) <= 0 && p0 != p1) return 0.25 * (k + (level - p0) / (p1 - p0));
+    }
+    return std::nullopt;
+  };
+  const auto x10 = crossing(lo + 0.1 * (hi - lo), true), x90 = crossing(lo + 0.9 * (hi - lo), false);
+  if (!x10 || !x90 || *x90 <= *x10) return std::nullopt;
+  return (*x90 - *x10) / 2.5631031310892007;  // 2·Φ⁻¹(0.9)
+}
+
+}  // namespace vstcal::capture
