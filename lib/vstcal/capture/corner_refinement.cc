@@ -181,7 +181,10 @@ std::optional<double> EdgeBlur(const GrayImage& image, const Eigen::Vector2d& a,
   };
   const auto x10 = crossing(lo + 0.1 * (hi - lo), true), x90 = crossing(lo + 0.9 * (hi - lo), false);
   if (!x10 || !x90 || *x90 <= *x10) return std::nullopt;
-  return (*x90 - *x10) / 2.5631031310892007;  // 2·Φ⁻¹(0.9)
+  // The profile's spread is the optics' σ² plus the pixel's box (1/12 px²) plus the bilinear
+  // reading of the samples (a triangle kernel, 1/6 px²): report the optics' part.
+  const double spread = (*x90 - *x10) / 2.5631031310892007;  // 2·Φ⁻¹(0.9)
+  return std::sqrt(std::max(0.0, spread * spread - 0.25));
 }
 
 }  // namespace vstcal::capture

@@ -31,9 +31,10 @@ struct SymmetryRefinement {
 // (a step larger than the radius) or the problem is singular (a flat patch).
 std::optional<SymmetryRefinement> RefineCornerBySymmetry(const GrayImage& image, const Eigen::Vector2d& start, double radius);
 
-// The blur of a straight edge between two points on it, px: the Gaussian σ whose 10 %–90 % rise
-// (2.563 σ) matches the grey profile across the edge at the segment's midpoint, sampled every
-// ¼ px over ±`reach` px. nullopt when the profile does not rise by at least 16 grey levels or
+// The optical blur of a straight edge between two points on it, px: the Gaussian σ whose 10 %–90 %
+// rise (2.563 σ) matches the grey profile across the edge at the segment's midpoint, sampled
+// every ¼ px over ±`reach` px, less the spread the pixel (box, 1/12 px²) and the bilinear
+// sampling (1/6 px²) add. nullopt when the profile does not rise by at least 16 grey levels or
 // leaves the image.
 std::optional<double> EdgeBlur(const GrayImage& image, const Eigen::Vector2d& a, const Eigen::Vector2d& b, double reach);
 
