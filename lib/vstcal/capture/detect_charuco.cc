@@ -69,11 +69,16 @@ Detection DetectCharuco(const GrayImage& image, const Target& target, const Dete
   cv::aruco::interpolateCornersCharuco(board_corners, board_ids, gray, board, corners, ids);
   for (size_t k = 0; k < ids.size(); ++k) d.corners.push_back({ids[k], Eigen::Vector2d(corners[k].x, corners[k].y)});
   std::sort(d.corners.begin(), d.corners.end(), [](const DetectedCorner& a, const DetectedCorner& b) { return a.id < b.id; });
-  const double window = CharucoWindow(target);
-  DropAsymmetricCorners(image, target, window, &d.corners);
-  RefineXCorners(image, target, options.refiner == CornerRefiner::kCornerSubPix ? CornerRefiner::kNone : options.refiner, window,
-                 &d.corners);
-  d.blur_px = MedianGridEdgeBlur(image, target, d.corners, window);
+  // OpenCV has already run cornerSubPix on these (they still sit about ½ px off, down and right:
+  // docs/experiments/corners.md). The symmetry refinement starts from them; then a corner around
+  // which the image is not point-symmetric was interpolated from misplaced markers, and goes.
+  if (options.refiner == CornerRefiner::kSymmetry) {
+    const double window = CharucoWindow(target);
+    RefineXCorners(image, target, CornerRefiner::kSymmetry, window, &d.corners);
+    DropAsymmetricCorners(image, target, window, &d.corners);
+  }
+  // Across a square's edge the marker's border starts (S − m)/2 away: the profile stops short of it.
+  d.blur_px = MedianGridEdgeBlur(image, target, d.corners, 0.4 * (target.square_size - target.marker_size) / target.square_size);
   d.status = DetectionStatus::kFound;
   Conclude(options, &d);
   return d;
