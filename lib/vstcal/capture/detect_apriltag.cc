@@ -100,8 +100,8 @@ Detection DetectAprilTagGrid(const GrayImage& image, const Target& target, const
   const auto [inconsistent, checkable] = InconsistentMarkers(MarkerQuads(target), markers);
   if (checkable > 0 && 2 * inconsistent > checkable) {
     d.status = DetectionStatus::kRejected;
-    d.reason = "tags not where the target file puts them (" + std::to_string(inconsistent) + " of " + std::to_string(checkable) +
-               " disagree with their neighbours): the target's rows, cols or first_id do not match the board";
+    d.reason = "layout mismatch: tags not where the target file puts them (" + std::to_string(inconsistent) + " of " +
+               std::to_string(checkable) + " disagree with their neighbours); the target's rows, cols or first_id do not match the board";
     return d;
   }
   std::vector<double> blur;

@@ -58,8 +58,8 @@ Detection DetectCharuco(const GrayImage& image, const Target& target, const Dete
   const auto [inconsistent, checkable] = InconsistentMarkers(quads, markers);
   if (checkable > 0 && 2 * inconsistent > checkable) {
     d.status = DetectionStatus::kRejected;
-    d.reason = "markers not where the target file puts them (" + std::to_string(inconsistent) + " of " + std::to_string(checkable) +
-               " disagree with their neighbours): the target's rows, cols or dictionary do not match the board";
+    d.reason = "layout mismatch: markers not where the target file puts them (" + std::to_string(inconsistent) + " of " +
+               std::to_string(checkable) + " disagree with their neighbours); the target's rows, cols or dictionary do not match the board";
     return d;
   }
   const cv::Ptr<cv::aruco::CharucoBoard> board = cv::aruco::CharucoBoard::create(

@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include <opencv2/core/utility.hpp>
+#include <opencv2/core/utils/logger.hpp>
 #include <opencv2/imgproc.hpp>
 #include <opencv2/videoio.hpp>
 
@@ -39,7 +40,7 @@ class OpenCvSingleThreaded {
 // Calls `progress` from one thread at a time with the fraction done.
 class SharedProgress {
  public:
-  SharedProgress(const Progress& progress, size_t total) : progress_(progress), total_(std::max<size_t>(total, 1)) {}
+  SharedProgress(Progress progress, size_t total) : progress_(std::move(progress)), total_(std::max<size_t>(total, 1)) {}
   void Tick() {
     if (!progress_) return;
     const std::lock_guard<std::mutex> lock(mutex_);
@@ -47,7 +48,7 @@ class SharedProgress {
   }
 
  private:
-  const Progress& progress_;
+  Progress progress_;
   size_t total_, done_ = 0;
   std::mutex mutex_;
 };
@@ -235,6 +236,12 @@ CaptureResult DetectInVideo(const VideoRequest& video, const DetectRequest& requ
   const bool live = video.camera_index >= 0;
   if (live && video.max_frames < 1) throw InputError("--frames: required with --camera-index (how many frames to keep)");
   const std::string source = live ? "camera" + std::to_string(video.camera_index) : video.file;
+  // OpenCV's video backends log their own failures (GStreamer, FFmpeg) on stderr; the tool's one
+  // line says what went wrong instead.
+  struct QuietOpenCv {
+    cv::utils::logging::LogLevel saved = cv::utils::logging::setLogLevel(cv::utils::logging::LOG_LEVEL_SILENT);
+    ~QuietOpenCv() { cv::utils::logging::setLogLevel(saved); }
+  } quiet;
   cv::VideoCapture capture;
   if (live) {
     capture.open(video.camera_index);
