@@ -42,30 +42,45 @@ class SmoothedPatch {
       for (double& v : k) v /= sum;
       return k;
     }();
-    // Rows first over the patch's rows plus the kernel's reach (replicating the image's border).
+    // Rows first over the patch's rows plus the kernel's reach (replicating the image's border),
+    // then columns. Inside the image (the usual case) without the border's clamps.
     const int ty0 = y0_ - kKernelRadius, th = h_ + 2 * kKernelRadius;
+    const bool inside = x0_ - kKernelRadius >= 0 && x1 + kKernelRadius < image.width && ty0 >= 0 && ty0 + th <= image.height;
     std::vector<double> rows(static_cast<size_t>(w_) * th);
     for (int j = 0; j < th; ++j) {
       const int v = std::clamp(ty0 + j, 0, image.height - 1);
+      const uint8_t* line = &image.pixels[static_cast<size_t>(v) * image.width];
+      double* out = &rows[static_cast<size_t>(j) * w_];
       for (int i = 0; i < w_; ++i) {
         double acc = 0;
-        for (int k = -kKernelRadius; k <= kKernelRadius; ++k) acc += kernel[k + kKernelRadius] * image.at(std::clamp(x0_ + i + k, 0, image.width - 1), v);
-        rows[static_cast<size_t>(j) * w_ + i] = acc;
+        if (inside) {
+          const uint8_t* at = line + x0_ + i - kKernelRadius;
+          for (int k = 0; k <= 2 * kKernelRadius; ++k) acc += kernel[k] * at[k];
+        } else {
+          for (int k = -kKernelRadius; k <= kKernelRadius; ++k) acc += kernel[k + kKernelRadius] * line[std::clamp(x0_ + i + k, 0, image.width - 1)];
+        }
+        out[i] = acc;
       }
     }
     values_.resize(static_cast<size_t>(w_) * h_);
     for (int j = 0; j < h_; ++j) {
       for (int i = 0; i < w_; ++i) {
+        const double* at = &rows[static_cast<size_t>(j) * w_ + i];
         double acc = 0;
-        for (int k = -kKernelRadius; k <= kKernelRadius; ++k) acc += kernel[k + kKernelRadius] * rows[static_cast<size_t>(j + kKernelRadius + k) * w_ + i];
+        for (int k = 0; k <= 2 * kKernelRadius; ++k) acc += kernel[k] * at[static_cast<size_t>(k) * w_];
         values_[static_cast<size_t>(j) * w_ + i] = acc;
       }
     }
   }
 
-  // True when the square of half-size r around c can be read (bilinear needs the next pixel).
+  int x0() const { return x0_; }
+  int y0() const { return y0_; }
+  int width() const { return w_; }
+  const double* data() const { return values_.data(); }
+
+  // True when the square of half-size r around c can be read (bilinear reads the next pixel too).
   bool Holds(const Eigen::Vector2d& c, double r) const {
-    return w_ > 0 && c.x() - r >= x0_ && c.y() - r >= y0_ && c.x() + r <= x0_ + w_ - 1 && c.y() + r <= y0_ + h_ - 1;
+    return w_ > 0 && c.x() - r >= x0_ && c.y() - r >= y0_ && c.x() + r < x0_ + w_ - 1 && c.y() + r < y0_ + h_ - 1;
   }
 
   struct Sample {
@@ -88,61 +103,94 @@ class SmoothedPatch {
   std::vector<double> values_;
 };
 
-// Half the disc of integer offsets of radius `radius` ((y > 0) or (y = 0 and x > 0); the other
-// half are their mirrors) with Gaussian weights of σ = radius / 2.
+// Half the disc of integer offsets of radius r ((y > 0) or (y = 0 and x > 0); the other half are
+// their mirrors) with Gaussian weights of σ = r / 2. Built once per radius.
 struct Offset {
-  double x, y, w;
+  int x, y;
+  double w;
 };
-std::vector<Offset> HalfDisc(double radius) {
-  const int r = static_cast<int>(std::floor(radius));
-  std::vector<Offset> offsets;
-  const double inv_two_sigma2 = 2.0 / (radius * radius);
-  for (int y = 0; y <= r; ++y) {
-    for (int x = -r; x <= r; ++x) {
-      if ((y == 0 && x <= 0) || x * x + y * y > radius * radius) continue;
-      offsets.push_back({static_cast<double>(x), static_cast<double>(y), std::exp(-(x * x + y * y) * inv_two_sigma2)});
+constexpr int kMaxRadius = 8;
+const std::vector<Offset>& HalfDisc(int r) {
+  static const std::array<std::vector<Offset>, kMaxRadius + 1> discs = [] {
+    std::array<std::vector<Offset>, kMaxRadius + 1> all;
+    for (int radius = 2; radius <= kMaxRadius; ++radius) {
+      const double inv_two_sigma2 = 2.0 / (radius * radius);
+      for (int y = 0; y <= radius; ++y) {
+        for (int x = -radius; x <= radius; ++x) {
+          if ((y == 0 && x <= 0) || x * x + y * y > radius * radius) continue;
+          all[radius].push_back({x, y, std::exp(-(x * x + y * y) * inv_two_sigma2)});
+        }
+      }
     }
-  }
-  return offsets;
+    return all;
+  }();
+  return discs[std::min(r, kMaxRadius)];
 }
+
+// How far the estimate may move before the smoothed patch is cut again around it, px.
+constexpr int kSlack = 2;
 
 }  // namespace
 
 std::optional<SymmetryRefinement> RefineCornerBySymmetry(const GrayImage& image, const Eigen::Vector2d& start, double radius) {
-  const int r = static_cast<int>(std::floor(radius));
+  const int r = std::min(static_cast<int>(std::floor(radius)), kMaxRadius);
   if (r < 2 || image.width < 2 || image.height < 2) return std::nullopt;
-  const std::vector<Offset> offsets = HalfDisc(radius);
-  // c stays within r of the start (or the refinement fails), so c ± p stays within 2r.
-  const SmoothedPatch patch(image, start, 2 * r + 1);
-  Eigen::Vector2d c = start;
+  const std::vector<Offset>& offsets = HalfDisc(r);
+  std::optional<SmoothedPatch> patch;
+  Eigen::Vector2d centre = start, c = start;
   for (int iteration = 1; iteration <= kMaxIterations; ++iteration) {
-    if (!patch.Holds(c, r)) return std::nullopt;
+    // c ± p stays within r + kSlack of the patch's centre while c stays within kSlack of it.
+    if (!patch || (c - centre).cwiseAbs().maxCoeff() > kSlack) {
+      centre = c;
+      patch.emplace(image, centre, r + kSlack + 1);
+    }
+    if (!patch->Holds(c, r)) return std::nullopt;
     Eigen::Matrix2d JtJ = Eigen::Matrix2d::Zero();
     Eigen::Vector2d Jtr = Eigen::Vector2d::Zero();
+    // c + p and c − p have the same fractional part as c (p is integer): one set of bilinear
+    // weights for every sample of the iteration.
+    const double px = c.x() - patch->x0(), py = c.y() - patch->y0();
+    const int bx = static_cast<int>(std::floor(px)), by = static_cast<int>(std::floor(py));
+    const double fx = px - bx, fy = py - by;
+    const int w = patch->width();
+    const double* base = patch->data() + static_cast<ptrdiff_t>(by) * w + bx;
+    auto sample = [&](int ox, int oy, double* value, double* dx, double* dy) {
+      const double* p0 = base + static_cast<ptrdiff_t>(oy) * w + ox;
+      const double a = p0[0], b = p0[1], cc = p0[w], d = p0[w + 1];
+      *value = (1 - fy) * ((1 - fx) * a + fx * b) + fy * ((1 - fx) * cc + fx * d);
+      *dx = (1 - fy) * (b - a) + fy * (d - cc);
+      *dy = (1 - fx) * (cc - a) + fx * (d - b);
+    };
     for (const Offset& o : offsets) {
-      const auto plus = patch.At(c.x() + o.x, c.y() + o.y);
-      const auto minus = patch.At(c.x() - o.x, c.y() - o.y);
-      const double residual = plus.value - minus.value;
-      const Eigen::Vector2d J(plus.dx - minus.dx, plus.dy - minus.dy);
-      JtJ += o.w * J * J.transpose();
-      Jtr += o.w * residual * J;
+      double vp, dxp, dyp, vm, dxm, dym;
+      sample(o.x, o.y, &vp, &dxp, &dyp);
+      sample(-o.x, -o.y, &vm, &dxm, &dym);
+      const double residual = vp - vm;
+      const double jx = dxp - dxm, jy = dyp - dym;
+      JtJ(0, 0) += o.w * jx * jx;
+      JtJ(0, 1) += o.w * jx * jy;
+      JtJ(1, 1) += o.w * jy * jy;
+      Jtr(0) += o.w * residual * jx;
+      Jtr(1) += o.w * residual * jy;
     }
-    if (!(JtJ.determinant() > 1e-12 * JtJ.squaredNorm())) return std::nullopt;
-    const Eigen::Vector2d step = -JtJ.ldlt().solve(Jtr);
+    JtJ(1, 0) = JtJ(0, 1);
+    const double det = JtJ(0, 0) * JtJ(1, 1) - JtJ(0, 1) * JtJ(0, 1);
+    if (!(det > 1e-12 * JtJ.squaredNorm())) return std::nullopt;
+    const Eigen::Vector2d step(-(JtJ(1, 1) * Jtr(0) - JtJ(0, 1) * Jtr(1)) / det, -(JtJ(0, 0) * Jtr(1) - JtJ(0, 1) * Jtr(0)) / det);
     c += step;
-    if (!(step.norm() < radius) || !c.allFinite() || (c - start).norm() > radius) return std::nullopt;
+    if (!(step.norm() < r) || !c.allFinite() || (c - start).norm() > r) return std::nullopt;
     if (step.norm() < kConvergedPx) return SymmetryRefinement{c, iteration};
   }
   return SymmetryRefinement{c, kMaxIterations};
 }
 
 std::optional<double> Asymmetry(const GrayImage& image, const Eigen::Vector2d& c, double radius) {
-  const int r = static_cast<int>(std::floor(radius));
+  const int r = std::min(static_cast<int>(std::floor(radius)), kMaxRadius);
   if (r < 2 || image.width < 2 || image.height < 2) return std::nullopt;
   const SmoothedPatch patch(image, c, r + 1);
   if (!patch.Holds(c, r)) return std::nullopt;
   double sum = 0, weights = 0, lo = 255, hi = 0;
-  for (const Offset& o : HalfDisc(radius)) {
+  for (const Offset& o : HalfDisc(r)) {
     const double plus = patch.At(c.x() + o.x, c.y() + o.y).value;
     const double minus = patch.At(c.x() - o.x, c.y() - o.y).value;
     sum += o.w * (plus - minus) * (plus - minus);

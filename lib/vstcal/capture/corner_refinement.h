@@ -7,7 +7,7 @@
 // The refinement finds c by Gauss–Newton on
 //     E(c) = Σ_p w(p) · (L(c + p) − L(c − p))²,
 // L the bilinear interpolant of the image, p over half a disc of integer offsets of radius R
-// (each pair once), w a Gaussian taper of σ = R/2. Bilinear interpolation's leading error,
+// (each pair once; R the window's whole pixels, 2 … 8), w a Gaussian taper of σ = R/2. Bilinear interpolation's leading error,
 // ½·f(1 − f)·I'', is the same at c + p and c − p (f and 1 − f are mirrored, I'' is even under
 // the point reflection), so it cancels: the estimate has no interpolation bias to first order.
 // No model of the blur or of the edges is fitted, which is why it is cheap (≈ 5 µs a corner).

@@ -32,8 +32,8 @@ int RefineXCorners(const GrayImage& image, const Target& target, CornerRefiner r
 int DropAsymmetricCorners(const GrayImage& image, const Target& target, double window_fraction,
                           std::vector<DetectedCorner>* corners);
 
-// Median edge blur σ over up to 40 grid edges between detected neighbours (chessboard and
-// ChArUco); NaN when no edge could be measured.
+// Median edge blur σ over about 20 grid edges between detected neighbours (chessboard and
+// ChArUco), profiles reaching reach_fraction × the edge, at most 8 px; NaN when none was measured.
 double MedianGridEdgeBlur(const GrayImage& image, const Target& target, const std::vector<DetectedCorner>& corners,
                           double reach_fraction);
 
