@@ -9,6 +9,9 @@
 //   peer_corners detect DIR    runs every in-process detector on every image and prints one JSON
 //                              line per image and detector: {"condition", "image", "detector",
 //                              "corners": [[u, v], …] or null, "seconds"}.
+//   peer_corners speedset DIR  writes bench_capture's images as PNG files for scripts/bench-capture:
+//                              DIR/640/view-NN.png and DIR/1280/view-NN.png, 32 each (the 8 views
+//                              four times, a pixel changed so that no two files are identical).
 //   peer_corners real          calibrates OpenCV's stereo sample (opencv-doc) from each detector's
 //                              corners with the same solver and prints the reprojection RMS.
 // Detectors: vstcal (DetectTarget's defaults: classic finder, the sector-based one where it fails,
@@ -30,6 +33,7 @@
 #include "vstcal/calib/pipeline.h"
 #include "vstcal/capture/image_io.h"
 #include "vstcal/capture/target_drawing.h"
+#include "vstcal/capture/target_io.h"
 
 namespace {
 
@@ -135,6 +139,22 @@ int Render(const fs::path& dir) {
   return 0;
 }
 
+int SpeedSet(const fs::path& dir) {
+  for (const int width : {640, 1280}) {
+    fs::create_directories(dir / std::to_string(width));
+    const std::vector<GrayImage> images = testing::SpeedTestImages(width);
+    for (int k = 0; k < 32; ++k) {
+      GrayImage image = images[k % images.size()];
+      image.pixels[0] = static_cast<uint8_t>(k);
+      char name[32];
+      std::snprintf(name, sizeof name, "view-%02d.png", k);
+      std::ofstream(dir / std::to_string(width) / name, std::ios::binary) << capture::EncodePng(image);
+    }
+  }
+  std::ofstream(dir / "board.target.json") << io::DumpJson(capture::TargetToJson(testing::SpeedTestBoard(), io::Provenance{"peer_corners", {}, std::nullopt}));
+  return 0;
+}
+
 int Detect(const fs::path& dir) {
   const capture::Target t = Board10();
   cv::setNumThreads(1);  // one core each, as mrgingham --jobs 1
@@ -227,7 +247,8 @@ int main(int argc, char** argv) {
     if (mode == "render" && argc == 3) return Render(argv[2]);
     if (mode == "detect" && argc == 3) return Detect(argv[2]);
     if (mode == "real" && argc == 2) return Real();
-    std::fprintf(stderr, "usage: peer_corners render DIR | detect DIR | real\n");
+    if (mode == "speedset" && argc == 3) return SpeedSet(argv[2]);
+    std::fprintf(stderr, "usage: peer_corners render DIR | detect DIR | real | speedset DIR\n");
     return 2;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "peer_corners: %s\n", e.what());

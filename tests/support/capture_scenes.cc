@@ -81,6 +81,26 @@ RenderedView RenderTestView(const Camera& camera, const capture::Target& target,
   return out;
 }
 
+capture::Target SpeedTestBoard() {
+  capture::Target t = Chessboard9x6();
+  t.rows = t.cols = 10;
+  return t;
+}
+
+std::vector<capture::GrayImage> SpeedTestImages(int width) {
+  const bool vga = width == 640;
+  const Camera camera = DistortedCamera(width, vga ? 480 : 720, vga ? 600 : 1000);
+  capture::RenderOptions options;
+  options.blur_px = 0.8;
+  options.noise = 2;
+  std::vector<capture::GrayImage> images;
+  for (int k = 0; k < 8; ++k) {
+    const Rigid3d pose = TestViewPose(camera, SpeedTestBoard(), vga ? 30 : 50, k, 9);
+    images.push_back(RenderTestView(camera, SpeedTestBoard(), pose, options, k).image);
+  }
+  return images;
+}
+
 CornerErrors CompareWithTruth(const capture::Detection& detection, const RenderedView& view) {
   CornerErrors e;
   double sum2 = 0;
