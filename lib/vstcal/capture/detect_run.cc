@@ -115,7 +115,9 @@ CaptureResult Finish(std::vector<ImageRecord> records, std::vector<Detection> de
                           " (--min-views): capture more views of the target");
   }
   if (request.rig == Rig::kVolume && planes.size() < 2) {
-    throw DegenerateError("every usable image shows the template at plane_offset " + std::to_string(*planes.begin()) +
+    char offset[32];
+    std::snprintf(offset, sizeof offset, "%g", *planes.begin());
+    throw DegenerateError(std::string("every usable image shows the template at plane_offset ") + offset +
                           ": a calibration volume needs at least two template positions (" + counts + ")");
   }
   out.images = std::move(records);
