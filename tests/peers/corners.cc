@@ -12,6 +12,10 @@
 //   peer_corners speedset DIR  writes bench_capture's images as PNG files for scripts/bench-capture:
 //                              DIR/640/view-NN.png and DIR/1280/view-NN.png, 32 each (the 8 views
 //                              four times, a pixel changed so that no two files are identical).
+//   peer_corners markers       ChArUco (7×5, 40 px squares) and AprilTag-grid (6×4, 40 px tags)
+//                              views, 10 each, blur σ 0.7 and noise σ 2, 640×480: the RMS and mean
+//                              error of OpenCV's interpolated ChArUco corners as they come, of
+//                              vstcal's (refined), and of libapriltag's tag corners.
 //   peer_corners real          calibrates OpenCV's stereo sample (opencv-doc) from each detector's
 //                              corners with the same solver and prints the reprojection RMS.
 // Detectors: vstcal (DetectTarget's defaults: classic finder, the sector-based one where it fails,
@@ -139,6 +143,45 @@ int Render(const fs::path& dir) {
   return 0;
 }
 
+int Markers() {
+  const Camera camera = testing::DistortedCamera(640, 480, 600);
+  capture::RenderOptions options;
+  options.blur_px = 0.7;
+  options.noise = 2;
+  struct Row {
+    const char* name;
+    capture::Target target;
+    capture::CornerRefiner refiner;
+  };
+  for (const Row& row : {Row{"charuco, OpenCV's corners", testing::Charuco7x5(), capture::CornerRefiner::kNone},
+                         Row{"charuco, vstcal", testing::Charuco7x5(), capture::CornerRefiner::kSymmetry},
+                         Row{"apriltag-grid, libapriltag", testing::AprilGrid6x4(), capture::CornerRefiner::kSymmetry}}) {
+    capture::DetectorOptions detector;
+    detector.refiner = row.refiner;
+    double sum2 = 0;
+    Eigen::Vector2d mean = Eigen::Vector2d::Zero();
+    int n = 0, found = 0;
+    for (int k = 0; k < 10; ++k) {
+      const testing::RenderedView view =
+          testing::RenderTestView(camera, row.target, testing::TestViewPose(camera, row.target, 40, k, 21), options, k);
+      const capture::Detection d = capture::DetectTarget(view.image, row.target, detector);
+      if (d.status != capture::DetectionStatus::kFound) continue;
+      ++found;
+      for (const capture::DetectedCorner& c : d.corners) {
+        const Eigen::Vector2d e = c.pixel - view.truth.at(c.id);
+        sum2 += e.squaredNorm();
+        mean += e;
+        ++n;
+      }
+    }
+    std::printf("%s\n", nlohmann::json{{"detector", row.name}, {"found", found}, {"corners", n}, {"rms_px", n ? std::sqrt(sum2 / n) : -1.0},
+                                       {"mean_px", {n ? mean.x() / n : 0.0, n ? mean.y() / n : 0.0}}}
+                            .dump()
+                            .c_str());
+  }
+  return 0;
+}
+
 int SpeedSet(const fs::path& dir) {
   for (const int width : {640, 1280}) {
     fs::create_directories(dir / std::to_string(width));
@@ -248,7 +291,8 @@ int main(int argc, char** argv) {
     if (mode == "detect" && argc == 3) return Detect(argv[2]);
     if (mode == "real" && argc == 2) return Real();
     if (mode == "speedset" && argc == 3) return SpeedSet(argv[2]);
-    std::fprintf(stderr, "usage: peer_corners render DIR | detect DIR | real | speedset DIR\n");
+    if (mode == "markers" && argc == 2) return Markers();
+    std::fprintf(stderr, "usage: peer_corners render DIR | detect DIR | real | markers | speedset DIR\n");
     return 2;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "peer_corners: %s\n", e.what());

@@ -4,14 +4,7 @@
 #include <memory>
 #include <string>
 
-extern "C" {
-#include <apriltag/apriltag.h>
-#include <apriltag/tag16h5.h>
-#include <apriltag/tag25h9.h>
-#include <apriltag/tag36h10.h>
-#include <apriltag/tag36h11.h>
-}
-
+#include "vstcal/capture/apriltag_family.h"
 #include "vstcal/capture/corner_refinement.h"
 #include "vstcal/capture/detect_steps.h"
 #include "vstcal/capture/detectors.h"
@@ -31,30 +24,22 @@ constexpr double kPixelOffset = -0.5;
 // One detector per thread and family: creating one builds the family's decode table (a few ms).
 class AprilTagDetector {
  public:
-  explicit AprilTagDetector(std::string_view family) {
-    if (family == "tag36h11") family_ = {tag36h11_create(), tag36h11_destroy};
-    if (family == "tag36h10") family_ = {tag36h10_create(), tag36h10_destroy};
-    if (family == "tag25h9") family_ = {tag25h9_create(), tag25h9_destroy};
-    if (family == "tag16h5") family_ = {tag16h5_create(), tag16h5_destroy};
-    VSTCAL_CHECK(family_.first != nullptr, "unknown AprilTag family " + std::string(family));
+  explicit AprilTagDetector(std::string_view family) : family_(CreateAprilTagFamily(family)) {
     detector_ = apriltag_detector_create();
     detector_->nthreads = 1;  // vstcal runs one image per thread
     detector_->quad_decimate = 1;
     detector_->quad_sigma = 0;
     detector_->refine_edges = true;
-    apriltag_detector_add_family_bits(detector_, family_.first, 1);
+    apriltag_detector_add_family_bits(detector_, family_.get(), 1);
   }
-  ~AprilTagDetector() {
-    apriltag_detector_destroy(detector_);
-    family_.second(family_.first);
-  }
+  ~AprilTagDetector() { apriltag_detector_destroy(detector_); }  // before the family it refers to
   AprilTagDetector(const AprilTagDetector&) = delete;
   AprilTagDetector& operator=(const AprilTagDetector&) = delete;
 
   apriltag_detector_t* get() { return detector_; }
 
  private:
-  std::pair<apriltag_family_t*, void (*)(apriltag_family_t*)> family_{nullptr, nullptr};
+  AprilTagFamilyPtr family_;
   apriltag_detector_t* detector_ = nullptr;
 };
 

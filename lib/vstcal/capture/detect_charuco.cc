@@ -12,14 +12,6 @@
 namespace vstcal::capture {
 namespace {
 
-int DictionaryIndex(std::string_view name) {
-  const auto all = ArucoDictionaries();
-  for (size_t i = 0; i < all.size(); ++i) {
-    if (all[i].name == name) return static_cast<int>(i);
-  }
-  return -1;
-}
-
 // The window around a ChArUco corner must stay clear of the markers' data cells: the markers'
 // black borders sit symmetrically about the corner, their insides do not.
 double CharucoWindow(const Target& t) {
@@ -32,7 +24,7 @@ double CharucoWindow(const Target& t) {
 
 Detection DetectCharuco(const GrayImage& image, const Target& target, const DetectorOptions& options) {
   const cv::Mat gray(image.height, image.width, CV_8U, const_cast<uint8_t*>(image.pixels.data()));
-  const cv::Ptr<cv::aruco::Dictionary> dictionary = cv::aruco::getPredefinedDictionary(DictionaryIndex(target.dictionary));
+  const cv::Ptr<cv::aruco::Dictionary> dictionary = cv::aruco::getPredefinedDictionary(ArucoDictionaryIndex(target.dictionary));
   std::vector<std::vector<cv::Point2f>> marker_corners;
   std::vector<int> marker_ids;
   cv::aruco::detectMarkers(gray, dictionary, marker_corners, marker_ids);

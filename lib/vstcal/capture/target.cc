@@ -143,6 +143,28 @@ std::optional<TargetProblem> CheckTarget(const Target& t) {
   return std::nullopt;
 }
 
+int ArucoDictionaryIndex(std::string_view name) {
+  for (size_t i = 0; i < kAruco.size(); ++i) {
+    if (kAruco[i].name == name) return static_cast<int>(i);
+  }
+  VSTCAL_CHECK(false, "unknown ArUco dictionary " + std::string(name));
+}
+
+std::string DescribeTarget(const Target& t) {
+  const std::string unit(LengthUnitName(t.length_unit));
+  const std::string grid = std::to_string(t.cols) + "×" + std::to_string(t.rows);
+  switch (t.type) {
+    case TargetType::kChessboard: return "chessboard of " + grid + " inner corners, " + Num(t.square_size) + " " + unit + " squares";
+    case TargetType::kCharuco:
+      return "ChArUco board of " + grid + " inner corners, " + Num(t.square_size) + " " + unit + " squares, " + Num(t.marker_size) +
+             " " + unit + " " + t.dictionary + " markers";
+    case TargetType::kAprilTagGrid:
+      return "AprilTag grid of " + grid + " " + t.family + " tags (ids from " + std::to_string(t.first_id) + "), " +
+             Num(t.tag_size) + " " + unit + " tags";
+  }
+  return "?";
+}
+
 int NumCorners(const Target& t) {
   const long n = static_cast<long>(std::max(t.rows, 0)) * std::max(t.cols, 0) * (t.type == TargetType::kAprilTagGrid ? 4 : 1);
   return static_cast<int>(std::min<long>(n, 1L << 30));

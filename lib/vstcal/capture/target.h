@@ -63,6 +63,8 @@ std::span<const MarkerFamily> ArucoDictionaries();
 // The libapriltag families with a 1-bit black border inside a white ring (classic layout).
 std::span<const MarkerFamily> AprilTagFamilies();
 const MarkerFamily* FindMarkerFamily(std::span<const MarkerFamily> families, std::string_view name);
+// OpenCV's cv::aruco::PREDEFINED_DICTIONARY_NAME value of a dictionary of ArucoDictionaries().
+int ArucoDictionaryIndex(std::string_view name);
 
 // What is wrong with a target: the field (a target@1 key, e.g. "square_size"), the reason and the
 // fix. The reader reports it against the file; calib-capture target against the flag --<field>.
@@ -95,6 +97,9 @@ std::vector<Quad> MarkerQuads(const Target& target);
 // The printed pattern's extent (squares or tags, no margin) and the sheet (with the margin).
 Rect PatternExtent(const Target& target);
 Rect SheetExtent(const Target& target);
+
+// One line for messages and summaries: "chessboard of 9×6 inner corners, 25 mm squares".
+std::string DescribeTarget(const Target& target);
 
 // True for a chessboard that looks the same after a half turn (rows + cols even): its corners can
 // be numbered from either end, and only the view's geometry can tell which (docs/tools/calib-capture.md#orientation).

@@ -32,12 +32,6 @@ bool HasField(TargetType type, std::string_view field) {
   return false;
 }
 
-std::string Num(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.6g", v);
-  return buf;
-}
-
 }  // namespace
 
 Target TargetFromJson(const io::JsonDocument& doc) {
@@ -113,21 +107,6 @@ io::OrderedJson TargetToJson(const Target& t, const io::Provenance& provenance) 
                            "corner (r, c) has id r*cols + c at (c, r) * square_size; the top-left square is black";
   j["provenance"] = io::ProvenanceToJson(provenance);
   return j;
-}
-
-std::string DescribeTarget(const Target& t) {
-  const std::string unit(LengthUnitName(t.length_unit));
-  const std::string grid = std::to_string(t.cols) + "×" + std::to_string(t.rows);
-  switch (t.type) {
-    case TargetType::kChessboard: return "chessboard of " + grid + " inner corners, " + Num(t.square_size) + " " + unit + " squares";
-    case TargetType::kCharuco:
-      return "ChArUco board of " + grid + " inner corners, " + Num(t.square_size) + " " + unit + " squares, " + Num(t.marker_size) +
-             " " + unit + " " + t.dictionary + " markers";
-    case TargetType::kAprilTagGrid:
-      return "AprilTag grid of " + grid + " " + t.family + " tags (ids from " + std::to_string(t.first_id) + "), " +
-             Num(t.tag_size) + " " + unit + " tags";
-  }
-  return "?";
 }
 
 }  // namespace vstcal::capture

@@ -20,7 +20,4 @@ Target TargetFromJson(const io::JsonDocument& doc);
 // file and never read.
 io::OrderedJson TargetToJson(const Target& target, const io::Provenance& provenance);
 
-// One line for messages and summaries: "chessboard 9×6 inner corners, 25 mm squares".
-std::string DescribeTarget(const Target& target);
-
 }  // namespace vstcal::capture

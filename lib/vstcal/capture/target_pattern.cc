@@ -1,48 +1,14 @@
 #include "vstcal/capture/target_pattern.h"
 
-#include <memory>
-
 #include <opencv2/aruco/dictionary.hpp>
 
-extern "C" {
-#include <apriltag/apriltag.h>
-#include <apriltag/tag16h5.h>
-#include <apriltag/tag25h9.h>
-#include <apriltag/tag36h10.h>
-#include <apriltag/tag36h11.h>
-}
-
+#include "vstcal/capture/apriltag_family.h"
 #include "vstcal/core/error.h"
 
 namespace vstcal::capture {
-namespace {
-
-struct FamilyDeleter {
-  void (*destroy)(apriltag_family_t*);
-  void operator()(apriltag_family_t* f) const { destroy(f); }
-};
-using FamilyPtr = std::unique_ptr<apriltag_family_t, FamilyDeleter>;
-
-FamilyPtr CreateFamily(std::string_view name) {
-  if (name == "tag36h11") return FamilyPtr(tag36h11_create(), {tag36h11_destroy});
-  if (name == "tag36h10") return FamilyPtr(tag36h10_create(), {tag36h10_destroy});
-  if (name == "tag25h9") return FamilyPtr(tag25h9_create(), {tag25h9_destroy});
-  if (name == "tag16h5") return FamilyPtr(tag16h5_create(), {tag16h5_destroy});
-  VSTCAL_CHECK(false, "unknown AprilTag family " + std::string(name));
-}
-
-int DictionaryIndex(std::string_view name) {
-  const auto all = ArucoDictionaries();
-  for (size_t i = 0; i < all.size(); ++i) {
-    if (all[i].name == name) return static_cast<int>(i);
-  }
-  VSTCAL_CHECK(false, "unknown ArUco dictionary " + std::string(name));
-}
-
-}  // namespace
 
 MarkerCells ArucoMarkerCells(std::string_view dictionary, int id) {
-  const cv::Ptr<cv::aruco::Dictionary> dict = cv::aruco::getPredefinedDictionary(DictionaryIndex(dictionary));
+  const cv::Ptr<cv::aruco::Dictionary> dict = cv::aruco::getPredefinedDictionary(ArucoDictionaryIndex(dictionary));
   VSTCAL_CHECK(id >= 0 && id < dict->bytesList.rows, "marker id out of range");
   MarkerCells m;
   m.side = dict->markerSize + 2;
@@ -56,7 +22,7 @@ MarkerCells ArucoMarkerCells(std::string_view dictionary, int id) {
 }
 
 MarkerCells AprilTagCells(std::string_view family, int id) {
-  const FamilyPtr fam = CreateFamily(family);
+  const AprilTagFamilyPtr fam = CreateAprilTagFamily(family);
   VSTCAL_CHECK(id >= 0 && static_cast<uint32_t>(id) < fam->ncodes, "tag id out of range");
   VSTCAL_CHECK(!fam->reversed_border && fam->total_width == fam->width_at_border + 2, "not a classic AprilTag family");
   image_u8_t* image = apriltag_to_image(fam.get(), id);
