@@ -63,7 +63,7 @@ void BM_OpenCvFindChessboard(benchmark::State& state) {
   std::vector<cv::Point2f> corners;
   for (auto _ : state) {
     found += cv::findChessboardCorners(AsMat(s.images[k++ % s.images.size()]), cv::Size(10, 10), corners,
-                                       cv::CALIB_CB_ADAPTIVE_THRESH | cv::CALIB_CB_NORMALIZE_IMAGE | cv::CALIB_CB_FAST_CHECK);
+                                       cv::CALIB_CB_ADAPTIVE_THRESH | cv::CALIB_CB_NORMALIZE_IMAGE);
   }
   if (found != k) state.SkipWithError("a view was not found");
   state.SetItemsProcessed(static_cast<int64_t>(k));
@@ -76,8 +76,7 @@ void BM_OpenCvFindAndSubPix(benchmark::State& state) {
   std::vector<cv::Point2f> corners;
   for (auto _ : state) {
     const cv::Mat gray = AsMat(s.images[k++ % s.images.size()]);
-    if (cv::findChessboardCorners(gray, cv::Size(10, 10), corners,
-                                  cv::CALIB_CB_ADAPTIVE_THRESH | cv::CALIB_CB_NORMALIZE_IMAGE | cv::CALIB_CB_FAST_CHECK)) {
+    if (cv::findChessboardCorners(gray, cv::Size(10, 10), corners, cv::CALIB_CB_ADAPTIVE_THRESH | cv::CALIB_CB_NORMALIZE_IMAGE)) {
       cv::cornerSubPix(gray, corners, cv::Size(5, 5), cv::Size(-1, -1), cv::TermCriteria(3, 30, 0.01));
     }
   }

@@ -20,7 +20,9 @@ Detection DetectChessboard(const GrayImage& image, const Target& target, const D
   std::vector<cv::Point2f> points;
   bool found = false;
   if (options.finder != ChessboardFinder::kSectorBased) {
-    found = cv::findChessboardCorners(gray, size, points, cv::CALIB_CB_ADAPTIVE_THRESH | cv::CALIB_CB_NORMALIZE_IMAGE | cv::CALIB_CB_FAST_CHECK);
+    // Without CALIB_CB_FAST_CHECK: on images that hold a board it doubled the time and missed
+    // boards of 12 px squares (docs/experiments/corners.md).
+    found = cv::findChessboardCorners(gray, size, points, cv::CALIB_CB_ADAPTIVE_THRESH | cv::CALIB_CB_NORMALIZE_IMAGE);
   }
   if (!found && options.finder != ChessboardFinder::kClassic) {
     // Without CALIB_CB_ACCURACY: the refinement below does better, in a fraction of the time.
