@@ -59,6 +59,14 @@ GridOrientation OrientChessboard(const GrayImage& image, const Target& target, c
     int symmetry;
     double x_axis_deg;
   };
+  // Every square of the detected grid read once; a numbering only decides which are "even".
+  std::vector<double> square_mean(static_cast<size_t>(rows - 1) * (cols - 1));
+  for (int r = 0; r + 1 < rows; ++r) {
+    for (int c = 0; c + 1 < cols; ++c) {
+      const auto g = [&](int rr, int cc) -> const Eigen::Vector2d& { return grid[static_cast<size_t>(rr) * cols + cc]; };
+      square_mean[static_cast<size_t>(r) * (cols - 1) + c] = QuadMean(image, g(r, c), g(r, c + 1), g(r + 1, c + 1), g(r + 1, c));
+    }
+  }
   std::vector<Candidate> candidates;
   double best_contrast = 0;
   for (int symmetry = 0; symmetry < (rows == cols ? 8 : 4); ++symmetry) {
@@ -69,7 +77,10 @@ GridOrientation OrientChessboard(const GrayImage& image, const Target& target, c
     int n_even = 0, n_odd = 0;
     for (int r = 0; r + 1 < rows; ++r) {
       for (int c = 0; c + 1 < cols; ++c) {
-        const double mean = QuadMean(image, at(symmetry, r, c), at(symmetry, r, c + 1), at(symmetry, r + 1, c + 1), at(symmetry, r + 1, c));
+        // This numbering's square (r, c)–(r + 1, c + 1) is the detected square between the images
+        // of those two corners.
+        const auto a = Map(symmetry, r, c, rows, cols), b = Map(symmetry, r + 1, c + 1, rows, cols);
+        const double mean = square_mean[static_cast<size_t>(std::min(a[0], b[0])) * (cols - 1) + std::min(a[1], b[1])];
         ((r + c) % 2 == 0 ? even : odd) += mean;
         ++((r + c) % 2 == 0 ? n_even : n_odd);
       }

@@ -13,7 +13,7 @@
 namespace vstcal::capture {
 namespace {
 
-constexpr double kMaxWindowPx = 8;
+constexpr double kMaxWindowPx = 6;
 constexpr double kMaxAsymmetry = 0.25;
 
 // corner id → index into `corners`, −1 where not detected.
