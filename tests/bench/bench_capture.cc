@@ -4,6 +4,9 @@
 //   BM_CaptureDetect          vstcal::capture::DetectTarget, one image at a time, one core
 //   BM_OpenCvFindChessboard   cv::findChessboardCorners alone, as DetectTarget calls it
 //   BM_OpenCvFindAndSubPix    the same plus cv::cornerSubPix (a usual OpenCV pipeline)
+//   BM_CaptureSteps           what DetectTarget adds to the finder, alone: orientation, point-
+//                             symmetry refinement, edge blur, from the finder's corners (the
+//                             overhead, timed without the finder's own noise)
 //   BM_CaptureDetectFiles     DetectInFiles over 32 PNG files on disk: read, decode, detect,
 //                             account, on 1 or 2 threads (real time: images per second)
 //   BM_RenderView             the renderer, one 640×480 view with blur and noise
@@ -19,7 +22,9 @@
 #include <fstream>
 
 #include "support/capture_scenes.h"
+#include "vstcal/capture/chessboard_orientation.h"
 #include "vstcal/capture/detect_run.h"
+#include "vstcal/capture/detect_steps.h"
 #include "vstcal/capture/target_drawing.h"
 #include "vstcal/capture/target_pattern.h"
 
@@ -83,6 +88,28 @@ void BM_OpenCvFindAndSubPix(benchmark::State& state) {
   state.SetItemsProcessed(static_cast<int64_t>(k));
 }
 
+void BM_CaptureSteps(benchmark::State& state) {
+  const Set& s = Images(static_cast<int>(state.range(0)));
+  const capture::Target t = Board();
+  std::vector<std::vector<Eigen::Vector2d>> grids;
+  for (const capture::GrayImage& image : s.images) {
+    std::vector<cv::Point2f> corners;
+    cv::findChessboardCorners(AsMat(image), cv::Size(10, 10), corners, cv::CALIB_CB_ADAPTIVE_THRESH | cv::CALIB_CB_NORMALIZE_IMAGE);
+    grids.emplace_back();
+    for (const cv::Point2f& p : corners) grids.back().emplace_back(p.x, p.y);
+  }
+  size_t k = 0;
+  for (auto _ : state) {
+    const size_t i = k++ % s.images.size();
+    const capture::GridOrientation o = capture::OrientChessboard(s.images[i], t, grids[i], false);
+    std::vector<capture::DetectedCorner> corners(grids[i].size());
+    for (size_t id = 0; id < corners.size(); ++id) corners[id] = {static_cast<int>(id), grids[i][o.detected_index[id]]};
+    capture::RefineXCorners(s.images[i], t, capture::CornerRefiner::kSymmetry, 0.4, &corners);
+    benchmark::DoNotOptimize(capture::MedianGridEdgeBlur(s.images[i], t, corners, 0.4));
+  }
+  state.SetItemsProcessed(static_cast<int64_t>(k));
+}
+
 // 32 PNGs (the 8 views, 4 times, as different files: the bytes differ by a pixel so that the
 // duplicate check passes) in a temporary folder.
 const std::vector<capture::CaptureInput>& Files(int width) {
@@ -130,6 +157,7 @@ void BM_RenderView(benchmark::State& state) {
 BENCHMARK(BM_CaptureDetect)->Arg(640)->Arg(1280)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_OpenCvFindChessboard)->Arg(640)->Arg(1280)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_OpenCvFindAndSubPix)->Arg(640)->Arg(1280)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_CaptureSteps)->Arg(640)->Arg(1280)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_CaptureDetectFiles)->Args({640, 1})->Args({640, 2})->Args({1280, 2})->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_RenderView)->Unit(benchmark::kMillisecond);
 

@@ -35,35 +35,27 @@ class SmoothedPatch {
       w_ = h_ = 0;
       return;
     }
-    static constexpr std::array<double, 2 * kKernelRadius + 1> kernel = {0.25, 0.5, 0.25};
-    // Rows first over the patch's rows plus the kernel's reach (replicating the image's border),
-    // then columns. Inside the image (the usual case) without the border's clamps.
+    // [1 2 1] along rows, then along columns, in integers (exact), divided by 16 at the end.
+    // Rows first over the patch's rows plus the kernel's reach (the image's border replicated).
     const int ty0 = y0_ - kKernelRadius, th = h_ + 2 * kKernelRadius;
-    const bool inside = x0_ - kKernelRadius >= 0 && x1 + kKernelRadius < image.width && ty0 >= 0 && ty0 + th <= image.height;
-    std::vector<double> rows(static_cast<size_t>(w_) * th);
+    const bool inside = x0_ - kKernelRadius >= 0 && x1 + kKernelRadius < image.width;
+    std::vector<int> rows(static_cast<size_t>(w_) * th);
     for (int j = 0; j < th; ++j) {
       const int v = std::clamp(ty0 + j, 0, image.height - 1);
       const uint8_t* line = &image.pixels[static_cast<size_t>(v) * image.width];
-      double* out = &rows[static_cast<size_t>(j) * w_];
+      int* out = &rows[static_cast<size_t>(j) * w_];
       for (int i = 0; i < w_; ++i) {
-        double acc = 0;
-        if (inside) {
-          const uint8_t* at = line + x0_ + i - kKernelRadius;
-          for (int k = 0; k <= 2 * kKernelRadius; ++k) acc += kernel[k] * at[k];
-        } else {
-          for (int k = -kKernelRadius; k <= kKernelRadius; ++k) acc += kernel[k + kKernelRadius] * line[std::clamp(x0_ + i + k, 0, image.width - 1)];
-        }
-        out[i] = acc;
+        const int u = x0_ + i;
+        out[i] = inside ? line[u - 1] + 2 * line[u] + line[u + 1]
+                        : line[std::max(u - 1, 0)] + 2 * line[u] + line[std::min(u + 1, image.width - 1)];
       }
     }
     values_.resize(static_cast<size_t>(w_) * h_);
     for (int j = 0; j < h_; ++j) {
-      for (int i = 0; i < w_; ++i) {
-        const double* at = &rows[static_cast<size_t>(j) * w_ + i];
-        double acc = 0;
-        for (int k = 0; k <= 2 * kKernelRadius; ++k) acc += kernel[k] * at[static_cast<size_t>(k) * w_];
-        values_[static_cast<size_t>(j) * w_ + i] = acc;
-      }
+      const int* up = &rows[static_cast<size_t>(j) * w_];
+      const int* mid = up + w_;
+      const int* down = mid + w_;
+      for (int i = 0; i < w_; ++i) values_[static_cast<size_t>(j) * w_ + i] = (up[i] + 2 * mid[i] + down[i]) * (1.0 / 16);
     }
   }
 
