@@ -25,6 +25,7 @@ class CliCalibCapture : public CliTest {
   using CliTest::ReadText;
   using CliTest::WriteJson;
   using CliTest::WriteText;
+  using CliTest::Synth;
 
   // Runs calib-capture; fails the test unless it succeeds.
   void Ok(const std::vector<std::string>& args) const {
@@ -327,6 +328,13 @@ std::vector<BadCase> BadCases() {
       {"RenderLightingOutOfRange", views,
        {"render", "in/board.target.json", "--camera", "in/camera.truth.json", "-o", "out/r", "--lighting", "1"}, kBadInput, "--lighting: ",
        {"[0, 1)"}},
+      {"RenderTooManyMegapixels",
+       [](CliCalibCapture* t) {
+         t->Board();
+         t->Synth("in/big.json", Override(DefaultSynthArgs(), "--image-size", "4000x3000"));
+       },
+       {"render", "in/board.target.json", "--camera", "in/big.truth.json", "-o", "out/r", "--rig", "planar-views", "--views", "100"},
+       kBadInput, "--views: ", {"100 images of 4000×3000 are 1200 megapixels in all, more than 1000"}},
       {"RenderTooManyPlanes", views,
        {"render", "in/board.target.json", "--camera", "in/camera.truth.json", "-o", "out/r", "--interval", "0.1"}, kBadInput, "--interval: ",
        {"more than 1000 template positions"}},

@@ -22,6 +22,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
+constexpr size_t kMaxOverlays = 2000;
+
 bool IsImageName(const fs::path& p) {
   std::string ext = p.extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
@@ -189,6 +191,11 @@ OutputFiles RunDetect(DetectCommand command, const io::Provenance& provenance, c
       if (!command.offset_pattern.empty()) offset = OffsetFromName(image, command.offset_pattern, "--offset-from-name");
       files.push_back({image, image, offset});
     }
+  }
+  // Overlays are written with the output, all-or-nothing, so they are held in memory until then.
+  if (!command.overlay_folder.empty() && files.size() > kMaxOverlays) {
+    throw InputError("--overlay: " + std::to_string(files.size()) + " images; overlays are drawn for at most " + std::to_string(kMaxOverlays) +
+                     " at a time: run without --overlay, or on fewer images");
   }
   for (const CaptureInput& f : files) inputs.push_back(f.path);
   if (!command.video.file.empty()) inputs.push_back(command.video.file);

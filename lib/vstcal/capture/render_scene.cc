@@ -81,6 +81,14 @@ RenderedScene RenderScene(const Camera& camera, const Target& target, const Scen
       offsets.push_back(std::nullopt);
     }
   }
+  // Every image is held until all are written (all-or-nothing): at most 1000 megapixels in all.
+  const double megapixels = static_cast<double>(scene.names.size()) * size.width * size.height / 1e6;
+  if (megapixels > 1000) {
+    char buf[200];
+    std::snprintf(buf, sizeof buf, "%s: %zu images of %d×%d are %.0f megapixels in all, more than 1000; render fewer or smaller images",
+                  spec.rig == Rig::kVolume ? "--interval" : "--views", scene.names.size(), size.width, size.height, megapixels);
+    throw InputError(buf);
+  }
   for (size_t k = 0; k < scene.names.size(); ++k) {
     View view;
     view.name = scene.names[k];

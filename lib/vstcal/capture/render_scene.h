@@ -39,8 +39,8 @@ struct RenderedScene {
   CalibratedCamera truth_camera;  // method "synthetic": the camera and camera_from_world (volume) or the views' poses
 };
 
-// Throws InputError for impossible requests: more than 1,000 images or 100 megapixels an image,
-// the camera inside the volume, a view without any visible corner.
+// Throws InputError for impossible requests: more than 1,000 images, 100 megapixels an image or
+// 1,000 megapixels in all, the camera inside the volume, a view without any visible corner.
 RenderedScene RenderScene(const Camera& camera, const Target& target, const SceneSpec& spec);
 
 // The number of template positions of a volume spec: near, near + interval, … ≤ far.

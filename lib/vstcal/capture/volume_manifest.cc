@@ -65,6 +65,7 @@ io::OrderedJson VolumeManifestToJson(const VolumeManifest& m, const io::Provenan
 }
 
 double OffsetFromName(const std::filesystem::path& image, const std::string& pattern, const std::string& flag) {
+  if (pattern.size() > 100) throw InputError(flag + ": the pattern is longer than 100 characters; give a short one, e.g. \"z(-?[0-9.]+)\"");
   std::regex re;
   try {
     re = std::regex(pattern, std::regex::ECMAScript);
