@@ -4,8 +4,8 @@
 #pragma once
 
 #include "vstcal/capture/detect_run.h"
-#include "vstcal/io/json_writer.h"
-#include "vstcal/io/provenance.h"
+#include "vstcal/json/json_writer.h"
+#include "vstcal/json/provenance.h"
 
 namespace vstcal::capture {
 

@@ -11,7 +11,7 @@
 #include "vstcal/capture/detect_run.h"
 #include "vstcal/capture/render_scene.h"
 #include "vstcal/capture/target.h"
-#include "vstcal/io/provenance.h"
+#include "vstcal/json/provenance.h"
 
 namespace vstcal::capture {
 

@@ -9,7 +9,7 @@
 #include "vstcal/capture/target_io.h"
 #include "vstcal/capture/target_pattern.h"
 #include "vstcal/core/error.h"
-#include "vstcal/io/json_writer.h"
+#include "vstcal/json/json_writer.h"
 
 namespace vstcal::capture {
 namespace {

@@ -4,7 +4,8 @@
 #include <cstdio>
 
 #include "vstcal/io/correspondences_io.h"
-#include "vstcal/io/format_check.h"
+#include "vstcal/json/fields.h"
+#include "vstcal/json/format_check.h"
 
 namespace vstcal::capture {
 namespace {

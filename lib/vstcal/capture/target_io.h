@@ -5,9 +5,9 @@
 #include <filesystem>
 
 #include "vstcal/capture/target.h"
-#include "vstcal/io/json_reader.h"
-#include "vstcal/io/json_writer.h"
-#include "vstcal/io/provenance.h"
+#include "vstcal/json/json_reader.h"
+#include "vstcal/json/json_writer.h"
+#include "vstcal/json/provenance.h"
 
 namespace vstcal::capture {
 

@@ -6,7 +6,8 @@
 
 #include "vstcal/core/error.h"
 #include "vstcal/io/correspondences_io.h"
-#include "vstcal/io/format_check.h"
+#include "vstcal/json/fields.h"
+#include "vstcal/json/format_check.h"
 
 namespace vstcal::capture {
 namespace {

@@ -8,9 +8,9 @@
 #include <vector>
 
 #include "vstcal/core/units.h"
-#include "vstcal/io/json_reader.h"
-#include "vstcal/io/json_writer.h"
-#include "vstcal/io/provenance.h"
+#include "vstcal/json/json_reader.h"
+#include "vstcal/json/json_writer.h"
+#include "vstcal/json/provenance.h"
 
 namespace vstcal::capture {
 
