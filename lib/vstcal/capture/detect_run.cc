@@ -251,7 +251,11 @@ CaptureResult DetectInVideo(const VideoRequest& video, const DetectRequest& requ
     std::error_code ec;
     if (!std::filesystem::exists(video.file, ec)) throw InputError(video.file + ": no such file; check the path");
     if (std::filesystem::is_directory(video.file, ec)) throw InputError(video.file + ": is a directory, not a video; give the video file");
-    capture.open(video.file);
+    // The file backends only, in OpenCV's own order: CAP_ANY also offers the name to libgphoto2,
+    // which enumerates the USB bus for a camera of that name (and leaks what it enumerated).
+    for (const int api : {cv::CAP_FFMPEG, cv::CAP_GSTREAMER, cv::CAP_OPENCV_MJPEG}) {
+      if (capture.open(video.file, api)) break;
+    }
   }
   if (!capture.isOpened()) {
     throw InputError(source + (live ? ": cannot open the camera; check the index (0 is the first camera) and that no other program uses it"
