@@ -1,11 +1,12 @@
 # Every dependency comes from a Debian bookworm package; scripts/setup installs them.
 find_package(Eigen3 3.4 REQUIRED NO_MODULE)
 find_package(Ceres REQUIRED)
-find_package(OpenCV REQUIRED COMPONENTS core calib3d imgproc imgcodecs)
+find_package(OpenCV REQUIRED COMPONENTS core calib3d imgproc imgcodecs videoio aruco)
 find_package(nlohmann_json 3.10 REQUIRED)
 find_package(CLI11 REQUIRED)
 find_package(apriltag REQUIRED)
 find_package(Threads REQUIRED)
+find_package(ZLIB REQUIRED)  # tests: an independent CRC-32 for the PNG chunks vstcal writes
 # Boost.Random (header-only) for the Sobol quasi-random sequence of lib/vstcal/sensitivity.
 find_package(Boost 1.74 REQUIRED)
 

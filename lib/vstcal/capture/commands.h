@@ -1,0 +1,63 @@
+// What each calib-capture subcommand does, as library calls (docs/tools/calib-capture.md): the
+// tool's main parses flags into these requests, calls one function and writes the files it
+// returns with WriteOutputs. A C++ user gets the same files without the tool.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "vstcal/capture/detect_run.h"
+#include "vstcal/capture/render_scene.h"
+#include "vstcal/capture/target.h"
+#include "vstcal/json/provenance.h"
+
+namespace vstcal::capture {
+
+struct OutputFiles {
+  std::vector<std::pair<std::filesystem::path, std::string>> files;  // path, bytes
+  std::string summary;                                               // for stderr
+};
+
+// Writes every file all-or-nothing (io::WriteFilesAtomically). A missing folder of an output is
+// created when its parent exists, and removed again if writing fails.
+void WriteOutputs(const OutputFiles& outputs);
+
+// calib-capture target: OUTPUT.target.json, OUTPUT.svg and (dpi > 0) OUTPUT.png.
+struct TargetRequest {
+  Target target;
+  std::string output;  // path prefix, e.g. "board" or "prints/board"
+  double dpi = 300;    // 0: no PNG
+};
+OutputFiles MakeTarget(const TargetRequest& request, const io::Provenance& provenance);
+
+// calib-capture detect.
+struct DetectCommand {
+  std::string target_file;
+  std::vector<std::string> images;  // files, folders (their images, sorted) or globs (sorted)
+  std::string manifest;             // volume: a vstcal/volume-manifest@1 file instead of images
+  std::string offset_pattern;       // volume: the plane offset read from each image's name
+  VideoRequest video;               // frames instead of images (file, or camera_index ≥ 0)
+  DetectRequest detect;             // target, target_file and rig are filled in here
+  std::string output;
+  std::string overlay_folder;       // a PNG per image with its corners drawn (images only)
+};
+OutputFiles RunDetect(DetectCommand command, const io::Provenance& provenance, const Progress& progress = {});
+
+// Files, folders and globs → image paths, in the order given, each folder and glob sorted by name.
+// Throws InputError for an argument that names nothing, a folder without images, a glob that
+// matches no file.
+std::vector<std::string> ExpandImageArguments(const std::vector<std::string>& arguments);
+
+// calib-capture render: DIR/<name>.png for every view, DIR/truth.json (the true corners),
+// DIR/camera.truth.json (the camera and its poses) and, for a volume, DIR/manifest.json.
+struct RenderCommand {
+  std::string target_file;
+  std::string camera_file;
+  std::string output_folder;
+  SceneSpec scene;
+};
+OutputFiles RunRender(const RenderCommand& command, const io::Provenance& provenance);
+
+}  // namespace vstcal::capture

@@ -1,0 +1,112 @@
+// AprilTag grids: libapriltag finds and decodes the tags; vstcal keeps this board's ids, checks
+// the tags' layout against the target and measures the blur along the tags' edges.
+#include <map>
+#include <memory>
+#include <string>
+
+#include "vstcal/capture/apriltag_family.h"
+#include "vstcal/capture/corner_refinement.h"
+#include "vstcal/capture/detect_steps.h"
+#include "vstcal/capture/detectors.h"
+#include "vstcal/core/error.h"
+
+namespace vstcal::capture {
+namespace {
+
+// libapriltag's corner k is the tag frame's (−1, +1), (+1, +1), (+1, −1), (−1, −1); its tag frame
+// has y up the printed tag, so these are bottom-left, bottom-right, top-right, top-left: our
+// corners 3, 2, 1, 0 (target.h).
+constexpr int kOurCorner[4] = {3, 2, 1, 0};
+
+// libapriltag measures pixels from the top-left corner of the top-left pixel; vstcal from its centre.
+constexpr double kPixelOffset = -0.5;
+
+// One detector per thread and family: creating one builds the family's decode table (a few ms).
+class AprilTagDetector {
+ public:
+  explicit AprilTagDetector(std::string_view family) : family_(CreateAprilTagFamily(family)) {
+    detector_ = apriltag_detector_create();
+    detector_->nthreads = 1;  // vstcal runs one image per thread
+    detector_->quad_decimate = 1;
+    detector_->quad_sigma = 0;
+    detector_->refine_edges = true;
+    apriltag_detector_add_family_bits(detector_, family_.get(), 1);
+  }
+  ~AprilTagDetector() { apriltag_detector_destroy(detector_); }  // before the family it refers to
+  AprilTagDetector(const AprilTagDetector&) = delete;
+  AprilTagDetector& operator=(const AprilTagDetector&) = delete;
+
+  apriltag_detector_t* get() { return detector_; }
+
+ private:
+  AprilTagFamilyPtr family_;
+  apriltag_detector_t* detector_ = nullptr;
+};
+
+AprilTagDetector& DetectorFor(const std::string& family) {
+  thread_local std::map<std::string, std::unique_ptr<AprilTagDetector>> detectors;
+  std::unique_ptr<AprilTagDetector>& d = detectors[family];
+  if (!d) d = std::make_unique<AprilTagDetector>(family);
+  return *d;
+}
+
+}  // namespace
+
+Detection DetectAprilTagGrid(const GrayImage& image, const Target& target, const DetectorOptions& options) {
+  image_u8_t wrapped{image.width, image.height, image.width, const_cast<uint8_t*>(image.pixels.data())};
+  zarray_t* found = apriltag_detector_detect(DetectorFor(target.family).get(), &wrapped);
+  const int num_tags = target.rows * target.cols;
+  std::map<int, DetectedMarker> by_index;
+  std::vector<int> repeated;
+  int foreign = 0;
+  for (int k = 0; k < zarray_size(found); ++k) {
+    apriltag_detection_t* det = nullptr;
+    zarray_get(found, k, &det);
+    const int index = det->id - target.first_id;
+    if (index < 0 || index >= num_tags) {
+      ++foreign;
+      continue;
+    }
+    DetectedMarker m{index, {}};
+    for (int c = 0; c < 4; ++c) m.pixels[kOurCorner[c]] = Eigen::Vector2d(det->p[c][0] + kPixelOffset, det->p[c][1] + kPixelOffset);
+    if (!by_index.emplace(index, m).second) repeated.push_back(index);
+  }
+  apriltag_detections_destroy(found);
+  for (const int index : repeated) by_index.erase(index);  // a tag seen twice: neither can be trusted
+  Detection d;
+  if (by_index.empty()) {
+    d.reason = foreign > 0 ? std::to_string(foreign) + " " + target.family + " tags, none of this board's ids " +
+                                 std::to_string(target.first_id) + " … " + std::to_string(target.first_id + num_tags - 1)
+                           : "no " + target.family + " tag";
+    return d;
+  }
+  std::vector<DetectedMarker> markers;
+  for (const auto& [index, m] : by_index) markers.push_back(m);
+  const auto [inconsistent, checkable] = InconsistentMarkers(MarkerQuads(target), markers);
+  if (checkable > 0 && 2 * inconsistent > checkable) {
+    d.status = DetectionStatus::kRejected;
+    d.reason = "layout mismatch: tags not where the target file puts them (" + std::to_string(inconsistent) + " of " +
+               std::to_string(checkable) + " disagree with their neighbours); the target's rows, cols or first_id do not match the board";
+    return d;
+  }
+  std::vector<double> blur;
+  for (const DetectedMarker& m : markers) {
+    for (int c = 0; c < 4; ++c) {
+      d.corners.push_back({4 * m.index + c, m.pixels[c]});
+      // Across the tag's edge: its black border is one cell wide, so reach 0.4 cell.
+      const Eigen::Vector2d& a = m.pixels[c];
+      const Eigen::Vector2d& b = m.pixels[(c + 1) % 4];
+      const MarkerFamily* family = FindMarkerFamily(AprilTagFamilies(), target.family);
+      if (const auto s = EdgeBlur(image, a, b, 0.4 * (b - a).norm() / (family->bits + 2))) blur.push_back(*s);
+    }
+  }
+  if (!blur.empty()) {
+    std::nth_element(blur.begin(), blur.begin() + blur.size() / 2, blur.end());
+    d.blur_px = blur[blur.size() / 2];
+  }
+  d.status = DetectionStatus::kFound;
+  Conclude(options, &d);
+  return d;
+}
+
+}  // namespace vstcal::capture

@@ -1,0 +1,174 @@
+#include "vstcal/capture/detect_steps.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+#include <Eigen/Dense>
+#include <opencv2/imgproc.hpp>
+
+#include "vstcal/capture/corner_refinement.h"
+
+namespace vstcal::capture {
+namespace {
+
+constexpr double kMaxWindowPx = 6;
+constexpr double kMaxAsymmetry = 0.25;
+
+// corner id → index into `corners`, −1 where not detected.
+std::vector<int> IndexById(const Target& target, const std::vector<DetectedCorner>& corners) {
+  std::vector<int> index(NumCorners(target), -1);
+  for (size_t k = 0; k < corners.size(); ++k) index[corners[k].id] = static_cast<int>(k);
+  return index;
+}
+
+// The homography mapping four board points to four pixels (DLT with h33 = 1); nullopt when singular.
+std::optional<Eigen::Matrix3d> Homography4(const std::array<Eigen::Vector2d, 4>& from, const std::array<Eigen::Vector2d, 4>& to) {
+  Eigen::Matrix<double, 8, 8> A;
+  Eigen::Matrix<double, 8, 1> b;
+  for (int i = 0; i < 4; ++i) {
+    const double x = from[i].x(), y = from[i].y(), u = to[i].x(), v = to[i].y();
+    A.row(2 * i) << x, y, 1, 0, 0, 0, -u * x, -u * y;
+    A.row(2 * i + 1) << 0, 0, 0, x, y, 1, -v * x, -v * y;
+    b(2 * i) = u;
+    b(2 * i + 1) = v;
+  }
+  const Eigen::FullPivLU<Eigen::Matrix<double, 8, 8>> lu(A);
+  if (!lu.isInvertible()) return std::nullopt;
+  const Eigen::Matrix<double, 8, 1> h = lu.solve(b);
+  Eigen::Matrix3d H;
+  H << h(0), h(1), h(2), h(3), h(4), h(5), h(6), h(7), 1;
+  return H;
+}
+
+}  // namespace
+
+std::vector<double> NeighbourSpacing(const Target& target, const std::vector<DetectedCorner>& corners) {
+  const std::vector<int> index = IndexById(target, corners);
+  std::vector<double> spacing(corners.size(), std::numeric_limits<double>::infinity());
+  for (size_t k = 0; k < corners.size(); ++k) {
+    const int id = corners[k].id, r = id / target.cols, c = id % target.cols;
+    for (const auto& [dr, dc] : {std::pair{0, 1}, {0, -1}, {1, 0}, {-1, 0}}) {
+      const int rr = r + dr, cc = c + dc;
+      if (rr < 0 || cc < 0 || rr >= target.rows || cc >= target.cols) continue;
+      const int j = index[rr * target.cols + cc];
+      if (j >= 0) spacing[k] = std::min(spacing[k], (corners[j].pixel - corners[k].pixel).norm());
+    }
+  }
+  return spacing;
+}
+
+int RefineXCorners(const GrayImage& image, const Target& target, CornerRefiner refiner, double window_fraction,
+                   std::vector<DetectedCorner>* corners) {
+  if (refiner == CornerRefiner::kNone || corners->empty()) return 0;
+  const std::vector<double> spacing = NeighbourSpacing(target, *corners);
+  if (refiner == CornerRefiner::kCornerSubPix) {
+    const double smallest = *std::min_element(spacing.begin(), spacing.end());
+    const int half = std::clamp(static_cast<int>(std::lround(window_fraction * (std::isfinite(smallest) ? smallest : 10))), 2, 10);
+    std::vector<cv::Point2f> points;
+    for (const DetectedCorner& c : *corners) points.emplace_back(static_cast<float>(c.pixel.x()), static_cast<float>(c.pixel.y()));
+    const cv::Mat gray(image.height, image.width, CV_8U, const_cast<uint8_t*>(image.pixels.data()));
+    cv::cornerSubPix(gray, points, cv::Size(half, half), cv::Size(-1, -1),
+                     cv::TermCriteria(cv::TermCriteria::EPS + cv::TermCriteria::COUNT, 40, 0.001));
+    for (size_t k = 0; k < points.size(); ++k) (*corners)[k].pixel = Eigen::Vector2d(points[k].x, points[k].y);
+    return 0;
+  }
+  std::vector<DetectedCorner> kept;
+  kept.reserve(corners->size());
+  for (size_t k = 0; k < corners->size(); ++k) {
+    const double radius = std::min(kMaxWindowPx, window_fraction * (std::isfinite(spacing[k]) ? spacing[k] : 10));
+    if (radius < 2) {  // squares of 5 px or less: nothing to refine with
+      kept.push_back((*corners)[k]);
+      continue;
+    }
+    if (const auto refined = RefineCornerBySymmetry(image, (*corners)[k].pixel, radius)) {
+      kept.push_back({(*corners)[k].id, refined->corner});
+    }
+  }
+  const int dropped = static_cast<int>(corners->size() - kept.size());
+  *corners = std::move(kept);
+  return dropped;
+}
+
+int DropAsymmetricCorners(const GrayImage& image, const Target& target, double window_fraction,
+                          std::vector<DetectedCorner>* corners) {
+  const std::vector<double> spacing = NeighbourSpacing(target, *corners);
+  std::vector<DetectedCorner> kept;
+  for (size_t k = 0; k < corners->size(); ++k) {
+    const double radius = std::min(kMaxWindowPx, window_fraction * (std::isfinite(spacing[k]) ? spacing[k] : 10));
+    const auto asymmetry = Asymmetry(image, (*corners)[k].pixel, std::max(radius, 2.0));
+    if (asymmetry && *asymmetry <= kMaxAsymmetry) kept.push_back((*corners)[k]);
+  }
+  const int dropped = static_cast<int>(corners->size() - kept.size());
+  *corners = std::move(kept);
+  return dropped;
+}
+
+double MedianGridEdgeBlur(const GrayImage& image, const Target& target, const std::vector<DetectedCorner>& corners,
+                          double reach_fraction) {
+  const std::vector<int> index = IndexById(target, corners);
+  std::vector<std::pair<int, int>> edges;
+  for (const DetectedCorner& c : corners) {
+    const int r = c.id / target.cols, col = c.id % target.cols;
+    if (col + 1 < target.cols && index[c.id + 1] >= 0) edges.emplace_back(index[c.id], index[c.id + 1]);
+    if (r + 1 < target.rows && index[c.id + target.cols] >= 0) edges.emplace_back(index[c.id], index[c.id + target.cols]);
+  }
+  // 20 edges spread over the board, profiles reaching at most 8 px each side: enough for the
+  // σ ≈ 4 px blur of a view to be rejected, at a fraction of the detection's cost.
+  std::vector<double> blur;
+  const size_t step = std::max<size_t>(1, edges.size() / 20);
+  for (size_t k = 0; k < edges.size(); k += step) {
+    const Eigen::Vector2d& a = corners[edges[k].first].pixel;
+    const Eigen::Vector2d& b = corners[edges[k].second].pixel;
+    if (const auto s = EdgeBlur(image, a, b, std::min(8.0, reach_fraction * (b - a).norm()))) blur.push_back(*s);
+  }
+  if (blur.empty()) return std::numeric_limits<double>::quiet_NaN();
+  std::nth_element(blur.begin(), blur.begin() + blur.size() / 2, blur.end());
+  return blur[blur.size() / 2];
+}
+
+std::pair<int, int> InconsistentMarkers(const std::vector<std::array<Eigen::Vector2d, 4>>& board_quads,
+                                        const std::vector<DetectedMarker>& markers) {
+  auto centre = [](const std::array<Eigen::Vector2d, 4>& q) { return 0.25 * (q[0] + q[1] + q[2] + q[3]); };
+  double pitch = std::numeric_limits<double>::infinity();
+  for (size_t i = 1; i < board_quads.size(); ++i) pitch = std::min(pitch, (centre(board_quads[i]) - centre(board_quads[0])).norm());
+  int inconsistent = 0, checkable = 0;
+  for (const DetectedMarker& m : markers) {
+    const auto H = Homography4(board_quads[m.index], m.pixels);
+    if (!H) continue;
+    const double size_px = std::sqrt(std::max(0.0, 0.5 * std::abs((m.pixels[2] - m.pixels[0]).x() * (m.pixels[3] - m.pixels[1]).y() -
+                                                                  (m.pixels[2] - m.pixels[0]).y() * (m.pixels[3] - m.pixels[1]).x())));
+    int neighbours = 0, disagree = 0;
+    for (const DetectedMarker& n : markers) {
+      if (n.index == m.index || (centre(board_quads[n.index]) - centre(board_quads[m.index])).norm() > 1.6 * pitch) continue;
+      ++neighbours;
+      double worst = 0;
+      for (int k = 0; k < 4; ++k) {
+        const Eigen::Vector3d p = *H * board_quads[n.index][k].homogeneous();
+        worst = std::max(worst, (p.hnormalized() - n.pixels[k]).norm());
+      }
+      if (!(worst <= 0.25 * size_px)) ++disagree;
+    }
+    if (neighbours == 0) continue;
+    ++checkable;
+    if (2 * disagree > neighbours) ++inconsistent;
+  }
+  return {inconsistent, checkable};
+}
+
+void Conclude(const DetectorOptions& options, Detection* d) {
+  if (d->status != DetectionStatus::kFound) return;
+  char buf[200];
+  if (static_cast<int>(d->corners.size()) < options.min_corners) {
+    std::snprintf(buf, sizeof buf, "too few corners: %zu, fewer than %d", d->corners.size(), options.min_corners);
+    d->status = DetectionStatus::kRejected;
+    d->reason = buf;
+  } else if (d->blur_px > options.max_blur_px) {
+    std::snprintf(buf, sizeof buf, "blurred: edges blurred over σ = %.2f px, more than %.2f px", d->blur_px, options.max_blur_px);
+    d->status = DetectionStatus::kRejected;
+    d->reason = buf;
+  }
+}
+
+}  // namespace vstcal::capture

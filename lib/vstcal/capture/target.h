@@ -1,0 +1,108 @@
+// A calibration target: what is printed, and where each of its corners lies in the board frame
+// (docs/formats.md#target, the vstcal/target@1 format).
+//
+// Board frame (all types): Z = 0 on the printed face, X to the right and Y down as the sheet is
+// read, Z into the board (right-handed, as the camera frame: a camera facing the print sees X
+// right and Y down). Lengths in the target's length unit.
+//  - chessboard, charuco: `rows` × `cols` inner corners; the origin is the top-left inner corner,
+//    corner id = r·cols + c at (c·square_size, r·square_size). The (rows + 1) × (cols + 1)
+//    squares alternate, the top-left one black (OpenCV's pattern and ChArUco board). A ChArUco
+//    board has an ArUco marker (1-bit black border) centred in every white square, ids 0, 1, …
+//    row by row, exactly OpenCV's cv::aruco::CharucoBoard (origin shifted to the first corner).
+//  - apriltag-grid: `rows` × `cols` AprilTags (libapriltag's families), tag id first_id +
+//    r·cols + c, each a black square of side tag_size (its 1-bit black border included) with
+//    tag_gap of white between neighbours. The origin is the top-left corner of the first tag's
+//    black square; tag (r, c)'s corners are ids 4·(r·cols + c) + k, k = 0 top-left, 1 top-right,
+//    2 bottom-right, 3 bottom-left, at (c·pitch, r·pitch) + {(0,0), (s,0), (s,s), (0,s)},
+//    pitch = tag_size + tag_gap.
+// `margin` is white paper around the pattern, part of the printed sheet.
+#pragma once
+
+#include <array>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "vstcal/capture/pattern.h"
+#include "vstcal/core/units.h"
+
+namespace vstcal::capture {
+
+enum class TargetType { kChessboard, kCharuco, kAprilTagGrid };
+
+std::string_view TargetTypeName(TargetType type);  // "chessboard", "charuco", "apriltag-grid"
+std::optional<TargetType> TargetTypeFromName(std::string_view name);
+
+struct Target {
+  TargetType type = TargetType::kChessboard;
+  LengthUnit length_unit = LengthUnit::kMillimetre;
+  int rows = 0;               // inner corners (chessboard, charuco) or tags (apriltag-grid) along Y
+  int cols = 0;               // … along X
+  double square_size = 0;     // chessboard, charuco: side of a square
+  double marker_size = 0;     // charuco: side of an ArUco marker (its black border included)
+  std::string dictionary;     // charuco: OpenCV's predefined dictionary, e.g. "DICT_5X5_100"
+  double tag_size = 0;        // apriltag-grid: side of a tag's black square
+  double tag_gap = 0;         // apriltag-grid: white between neighbouring tags' black squares
+  std::string family;         // apriltag-grid: "tag36h11"
+  int first_id = 0;           // apriltag-grid: id of tag (0, 0)
+  double margin = 0;          // white border of the sheet around the pattern
+};
+
+// A dictionary or tag family vstcal can print and detect.
+struct MarkerFamily {
+  std::string_view name;
+  int bits;       // data bits per side (ArUco: marker bits; AprilTag: family's width between borders)
+  int num_codes;  // markers (ArUco) or tags (AprilTag) in the family
+};
+// OpenCV's predefined ArUco dictionaries (cv::aruco::PREDEFINED_DICTIONARY_NAME, same order).
+std::span<const MarkerFamily> ArucoDictionaries();
+// The libapriltag families with a 1-bit black border inside a white ring (classic layout).
+std::span<const MarkerFamily> AprilTagFamilies();
+const MarkerFamily* FindMarkerFamily(std::span<const MarkerFamily> families, std::string_view name);
+// OpenCV's cv::aruco::PREDEFINED_DICTIONARY_NAME value of a dictionary of ArucoDictionaries().
+int ArucoDictionaryIndex(std::string_view name);
+
+// What is wrong with a target: the field (a target@1 key, e.g. "square_size"), the reason and the
+// fix. The reader reports it against the file; calib-capture target against the flag --<field>.
+struct TargetProblem {
+  std::string field;
+  std::string reason;
+  std::string fix;
+};
+// nullopt when the target can be printed and detected: sizes positive, at least 2×2 inner corners
+// (1×1 tags … well, 2 tags), markers that fit their squares with a white ring, enough codes in
+// the dictionary, at most 10,000 corners, and ids within the family.
+std::optional<TargetProblem> CheckTarget(const Target& target);
+
+struct TargetCorner {
+  int id = 0;
+  Eigen::Vector2d xy;  // board frame, length unit (Z = 0)
+};
+// Every corner of the target, by increasing id.
+std::vector<TargetCorner> TargetCorners(const Target& target);
+int NumCorners(const Target& target);
+// The board-frame position of corner `id` (0 ≤ id < NumCorners).
+Eigen::Vector2d CornerPosition(const Target& target, int id);
+
+// The squares of the markers (ChArUco, index = marker id) or tags (AprilTag grid, index =
+// r·cols + c) in the board frame: corners top-left, top-right, bottom-right, bottom-left (the
+// marker's black border included). Empty for a chessboard.
+using Quad = std::array<Eigen::Vector2d, 4>;
+std::vector<Quad> MarkerQuads(const Target& target);
+
+// The printed pattern's extent (squares or tags, no margin) and the sheet (with the margin).
+Rect PatternExtent(const Target& target);
+Rect SheetExtent(const Target& target);
+
+// One line for messages and summaries: "chessboard of 9×6 inner corners, 25 mm squares".
+std::string DescribeTarget(const Target& target);
+
+// True for a chessboard that looks the same after a half turn (rows + cols even): its corners can
+// be numbered from either end, and only the view's geometry can tell which (docs/tools/calib-capture.md#orientation).
+bool IsHalfTurnSymmetric(const Target& target);
+
+}  // namespace vstcal::capture

@@ -1,0 +1,117 @@
+#include "vstcal/capture/target_drawing.h"
+
+#include <array>
+#include <cmath>
+#include <cstdio>
+
+#include <opencv2/imgcodecs.hpp>
+
+#include "vstcal/capture/target_io.h"
+#include "vstcal/capture/target_pattern.h"
+#include "vstcal/core/error.h"
+#include "vstcal/json/json_writer.h"
+
+namespace vstcal::capture {
+namespace {
+
+constexpr double kMaxMegapixels = 200;
+
+// Millimetres per length unit.
+double Millimetres(LengthUnit unit) { return MetresPer(unit) * 1000; }
+
+std::string Mm(double v) {
+  // Sub-micrometre precision, no exponent: SVG viewers differ on long or exponent forms.
+  char buf[48];
+  std::snprintf(buf, sizeof buf, "%.4f", std::abs(v) < 5e-5 ? 0.0 : v);
+  std::string s = buf;
+  while (s.back() == '0') s.pop_back();
+  if (s.back() == '.') s.pop_back();
+  return s;
+}
+
+uint32_t Crc32(const uint8_t* data, size_t n, uint32_t crc = 0) {
+  crc = ~crc;
+  for (size_t i = 0; i < n; ++i) {
+    crc ^= data[i];
+    for (int k = 0; k < 8; ++k) crc = (crc >> 1) ^ (0xEDB88320u & (0u - (crc & 1u)));
+  }
+  return ~crc;
+}
+
+void PutBigEndian(uint32_t v, std::string* out) {
+  for (int shift = 24; shift >= 0; shift -= 8) out->push_back(static_cast<char>((v >> shift) & 0xFF));
+}
+
+}  // namespace
+
+std::string TargetSvg(const Target& t) {
+  const Pattern pattern = TargetPattern(t);
+  const Rect& sheet = pattern.sheet();
+  const double mm = Millimetres(t.length_unit);
+  const double w = sheet.width() * mm, h = sheet.height() * mm;
+  std::string svg = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
+  svg += "<svg xmlns=\"http://www.w3.org/2000/svg\" version=\"1.1\" width=\"" + Mm(w) + "mm\" height=\"" + Mm(h) +
+         "mm\" viewBox=\"0 0 " + Mm(w) + " " + Mm(h) + "\">\n";
+  svg += "<title>vstcal target: " + DescribeTarget(t) + "</title>\n";
+  svg += "<!-- Print at 100 % (actual size, no fit to page): the sheet is " + Mm(w) + " mm × " + Mm(h) +
+         " mm. Measure a square after printing and put the measured size in the target file. -->\n";
+  svg += "<rect x=\"0\" y=\"0\" width=\"" + Mm(w) + "\" height=\"" + Mm(h) + "\" fill=\"#fff\"/>\n";
+  svg += "<path fill=\"#000\" shape-rendering=\"crispEdges\" d=\"";
+  for (const Rect& r : pattern.black()) {
+    const double x0 = (r.x0 - sheet.x0) * mm, y0 = (r.y0 - sheet.y0) * mm;
+    svg += "M" + Mm(x0) + " " + Mm(y0) + "H" + Mm((r.x1 - sheet.x0) * mm) + "V" + Mm((r.y1 - sheet.y0) * mm) + "H" +
+           Mm(x0) + "Z";
+  }
+  svg += "\"/>\n</svg>\n";
+  return svg;
+}
+
+GrayImage RasterizeTarget(const Target& t, double dpi) {
+  if (!(std::isfinite(dpi) && dpi > 0)) throw InputError("--dpi: must be a positive number of pixels per inch");
+  const Pattern pattern = TargetPattern(t);
+  const Rect& sheet = pattern.sheet();
+  const double pitch = 25.4 / dpi / Millimetres(t.length_unit);  // one pixel in the target's unit
+  const double cols = std::ceil(sheet.width() / pitch - 1e-9), rows = std::ceil(sheet.height() / pitch - 1e-9);
+  if (cols * rows > kMaxMegapixels * 1e6) {
+    char buf[200];
+    std::snprintf(buf, sizeof buf, "--dpi: %.0f dpi makes a %.0f × %.0f image (%.0f megapixels, more than %.0f); use a lower --dpi",
+                  dpi, cols, rows, cols * rows / 1e6, kMaxMegapixels);
+    throw InputError(buf);
+  }
+  GrayImage image(static_cast<int>(cols), static_cast<int>(rows), 255);
+  const double area = pitch * pitch;
+  for (int v = 0; v < image.height; ++v) {
+    for (int u = 0; u < image.width; ++u) {
+      const double x0 = sheet.x0 + u * pitch, y0 = sheet.y0 + v * pitch;
+      const std::array<Eigen::Vector2d, 4> square = {Eigen::Vector2d(x0, y0), Eigen::Vector2d(x0 + pitch, y0),
+                                                     Eigen::Vector2d(x0 + pitch, y0 + pitch), Eigen::Vector2d(x0, y0 + pitch)};
+      const double black = std::min(1.0, pattern.BlackArea(square) / area);
+      image.at(u, v) = static_cast<uint8_t>(std::lround(255 * (1 - black)));
+    }
+  }
+  return image;
+}
+
+std::string EncodePng(const GrayImage& image, double dpi) {
+  const cv::Mat mat(image.height, image.width, CV_8U, const_cast<uint8_t*>(image.pixels.data()));
+  std::vector<uint8_t> bytes;
+  VSTCAL_CHECK(cv::imencode(".png", mat, bytes), "PNG encoding failed");
+  std::string png(bytes.begin(), bytes.end());
+  if (dpi <= 0) return png;
+  // pHYs (pixels per metre, unit 1 = metre) right after IHDR, which ends at byte 8 + 25 = 33.
+  constexpr size_t kAfterIhdr = 33;
+  VSTCAL_CHECK(png.size() > kAfterIhdr && png.compare(12, 4, "IHDR") == 0, "unexpected PNG layout");
+  const auto per_metre = static_cast<uint32_t>(std::lround(dpi / 0.0254));
+  std::string chunk = "pHYs";
+  PutBigEndian(per_metre, &chunk);
+  PutBigEndian(per_metre, &chunk);
+  chunk.push_back(1);
+  std::string out = png.substr(0, kAfterIhdr);
+  PutBigEndian(9, &out);
+  out += chunk;
+  PutBigEndian(Crc32(reinterpret_cast<const uint8_t*>(chunk.data()), chunk.size()), &out);
+  out += png.substr(kAfterIhdr);
+  return out;
+}
+
+}  // namespace vstcal::capture

@@ -1,0 +1,357 @@
+// CLI tests of calib-capture: the printable target and its description; render → detect →
+// calib-dlt and calib-tsai recovering the rendered camera within the uncertainty they report;
+// video input (a small MJPG AVI written here by OpenCV); determinism over thread counts; and every
+// bad input of the issue — a target that does not match the board, a video that cannot be opened,
+// a manifest naming missing images or positions, duplicate images, empty and truncated PNG/JPEG
+// files, images of different sizes, too few usable images — with exit code 2 (3 for too few
+// usable images), one line naming the file and the fix, and no output left behind.
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/videoio.hpp>
+
+#include <fstream>
+
+#include "calibration_checks.h"
+#include "cli_fixture.h"
+
+namespace vstcal::cli_test {
+namespace {
+
+constexpr std::string_view kTool = "calib-capture";
+
+class CliCalibCapture : public CliTest {
+ public:  // the bad-input cases below prepare their files through these
+  using CliTest::Path;
+  using CliTest::ReadJson;
+  using CliTest::ReadText;
+  using CliTest::WriteJson;
+  using CliTest::WriteText;
+  using CliTest::Synth;
+
+  // Runs calib-capture; fails the test unless it succeeds.
+  void Ok(const std::vector<std::string>& args) const {
+    const CommandResult r = Run(kTool, args);
+    ASSERT_EQ(r.exit_code, kOk) << r.err;
+  }
+  // in/board.target.json: a 9×6 chessboard of 40 mm squares.
+  void Board(std::vector<std::string> extra = {}) const {
+    std::vector<std::string> args = {"target", "--rows", "6", "--cols", "9", "--square-size", "40", "--dpi", "0", "-o", "in/board"};
+    args.insert(args.end(), extra.begin(), extra.end());
+    Ok(args);
+  }
+  // in/camera.truth.json: calib-synth's distorted 640×480 camera (fx 600, k1 −0.15, k2 0.05).
+  void Camera() const { Synth("in/camera.json", DistortedVolumeArgs()); }
+  // Renders in/board.target.json as a volume (5 planes, 100 mm apart) into `folder`.
+  void RenderVolume(const std::string& folder, std::vector<std::string> extra = {}) const {
+    std::vector<std::string> args = {"render", "in/board.target.json", "--camera", "in/camera.truth.json", "-o", folder, "--near", "0",
+                                     "--far", "400", "--interval", "100", "--camera-distance", "700", "--tilt-deg", "15",
+                                     "--blur-px", "0.8", "--noise", "2"};
+    args.insert(args.end(), extra.begin(), extra.end());
+    Ok(args);
+  }
+  void RenderViews(const std::string& folder, const std::string& target = "in/board.target.json", int views = 5) const {
+    Ok({"render", target, "--camera", "in/camera.truth.json", "-o", folder, "--rig", "planar-views", "--views", std::to_string(views),
+        "--distance", "900", "--blur-px", "0.8", "--noise", "2"});
+  }
+  void Copy(const std::string& from, const std::string& to) const { fs::copy_file(Path(from), Path(to), fs::copy_options::overwrite_existing); }
+};
+
+TEST_F(CliCalibCapture, TargetWritesTheDescriptionAndThePrintableFiles) {
+  Ok({"target", "--rows", "6", "--cols", "9", "--square-size", "25", "--dpi", "100", "-o", "out/board"});
+  EXPECT_EQ(List("out"), (std::vector<std::string>{"board.png", "board.svg", "board.target.json"}));
+  const Json t = ReadJson("out/board.target.json");
+  EXPECT_EQ(t.at("format"), "vstcal/target@1");
+  EXPECT_EQ(t.at("type"), "chessboard");
+  EXPECT_EQ(t.at("square_size"), 25.0);
+  EXPECT_EQ(t.at("margin"), 25.0);
+  EXPECT_EQ(t.at("sheet").at("width"), 300.0);
+  EXPECT_NE(ReadText("out/board.svg").find("width=\"300mm\" height=\"225mm\""), std::string::npos);
+  const cv::Mat png = cv::imread(Path("out/board.png").string(), cv::IMREAD_UNCHANGED);
+  EXPECT_EQ(png.cols, 1182);  // ⌈300 mm / 0.254 mm⌉
+  // ChArUco and AprilTag grids, without the PNG.
+  Ok({"target", "--type", "charuco", "--rows", "5", "--cols", "7", "--square-size", "30", "--dpi", "0", "-o", "out/ch"});
+  EXPECT_EQ(ReadJson("out/ch.target.json").at("marker_size"), 22.5);
+  Ok({"target", "--type", "apriltag-grid", "--rows", "4", "--cols", "6", "--tag-size", "30", "--dpi", "0", "-o", "out/ag"});
+  EXPECT_EQ(ReadJson("out/ag.target.json").at("tag_gap"), 7.5);
+  EXPECT_FALSE(fs::exists(Path("out/ch.png")));
+}
+
+// The main job end to end: a volume rendered through a distorted camera, detected, and solved by
+// calib-dlt --refine and by calib-tsai: every lens parameter within 5σ of the truth, σ from the
+// covariance each tool writes (calibration_checks.h says why 5).
+TEST_F(CliCalibCapture, RenderDetectCalibrateRecoversTheCamera) {
+  Camera();
+  Board();
+  RenderVolume("in/volume");
+  EXPECT_EQ(List("in/volume"), (std::vector<std::string>{"camera.truth.json", "manifest.json", "plane-00.png", "plane-01.png",
+                                                         "plane-02.png", "plane-03.png", "plane-04.png", "truth.json"}));
+  Ok({"detect", "in/board.target.json", "--manifest", "in/volume/manifest.json", "-o", "out/corners.json"});
+  const Json corners = ReadJson("out/corners.json"), truth = ReadJson("in/volume/truth.json");
+  EXPECT_EQ(corners.at("rig"), "volume");
+  EXPECT_EQ(corners.at("capture").at("counts"), Json({{"images", 5}, {"found", 5}, {"not_found", 0}, {"rejected", 0}}));
+  ASSERT_EQ(corners.at("views").size(), 5u);
+  for (size_t v = 0; v < 5; ++v) {
+    EXPECT_EQ(corners["views"][v]["name"], truth["views"][v]["name"]);
+    EXPECT_EQ(corners["views"][v]["image"], "in/volume/" + truth["views"][v]["image"].get<std::string>());
+    EXPECT_EQ(corners["views"][v]["plane_offset"], truth["views"][v]["plane_offset"]);
+    ASSERT_EQ(corners["views"][v]["points"].size(), truth["views"][v]["points"].size());
+    for (size_t k = 0; k < truth["views"][v]["points"].size(); ++k) {
+      const Json& a = corners["views"][v]["points"][k];
+      const Json& b = truth["views"][v]["points"][k];
+      for (int i = 0; i < 3; ++i) EXPECT_EQ(a[i], b[i]);
+      EXPECT_LT(std::hypot(a[3].get<double>() - b[3].get<double>(), a[4].get<double>() - b[4].get<double>()), 0.1);
+    }
+  }
+  const std::vector<std::string> terms = {"fx", "fy", "cx", "cy", "k1", "k2", "p1", "p2"};
+  const Json camera_truth = ReadJson("in/volume/camera.truth.json");
+  ASSERT_EQ(Run("calib-dlt", {"out/corners.json", "-o", "out/dlt.json", "--refine", "-q"}).exit_code, kOk);
+  EXPECT_TRUE(WithinSigmas(ReadJson("out/dlt.json"), camera_truth, terms, 5));
+  ASSERT_EQ(Run("calib-tsai", {"out/corners.json", "-o", "out/tsai.json", "-q"}).exit_code, kOk);
+  EXPECT_TRUE(WithinSigmas(ReadJson("out/tsai.json"), camera_truth, terms, 5));
+  EXPECT_LT(RotationDifferenceDeg(ReadJson("out/tsai.json").at("camera_from_world"), camera_truth.at("camera_from_world")), 0.05);
+}
+
+// Planar views from a folder, from a glob and from a list give the same views; the output does
+// not depend on the thread count (only the provenance, which records the arguments, differs).
+TEST_F(CliCalibCapture, PlanarViewsAreDeterministicWhateverTheThreads) {
+  Camera();
+  Board();
+  RenderViews("in/views");
+  Ok({"detect", "in/board.target.json", "in/views", "--threads", "1", "-o", "out/one.json"});
+  Ok({"detect", "in/board.target.json", "in/views/view-*.png", "--threads", "2", "-o", "out/two.json"});
+  Json one = ReadJson("out/one.json"), two = ReadJson("out/two.json");
+  EXPECT_EQ(one.at("rig"), "planar-views");
+  EXPECT_EQ(one.at("views").size(), 5u);
+  one.erase("provenance");
+  two.erase("provenance");
+  EXPECT_EQ(one.dump(), two.dump());
+  // Not a terminal: the summary and nothing else on stderr (no progress bar).
+  const CommandResult r = Run(kTool, {"detect", "in/board.target.json", "in/views/view-00.png", "in/views/view-01.png",
+                                      "in/views/view-02.png", "-o", "out/three.json"});
+  ASSERT_EQ(r.exit_code, kOk) << r.err;
+  EXPECT_EQ(r.err, "calib-capture: 3 images: 3 found, 0 not found, 0 rejected; 162 corners in 3 views (rig planar-views); wrote "
+                   "out/three.json\n");
+}
+
+// A volume from file names: --offset-from-name reads each template position from its image's name.
+TEST_F(CliCalibCapture, OffsetsFromFileNames) {
+  Camera();
+  Board();
+  RenderVolume("in/volume");
+  for (int k = 0; k < 5; ++k) Copy("in/volume/plane-0" + std::to_string(k) + ".png", "in/z" + std::to_string(100 * k) + "mm.png");
+  Ok({"detect", "in/board.target.json", "in/z0mm.png", "in/z100mm.png", "in/z200mm.png", "in/z300mm.png", "in/z400mm.png",
+      "--offset-from-name", "z([0-9.]+)mm", "-o", "out/corners.json"});
+  const Json corners = ReadJson("out/corners.json");
+  EXPECT_EQ(corners.at("rig"), "volume");
+  EXPECT_EQ(corners["views"][2]["name"], "z200mm");
+  EXPECT_EQ(corners["views"][2]["plane_offset"], 200.0);
+  EXPECT_EQ(corners["views"][2]["points"][0][2], 200.0);
+}
+
+// Video: every k-th frame of a file OpenCV reads (an MJPG AVI written here from rendered views).
+TEST_F(CliCalibCapture, VideoEveryKthFrame) {
+  Camera();
+  Board();
+  RenderViews("in/views", "in/board.target.json", 6);
+  cv::VideoWriter writer(Path("in/video.avi").string(), cv::VideoWriter::fourcc('M', 'J', 'P', 'G'), 10, cv::Size(640, 480), false);
+  ASSERT_TRUE(writer.isOpened());
+  for (int k = 0; k < 6; ++k) writer.write(cv::imread(Path("in/views/view-0" + std::to_string(k) + ".png").string(), cv::IMREAD_GRAYSCALE));
+  writer.release();
+  Ok({"detect", "in/board.target.json", "--video", "in/video.avi", "--every", "2", "--min-views", "2", "-o", "out/corners.json"});
+  const Json corners = ReadJson("out/corners.json");
+  ASSERT_EQ(corners.at("capture").at("images").size(), 3u);
+  EXPECT_EQ(corners["capture"]["images"][1]["image"], "in/video.avi#2");
+  EXPECT_EQ(corners["views"][0]["name"], "frame-000000");
+  EXPECT_EQ(corners["views"][1]["image"], "in/video.avi#2");
+}
+
+// --skip-unreadable lists a broken image as rejected, with its reason, and goes on.
+TEST_F(CliCalibCapture, SkipUnreadableListsTheImageAsRejected) {
+  Camera();
+  Board();
+  RenderViews("in/views");
+  WriteText("in/views/broken.png", ReadText("in/views/view-00.png").substr(0, 500));
+  Ok({"detect", "in/board.target.json", "in/views", "--skip-unreadable", "-o", "out/corners.json"});
+  const Json images = ReadJson("out/corners.json").at("capture").at("images");
+  ASSERT_EQ(images.size(), 6u);
+  EXPECT_EQ(images[0]["image"], "in/views/broken.png");
+  EXPECT_EQ(images[0]["status"], "rejected");
+  EXPECT_EQ(images[0]["reason"], "unreadable: truncated PNG (it does not end with the IEND chunk)");
+}
+
+// ---- bad input: exit code 2 (3 for too few usable images), one line, nothing written ----
+
+struct BadCase {
+  std::string name;
+  std::function<void(CliCalibCapture*)> prepare;
+  std::vector<std::string> args;
+  int exit_code;
+  std::string location;
+  std::vector<std::string> phrases;
+};
+void PrintTo(const BadCase& c, std::ostream* os) { *os << c.name; }
+
+class CliCalibCaptureBad : public CliCalibCapture, public ::testing::WithParamInterface<BadCase> {};
+
+// The common preparation: the camera, the 9×6 board and five planar views of it in in/views.
+void Views(CliCalibCapture* t) {
+  t->Camera();
+  t->Board();
+  t->RenderViews("in/views");
+}
+
+std::vector<BadCase> BadCases() {
+  using T = CliCalibCapture;
+  const auto views = Views;
+  return {
+      {"TargetTooFewRows", [](CliCalibCapture*) {}, {"target", "--rows", "1", "--cols", "9", "--square-size", "25", "-o", "out/b"}, kBadInput,
+       "--rows: ", {"must be 2 to 1000 inner corners"}},
+      {"TargetCharucoMarkerTooLarge", [](CliCalibCapture*) {},
+       {"target", "--type", "charuco", "--rows", "5", "--cols", "7", "--square-size", "30", "--marker-size", "29", "-o", "out/b"}, kBadInput,
+       "--marker-size: ", {"leaves less than one marker cell of white", "0.7 × square_size"}},
+      {"TargetGridWithSquareSize", [](CliCalibCapture*) {},
+       {"target", "--type", "apriltag-grid", "--rows", "4", "--cols", "6", "--square-size", "30", "-o", "out/b"}, kBadInput,
+       "--square-size: ", {"give --tag-size"}},
+      {"TargetOutputFolderMissing", [](CliCalibCapture*) {},
+       {"target", "--rows", "6", "--cols", "9", "--square-size", "25", "-o", "out/no/deeper/b"}, kBadInput, "out/no/deeper: ",
+       {"cannot create: folder out/no does not exist; create it first"}},
+      {"TargetFileMissing", views, {"detect", "in/missing.json", "in/views", "-o", "out/c.json"}, kBadInput, "in/missing.json: ",
+       {"no such file"}},
+      {"TargetFileIsACamera", views, {"detect", "in/camera.truth.json", "in/views", "-o", "out/c.json"}, kBadInput, "in/camera.truth.json: ",
+       {"this is a \"vstcal/camera@1\" file, expected \"vstcal/target@1\""}},
+      {"TargetWrongType",
+       [](CliCalibCapture* t) {
+         Views(t);
+         Json target = static_cast<T*>(t)->ReadJson("in/board.target.json");
+         target["type"] = "charuco";  // the board is a chessboard
+         static_cast<T*>(t)->WriteJson("in/wrong.target.json", target);
+       },
+       {"detect", "in/wrong.target.json", "in/views", "-o", "out/c.json"}, kBadInput, "in/wrong.target.json: ", {"marker_size: missing field"}},
+      {"TargetDoesNotMatchTheBoard",
+       [](CliCalibCapture* t) {
+         Views(t);
+         static_cast<T*>(t)->Ok({"target", "--rows", "6", "--cols", "8", "--square-size", "40", "--dpi", "0", "-o", "in/eight"});
+       },
+       {"detect", "in/eight.target.json", "in/views", "-o", "out/c.json"}, kBadInput, "in/eight.target.json: ",
+       {"no image shows the chessboard of 8×6 inner corners", "5 images: 0 found, 5 not found", "check the target file's type, rows and cols"}},
+      {"CharucoRowsAndColsSwapped",
+       [](CliCalibCapture* t) {
+         static_cast<T*>(t)->Camera();
+         static_cast<T*>(t)->Ok({"target", "--type", "charuco", "--rows", "5", "--cols", "7", "--square-size", "50", "--dpi", "0", "-o", "in/ch"});
+         static_cast<T*>(t)->Ok({"target", "--type", "charuco", "--rows", "7", "--cols", "5", "--square-size", "50", "--dpi", "0", "-o", "in/swapped"});
+         static_cast<T*>(t)->RenderViews("in/views", "in/ch.target.json");
+       },
+       {"detect", "in/swapped.target.json", "in/views", "-o", "out/c.json"}, kBadInput, "in/swapped.target.json: ",
+       {"no image shows the ChArUco board of 5×7", "5 rejected (5 layout mismatch)"}},
+      {"VideoCannotBeOpened", [](CliCalibCapture* t) { Views(t), static_cast<T*>(t)->WriteText("in/video.avi", "not a video\n"); },
+       {"detect", "in/board.target.json", "--video", "in/video.avi", "-o", "out/c.json"}, kBadInput, "in/video.avi: ",
+       {"cannot open as a video", "MJPG AVI"}},
+      {"VideoMissing", views, {"detect", "in/board.target.json", "--video", "in/none.avi", "-o", "out/c.json"}, kBadInput, "in/none.avi: ",
+       {"no such file"}},
+      {"OverlayWithVideo", views, {"detect", "in/board.target.json", "--video", "in/v.avi", "--overlay", "out/o", "-o", "out/c.json"}, kBadInput,
+       "--overlay: ", {"does not apply to --video"}},
+      {"ManifestNamesAMissingImage",
+       [](CliCalibCapture* t) {
+         static_cast<T*>(t)->Camera();
+         static_cast<T*>(t)->Board();
+         static_cast<T*>(t)->RenderVolume("in/volume");
+         fs::remove(static_cast<T*>(t)->Path("in/volume/plane-03.png"));
+       },
+       {"detect", "in/board.target.json", "--manifest", "in/volume/manifest.json", "-o", "out/c.json"}, kBadInput,
+       "in/volume/manifest.json: images[3].image: ", {"in/volume/plane-03.png: no such image file", "remove the entry"}},
+      {"ManifestWithoutAPosition",
+       [](CliCalibCapture* t) {
+         Views(t);
+         static_cast<T*>(t)->WriteText("in/views/m.json", R"({"format": "vstcal/volume-manifest@1", "length_unit": "mm", "images": [)"
+                                                          R"({"image": "view-00.png", "plane_offset": 0}, {"image": "view-01.png"}]})");
+       },
+       {"detect", "in/board.target.json", "--manifest", "in/views/m.json", "-o", "out/c.json"}, kBadInput, "in/views/m.json: images[1].plane_offset: ",
+       {"missing field"}},
+      {"ManifestListsAnImageTwice",
+       [](CliCalibCapture* t) {
+         Views(t);
+         static_cast<T*>(t)->WriteText("in/views/m.json", R"({"format": "vstcal/volume-manifest@1", "length_unit": "mm", "images": [)"
+                                                          R"({"image": "view-00.png", "plane_offset": 0}, {"image": "./view-00.png", "plane_offset": 100}]})");
+       },
+       {"detect", "in/board.target.json", "--manifest", "in/views/m.json", "-o", "out/c.json"}, kBadInput, "in/views/m.json: images[1].image: ",
+       {"listed twice"}},
+      {"ImageListedTwice", views, {"detect", "in/board.target.json", "in/views/view-00.png", "in/views/view-00.png", "-o", "out/c.json"},
+       kBadInput, "in/views/view-00.png: ", {"listed twice", "list each image once"}},
+      {"DuplicateImageContent", [](CliCalibCapture* t) { Views(t), static_cast<T*>(t)->Copy("in/views/view-01.png", "in/views/view-09.png"); },
+       {"detect", "in/board.target.json", "in/views", "-o", "out/c.json"}, kBadInput, "in/views/view-09.png: ",
+       {"the same image as in/views/view-01.png", "remove the copy"}},
+      {"ZeroBytePng", [](CliCalibCapture* t) { Views(t), static_cast<T*>(t)->WriteText("in/views/empty.png", ""); },
+       {"detect", "in/board.target.json", "in/views", "-o", "out/c.json"}, kBadInput, "in/views/empty.png: ",
+       {"the file is empty (0 bytes)", "--skip-unreadable"}},
+      {"TruncatedPng",
+       [](CliCalibCapture* t) {
+         Views(t);
+         static_cast<T*>(t)->WriteText("in/views/cut.png", static_cast<T*>(t)->ReadText("in/views/view-00.png").substr(0, 2000));
+       },
+       {"detect", "in/board.target.json", "in/views", "-o", "out/c.json"}, kBadInput, "in/views/cut.png: ",
+       {"truncated PNG (it does not end with the IEND chunk)", "copy the image again"}},
+      {"TruncatedJpeg",
+       [](CliCalibCapture* t) {
+         Views(t);
+         std::vector<uint8_t> jpeg;
+         cv::imencode(".jpg", cv::imread(static_cast<T*>(t)->Path("in/views/view-00.png").string()), jpeg);
+         static_cast<T*>(t)->WriteText("in/views/cut.jpg", std::string(jpeg.begin(), jpeg.begin() + jpeg.size() / 2));
+       },
+       {"detect", "in/board.target.json", "in/views", "-o", "out/c.json"}, kBadInput, "in/views/cut.jpg: ", {"truncated JPEG"}},
+      {"ZeroByteJpeg", [](CliCalibCapture* t) { Views(t), static_cast<T*>(t)->WriteText("in/views/empty.jpg", ""); },
+       {"detect", "in/board.target.json", "in/views", "-o", "out/c.json"}, kBadInput, "in/views/empty.jpg: ", {"the file is empty"}},
+      {"NotAnImage", [](CliCalibCapture* t) { Views(t), static_cast<T*>(t)->WriteText("in/views/notes.png", "hello\n"); },
+       {"detect", "in/board.target.json", "in/views", "-o", "out/c.json"}, kBadInput, "in/views/notes.png: ", {"not an image OpenCV can decode"}},
+      {"ImagesOfDifferentSizes",
+       [](CliCalibCapture* t) {
+         Views(t);
+         cv::Mat small;
+         cv::imwrite(static_cast<T*>(t)->Path("in/views/view-09.png").string(), cv::Mat(240, 320, CV_8U, cv::Scalar(128)));
+       },
+       {"detect", "in/board.target.json", "in/views", "-o", "out/c.json"}, kBadInput, "in/views/view-09.png: ",
+       {"320×240 pixels, but in/views/view-00.png has 640×480"}},
+      {"TooFewUsableImages", views, {"detect", "in/board.target.json", "in/views/view-00.png", "in/views/view-01.png", "-o", "out/c.json"},
+       kDegenerate, "", {"too few usable images: 2 images: 2 found", "at least 3 (--min-views)"}},
+      {"VolumeAtOnePosition", views,
+       {"detect", "in/board.target.json", "in/views", "--offset-from-name", "(0)", "-o", "out/c.json"}, kDegenerate, "",
+       {"at plane_offset 0", "at least two template positions"}},
+      {"OffsetPatternDoesNotMatch", views,
+       {"detect", "in/board.target.json", "in/views", "--offset-from-name", "z([0-9]+)", "-o", "out/c.json"}, kBadInput, "--offset-from-name: ",
+       {"\"view-00.png\" does not match \"z([0-9]+)\""}},
+      {"NoImages", views, {"detect", "in/board.target.json", "-o", "out/c.json"}, kBadInput, "", {"no images: give"}},
+      {"GlobMatchesNothing", views, {"detect", "in/board.target.json", "in/views/*.tif", "-o", "out/c.json"}, kBadInput, "in/views/*.tif: ",
+       {"no file matches"}},
+      {"OutputIsAnInput", views, {"detect", "in/board.target.json", "in/views", "-o", "in/board.target.json"}, kBadInput,
+       "in/board.target.json: ", {"is an input of this run"}},
+      {"RenderFlagOfTheOtherRig", views,
+       {"render", "in/board.target.json", "--camera", "in/camera.truth.json", "-o", "out/r", "--rig", "planar-views", "--near", "10"}, kBadInput,
+       "--near: ", {"applies to --rig volume only"}},
+      {"RenderLightingOutOfRange", views,
+       {"render", "in/board.target.json", "--camera", "in/camera.truth.json", "-o", "out/r", "--lighting", "1"}, kBadInput, "--lighting: ",
+       {"[0, 1)"}},
+      {"RenderTooManyMegapixels",
+       [](CliCalibCapture* t) {
+         t->Board();
+         t->Synth("in/big.json", Override(DefaultSynthArgs(), "--image-size", "4000x3000"));
+       },
+       {"render", "in/board.target.json", "--camera", "in/big.truth.json", "-o", "out/r", "--rig", "planar-views", "--views", "100"},
+       kBadInput, "--views: ", {"100 images of 4000×3000 are 1200 megapixels in all, more than 1000"}},
+      {"RenderTooManyPlanes", views,
+       {"render", "in/board.target.json", "--camera", "in/camera.truth.json", "-o", "out/r", "--interval", "0.1"}, kBadInput, "--interval: ",
+       {"more than 1000 template positions"}},
+  };
+}
+
+TEST_P(CliCalibCaptureBad, FailsCleanly) {
+  const BadCase& c = GetParam();
+  c.prepare(this);
+  if (HasFatalFailure()) return;
+  const CommandResult r = Run(kTool, c.args);
+  EXPECT_TRUE(FailsWith(r, kTool, c.exit_code, c.location, c.phrases));
+  EXPECT_TRUE(OutDirEmpty());
+}
+
+INSTANTIATE_TEST_SUITE_P(Cases, CliCalibCaptureBad, ::testing::ValuesIn(BadCases()),
+                         [](const ::testing::TestParamInfo<BadCase>& info) { return info.param.name; });
+
+}  // namespace
+}  // namespace vstcal::cli_test

@@ -1,0 +1,135 @@
+#include "flags.h"
+
+#include "common/validators.h"
+#include "vstcal/core/error.h"
+
+namespace vstcal::tools {
+
+void TargetFlags::Add(CLI::App* app) {
+  capture::Target& t = request.target;
+  t.dictionary = "DICT_5X5_1000";
+  t.family = "tag36h11";
+  app->add_option("--type", type, "chessboard, charuco or apriltag-grid")
+      ->check(CLI::IsMember({"chessboard", "charuco", "apriltag-grid"}))
+      ->capture_default_str();
+  app->add_option("--rows", t.rows, "inner corners (tags for apriltag-grid) along Y, down the sheet")->required();
+  app->add_option("--cols", t.cols, "inner corners (tags) along X, across the sheet")->required();
+  app->add_option("--square-size", t.square_size, "chessboard, charuco: side of a square")->check(kFinite);
+  app->add_option("--marker-size", marker_size, "charuco: side of a marker (default 0.75 × square size)")->check(kFinite);
+  app->add_option("--dictionary", t.dictionary, "charuco: OpenCV ArUco dictionary")->capture_default_str();
+  app->add_option("--tag-size", t.tag_size, "apriltag-grid: side of a tag's black square")->check(kFinite);
+  app->add_option("--tag-gap", tag_gap, "apriltag-grid: white between tags (default tag size / 4)")->check(kFinite);
+  app->add_option("--family", t.family, "apriltag-grid: libapriltag family")->capture_default_str();
+  app->add_option("--first-id", t.first_id, "apriltag-grid: id of the top-left tag")->capture_default_str();
+  app->add_option("--margin", margin, "white border around the pattern (default a square, or the tag gap)")->check(kFinite);
+  app->add_option("--length-unit", unit, "mm, cm or m")->check(CLI::IsMember({"mm", "cm", "m"}))->capture_default_str();
+  app->add_option("--dpi", request.dpi, "resolution of the PNG (0: no PNG)")->check(kFinite)->capture_default_str();
+  app->add_option("-o,--output", request.output, "writes OUTPUT.target.json, OUTPUT.svg, OUTPUT.png")->required()->check(kNonEmpty);
+}
+
+capture::TargetRequest TargetFlags::Finish() {
+  capture::Target& t = request.target;
+  t.type = *capture::TargetTypeFromName(type);
+  t.length_unit = *LengthUnitFromName(unit);
+  const bool tags = t.type == capture::TargetType::kAprilTagGrid;
+  if (tags && t.square_size != 0) throw InputError("--square-size: an apriltag-grid has tags, not squares; give --tag-size");
+  if (!tags && t.tag_size != 0) throw InputError("--tag-size: applies to --type apriltag-grid; give --square-size");
+  if (tags && !(t.tag_size > 0)) throw InputError("--tag-size: required for --type apriltag-grid (side of a tag's black square)");
+  if (!tags && !(t.square_size > 0)) throw InputError("--square-size: required for --type " + type + " (side of a square)");
+  if (t.type == capture::TargetType::kCharuco) t.marker_size = marker_size.value_or(0.75 * t.square_size);
+  if (tags) t.tag_gap = tag_gap.value_or(0.25 * t.tag_size);
+  t.margin = margin.value_or(tags ? t.tag_gap : t.square_size);
+  return request;
+}
+
+void DetectFlags::Add(CLI::App* app) {
+  capture::DetectCommand& c = command;
+  app->add_option("TARGET", c.target_file, "the board's vstcal/target@1 file")->required()->check(kNonEmpty);
+  app->add_option("IMAGES", c.images, "image files, folders (their images, sorted) or quoted globs");
+  app->add_option("--manifest", c.manifest, "volume: vstcal/volume-manifest@1 file: each image with its plane_offset")->check(kNonEmpty);
+  app->add_option("--offset-from-name", c.offset_pattern, "volume: regex whose first group in each file name is the plane offset, e.g. 'z(-?[0-9.]+)'")
+      ->check(kNonEmpty);
+  app->add_option("--video", c.video.file, "a video file instead of images (planar views)")->check(kNonEmpty);
+  app->add_option("--camera-index", c.video.camera_index, "a live camera (0: the first) instead of images; needs --frames");
+  app->add_option("--every", c.video.every, "video/camera: keep every k-th frame")->check(CLI::PositiveNumber)->capture_default_str();
+  app->add_option("--frames", c.video.max_frames, "video/camera: frames to keep (0: the whole video)")->check(CLI::NonNegativeNumber);
+  app->add_option("--finder", finder, "chessboard: classic, sector-based or classic+sector-based (the second where the first fails)")
+      ->check(CLI::IsMember({"classic", "sector-based", "classic+sector-based"}))
+      ->capture_default_str();
+  app->add_option("--refine", refiner, "symmetry (vstcal), cornersubpix (OpenCV) or none")
+      ->check(CLI::IsMember({"symmetry", "cornersubpix", "none"}))
+      ->capture_default_str();
+  app->add_option("--min-corners", c.detect.detector.min_corners, "a view with fewer corners is rejected")->capture_default_str();
+  app->add_option("--max-blur-px", c.detect.detector.max_blur_px, "a view whose edges are blurrier (σ, px) is rejected")
+      ->check(kPositiveFinite)
+      ->capture_default_str();
+  app->add_option("--min-views", c.detect.min_views, "fewer usable images is an error (exit code 3)")->capture_default_str();
+  app->add_flag("--skip-unreadable", c.detect.skip_unreadable, "list unreadable images as rejected instead of stopping");
+  app->add_option("--threads", c.detect.threads, "threads (0: all cores; the output does not depend on it)");
+  app->add_option("--camera-name", c.detect.camera_name, "the output's \"camera\" field, e.g. left");
+  app->add_option("--overlay", c.overlay_folder, "write each image with its corners drawn into this folder")->check(kNonEmpty);
+  app->add_option("-o,--output", c.output, "vstcal/correspondences@1 file to write")->required()->check(kNonEmpty);
+  app->add_flag("-q,--quiet", quiet, "print only errors");
+}
+
+capture::DetectCommand DetectFlags::Finish() {
+  capture::DetectorOptions& d = command.detect.detector;
+  d.finder = finder == "classic" ? capture::ChessboardFinder::kClassic
+             : finder == "sector-based" ? capture::ChessboardFinder::kSectorBased
+                                        : capture::ChessboardFinder::kClassicThenSectorBased;
+  d.refiner = refiner == "symmetry" ? capture::CornerRefiner::kSymmetry
+              : refiner == "cornersubpix" ? capture::CornerRefiner::kCornerSubPix
+                                          : capture::CornerRefiner::kNone;
+  if (d.min_corners < 4) throw InputError("--min-corners: must be at least 4 (a homography needs 4 points)");
+  if (command.detect.min_views < 1) throw InputError("--min-views: must be at least 1");
+  return command;
+}
+
+void RenderFlags::Add(CLI::App* app) {
+  capture::RenderCommand& c = command;
+  capture::SceneSpec& s = c.scene;
+  app->add_option("TARGET", c.target_file, "the vstcal/target@1 file to draw")->required()->check(kNonEmpty);
+  app->add_option("--camera", c.camera_file, "vstcal/camera@1 file: image size, K and distortion (its pose is not used)")
+      ->required()
+      ->check(kNonEmpty);
+  app->add_option("-o,--output", c.output_folder, "folder to write the images, truth.json, camera.truth.json, manifest.json")
+      ->required()
+      ->check(kNonEmpty);
+  app->add_option("--rig", rig, "volume (the template moved along its normal) or planar-views (the board held at poses)")
+      ->check(CLI::IsMember({"volume", "planar-views"}))
+      ->capture_default_str();
+  app->add_option("--near", s.volume.near, "volume: first template offset")->check(kFinite)->capture_default_str();
+  app->add_option("--far", s.volume.far, "volume: last template offset")->check(kFinite)->capture_default_str();
+  app->add_option("--interval", s.volume.interval, "volume: step between template positions")->check(kFinite)->capture_default_str();
+  app->add_option("--camera-distance", s.volume.camera_distance, "volume: camera to the near plane")->check(kFinite)->capture_default_str();
+  app->add_option("--tilt-deg", s.volume.tilt_deg, "volume: optical axis vs template normal")->check(kFinite)->capture_default_str();
+  app->add_option("--tilt-direction-deg", s.volume.tilt_direction_deg, "volume: 0 = camera moves towards +X")->check(kFinite);
+  app->add_option("--roll-deg", s.volume.roll_deg, "volume: camera roll about its optical axis")->check(kFinite);
+  app->add_option("--views", s.views.num_views, "planar views: number of board poses")->capture_default_str();
+  app->add_option("--distance", s.views.distance, "planar views: typical board depth")->check(kFinite)->capture_default_str();
+  app->add_option("--max-tilt-deg", s.views.max_tilt_deg, "planar views: largest board tilt")->check(kFinite)->capture_default_str();
+  app->add_option("--blur-px", s.render.blur_px, "Gaussian blur σ, px")->check(kFinite)->capture_default_str();
+  app->add_option("--noise", s.render.noise, "Gaussian noise σ, grey levels")->check(kFinite)->capture_default_str();
+  app->add_option("--lighting", s.render.lighting, "uneven lighting: the far side is (1 − L) as bright, 0 ≤ L < 1")->check(kFinite);
+  app->add_option("--seed", s.render.seed, "noise (and planar-view pose) seed")->check(kSeed)->capture_default_str();
+  app->add_option("--threads", s.threads, "threads (0: all cores; the images do not depend on it)");
+}
+
+capture::RenderCommand RenderFlags::Finish(CLI::App* app) {
+  capture::SceneSpec& s = command.scene;
+  s.rig = rig == "volume" ? Rig::kVolume : Rig::kPlanarViews;
+  const bool planar = s.rig == Rig::kPlanarViews;
+  const std::vector<std::string> volume_only = {"--near", "--far", "--interval", "--camera-distance", "--tilt-deg", "--tilt-direction-deg",
+                                                "--roll-deg"};
+  const std::vector<std::string> planar_only = {"--views", "--distance", "--max-tilt-deg"};
+  for (const std::string& flag : planar ? volume_only : planar_only) {
+    if (app->count(flag) > 0) throw InputError(flag + ": applies to --rig " + (planar ? "volume" : "planar-views") + " only; remove it or change --rig");
+  }
+  s.views.seed = s.render.seed;
+  if (!(s.render.blur_px >= 0 && s.render.blur_px <= 50)) throw InputError("--blur-px: must lie in [0, 50] px");
+  if (!(s.render.noise >= 0 && s.render.noise <= 255)) throw InputError("--noise: must lie in [0, 255] grey levels");
+  if (!(s.render.lighting >= 0 && s.render.lighting < 1)) throw InputError("--lighting: must lie in [0, 1)");
+  return command;
+}
+
+}  // namespace vstcal::tools
