@@ -132,6 +132,26 @@ TEST_F(CliCalibCapture, PlanarViewsAreDeterministicWhateverTheThreads) {
                    "out/three.json\n");
 }
 
+// Inputs are never overwritten (docs/reliability.md#inputs): an output naming an image or the
+// target description read by this run is refused with exit code 2, and the file keeps its bytes.
+TEST_F(CliCalibCapture, OutputsNeverReplaceTheImagesOrTheTarget) {
+  Camera();
+  Board();
+  RenderViews("in/views", "in/board.target.json", 3);
+  const std::string image = ReadText("in/views/view-01.png"), target = ReadText("in/board.target.json");
+  for (const std::string& victim : {std::string("in/views/view-01.png"), std::string("./in/board.target.json")}) {
+    const CommandResult r = Run(kTool, {"detect", "in/board.target.json", "in/views", "--min-views", "2", "-o", victim});
+    EXPECT_TRUE(FailsWith(r, kTool, kBadInput, victim + ": ", {"never overwrites its inputs"})) << victim;
+  }
+  // The overlay of view-01.png written into the folder it was read from would replace it.
+  const CommandResult r = Run(kTool, {"detect", "in/board.target.json", "in/views", "--min-views", "2", "--overlay", "in/views",
+                                      "-o", "out/corners.json"});
+  EXPECT_EQ(r.exit_code, kBadInput) << r.err;
+  EXPECT_EQ(ReadText("in/views/view-01.png"), image);
+  EXPECT_EQ(ReadText("in/board.target.json"), target);
+  EXPECT_TRUE(OutDirEmpty());
+}
+
 // A volume from file names: --offset-from-name reads each template position from its image's name.
 TEST_F(CliCalibCapture, OffsetsFromFileNames) {
   Camera();

@@ -1,4 +1,5 @@
 #include "vstcal/capture/detect_run.h"
+#include "vstcal/json/input_protection.h"
 
 #include <algorithm>
 #include <cmath>
@@ -251,6 +252,7 @@ CaptureResult DetectInVideo(const VideoRequest& video, const DetectRequest& requ
     std::error_code ec;
     if (!std::filesystem::exists(video.file, ec)) throw InputError(video.file + ": no such file; check the path");
     if (std::filesystem::is_directory(video.file, ec)) throw InputError(video.file + ": is a directory, not a video; give the video file");
+    io::NoteInputFile(video.file);
     // The file backends only, in OpenCV's own order: CAP_ANY also offers the name to libgphoto2,
     // which enumerates the USB bus for a camera of that name (and leaks what it enumerated).
     for (const int api : {cv::CAP_FFMPEG, cv::CAP_GSTREAMER, cv::CAP_OPENCV_MJPEG}) {

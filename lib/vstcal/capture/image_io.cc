@@ -1,5 +1,7 @@
 #include "vstcal/capture/image_io.h"
 
+#include "vstcal/json/input_protection.h"
+
 #include <cerrno>
 #include <cstring>
 #include <fstream>
@@ -130,6 +132,7 @@ LoadedImage LoadImageFile(const std::filesystem::path& path) {
     out.problem = "a directory, not an image";
     return out;
   }
+  io::NoteInputFile(path);  // an output of this run may not replace an image it read
   const auto bytes_on_disk = std::filesystem::file_size(path, ec);
   if (!ec && bytes_on_disk > 1024ull * 1024 * 1024) {
     out.problem = "larger than 1 GiB: not a camera image";
