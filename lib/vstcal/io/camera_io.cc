@@ -116,7 +116,9 @@ Rigid3d ReadRigid(const JsonNode& node) {
   if (!IsRotation(pose.R, 1e-6)) {
     R.Fail("not a rotation matrix (RᵀR ≠ I or det R < 0, tolerance 1e-6)", "write R with at least 7 significant digits");
   }
-  pose.R = NearestRotation(pose.R);
+  // A rotation to rounding (as every file vstcal writes holds) is kept bit for bit, so that a file
+  // read and written again is the same; a coarser one is replaced by the nearest rotation.
+  if (!IsRotation(pose.R, 1e-14)) pose.R = NearestRotation(pose.R);
   pose.t = node.at("t").Vector<3>();
   return pose;
 }
@@ -147,6 +149,13 @@ ParameterCovariance ReadCovariance(const JsonNode& node, const Camera& camera, c
     if (cov.Find(name)) names.at(i).Fail("duplicate parameter \"" + name + "\"", "list each parameter once");
     cov.parameters.push_back(name);
   }
+  return ReadCovarianceMatrix(node, std::move(cov.parameters));
+}
+
+ParameterCovariance ReadCovarianceMatrix(const JsonNode& node, std::vector<std::string> names) {
+  ParameterCovariance cov;
+  cov.parameters = std::move(names);
+  const size_t n = cov.parameters.size();
   const JsonNode m = node.at("matrix");
   m.ArraySize(n);
   cov.matrix.resize(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(n));
@@ -198,8 +207,9 @@ Camera ReadCameraIntrinsics(const JsonNode& node) {
   return Camera::FromK(K, size, model, coefficients);
 }
 
-CalibratedCamera CameraFromJson(const JsonDocument& doc) {
-  const JsonNode root = doc.root();
+CalibratedCamera CameraFromJson(const JsonDocument& doc) { return CameraFromNode(doc.root()); }
+
+CalibratedCamera CameraFromNode(const JsonNode& root) {
   root.ExpectObject();
   CheckFormat(root, kFormat);
   CalibratedCamera c;
