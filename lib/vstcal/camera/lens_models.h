@@ -46,30 +46,33 @@ struct LensModel {
     if (!d_px_d_params && !d_px_d_p) return Project(params, p_cam, px);  // no Jets needed
     if (!(p_cam[2] > 0)) return false;
     // Without d_px_d_params the coefficients are constants: a Jet of x and y alone is enough.
-    constexpr int kDistortion = Model::kNumParams - kNumIntrinsicParams;
-    if (!d_px_d_params) return ProjectWithJets<2>(params, p_cam, px, nullptr, d_px_d_p);
-    return ProjectWithJets<2 + kDistortion>(params, p_cam, px, d_px_d_params, d_px_d_p);
+    if (!d_px_d_params) return ProjectWithJets<false>(params, p_cam, px, nullptr, d_px_d_p);
+    return ProjectWithJets<true>(params, p_cam, px, d_px_d_params, d_px_d_p);
   }
 
  private:
-  // ProjectWithJacobians with Jets of dimension N: x, y, then (N > 2) the distortion coefficients.
-  template <int N>
+  // ProjectWithJacobians with Jets of x, y and, kWithParams, the distortion coefficients.
+  template <bool kWithParams>
   static bool ProjectWithJets(const double* params, const double* p_cam, double* px, double* d_px_d_params,
                               double* d_px_d_p) {
     constexpr int kDistortion = Model::kNumParams - kNumIntrinsicParams;
-    using Jet = ceres::Jet<double, N>;
+    using Jet = ceres::Jet<double, 2 + (kWithParams ? kDistortion : 0)>;
     const double inv_z = 1.0 / p_cam[2];
     const double x = p_cam[0] * inv_z, y = p_cam[1] * inv_z;
     Jet d[kDistortion > 0 ? kDistortion : 1];
     for (int i = 0; i < kDistortion; ++i) {
-      d[i] = N > 2 ? Jet(params[kNumIntrinsicParams + i], 2 + i) : Jet(params[kNumIntrinsicParams + i]);
+      if constexpr (kWithParams) {
+        d[i] = Jet(params[kNumIntrinsicParams + i], 2 + i);
+      } else {
+        d[i] = Jet(params[kNumIntrinsicParams + i]);
+      }
     }
     Jet xd, yd;
     Model::Distort(d, Jet(x, 0), Jet(y, 1), &xd, &yd);
     const double fx = params[0], fy = params[1], s = params[4];
     px[0] = fx * xd.a + s * yd.a + params[2];
     px[1] = fy * yd.a + params[3];
-    if constexpr (N > 2) {
+    if constexpr (kWithParams) {
       double* du = d_px_d_params;
       double* dv = d_px_d_params + Model::kNumParams;
       du[0] = xd.a, du[1] = 0, du[2] = 1, du[3] = 0, du[4] = yd.a;
