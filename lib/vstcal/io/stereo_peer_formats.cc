@@ -1,22 +1,13 @@
 #include "vstcal/io/stereo_peer_formats.h"
 
 #include <opencv2/core.hpp>
-#include <opencv2/core/eigen.hpp>
 
-#include "vstcal/camera/opencv_distortion.h"
+#include "vstcal/camera/opencv_mat.h"
 #include "vstcal/core/error.h"
 #include "vstcal/stereo/epipolar.h"
 
 namespace vstcal::io {
 namespace {
-
-cv::Mat ToCv(const Eigen::MatrixXd& m) {
-  cv::Mat out;
-  cv::eigen2cv(m, out);
-  return out;
-}
-
-cv::Mat Distortion(const Camera& camera) { return cv::Mat(OpenCvDistortion(camera, ShortestOpenCvLength(camera)), true); }
 
 cv::Mat Roi(const std::array<int, 4>& roi) { return (cv::Mat_<int>(1, 4) << roi[0], roi[1], roi[2], roi[3]); }
 
@@ -42,13 +33,13 @@ ExportedCamera OpenCvStereoYamlText(const StereoRig& rig, std::string_view sourc
   fs.writeComment(ProvenanceComment(provenance));
   fs.writeComment("right_from_left: x_right = R x_left + T, T in " + std::string(LengthUnitName(rig.length_unit)));
   fs << "image_width" << size.width << "image_height" << size.height;
-  fs << "M1" << ToCv(rig.left.camera.K()) << "D1" << Distortion(rig.left.camera);
-  fs << "M2" << ToCv(rig.right.camera.K()) << "D2" << Distortion(rig.right.camera);
-  fs << "R" << ToCv(rig.right_from_left.R) << "T" << ToCv(rig.right_from_left.t);
-  fs << "E" << ToCv(EssentialMatrix(rig.right_from_left)) << "F" << ToCv(FundamentalMatrix(rig));
+  fs << "M1" << ToCvMat(rig.left.camera.K()) << "D1" << OpenCvDistortionMat(rig.left.camera);
+  fs << "M2" << ToCvMat(rig.right.camera.K()) << "D2" << OpenCvDistortionMat(rig.right.camera);
+  fs << "R" << ToCvMat(rig.right_from_left.R) << "T" << ToCvMat(rig.right_from_left.t);
+  fs << "E" << ToCvMat(EssentialMatrix(rig.right_from_left)) << "F" << ToCvMat(FundamentalMatrix(rig));
   if (const auto& r = rig.rectification) {
-    fs << "R1" << ToCv(r->left_rect_from_left) << "R2" << ToCv(r->right_rect_from_right);
-    fs << "P1" << ToCv(r->P_left) << "P2" << ToCv(r->P_right) << "Q" << ToCv(r->Q);
+    fs << "R1" << ToCvMat(r->left_rect_from_left) << "R2" << ToCvMat(r->right_rect_from_right);
+    fs << "P1" << ToCvMat(r->P_left) << "P2" << ToCvMat(r->P_right) << "Q" << ToCvMat(r->Q);
     fs << "validRoi1" << Roi(r->valid_roi_left) << "validRoi2" << Roi(r->valid_roi_right);
   }
   ExportedCamera out;

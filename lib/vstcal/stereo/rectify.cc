@@ -1,22 +1,13 @@
 #include "vstcal/stereo/rectify.h"
 
 #include <opencv2/calib3d.hpp>
-#include <opencv2/core/eigen.hpp>
 
-#include "vstcal/camera/opencv_distortion.h"
+#include "vstcal/camera/opencv_mat.h"
 #include "vstcal/core/error.h"
 #include "vstcal/io/peer_formats.h"
 
 namespace vstcal {
 namespace {
-
-cv::Mat ToCv(const Eigen::MatrixXd& m) {
-  cv::Mat out;
-  cv::eigen2cv(m, out);
-  return out;
-}
-
-cv::Mat Distortion(const Camera& camera) { return cv::Mat(OpenCvDistortion(camera, ShortestOpenCvLength(camera)), true); }
 
 template <int Rows, int Cols>
 Eigen::Matrix<double, Rows, Cols> FromCv(const cv::Mat& m) {
@@ -43,9 +34,9 @@ Rectification Rectify(const StereoRig& rig, const RectifyOptions& options, std::
   io::RefuseSkew(rig.right.camera, std::string(source) + ": right", "OpenCV's stereoRectify");
   cv::Mat R1, R2, P1, P2, Q;
   cv::Rect roi1, roi2;
-  cv::stereoRectify(ToCv(rig.left.camera.K()), Distortion(rig.left.camera), ToCv(rig.right.camera.K()),
-                    Distortion(rig.right.camera), cv::Size(size.width, size.height), ToCv(rig.right_from_left.R),
-                    ToCv(rig.right_from_left.t), R1, R2, P1, P2, Q, options.zero_disparity ? cv::CALIB_ZERO_DISPARITY : 0,
+  cv::stereoRectify(ToCvMat(rig.left.camera.K()), OpenCvDistortionMat(rig.left.camera), ToCvMat(rig.right.camera.K()),
+                    OpenCvDistortionMat(rig.right.camera), cv::Size(size.width, size.height), ToCvMat(rig.right_from_left.R),
+                    ToCvMat(rig.right_from_left.t), R1, R2, P1, P2, Q, options.zero_disparity ? cv::CALIB_ZERO_DISPARITY : 0,
                     options.alpha, cv::Size(), &roi1, &roi2);
   Rectification r;
   r.alpha = options.alpha;
