@@ -82,9 +82,10 @@ DisplayPlan PlanDisplay(const DisplayPlanInput& in) {
                        ", the depth b/(2·tan(θ/2)) where the two fields of view begin to overlap: no capture width "
                        "holds the translation (seed 000 Eq. 6); choose a farther zero-parallax depth");
     }
-    plan.capture_width_needed = A / (1 - fraction);
-    plan.focal_px = plan.capture_width_needed / (2 * std::tan(theta / 2));
-    plan.translation_px = plan.capture_width_needed - A;
+    // f from Eq. 6's A′, then t and A + t as with a given f, so that p(z0) = t − d(z0) is exactly 0.
+    plan.focal_px = A / (1 - fraction) / (2 * std::tan(theta / 2));
+    plan.translation_px = in.z0 ? CrossedDisparityPx(plan.focal_px, in.baseline, *in.z0) : 0.0;
+    plan.capture_width_needed = A + plan.translation_px;
   }
   if (in.capture_width) plan.capture_margin_px = *in.capture_width - static_cast<int>(std::ceil(plan.capture_width_needed - 1e-9));
   const double t = plan.translation_px;
