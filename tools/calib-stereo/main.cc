@@ -21,9 +21,10 @@ int main(int argc, char** argv) {
     using namespace vstcal;
     for (const tools::Subcommand& s : subcommands) {
       if (!s.app->parsed()) continue;
-      const uint64_t seed = s.app->get_name() == "simulate" ? s.app->get_option("--seed")->as<uint64_t>() : 0;
-      const io::Provenance provenance =
-          io::MakeProvenance("calib-stereo", argc, argv, s.app->get_name() == "simulate" ? std::optional(seed) : std::nullopt);
+      // Only `simulate` draws random numbers: its seed goes into the provenance.
+      const CLI::Option* seed = s.app->get_option_no_throw("--seed");
+      const io::Provenance provenance = io::MakeProvenance(
+          "calib-stereo", argc, argv, seed ? std::optional(seed->as<uint64_t>()) : std::nullopt);
       const stereo::Outcome outcome = s.run(provenance);
       io::WriteFilesAtomically({outcome.files.begin(), outcome.files.end()});
       std::cerr << outcome.text;
