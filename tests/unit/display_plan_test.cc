@@ -121,11 +121,9 @@ TEST(DisplayPlan, AgreesWithErrSimsDisplayModel) {
                                                        {"display.left.screen_shift.u", -plan.translation_px / 2},
                                                        {"display.right.screen_shift.u", plan.translation_px / 2}};
       for (const auto& [name, value] : biases) {
-        bool found = false;
-        for (errsim::ChainParameter& p : model.parameters) {
-          if (p.name == name) p.distribution = errsim::Distribution::MakeFixed(value), found = true;
-        }
-        ASSERT_TRUE(found) << name;
+        errsim::ChainParameter* p = model.Find(name);
+        ASSERT_NE(p, nullptr) << name;
+        p->distribution = errsim::Distribution::MakeFixed(value);
       }
       const errsim::ChainEvaluator chain(model);
       const std::vector<double> theta = model.MeanTheta();
@@ -133,7 +131,7 @@ TEST(DisplayPlan, AgreesWithErrSimsDisplayModel) {
       chain.Evaluate(theta.data(), &sample);
       for (size_t k = 0; k < depths.size(); ++k) {
         ASSERT_TRUE(plan.rows[k].perceived_depth.has_value());
-        EXPECT_NEAR(sample.points[k].perceived.z(), *plan.rows[k].perceived_depth, 1e-9 * depths[k]) << ipd << " " << depths[k];
+        EXPECT_NEAR(sample.points[k].seen.z(), *plan.rows[k].perceived_depth, 1e-9 * depths[k]) << ipd << " " << depths[k];
       }
     }
   }

@@ -4,7 +4,7 @@
 
 #include "calib-stereo/subcommands.h"
 #include "common/run_tool.h"
-#include "vstcal/io/json_writer.h"
+#include "vstcal/json/json_writer.h"
 
 int main(int argc, char** argv) {
   CLI::App app{

@@ -6,7 +6,7 @@
 
 #include <CLI/CLI.hpp>
 
-#include "vstcal/io/provenance.h"
+#include "vstcal/json/provenance.h"
 #include "vstcal/stereo/commands.h"
 
 namespace vstcal::tools {

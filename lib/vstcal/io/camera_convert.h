@@ -10,7 +10,7 @@
 
 #include "vstcal/core/units.h"
 #include "vstcal/io/peer_formats.h"
-#include "vstcal/io/provenance.h"
+#include "vstcal/json/provenance.h"
 
 namespace vstcal::io {
 

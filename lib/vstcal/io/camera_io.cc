@@ -10,8 +10,8 @@
 #include "vstcal/calib/decompose.h"
 #include "vstcal/camera/intrinsics.h"
 #include "vstcal/core/suggest.h"
-#include "vstcal/io/correspondences_io.h"
-#include "vstcal/io/format_check.h"
+#include "vstcal/json/fields.h"
+#include "vstcal/json/format_check.h"
 
 namespace vstcal::io {
 namespace {
@@ -108,20 +108,6 @@ void CheckTangentPoseExists(const JsonNode& name_node, const std::string& name, 
 }
 
 }  // namespace
-
-Rigid3d ReadRigid(const JsonNode& node) {
-  Rigid3d pose;
-  const JsonNode R = node.at("R");
-  pose.R = R.Matrix<3, 3>();
-  if (!IsRotation(pose.R, 1e-6)) {
-    R.Fail("not a rotation matrix (RᵀR ≠ I or det R < 0, tolerance 1e-6)", "write R with at least 7 significant digits");
-  }
-  // A rotation to rounding (as every file vstcal writes holds) is kept bit for bit, so that a file
-  // read and written again is the same; a coarser one is replaced by the nearest rotation.
-  if (!IsRotation(pose.R, 1e-14)) pose.R = NearestRotation(pose.R);
-  pose.t = node.at("t").Vector<3>();
-  return pose;
-}
 
 ParameterCovariance ReadCovariance(const JsonNode& node, const Camera& camera, const std::optional<CovariancePoses>& poses) {
   ParameterCovariance cov;

@@ -2,8 +2,8 @@
 #pragma once
 
 #include "vstcal/core/units.h"
-#include "vstcal/io/json_writer.h"
-#include "vstcal/io/provenance.h"
+#include "vstcal/json/json_writer.h"
+#include "vstcal/json/provenance.h"
 #include "vstcal/stereo/display_plan.h"
 
 namespace vstcal::io {

@@ -7,9 +7,9 @@
 #include <string>
 #include <vector>
 
-#include "vstcal/io/json_reader.h"
-#include "vstcal/io/json_writer.h"
-#include "vstcal/io/provenance.h"
+#include "vstcal/json/json_reader.h"
+#include "vstcal/json/json_writer.h"
+#include "vstcal/json/provenance.h"
 #include "vstcal/stereo/registration.h"
 #include "vstcal/stereo/registration_accuracy.h"
 #include "vstcal/stereo/tracks.h"

@@ -6,7 +6,7 @@
 
 #include "vstcal/io/camera_io.h"
 #include "vstcal/io/correspondences_io.h"
-#include "vstcal/io/format_check.h"
+#include "vstcal/json/format_check.h"
 
 namespace vstcal::io {
 namespace {

@@ -3,9 +3,9 @@
 
 #include <filesystem>
 
-#include "vstcal/io/json_reader.h"
-#include "vstcal/io/json_writer.h"
-#include "vstcal/io/provenance.h"
+#include "vstcal/json/json_reader.h"
+#include "vstcal/json/json_writer.h"
+#include "vstcal/json/provenance.h"
 #include "vstcal/stereo/stereo_rig.h"
 
 namespace vstcal::io {

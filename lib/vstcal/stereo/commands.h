@@ -10,7 +10,7 @@
 
 #include "vstcal/core/units.h"
 #include "vstcal/geometry/rigid3.h"
-#include "vstcal/io/provenance.h"
+#include "vstcal/json/provenance.h"
 #include "vstcal/stereo/display_plan.h"
 #include "vstcal/stereo/rectify.h"
 #include "vstcal/stereo/registration.h"
