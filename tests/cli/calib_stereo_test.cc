@@ -148,6 +148,21 @@ TEST_F(CliCalibStereo, ExportRefusesConflictingOutputs) {
                     "--rectify: the rectification goes into --opencv's YAML", {}));
 }
 
+// An output naming an input (directly or by another path to it) is refused; the input is unchanged.
+TEST_F(CliCalibStereo, NeverOverwritesAnInput) {
+  WriteInputs();
+  Ok({"simulate", "in/rig.json", "-o", "out/tracks.json", "--frames", "3", "--seed", "1"});
+  const std::string rig = ReadText("in/rig.json"), tracks = ReadText("out/tracks.json");
+  EXPECT_TRUE(Fails({"register", "in/rig.json", "out/tracks.json", "-o", "out/../out/tracks.json"}, kBadInput,
+                    "out/../out/tracks.json: this output is the input out/tracks.json", {"another file"}));
+  EXPECT_TRUE(Fails({"export", "in/rig.json", "--opencv", "in/rig.json"}, kBadInput, "in/rig.json: this output is the input",
+                    {}));
+  EXPECT_TRUE(Fails({"assemble", "in/left.json", "in/right.json", "--translation", "-63,0,0", "-o", "in/right.json"},
+                    kBadInput, "in/right.json: this output is the input", {}));
+  EXPECT_EQ(ReadText("in/rig.json"), rig);
+  EXPECT_EQ(ReadText("out/tracks.json"), tracks);
+}
+
 TEST_F(CliCalibStereo, SimulateThenRegisterReportsAccuracy) {
   WriteInputs();
   Ok({"simulate", "in/rig.json", "-o", "out/tracks.json", "--frames", "20", "--noise", "0.3", "--seed", "4"});

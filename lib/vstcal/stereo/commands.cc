@@ -3,6 +3,8 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
+#include <initializer_list>
 
 #include "vstcal/core/error.h"
 #include "vstcal/io/camera_convert.h"
@@ -42,6 +44,20 @@ std::string RigSummary(const StereoRig& rig) {
   return s;
 }
 
+// Inputs are never overwritten: an output that is one of the inputs (by any path to it) is refused
+// before anything is written.
+Outcome RefuseOverwritingInputs(Outcome out, std::initializer_list<std::string> inputs) {
+  for (const auto& [output, text] : out.files) {
+    for (const std::string& input : inputs) {
+      std::error_code ec;
+      if (!input.empty() && std::filesystem::equivalent(output, input, ec)) {
+        throw InputError(output + ": this output is the input " + input + "; write the output to another file");
+      }
+    }
+  }
+  return out;
+}
+
 }  // namespace
 
 Outcome Assemble(const AssembleRequest& request, const io::Provenance& provenance) {
@@ -61,7 +77,7 @@ Outcome Assemble(const AssembleRequest& request, const io::Provenance& provenanc
   for (const auto& note : left.notes) out.text += "note: " + note + "\n";
   for (const auto& note : right.notes) out.text += "note: " + note + "\n";
   out.text += RigSummary(rig);
-  return out;
+  return RefuseOverwritingInputs(std::move(out), {request.left, request.right});
 }
 
 Outcome Export(const ExportRequest& request, const io::Provenance& provenance) {
@@ -81,7 +97,7 @@ Outcome Export(const ExportRequest& request, const io::Provenance& provenance) {
     for (const auto* e : {&l, &r}) notes.insert(notes.end(), e->notes.begin(), e->notes.end());
   }
   for (const auto& note : notes) out.text += "note: " + note + "\n";
-  return out;
+  return RefuseOverwritingInputs(std::move(out), {request.rig});
 }
 
 Outcome Simulate(const SimulateRequest& request, const io::Provenance& provenance) {
@@ -91,7 +107,7 @@ Outcome Simulate(const SimulateRequest& request, const io::Provenance& provenanc
   out.files.emplace_back(request.output, io::DumpJson(io::TracksToJson(tracks, provenance)));
   out.text = Format("%zu frames, %zu embedded points, %zu virtual points, noise %.3g px\n", tracks.frames.size(),
                     tracks.embedded.size(), tracks.virtual_points.size(), request.spec.noise_px);
-  return out;
+  return RefuseOverwritingInputs(std::move(out), {request.rig});
 }
 
 Outcome Register(const RegisterRequest& request, const io::Provenance& provenance) {
@@ -136,7 +152,7 @@ Outcome Register(const RegisterRequest& request, const io::Provenance& provenanc
                          accuracy[eye]["virtual_px"]["rms"].get<double>(), accuracy[eye]["virtual_px"]["max"].get<double>());
     }
   }
-  return out;
+  return RefuseOverwritingInputs(std::move(out), {request.rig, request.tracks});
 }
 
 Outcome Plan(const PlanRequest& request, const io::Provenance& provenance) {
@@ -177,7 +193,7 @@ Outcome Plan(const PlanRequest& request, const io::Provenance& provenance) {
     text += "\n";
   }
   out.text = text;
-  return out;
+  return RefuseOverwritingInputs(std::move(out), {request.rig});
 }
 
 }  // namespace vstcal::stereo

@@ -1,6 +1,7 @@
 // What each calib-stereo subcommand does, as library calls (docs/tools/calib-stereo.md): the tool's
 // main parses flags into one of these requests, calls it and writes the returned files all or
-// nothing. A C++ user gets the same results without the tool.
+// nothing; none of them writes over one of its inputs (InputError). A C++ user gets the same
+// results without the tool.
 #pragma once
 
 #include <optional>
