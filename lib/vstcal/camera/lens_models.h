@@ -38,24 +38,41 @@ struct LensModel {
 
   // Project with its Jacobians, in double (Basalt's pattern): d_px_d_params is 2 × kNumParams and
   // d_px_d_p is 2 × 3, both row-major, either may be null. The distortion is differentiated by
-  // ceres::Jet through the same Model::Distort (dimension 2 + number of distortion terms); the
-  // rest (division by z, K) analytically. Returns false, writing nothing, when z ≤ 0.
+  // ceres::Jet through the same Model::Distort (dimension 2 + number of distortion terms, or 2
+  // when only d_px_d_p is asked for); the rest (division by z, K) analytically. Returns false,
+  // writing nothing, when z ≤ 0.
   static bool ProjectWithJacobians(const double* params, const double* p_cam, double* px, double* d_px_d_params,
                                    double* d_px_d_p) {
     if (!d_px_d_params && !d_px_d_p) return Project(params, p_cam, px);  // no Jets needed
     if (!(p_cam[2] > 0)) return false;
+    // Without d_px_d_params the coefficients are constants: a Jet of x and y alone is enough.
+    if (!d_px_d_params) return ProjectWithJets<false>(params, p_cam, px, nullptr, d_px_d_p);
+    return ProjectWithJets<true>(params, p_cam, px, d_px_d_params, d_px_d_p);
+  }
+
+ private:
+  // ProjectWithJacobians with Jets of x, y and, kWithParams, the distortion coefficients.
+  template <bool kWithParams>
+  static bool ProjectWithJets(const double* params, const double* p_cam, double* px, double* d_px_d_params,
+                              double* d_px_d_p) {
     constexpr int kDistortion = Model::kNumParams - kNumIntrinsicParams;
-    using Jet = ceres::Jet<double, 2 + kDistortion>;
+    using Jet = ceres::Jet<double, 2 + (kWithParams ? kDistortion : 0)>;
     const double inv_z = 1.0 / p_cam[2];
     const double x = p_cam[0] * inv_z, y = p_cam[1] * inv_z;
     Jet d[kDistortion > 0 ? kDistortion : 1];
-    for (int i = 0; i < kDistortion; ++i) d[i] = Jet(params[kNumIntrinsicParams + i], 2 + i);
+    for (int i = 0; i < kDistortion; ++i) {
+      if constexpr (kWithParams) {
+        d[i] = Jet(params[kNumIntrinsicParams + i], 2 + i);
+      } else {
+        d[i] = Jet(params[kNumIntrinsicParams + i]);
+      }
+    }
     Jet xd, yd;
     Model::Distort(d, Jet(x, 0), Jet(y, 1), &xd, &yd);
     const double fx = params[0], fy = params[1], s = params[4];
     px[0] = fx * xd.a + s * yd.a + params[2];
     px[1] = fy * yd.a + params[3];
-    if (d_px_d_params) {
+    if constexpr (kWithParams) {
       double* du = d_px_d_params;
       double* dv = d_px_d_params + Model::kNumParams;
       du[0] = xd.a, du[1] = 0, du[2] = 1, du[3] = 0, du[4] = yd.a;
@@ -75,6 +92,7 @@ struct LensModel {
     return true;
   }
 
+ public:
   // Inverse of Project in double: the ray (x, y, 1) in the camera frame whose projection is px.
   // The distortion is inverted by Newton's method with the Jacobian of Model::Distort taken by
   // ceres::Jet (the same code as the forward model). Returns nullopt where Newton does not

@@ -33,8 +33,7 @@ std::string_view CameraFileFormatDescription(CameraFileFormat format) {
   return "?";
 }
 
-Conversion ConvertCamera(const std::filesystem::path& input, CameraFileFormat from, CameraFileFormat to,
-                         const ConvertOptions& options, const Provenance& provenance) {
+ImportedCamera ReadCameraFile(const std::filesystem::path& input, CameraFileFormat from, const ConvertOptions& options) {
   ImportedCamera in;
   switch (from) {
     case CameraFileFormat::kVstcal:
@@ -47,6 +46,12 @@ Conversion ConvertCamera(const std::filesystem::path& input, CameraFileFormat fr
       in = ReadMrcalCameramodel(input, options.length_unit);
       break;
   }
+  return in;
+}
+
+Conversion ConvertCamera(const std::filesystem::path& input, CameraFileFormat from, CameraFileFormat to,
+                         const ConvertOptions& options, const Provenance& provenance) {
+  ImportedCamera in = ReadCameraFile(input, from, options);
   ExportedCamera out;
   const std::string source = input.string();
   switch (to) {

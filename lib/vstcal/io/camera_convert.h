@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "vstcal/core/units.h"
+#include "vstcal/io/peer_formats.h"
 #include "vstcal/json/provenance.h"
 
 namespace vstcal::io {
@@ -35,6 +36,9 @@ struct Conversion {
   std::string text;                // the output file
   std::vector<std::string> notes;  // what was assumed, kept or not written: for the user
 };
+
+// Reads a camera file of any of the three formats (`options.length_unit` as ConvertOptions says).
+ImportedCamera ReadCameraFile(const std::filesystem::path& input, CameraFileFormat from, const ConvertOptions& options);
 
 // Reads `input` as `from` and returns the text of `to`. Throws InputError for bad input and for a
 // camera that `to` cannot hold exactly (skew in OpenCV or mrcal; a coefficient the chosen mrcal

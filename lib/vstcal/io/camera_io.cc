@@ -137,6 +137,13 @@ ParameterCovariance ReadCovariance(const JsonNode& node, const Camera& camera, c
     if (cov.Find(name)) names.at(i).Fail("duplicate parameter \"" + name + "\"", "list each parameter once");
     cov.parameters.push_back(name);
   }
+  return ReadCovarianceMatrix(node, std::move(cov.parameters));
+}
+
+ParameterCovariance ReadCovarianceMatrix(const JsonNode& node, std::vector<std::string> names) {
+  ParameterCovariance cov;
+  cov.parameters = std::move(names);
+  const size_t n = cov.parameters.size();
   const JsonNode m = node.at("matrix");
   m.ArraySize(n);
   cov.matrix.resize(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(n));
@@ -194,8 +201,9 @@ Camera ReadCameraIntrinsics(const JsonNode& node) {
   return Camera::FromK(K, size, model, coefficients);
 }
 
-CalibratedCamera CameraFromJson(const JsonDocument& doc) {
-  const JsonNode root = doc.root();
+CalibratedCamera CameraFromJson(const JsonDocument& doc) { return CameraFromNode(doc.root()); }
+
+CalibratedCamera CameraFromNode(const JsonNode& root) {
   root.ExpectObject();
   CheckFormat(root, kFormat);
   CalibratedCamera c;

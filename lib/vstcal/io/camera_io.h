@@ -18,6 +18,9 @@ namespace vstcal::io {
 // to P's free sign); R must be a rotation to 1e-6 (it is then re-orthonormalized).
 CalibratedCamera ReadCamera(const std::filesystem::path& path);
 CalibratedCamera CameraFromJson(const JsonDocument& doc);
+// A camera@1 object inside another file (a stereo@1 rig's "left"); fields are reported under the
+// node's path ("left.K").
+CalibratedCamera CameraFromNode(const JsonNode& node);
 
 // The camera@1 object. The members of `extra` (e.g. a solver's diagnostics) are inserted before
 // the closing provenance.
@@ -51,5 +54,9 @@ struct CovariancePoses {
 // matrix square, symmetric to 1e-9 relative, with a non-negative diagonal and positive
 // semi-definite (smallest eigenvalue ≥ −1e-9 × the largest |eigenvalue|).
 ParameterCovariance ReadCovariance(const JsonNode& node, const Camera& camera, const std::optional<CovariancePoses>& poses);
+// The "matrix" of a covariance object whose parameter `names` are already checked: as many rows
+// of as many finite numbers, symmetric, non-negative diagonal, positive semi-definite (the rules
+// above), for every format that writes a covariance.
+ParameterCovariance ReadCovarianceMatrix(const JsonNode& node, std::vector<std::string> names);
 
 }  // namespace vstcal::io

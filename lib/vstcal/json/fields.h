@@ -20,7 +20,8 @@ ImageSize ReadImageSize(const JsonNode& node);
 // length_unit: "mm", "cm" or "m".
 LengthUnit ReadLengthUnit(const JsonNode& node);
 
-// A transform {"R": 3×3, "t": [3]}: R must be a rotation to 1e-6 (then re-orthonormalized).
+// A transform {"R": 3×3, "t": [3]}: R must be a rotation to 1e-6; one that is not a rotation to
+// 1e-14 is replaced by the nearest rotation (a rotation to rounding is kept bit for bit).
 Rigid3d ReadRigid(const JsonNode& node);
 
 // Fails on any key of an object not in `allowed`, naming it as `what` and suggesting the closest

@@ -1,0 +1,25 @@
+// vstcal/stereo@1 reader and writer (docs/formats.md#stereo).
+#pragma once
+
+#include <filesystem>
+
+#include "vstcal/json/json_reader.h"
+#include "vstcal/json/json_writer.h"
+#include "vstcal/json/provenance.h"
+#include "vstcal/stereo/stereo_rig.h"
+
+namespace vstcal::io {
+
+// Reads and validates a rig; throws InputError "<file>: <field>: <what>; <fix>". Beyond types:
+// left and right are camera@1 objects holding intrinsics only, in the rig's length unit;
+// right_from_left's R a rotation to 1e-6 and its cameras apart; baseline = |t| to 1e-6 relative;
+// a covariance over exactly the six tangents of right_from_left (checked as a camera's); a
+// rectification whose rotations align the two cameras and put the baseline on one image axis,
+// whose P and Q agree with them (docs/formats.md#stereo lists every rule).
+StereoRig ReadStereoRig(const std::filesystem::path& path);
+StereoRig StereoRigFromJson(const JsonDocument& doc);
+
+// The stereo@1 object: a file written, read and written again is the same bytes.
+OrderedJson StereoRigToJson(const StereoRig& rig, const Provenance& provenance);
+
+}  // namespace vstcal::io

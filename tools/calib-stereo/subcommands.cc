@@ -1,0 +1,206 @@
+#include "calib-stereo/subcommands.h"
+
+#include <memory>
+
+#include "common/validators.h"
+#include "vstcal/core/error.h"
+
+namespace vstcal::tools {
+namespace {
+
+const std::vector<std::string> kUnits = {"mm", "cm", "m"};
+
+// --rectify and --alpha, shared by assemble and export.
+struct RectifyFlags {
+  bool rectify = false;
+  double alpha = -1;
+  void Add(CLI::App* app) {
+    app->add_flag("--rectify", rectify, "add OpenCV's stereoRectify (R1, R2, P1, P2, Q, valid rectangles)");
+    app->add_option("--alpha", alpha, "stereoRectify's free scaling: -1 (OpenCV's default), 0 (valid pixels only) ... 1 (all pixels)")
+        ->check(kFinite);
+  }
+  std::optional<RectifyOptions> Get(CLI::App* app) const {
+    if (app->count("--alpha") && !rectify) throw InputError("--alpha: applies with --rectify only; add --rectify or drop --alpha");
+    if (!rectify) return std::nullopt;
+    return RectifyOptions{alpha, true};
+  }
+};
+
+std::optional<LengthUnit> Unit(const std::string& name) {
+  return name.empty() ? std::nullopt : LengthUnitFromName(name);
+}
+
+}  // namespace
+
+Subcommand AddAssemble(CLI::App& parent) {
+  struct Flags {
+    stereo::AssembleRequest request;
+    std::vector<double> rotvec_deg, translation;
+    std::string unit;
+    RectifyFlags rectify;
+  };
+  auto f = std::make_shared<Flags>();
+  CLI::App* app = parent.add_subcommand(
+      "assemble",
+      "a rig from two camera files (vstcal/camera@1 .json, OpenCV .yaml/.yml, mrcal .cameramodel) and right_from_left: "
+      "given by --translation (and --rotvec-deg), or derived from the cameras' poses in one frame (two mrcal files "
+      "sharing a reference, or two camera@1 files solved against one volume)");
+  app->add_option("LEFT", f->request.left, "left camera file")->required()->check(kNonEmpty);
+  app->add_option("RIGHT", f->request.right, "right camera file")->required()->check(kNonEmpty);
+  app->add_option("-o,--output", f->request.output, "rig to write (vstcal/stereo@1)")->required()->check(kNonEmpty);
+  app->add_option("--translation", f->translation, "t of right_from_left: tx,ty,tz (x_right = R x_left + t), length unit")
+      ->delimiter(',')->expected(3)->check(kFinite);
+  app->add_option("--rotvec-deg", f->rotvec_deg, "R of right_from_left as a rotation vector in degrees: rx,ry,rz (default 0,0,0)")
+      ->delimiter(',')->expected(3)->check(kFinite);
+  app->add_option("--length-unit", f->unit, "mm, cm or m: the unit of --translation (default mm) and of .cameramodel and OpenCV YAML inputs")
+      ->check(CLI::IsMember(kUnits));
+  f->rectify.Add(app);
+  return {app, [f, app](const io::Provenance& provenance) {
+            stereo::AssembleRequest r = f->request;
+            if (!f->rotvec_deg.empty() && f->translation.empty()) {
+              throw InputError("--rotvec-deg: given without --translation; give both, or neither to derive right_from_left from the cameras' poses");
+            }
+            if (!f->translation.empty()) {
+              Eigen::Vector3d rotvec = Eigen::Vector3d::Zero();
+              if (!f->rotvec_deg.empty()) rotvec << DegToRad(f->rotvec_deg[0]), DegToRad(f->rotvec_deg[1]), DegToRad(f->rotvec_deg[2]);
+              r.right_from_left = Rigid3d::FromRotvec(rotvec, Eigen::Vector3d(f->translation[0], f->translation[1], f->translation[2]));
+            }
+            r.length_unit = Unit(f->unit);
+            r.rectify = f->rectify.Get(app);
+            return stereo::Assemble(r, provenance);
+          }};
+}
+
+Subcommand AddExport(CLI::App& parent) {
+  struct Flags {
+    stereo::ExportRequest request;
+    std::vector<std::string> mrcal;
+    std::string unit;
+    RectifyFlags rectify;
+  };
+  auto f = std::make_shared<Flags>();
+  CLI::App* app = parent.add_subcommand(
+      "export", "the rig for OpenCV (one stereo YAML: M1, D1, M2, D2, R, T, E, F and, with a rectification, R1, R2, P1, "
+                "P2, Q) and/or for mrcal (two .cameramodel files whose reference frame is the left camera)");
+  app->add_option("RIG", f->request.rig, "rig file (vstcal/stereo@1)")->required()->check(kNonEmpty);
+  app->add_option("--opencv", f->request.opencv, "OpenCV FileStorage YAML to write")->check(kNonEmpty);
+  app->add_option("--mrcal", f->mrcal, "the left and the right .cameramodel to write")->expected(2)->check(kNonEmpty);
+  app->add_option("--length-unit", f->unit, "mm, cm or m: unit of the .cameramodel translation (default: the rig's)")
+      ->check(CLI::IsMember(kUnits));
+  f->rectify.Add(app);
+  return {app, [f, app](const io::Provenance& provenance) {
+            stereo::ExportRequest r = f->request;
+            if (r.opencv.empty() && f->mrcal.empty()) throw InputError("export: nothing to write; give --opencv FILE and/or --mrcal LEFT RIGHT");
+            if (!f->mrcal.empty()) std::tie(r.mrcal_left, r.mrcal_right) = std::tie(f->mrcal[0], f->mrcal[1]);
+            if (!f->unit.empty() && f->mrcal.empty()) throw InputError("--length-unit: applies to --mrcal output only; drop it");
+            r.mrcal_length_unit = Unit(f->unit);
+            r.rectify = f->rectify.Get(app);
+            if (r.rectify && r.opencv.empty()) throw InputError("--rectify: the rectification goes into --opencv's YAML; give --opencv");
+            return stereo::Export(r, provenance);
+          }};
+}
+
+Subcommand AddSimulate(CLI::App& parent) {
+  struct Flags {
+    stereo::SimulateRequest request;
+    std::string layout = "planar";
+  };
+  auto f = std::make_shared<Flags>();
+  CLI::App* app = parent.add_subcommand(
+      "simulate", "synthetic tracks (vstcal/tracks@1) with the true pose of every frame: the rig moving in front of 4 "
+                  "coplanar (or 6 spatial) embedded points, Gaussian pixel noise; input for `register`");
+  SyntheticTracksSpec& s = f->request.spec;
+  app->add_option("RIG", f->request.rig, "rig file (vstcal/stereo@1)")->required()->check(kNonEmpty);
+  app->add_option("-o,--output", f->request.output, "tracks to write")->required()->check(kNonEmpty);
+  app->add_option("--frames", s.frames, "frames")->check(CLI::Range(1, 1000000))->capture_default_str();
+  app->add_option("--noise", s.noise_px, "pixel noise σ per coordinate, px")->check(CLI::NonNegativeNumber & kFinite)->capture_default_str();
+  app->add_option("--seed", s.seed, "random seed")->check(kSeed)->capture_default_str();
+  app->add_option("--layout", f->layout, "planar (4 points in a square) or spatial (6 points)")
+      ->check(CLI::IsMember({"planar", "spatial"}))->capture_default_str();
+  app->add_option("--size", s.size, "side of the square or cube of embedded points, the rig's length unit")->check(kPositiveFinite)->capture_default_str();
+  app->add_option("--distance", s.distance, "distance of the rig from the points, the rig's length unit")->check(kPositiveFinite)->capture_default_str();
+  return {app, [f](const io::Provenance& provenance) {
+            stereo::SimulateRequest r = f->request;
+            r.spec.planar = f->layout == "planar";
+            return stereo::Simulate(r, provenance);
+          }};
+}
+
+Subcommand AddRegister(CLI::App& parent) {
+  struct Flags {
+    stereo::RegisterRequest request;
+    std::string mode = "left";
+  };
+  auto f = std::make_shared<Flags>();
+  CLI::App* app = parent.add_subcommand(
+      "register", "binocular registration of every frame of a tracks file: the left pose by PnP (closed form, then "
+                  "Levenberg-Marquardt), the right one by composition with the rig (seed 000 §4.3), and the virtual points "
+                  "in both images; or each eye on its own (per-eye), or both eyes in one solve (joint)");
+  app->add_option("RIG", f->request.rig, "rig file (vstcal/stereo@1)")->required()->check(kNonEmpty);
+  app->add_option("TRACKS", f->request.tracks, "tracks file (vstcal/tracks@1)")->required()->check(kNonEmpty);
+  app->add_option("-o,--output", f->request.output, "registration to write (vstcal/registration@1)")->required()->check(kNonEmpty);
+  app->add_option("--mode", f->mode, "left (seed 000), per-eye or joint")
+      ->check(CLI::IsMember({"left", "per-eye", "joint"}))->capture_default_str();
+  app->add_flag("--warm-start", f->request.options.warm_start,
+                "start each frame from the previous frame's pose instead of the closed form (tracking)");
+  return {app, [f](const io::Provenance& provenance) {
+            stereo::RegisterRequest r = f->request;
+            r.options.mode = *RegistrationModeFromName(f->mode);
+            return stereo::Register(r, provenance);
+          }};
+}
+
+Subcommand AddPlan(CLI::App& parent) {
+  struct Flags {
+    stereo::PlanRequest request;
+    double hfov_deg = 0, focal = 0, z0 = 0;
+    int capture_width = 0;
+    std::string viewer = "none", unit;
+  };
+  auto f = std::make_shared<Flags>();
+  CLI::App* app = parent.add_subcommand(
+      "plan", "stereo display planning (seed 000 Eq. 3-6): disparity and screen parallax at each depth before and after "
+              "translating the images so that z0 has zero parallax, the translation, the capture width it needs, and what "
+              "a viewer with another IPD than the baseline perceives (seed 001 §4.6)");
+  DisplayPlanInput& in = f->request.input;
+  app->add_option("-o,--output", f->request.output, "plan to write (vstcal/stereo-plan@1)")->required()->check(kNonEmpty);
+  app->add_option("--rig", f->request.rig, "take the baseline, focal length and capture width from this rig")->check(kNonEmpty);
+  app->add_option("--baseline", in.baseline, "camera baseline b")->check(kPositiveFinite);
+  app->add_option("--focal-px", f->focal, "the capture's horizontal focal length, px")->check(kPositiveFinite);
+  app->add_option("--hfov-deg", f->hfov_deg, "the capture's horizontal field of view across its width (seed 000's θ), degrees")
+      ->check(kPositiveFinite);
+  app->add_option("--capture-width", f->capture_width, "the camera's image width, px, to check against the need")
+      ->check(CLI::PositiveNumber);
+  app->add_option("--display-width", in.display_width, "the display's width A, px")->required()->check(CLI::PositiveNumber);
+  app->add_option("--z0", f->z0, "zero-parallax depth (default: none, the images shown as captured)")->check(kPositiveFinite);
+  app->add_option("--depths", in.depths, "depths to tabulate: z1,z2,...")->delimiter(',')->check(kPositiveFinite);
+  app->add_option("--viewer", f->viewer, "none, hmd (each eye its own display at the camera's field of view, as err-sim) or screen")
+      ->check(CLI::IsMember({"none", "hmd", "screen"}))->capture_default_str();
+  app->add_option("--ipd", in.ipd, "the viewer's interpupillary distance")->check(kPositiveFinite);
+  app->add_option("--screen-width", in.screen_width, "screen viewer: the screen's width")->check(kPositiveFinite);
+  app->add_option("--viewing-distance", in.viewing_distance, "screen viewer: the eyes' distance from the screen")->check(kPositiveFinite);
+  app->add_option("--length-unit", f->unit, "mm, cm or m: the unit of the lengths given (default mm; the rig's with --rig)")
+      ->check(CLI::IsMember(kUnits));
+  return {app, [f, app](const io::Provenance& provenance) {
+            stereo::PlanRequest r = f->request;
+            if (app->count("--focal-px")) r.input.focal_px = f->focal;
+            if (app->count("--hfov-deg")) r.input.hfov_rad = DegToRad(f->hfov_deg);
+            if (app->count("--capture-width")) r.input.capture_width = f->capture_width;
+            if (app->count("--z0")) r.input.z0 = f->z0;
+            r.input.viewer = f->viewer == "hmd" ? Viewer::kHmd : f->viewer == "screen" ? Viewer::kScreen : Viewer::kNone;
+            if (r.input.viewer == Viewer::kNone && app->count("--ipd")) throw InputError("--ipd: applies with --viewer hmd or screen; add --viewer");
+            if (r.input.viewer != Viewer::kScreen && (app->count("--screen-width") || app->count("--viewing-distance"))) {
+              throw InputError("--screen-width, --viewing-distance: apply with --viewer screen only; drop them or add --viewer screen");
+            }
+            if (r.input.viewer != Viewer::kNone && !app->count("--ipd")) throw InputError("--ipd: required with --viewer " + f->viewer);
+            if (r.input.viewer == Viewer::kScreen && (!app->count("--screen-width") || !app->count("--viewing-distance"))) {
+              throw InputError("--screen-width, --viewing-distance: both required with --viewer screen");
+            }
+            if (!r.rig.empty() && !f->unit.empty()) throw InputError("--length-unit: with --rig, lengths are in the rig's unit; drop --length-unit");
+            if (r.rig.empty() && !app->count("--baseline")) throw InputError("--baseline: required without --rig");
+            if (!f->unit.empty()) r.length_unit = *LengthUnitFromName(f->unit);
+            return stereo::Plan(r, provenance);
+          }};
+}
+
+}  // namespace vstcal::tools
