@@ -165,7 +165,7 @@ INSTANTIATE_TEST_SUITE_P(
                   kBadInput,
                   {"--distortion", "k1,p3"},
                   "--distortion: ",
-                  {"unknown term \"p3\" for the radial-tangential model", "did you mean \"p1\"?"}},
+                  {"unknown term \"p3\"", "did you mean \"p1\"?"}},
         BadRefine{"PixelOutsideTheImage",
                   kBadInput,
                   {"--uncertainty-pixel", "-1,100,1000"},

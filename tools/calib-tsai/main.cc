@@ -15,9 +15,10 @@ int main(int argc, char** argv) {
       "vstcal/camera@1.\n"
       "Exit codes: 0 ok, 1 internal error, 2 bad usage or input (too few points or views), 3 degenerate data "
       "(coplanar data forced into the non-coplanar variant, a plane parallel to the image, parallel boards) or "
-      "no convergence.",
+      "no convergence. One plane is refined with Tsai's sx held, and the principal point held unless "
+      "--free-principal-point frees it.",
       "calib-tsai"};
-  std::string input, output, variant = "auto";
+  std::string input, output, variant = "auto", free_pp = "no";
   std::optional<std::string> principal_point;
   bool no_refine = false;
   vstcal::CalibrationOptions options;
@@ -32,6 +33,12 @@ int main(int argc, char** argv) {
       ->check(vstcal::tools::kPositiveFinite)
       ->capture_default_str();
   CLI::Option* raw = app.add_flag("--no-refine", no_refine, "write the closed-form camera without refinement");
+  app.add_option("--free-principal-point", free_pp,
+                 "one plane, refined: no (hold it where Tsai assumed it), yes, or auto (free it when the scaled "
+                 "information determines it to 0.5% of the image diagonal)")
+      ->check(CLI::IsMember({"no", "yes", "auto"}))
+      ->capture_default_str()
+      ->excludes(raw);
   for (CLI::Option* o : flags.AddRefinement(app)) o->excludes(raw);
   for (CLI::Option* o : flags.AddUncertainty(app)) o->excludes(raw);
   flags.AddOutput(app);
@@ -44,9 +51,12 @@ int main(int argc, char** argv) {
                            : variant == "non-coplanar" ? TsaiOptions::Variant::kNonCoplanar
                                                        : TsaiOptions::Variant::kAuto;
     if (principal_point) options.tsai.principal_point = tools::ParsePoint2(*principal_point, "--principal-point");
+    options.plane_principal_point = free_pp == "yes"    ? CalibrationOptions::PlanePrincipalPoint::kFree
+                                    : free_pp == "auto" ? CalibrationOptions::PlanePrincipalPoint::kAuto
+                                                        : CalibrationOptions::PlanePrincipalPoint::kHold;
     Correspondences corners = io::ReadCorrespondences(input);
     if (corners.rig == Rig::kPlanarViews) {
-      for (const char* flag : {"--variant", "--principal-point", "--sx"}) {
+      for (const char* flag : {"--variant", "--principal-point", "--sx", "--free-principal-point"}) {
         if (app.count(flag) > 0) {
           throw InputError(std::string(flag) + ": applies to rig \"volume\" only (planar views start from Zhang's "
                            "method); remove it");
