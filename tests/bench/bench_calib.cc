@@ -11,6 +11,8 @@
 #include <opencv2/calib3d.hpp>
 
 #include "support/dense_covariance.h"
+#include "support/opencv_views.h"
+#include "support/scenes.h"
 #include "vstcal/calib/decompose.h"
 #include "vstcal/calib/dlt.h"
 #include "vstcal/calib/information.h"
@@ -95,19 +97,14 @@ void BM_TsaiRefined(benchmark::State& state) {
 // the same parameters and objective, without covariance.
 void BM_OpenCvCalibrateCamera(benchmark::State& state) {
   const Correspondences& c = state.range(0) == 600 ? Volume600() : Seed000();
-  std::vector<std::vector<cv::Point3f>> object(1);
-  std::vector<std::vector<cv::Point2f>> image(1);
-  for (const Observation& o : AllObservations(c)) {
-    object[0].emplace_back(o.point.x(), o.point.y(), o.point.z());
-    image[0].emplace_back(o.pixel.x(), o.pixel.y());
-  }
+  const testing::OpenCvViews views = testing::ToOpenCvViews(c);  // a volume: one view of all points
   const auto d = *DecomposeProjection(SolveDlt(AllObservations(c)).P);
   for (auto _ : state) {
     cv::Mat K = (cv::Mat_<double>(3, 3) << d.K(0, 0), 0, d.K(0, 2), 0, d.K(1, 1), d.K(1, 2), 0, 0, 1);
     cv::Mat dist = cv::Mat::zeros(5, 1, CV_64F);
     std::vector<cv::Mat> rvecs, tvecs;
-    const double rms = cv::calibrateCamera(object, image, cv::Size(c.image_size.width, c.image_size.height), K, dist,
-                                           rvecs, tvecs, cv::CALIB_USE_INTRINSIC_GUESS | cv::CALIB_FIX_K3);
+    const double rms = cv::calibrateCamera(views.object, views.image, cv::Size(c.image_size.width, c.image_size.height), K,
+                                           dist, rvecs, tvecs, cv::CALIB_USE_INTRINSIC_GUESS | cv::CALIB_FIX_K3);
     benchmark::DoNotOptimize(rms);
   }
 }
@@ -118,13 +115,10 @@ const Correspondences& PlanarViews(int views) {
   static std::map<int, Correspondences> cache;
   auto it = cache.find(views);
   if (it != cache.end()) return it->second;
-  Eigen::Matrix3d K;
-  K << 700.2, 0, 641.3, 0, 698.4, 361.7, 0, 0, 1;
-  const double d[5] = {-0.171, 0.028, 0.0007, -0.0004, 0};
   PlanarViewsSpec spec;
   spec.num_views = views;
   spec.noise_px = 0.3;
-  return cache[views] = SynthesizePlanarViews(Camera::FromK(K, ImageSize{1280, 720}, RadialTangentialModel{}, d), spec).correspondences;
+  return cache[views] = SynthesizePlanarViews(testing::DistortedWideCamera(), spec).correspondences;
 }
 
 // calib-tsai's solve of planar views: Zhang's start, the refinement (k1, k2, p1, p2) and its
@@ -166,21 +160,12 @@ void BM_DenseCovariance(benchmark::State& state) {
 // default terms): it solves the normal equations of every pose at once, cubic in the views.
 void BM_OpenCvPlanarViews(benchmark::State& state) {
   const Correspondences& c = PlanarViews(static_cast<int>(state.range(0)));
-  std::vector<std::vector<cv::Point3f>> object;
-  std::vector<std::vector<cv::Point2f>> image;
-  for (const View& v : c.views) {
-    object.emplace_back();
-    image.emplace_back();
-    for (const Observation& o : v.observations) {
-      object.back().emplace_back(o.point.x(), o.point.y(), o.point.z());
-      image.back().emplace_back(o.pixel.x(), o.pixel.y());
-    }
-  }
+  const testing::OpenCvViews views = testing::ToOpenCvViews(c);
   for (auto _ : state) {
     cv::Mat K, dist;
     std::vector<cv::Mat> rvecs, tvecs;
-    const double rms = cv::calibrateCamera(object, image, cv::Size(c.image_size.width, c.image_size.height), K, dist, rvecs,
-                                           tvecs, cv::CALIB_FIX_K3);
+    const double rms = cv::calibrateCamera(views.object, views.image, cv::Size(c.image_size.width, c.image_size.height), K,
+                                           dist, rvecs, tvecs, cv::CALIB_FIX_K3);
     benchmark::DoNotOptimize(rms);
   }
 }

@@ -22,6 +22,12 @@ std::vector<std::string> DistortedVolumeArgs() {
   return args;
 }
 
+std::vector<std::string> PlanarArgs() {
+  return {"--rig",      "planar-views", "--image-size", "640x480", "--fx",         "600",
+          "--grid",     "9x7",          "--spacing",    "30",      "--views",      "8",
+          "--distance", "500",          "--noise",      "0.5",     "--distortion", "-0.15,0.05,0,0,0"};
+}
+
 double LensParameter(const Json& camera, const std::string& name) {
   const Json& K = camera.at("K");
   if (name == "fx") return K.at(0).at(0).get<double>();

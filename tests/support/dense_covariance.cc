@@ -31,14 +31,19 @@ void Accumulate(const Correspondences& c, const std::vector<double>& params, con
         loss->Evaluate(r[0] * r[0] + r[1] * r[1], rho);
         weight *= rho[1];
       }
-      // Full-width rows: the intrinsics' columns and pose `pose`'s, zeros elsewhere.
-      Eigen::MatrixXd J = Eigen::MatrixXd::Zero(2, out->information.cols());
+      // The point's rows touch the intrinsics and pose `pose`: their small Gram matrix, summed in
+      // long double (the oracle's rounding must stay below what it is compared with, also where
+      // the information is ill-conditioned: a rational lens's k1, k2, k4), is scattered into place.
+      Eigen::MatrixXd J(2, g + 6);
       J.leftCols(g) = Jt * B;
-      J.middleCols(g + 6 * static_cast<Eigen::Index>(pose), 6) = Jp;
-      // Summed in long double: the oracle's rounding must stay below what it is compared with,
-      // also where the information is ill-conditioned (a rational lens's k1, k2, k4).
-      const Eigen::Matrix<long double, Eigen::Dynamic, Eigen::Dynamic> Jl = J.cast<long double>();
-      information->noalias() += static_cast<long double>(weight) * Jl.transpose() * Jl;
+      J.rightCols(6) = Jp;
+      const MatrixL Jl = J.cast<long double>();
+      const MatrixL gram = static_cast<long double>(weight) * Jl.transpose() * Jl;
+      const Eigen::Index at = g + 6 * static_cast<Eigen::Index>(pose);
+      information->topLeftCorner(g, g) += gram.topLeftCorner(g, g);
+      information->block(0, at, g, 6) += gram.topRightCorner(g, 6);
+      information->block(at, 0, 6, g) += gram.bottomLeftCorner(6, g);
+      information->block(at, at, 6, 6) += gram.bottomRightCorner(6, 6);
     }
   }
 }

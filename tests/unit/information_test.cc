@@ -21,12 +21,7 @@
 namespace vstcal {
 namespace {
 
-Camera WideCamera() {
-  Eigen::Matrix3d K;
-  K << 700.2, 0, 641.3, 0, 698.4, 361.7, 0, 0, 1;
-  const double d[5] = {-0.171, 0.028, 0.0007, -0.0004, 0.0};
-  return Camera::FromK(K, ImageSize{1280, 720}, RadialTangentialModel{}, d);
-}
+Camera WideCamera() { return testing::DistortedWideCamera(); }
 
 SyntheticViews Planar(int views, double noise, uint64_t seed) {
   PlanarViewsSpec spec;
@@ -241,6 +236,25 @@ TEST(Weights, WeightedFitsBeatUnweightedWhenTheNoiseDiffers) {
   }
   ::testing::Test::RecordProperty("mse ratio plain/weighted", ::testing::PrintToString(mse_plain / mse_weighted));
   EXPECT_GT(mse_plain / mse_weighted, 4.0);
+}
+
+// Before any capture (what calib-capture plan does): the covariance at the planned camera and
+// board poses with a stated noise, without solving, predicts what the solve of the noisy capture
+// reports — the same code path at a nearby point. Intrinsics' σ's agree to a few percent.
+TEST(CovarianceAt, PredictsBeforeCaptureWhatTheSolveReports) {
+  const SyntheticViews clean = Planar(15, 0.0, 13);
+  const CalibrationCovariance plan = CovarianceAt(clean.correspondences, WideCamera(), clean.camera_from_board, RefineOptions{}, 0.3);
+  ASSERT_TRUE(plan.observable) << plan.message;
+  const Correspondences noisy = testing::WithNoise(clean.correspondences, 0.3, 14);
+  const Refinement r = RefinePlanar(noisy);
+  ASSERT_EQ(r.status, RefineStatus::kConverged) << r.message;
+  ASSERT_EQ(plan.covariance.parameters, r.covariance.parameters);
+  const double scale = 0.3 / r.sigma_px;  // the plan states σ; the solve estimates it
+  for (size_t i = 0; i < plan.covariance.parameters.size(); ++i) {
+    const double planned = std::sqrt(plan.covariance.matrix(i, i));
+    const double reported = scale * std::sqrt(r.covariance.matrix(i, i));
+    EXPECT_NEAR(planned / reported, 1.0, 0.03) << plan.covariance.parameters[i];
+  }
 }
 
 // The same capture in mm, cm, m, in and with its coordinates ×1e6 and ×1e-6: one verdict, and one

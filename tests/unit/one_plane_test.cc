@@ -7,11 +7,11 @@
 
 #include <cmath>
 
+#include "support/scenes.h"
 #include "vstcal/calib/pipeline.h"
 #include "vstcal/calib/uncertainty.h"
 #include "vstcal/capture/synthetic_volume.h"
 #include "vstcal/io/calibration_io.h"
-#include "vstcal/random/philox.h"
 
 namespace vstcal {
 namespace {
@@ -38,16 +38,7 @@ VolumeSpec OnePlane() {
 }
 
 Correspondences Noisy(const Correspondences& clean, double sigma, int trial) {
-  Correspondences c = clean;
-  const CounterRng rng(9000 + static_cast<uint64_t>(trial), 0);
-  uint64_t k = 0;
-  for (View& v : c.views) {
-    for (Observation& o : v.observations) {
-      const auto e = rng.Normal2(k++, 0);
-      o.pixel += sigma * Eigen::Vector2d(e[0], e[1]);
-    }
-  }
-  return c;
+  return testing::WithNoise(clean, sigma, 9000 + static_cast<uint64_t>(trial));
 }
 
 double StdDev(const std::vector<double>& v) {

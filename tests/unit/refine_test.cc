@@ -7,6 +7,7 @@
 
 #include <algorithm>
 
+#include "support/opencv_views.h"
 #include "support/scenes.h"
 #include "vstcal/calib/decompose.h"
 #include "vstcal/calib/dlt.h"
@@ -19,12 +20,7 @@
 namespace vstcal {
 namespace {
 
-Camera DistortedCamera() {
-  Eigen::Matrix3d K;
-  K << 700.2, 0, 641.3, 0, 698.4, 361.7, 0, 0, 1;
-  const double d[5] = {-0.171, 0.028, 0.0007, -0.0004, 0.0};
-  return Camera::FromK(K, ImageSize{1280, 720}, RadialTangentialModel{}, d);
-}
+Camera DistortedCamera() { return testing::DistortedWideCamera(); }
 
 SyntheticViews PlanarData(double noise, uint64_t seed, int views = 15) {
   PlanarViewsSpec spec;
@@ -44,27 +40,10 @@ void RoundToFloat(Correspondences* c) {
   }
 }
 
-struct OpenCvData {
-  std::vector<std::vector<cv::Point3f>> object;
-  std::vector<std::vector<cv::Point2f>> image;
-};
+using OpenCvData = testing::OpenCvViews;
 
 // One OpenCV "view" per planar view; a volume rig is one view of all its points.
-OpenCvData ToOpenCv(const Correspondences& c) {
-  OpenCvData d;
-  for (const View& v : c.views) {
-    if (d.object.empty() || c.rig == Rig::kPlanarViews) {
-      d.object.emplace_back();
-      d.image.emplace_back();
-    }
-    for (const Observation& o : v.observations) {
-      d.object.back().emplace_back(static_cast<float>(o.point.x()), static_cast<float>(o.point.y()),
-                                   static_cast<float>(o.point.z()));
-      d.image.back().emplace_back(static_cast<float>(o.pixel.x()), static_cast<float>(o.pixel.y()));
-    }
-  }
-  return d;
-}
+OpenCvData ToOpenCv(const Correspondences& c) { return testing::ToOpenCvViews(c); }
 
 // fx, fy, cx, cy and the first `terms` distortion coefficients (OpenCV's order is ours: k1, k2,
 // p1, p2, k3, k4, k5, k6) of OpenCV's result against ours, within 1 % of our σ.

@@ -42,16 +42,7 @@ double StdDev(const std::vector<double>& v) {
 
 // Fresh noise for trial t on noise-free correspondences.
 Correspondences Noisy(const Correspondences& clean, double sigma, int trial) {
-  Correspondences c = clean;
-  const CounterRng rng(7000 + static_cast<uint64_t>(trial), 0);
-  uint64_t k = 0;
-  for (View& v : c.views) {
-    for (Observation& o : v.observations) {
-      const auto e = rng.Normal2(k++, 0);
-      o.pixel += sigma * Eigen::Vector2d(e[0], e[1]);
-    }
-  }
-  return c;
+  return testing::WithNoise(clean, sigma, 7000 + static_cast<uint64_t>(trial));
 }
 
 void ExpectSigmaClose(double empirical, double predicted, const std::string& what) {

@@ -142,8 +142,8 @@ CalibrationCovariance CovarianceAt(const Correspondences& c, const Camera& camer
   const ArrowInverse inverse = InvertArrow(information, sigma_px * sigma_px);
   out.smallest_scaled_eigenvalue = inverse.observability.smallest_eigenvalue;
   if (!inverse.observability.observable) {
-    out.message = "the information matrix is singular: " +
-                  DescribeWeakest(inverse.observability, out.free, c, options, "not determined");
+    out.weakest = DescribeWeakest(inverse.observability, out.free, c, options, "not determined");
+    out.message = "the information matrix is singular: " + out.weakest;
     return out;
   }
   if (out.smallest_scaled_eigenvalue < kWeaklyDetermined && out.free.size() > 0) {

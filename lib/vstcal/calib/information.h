@@ -23,12 +23,12 @@ namespace vstcal {
 
 struct CalibrationCovariance {
   bool observable = false;
-  // When not observable: the parameters (or the view) that carry no information, along the null
-  // direction of the scaled information, and what to hold or add. One line.
+  // When not observable: "the information matrix is singular: " + `weakest`. One line.
   std::string message;
   double smallest_scaled_eigenvalue = 0;
-  // When observable but the smallest scaled eigenvalue is below kWeaklyDetermined: the least
-  // determined combination, named as `message` would name it, for a solver that does not converge.
+  // The parameters (or the view) along the weakest direction of the scaled information and what
+  // to hold or add ("k3 is not determined by these points (…); …"), when not observable or when
+  // the smallest scaled eigenvalue is below kWeaklyDetermined ("barely determined"); else empty.
   std::string weakest;
 
   AnyLensModel model;   // the refined model (options may promote the camera's)

@@ -183,7 +183,7 @@ PlanePrincipalPointDecision DecidePlanePrincipalPoint(const Correspondences& c, 
   freed.free_principal_point = true;
   const CalibrationCovariance cov = CovarianceAt(c, refined->camera, refined->poses, freed, refined->sigma_px);
   if (!cov.observable) {
-    d.because = "held: with it free, " + cov.message.substr(cov.message.find(':') + 2);
+    d.because = "held: with it free, " + cov.weakest;
     return d;
   }
   d.sigma_if_free_px = Eigen::Vector2d(std::sqrt(cov.covariance.matrix(*cov.covariance.Find("cx"), *cov.covariance.Find("cx"))),
