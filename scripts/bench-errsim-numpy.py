@@ -1,17 +1,20 @@
 #!/usr/bin/env python3
 """The NumPy peer of err-sim's chain (docs/performance.md#err-sim): the same model as
-lib/vstcal/errsim/chain.h and holloway.h, vectorized over samples with plain NumPy, on a
+lib/vstcal/errsim/chain.h and measures.h, vectorized over samples with plain NumPy, on a
 vstcal/vst-chain@1 file with the pose form of virtual-object alignment and σ's per lens parameter
 (datasets/vst/seed001.json). It draws every parameter, evaluates both eyes at every test point,
-and computes every measure err-sim reports (pixel errors, per-eye angles, Holloway's linear,
-lateral, depth and angular errors, occlusion decisions).
+shows the video and the overlay to eyes behind the cameras through a display whose virtual image
+is at a finite distance, and computes every measure err-sim reports (pixel errors, Holloway's
+linear, lateral, depth and angular terms of the misregistration and of the misperception relative
+to the error-free chain's systematic one, occlusion decisions).
 
 Usage: bench-errsim-numpy.py CHAIN.json [SAMPLES] [REPEATS]
        bench-errsim-numpy.py check CHAIN.json ERR_SIM [SAMPLES]
-The first prints the median CPU time per sample and the totals (image RMS px, perceived RMS). The
-second runs `ERR_SIM run CHAIN --no-budget` with the same number of samples and checks that both
-totals agree within 5 standard errors of their difference (ctest errsim_numpy_peer): an
-independent implementation of the same chain, so a disagreement is a bug in one of them.
+The first prints the median CPU time per sample and the totals (image RMS px, misregistration RMS,
+misperception RMS). The second runs `ERR_SIM run CHAIN --no-budget` with the same number of
+samples and checks that the three totals agree within 5 standard errors of their difference (ctest
+errsim_numpy_peer): an independent implementation of the same chain, so a disagreement is a bug
+in one of them.
 """
 import json
 import math
@@ -64,7 +67,28 @@ def angle(a, b):
     return np.arctan2(np.linalg.norm(np.cross(a, b), axis=-1), np.sum(a * b, axis=-1))
 
 
-def simulate(chain, directory, n, seed):
+def triangulate(e0, d0, e1, d1):
+    """Midpoint of the closest approach of e0 + s d0 and e1 + s d1 (cross-product form)."""
+    nrm = np.cross(d0, d1)
+    n2 = np.sum(nrm * nrm, axis=-1)
+    between = e1 - e0
+    s0 = np.sum(np.cross(between, d1) * nrm, axis=-1) / n2
+    s1 = np.sum(np.cross(between, d0) * nrm, axis=-1) / n2
+    return 0.5 * (e0 + s0[..., None] * d0 + e1 + s1[..., None] * d1)
+
+
+def holloway(c, reference, seen):
+    """Holloway's terms of seen − reference from the viewpoint c (report/registration_error.h)."""
+    delta = seen - reference
+    sight = reference - c
+    sight_unit = sight / np.linalg.norm(sight, axis=-1, keepdims=True)
+    depth = np.sum(delta * sight_unit, axis=-1)
+    return {"linear": np.linalg.norm(delta, axis=-1), "depth": depth,
+            "lateral": np.linalg.norm(delta - depth[..., None] * sight_unit, axis=-1),
+            "angular": np.degrees(angle(sight, seen - c))}
+
+
+def simulate(chain, directory, n, seed, errors=True):
     rng = np.random.default_rng(seed)
     src = chain["sources"]
     deg = math.pi / 180
@@ -74,7 +98,7 @@ def simulate(chain, directory, n, seed):
     R_wv, t_wv = transform(fr.get("world_from_virtual", {"rotvec_deg": [0, 0, 0], "t": [0, 0, 0]}))
     R_wo, t_wo = transform(fr["world_from_object"])
     cams = [transform(fr["camera_from_hmd"][e]) for e in ("left", "right")]
-    K = []
+    K, image_size = [], []
     for e in ("left", "right"):
         c = chain["cameras"][e]
         if "file" in c:
@@ -82,6 +106,7 @@ def simulate(chain, directory, n, seed):
         k = np.array(c["K"], float)
         d = c["distortion"]
         K.append(np.array([k[0, 0], k[1, 1], k[0, 2], k[1, 2], k[0, 1]] + [d.get(p, 0.0) for p in ("k1", "k2", "p1", "p2", "k3")]))
+        image_size.append(c["image_size"])
     # Nominal pieces (chain.cc).
     R_tv, t_tv = R_tw @ R_wv, R_tw @ t_wv + t_tw
     R_vo, t_vo = R_wv.T @ R_wo, R_wv.T @ (t_wo - t_wv)
@@ -104,8 +129,13 @@ def simulate(chain, directory, n, seed):
     display = chain["display"]
     ipd0 = display["ipd"]
     eye_centre = np.array(display.get("eye_centre", 0.5 * (centres[0] + centres[1])), float)
+    metres = {"mm": 1e-3, "cm": 1e-2, "m": 1.0}[chain["length_unit"]]
+    distance = display.get("virtual_image_distance", 1.5 / metres)
+    w = 0.0 if distance == "infinity" else 1.0 / distance
 
-    # Draws.
+    # Draws (none for the error-free chain).
+    if not errors:
+        src = {}
     ta, tr = src.get("tracker_alignment", {}), src.get("tracking", {})
     ce, ci, rd, ds, vo = (src.get(k, {}) for k in ("camera_extrinsic", "camera_intrinsic", "rendering", "display", "virtual_object_alignment"))
     w_a, r_a = draw(rng, ta.get("rotation_deg"), n, 3, deg), draw(rng, ta.get("translation"), n, 3)
@@ -126,6 +156,7 @@ def simulate(chain, directory, n, seed):
     k1d = [draw(rng, eye_terms(ds, e).get("lens_k1"), n, 1) for e in ("left", "right")]
     d_ipd = draw(rng, ds.get("ipd"), n, 1)
     tau_d = draw(rng, ds.get("latency_s"), n, 1)
+    eye_offset = draw(rng, ds.get("eye_offset"), n, 3)
 
     # The virtual path (chain.h).
     E = exp_so3
@@ -142,8 +173,7 @@ def simulate(chain, directory, n, seed):
     t_ho = np.einsum("nij,nj->ni", R3, t_to) + t3
     Er = E(w_rig)
     R_ho, t_ho = Er @ R_ho, np.einsum("nij,nj->ni", Er, t_ho) + r_rig
-    q, zv, rays, eyes = [], [], [], []
-    ipd = ipd0 + d_ipd
+    q, zv, overlay_rays, seen_rays, eyes, valid = [], [], [], [], [], np.ones((n, len(pts_w)), bool)
     for e in range(2):
         Ee = E(w_e[e])
         Rc = Ee @ cams[e][0]
@@ -153,38 +183,38 @@ def simulate(chain, directory, n, seed):
         x = np.einsum("nij,kj->nki", R, pts_o) + t[:, None, :]
         q.append(project(lens[e], x))
         zv.append(x[:, :, 2])
-        # Display: screen mapping, the true K⁻¹, lens residual, nominal camera orientation.
+        size = image_size[e]
+        valid &= (x[:, :, 2] > 0) & (q[e][..., 0] >= -0.5) & (q[e][..., 0] <= size[0] - 0.5) & \
+                 (q[e][..., 1] >= -0.5) & (q[e][..., 1] <= size[1] - 0.5)
+        # The eye: its design eyepoint moved by its own error, both eyes' offset and half the IPD error.
+        side = -0.5 if e == 0 else 0.5
+        design = eye_centre + np.array([side * ipd0, 0.0, 0.0])
+        displacement = eyepoint[e] + eye_offset + np.hstack([side * d_ipd, np.zeros((n, 2))])
+        eyes.append(design[None, :] + displacement)
+        # Display: screen mapping, the true K⁻¹, lens residual, nominal camera orientation; the
+        # virtual image at distance D turns a displaced eye's ray by −Δ/D.
         k = K[e]
-        du = (1 + mag[e]) * (q[e][:, :, 0] - k[2]) + shift[e][:, 0:1]
-        dv = (1 + mag[e]) * (q[e][:, :, 1] - k[3]) + shift[e][:, 1:2]
-        yn = dv / k[1]
-        xn = (du - k[4] * yn) / k[0]
-        radial = 1 + k1d[e] * (xn * xn + yn * yn)
-        d = np.stack([xn * radial, yn * radial, np.ones_like(xn)], axis=-1) @ cams[e][0]
-        rays.append(d)
-        eyes.append(eye_centre[None, :] + np.hstack([(-0.5 if e == 0 else 0.5) * ipd, np.zeros((n, 2))]) + eyepoint[e])
-    # Perceived point: closest approach, cross-product form.
-    nrm = np.cross(rays[0], rays[1])
-    n2 = np.sum(nrm * nrm, axis=-1)
-    between = (eyes[1] - eyes[0])[:, None, :]
-    s0 = np.sum(np.cross(between, rays[1]) * nrm, axis=-1) / n2
-    s1 = np.sum(np.cross(between, rays[0]) * nrm, axis=-1) / n2
-    perceived = 0.5 * (eyes[0][:, None, :] + s0[..., None] * rays[0] + eyes[1][:, None, :] + s1[..., None] * rays[1])
+
+        def displayed(pixel):
+            du = (1 + mag[e]) * (pixel[..., 0] - k[2]) + shift[e][:, 0:1]
+            dv = (1 + mag[e]) * (pixel[..., 1] - k[3]) + shift[e][:, 1:2]
+            yn = dv / k[1]
+            xn = (du - k[4] * yn) / k[0]
+            radial = 1 + k1d[e] * (xn * xn + yn * yn)
+            d = np.stack([xn * radial, yn * radial, np.ones_like(xn)], axis=-1) @ cams[e][0]
+            return d - w * displacement[:, None, :]
+
+        overlay_rays.append(displayed(q[e]))
+        seen_rays.append(displayed(np.broadcast_to(real_px[e], q[e].shape)))
+    overlay = triangulate(eyes[0][:, None, :], overlay_rays[0], eyes[1][:, None, :], overlay_rays[1])
+    seen = triangulate(eyes[0][:, None, :], seen_rays[0], eyes[1][:, None, :], seen_rays[1])
     M = E(w_head[None, :] * tau_d)
     truth = np.einsum("nji,nkj->nki", M, pts_h[None, :, :] - (v_head[None, :] * tau_d)[:, None, :])
-    # Measures (holloway.cc).
-    out = {}
+    c = 0.5 * (eyes[0] + eyes[1])[:, None, :]
+    out = {"valid": valid, "seen_minus_truth": seen - truth, "truth": truth, "seen": seen, "c": c}
     for e in range(2):
         out[f"pixel{e}"] = np.linalg.norm(q[e] - real_px[e], axis=-1)
-        out[f"angle{e}"] = np.degrees(angle(rays[e], truth - eyes[e][:, None, :]))
-    c = 0.5 * (eyes[0] + eyes[1])[:, None, :]
-    sight = truth - c
-    sight /= np.linalg.norm(sight, axis=-1, keepdims=True)
-    delta = perceived - truth
-    out["linear"] = np.linalg.norm(delta, axis=-1)
-    out["depth"] = np.sum(delta * sight, axis=-1)
-    out["lateral"] = np.linalg.norm(delta - out["depth"][..., None] * sight, axis=-1)
-    out["angular"] = np.degrees(angle(truth - c, perceived - c))
+    out["misregistration"] = holloway(c, seen, overlay)
     surf = np.array([p.get("surface_behind", np.nan) for p in chain["test_points"]])
     for e in range(2):
         fb = K[e][0] * baseline
@@ -192,6 +222,14 @@ def simulate(chain, directory, n, seed):
         disp = fb / z_s + disparity
         measured = np.where(disp > 0, fb / np.where(disp > 0, disp, 1), np.inf)
         out[f"wrong{e}"] = (zv[e] < measured) != (surf[None, :] > 0)
+    return out
+
+
+def measure(chain, directory, n, seed):
+    """simulate() with the misperception measured from the error-free chain's systematic one."""
+    systematic = simulate(chain, directory, 1, 0, errors=False)["seen_minus_truth"][0]
+    out = simulate(chain, directory, n, seed)
+    out["misperception"] = holloway(out["c"], out["truth"] + systematic[None, :, :], out["seen"])
     return out
 
 
@@ -207,13 +245,23 @@ def project(p, x):
 
 
 def totals(out):
-    """Per-sample aggregates → (image RMS, its SE, perceived RMS, its SE); SE of √mean by the delta method."""
-    image_ms = np.mean(np.concatenate([out["pixel0"] ** 2, out["pixel1"] ** 2], axis=1), axis=1)
-    perceived_ms = np.mean(out["linear"] ** 2, axis=1)
-    result = []
-    for a in (image_ms, perceived_ms):
-        rms = math.sqrt(np.mean(a))
-        result += [rms, np.std(a, ddof=1) / math.sqrt(len(a)) / (2 * rms)]
+    """Per-sample aggregates → (RMS, its SE) of the image, misregistration and misperception totals;
+    undefined points left out of their means; SE of √mean by the delta method."""
+    valid = out["valid"]
+    per_point = {
+        "image_rms_px": 0.5 * (out["pixel0"] ** 2 + out["pixel1"] ** 2),
+        "misregistration_rms": out["misregistration"]["linear"] ** 2,
+        "misperception_rms": out["misperception"]["linear"] ** 2,
+    }
+    result = {}
+    for name, squares in per_point.items():
+        # The total is √(mean over points of each point's mean square over its defined samples).
+        ms = np.array([np.mean(squares[valid[:, k], k]) for k in range(squares.shape[1])])
+        rms = math.sqrt(np.mean(ms))
+        # SE: each point's mean square has SE std/√N_k; the mean over points adds them in quadrature.
+        se_ms = math.sqrt(sum(np.var(squares[valid[:, k], k], ddof=1) / np.sum(valid[:, k])
+                              for k in range(squares.shape[1]))) / squares.shape[1]
+        result[name] = (rms, se_ms / (2 * rms) if rms > 0 else 0.0)
     return result
 
 
@@ -225,12 +273,12 @@ def check(path, err_sim, n):
         subprocess.run([err_sim, "run", path, "--no-budget", "--samples", str(n), "-q", "-o", report], check=True)
         ours = json.load(open(report))["totals"]
     chain = json.load(open(path))
-    image, image_se, perceived, perceived_se = totals(simulate(chain, os.path.dirname(path), n, 2024))
+    peer = totals(measure(chain, os.path.dirname(path), n, 2024))
     ok = True
-    for name, peer, se, cpp in (("image_rms_px", image, image_se, ours["image_rms_px"]),
-                                ("perceived_rms", perceived, perceived_se, ours["perceived_rms"])):
-        z = (cpp - peer) / (math.sqrt(2) * se)
-        print(f"{name}: err-sim {cpp:.4f}, numpy {peer:.4f}, difference {z:+.2f} standard errors")
+    for name, (value, se) in peer.items():
+        cpp = ours[name]
+        z = (cpp - value) / (math.sqrt(2) * se) if se > 0 else (0.0 if abs(cpp - value) < 1e-9 else float("inf"))
+        print(f"{name}: err-sim {cpp:.4f}, numpy {value:.4f}, difference {z:+.2f} standard errors")
         ok &= abs(z) <= 5
     print("1 passed, 0 failed" if ok else "0 passed, 1 failed")
     return 0 if ok else 1
@@ -246,12 +294,12 @@ def main():
     times = []
     for r in range(repeats):
         start = time.process_time()
-        out = simulate(chain, os.path.dirname(path), n, 1000 + r)
+        out = measure(chain, os.path.dirname(path), n, 1000 + r)
         times.append(time.process_time() - start)
-    image = math.sqrt(np.mean([np.mean(out[f"pixel{e}"] ** 2) for e in range(2)]))
-    perceived = math.sqrt(np.mean(out["linear"] ** 2))
+    t = totals(out)
     print(f"numpy {np.__version__}: {n} samples, median {1e9 * sorted(times)[len(times) // 2] / n:.0f} ns/sample (CPU), "
-          f"image {image:.2f} px rms, perceived {perceived:.2f} rms")
+          f"image {t['image_rms_px'][0]:.2f} px rms, misregistration {t['misregistration_rms'][0]:.2f} rms, "
+          f"misperception {t['misperception_rms'][0]:.2f} rms")
 
 
 if __name__ == "__main__":

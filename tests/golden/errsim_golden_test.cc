@@ -11,7 +11,7 @@
 
 #include "support/vst_scenes.h"
 #include "vstcal/errsim/chain.h"
-#include "vstcal/errsim/holloway.h"
+#include "vstcal/errsim/measures.h"
 #include "vstcal/random/philox.h"
 
 namespace vstcal::errsim {
@@ -34,11 +34,9 @@ struct Evaluated {
 Evaluated EvaluateWith(ChainGeometry geometry, const std::vector<std::pair<std::string, double>>& biases) {
   ChainModel model = ChainModel::WithZeroErrors(std::move(geometry));
   for (const auto& [name, value] : biases) {
-    bool found = false;
-    for (ChainParameter& p : model.parameters) {
-      if (p.name == name) p.distribution = Distribution::MakeFixed(value), found = true;
-    }
-    EXPECT_TRUE(found) << name;
+    ChainParameter* p = model.Find(name);
+    EXPECT_NE(p, nullptr) << name;
+    if (p) p->distribution = Distribution::MakeFixed(value);
   }
   Evaluated e{ChainEvaluator(model), model.MeanTheta(), ChainSample<double>(model.geometry.test_points.size())};
   e.chain.Evaluate(e.theta.data(), &e.sample);
@@ -58,9 +56,10 @@ Eigen::Matrix3d HmdFromVirtual(const ChainGeometry& g) {
 TEST(ErrsimGolden, NoErrorGivesNoError) {
   const auto e = EvaluateWith(ParallelRig(HmdPoints({{100, -50, 800}, {-300, 200, 3000}})), {});
   for (const auto& s : e.sample.points) {
-    ASSERT_TRUE(s.valid);
+    ASSERT_TRUE(s.valid());
     for (int eye = 0; eye < kNumEyes; ++eye) EXPECT_LT(s.pixel_error[eye].norm(), 1e-9);
-    EXPECT_LT((s.perceived - s.truth).norm(), 1e-9);
+    EXPECT_LT((s.overlay - s.seen).norm(), 1e-9);
+    EXPECT_LT((s.seen - s.truth).norm(), 1e-9);
   }
 }
 
@@ -92,15 +91,16 @@ TEST(ErrsimGolden, TranslationAcrossTheLineOfSight) {
     const auto e = EvaluateWith(g, biases);
     for (size_t k = 0; k < depths.size(); ++k) {
       const auto& s = e.sample.points[k];
-      ASSERT_TRUE(s.valid);
+      ASSERT_TRUE(s.valid());
       for (int eye = 0; eye < kNumEyes; ++eye) {
         EXPECT_NEAR(s.pixel_error[eye].x(), kFocal * dt / depths[k], 1e-9);
         EXPECT_NEAR(s.pixel_error[eye].y(), 0.0, 1e-9);
       }
       const PointErrors m = MeasurePoint(e.chain, e.sample, e.theta.data(), k);
-      EXPECT_NEAR(m.linear, dt, 1e-9);
-      EXPECT_NEAR(m.lateral, dt, 1e-9);
-      EXPECT_NEAR(m.depth, 0.0, 1e-9);
+      EXPECT_NEAR(m.misregistration.linear, dt, 1e-9);
+      EXPECT_NEAR(m.misregistration.lateral, dt, 1e-9);
+      EXPECT_NEAR(m.misregistration.depth, 0.0, 1e-9);
+      EXPECT_EQ(m.misperception.linear, 0.0);  // the video of the physical point is untouched
     }
   }
 }
@@ -126,16 +126,17 @@ TEST(ErrsimGolden, RotationOfTheCameras) {
     const double d = depths[k];
     const double radius = (d * d + kHalf * kHalf) / (2 * d);
     const PointErrors m = MeasurePoint(e.chain, e.sample, e.theta.data(), depths.size() + k);
-    EXPECT_NEAR(m.lateral, radius * std::sin(2 * dtheta), 1e-9 * d) << d;
-    EXPECT_NEAR(m.depth, radius * (std::cos(2 * dtheta) - 1), 1e-9 * d) << d;
+    EXPECT_NEAR(m.misregistration.lateral, radius * std::sin(2 * dtheta), 1e-9 * d) << d;
+    EXPECT_NEAR(m.misregistration.depth, radius * (std::cos(2 * dtheta) - 1), 1e-9 * d) << d;
     // The textbook d·tan Δθ, off by the factor (1 + h²/d²)·cos²Δθ.
     const double textbook = d * std::tan(dtheta);
-    EXPECT_NEAR(m.lateral / textbook, 1.0, kHalf * kHalf / (d * d) + dtheta * dtheta) << d;
+    EXPECT_NEAR(m.misregistration.lateral / textbook, 1.0, kHalf * kHalf / (d * d) + dtheta * dtheta) << d;
   }
 }
 
-// IPD ≠ camera baseline on a parallel orthostereo rig: the perceived point is the true one scaled by
-// IPD/baseline about the cyclopean eye, so perceived depth is Z·IPD/b — with a perfect image.
+// IPD ≠ camera baseline on a parallel orthostereo rig with a collimated display: the seen point is
+// the true one scaled by IPD/baseline about the cyclopean eye, so perceived depth is Z·IPD/b —
+// with a perfect image, and the overlay moves with the video: no misregistration.
 TEST(ErrsimGolden, IpdDifferentFromBaselineScalesPerceivedDepth) {
   const std::vector<Eigen::Vector3d> points = {{0, 0, 1500}, {100, -50, 800}, {-300, 200, 3000}};
   for (const double ipd_error : {-8.0, 7.0}) {
@@ -144,8 +145,9 @@ TEST(ErrsimGolden, IpdDifferentFromBaselineScalesPerceivedDepth) {
     for (size_t k = 0; k < points.size(); ++k) {
       const auto& s = e.sample.points[k];
       for (int eye = 0; eye < kNumEyes; ++eye) EXPECT_LT(s.pixel_error[eye].norm(), 1e-9);  // the image is perfect
-      EXPECT_NEAR(s.perceived.z(), points[k].z() * scale, 1e-9 * points[k].z());
-      EXPECT_LT((s.perceived - scale * points[k]).norm(), 1e-9 * points[k].norm());
+      EXPECT_NEAR(s.seen.z(), points[k].z() * scale, 1e-9 * points[k].z());
+      EXPECT_LT((s.seen - scale * points[k]).norm(), 1e-9 * points[k].norm());
+      EXPECT_LT((s.overlay - s.seen).norm(), 1e-9 * points[k].norm());
     }
   }
 }
@@ -180,7 +182,8 @@ TEST(ErrsimGolden, LatencyTimesHeadRate) {
     const auto& s = d.sample.points[k];
     EXPECT_LT(s.pixel_error[0].norm() + s.pixel_error[1].norm(), 1e-9);
     const double a = omega * tau_display;  // the world seems to turn by a about the hmd origin
-    EXPECT_NEAR((s.perceived - s.truth).norm(), 2 * std::sin(a / 2) * points[k].norm(), 1e-9 * depths[k]);
+    EXPECT_NEAR((s.seen - s.truth).norm(), 2 * std::sin(a / 2) * points[k].norm(), 1e-9 * depths[k]);
+    EXPECT_LT((s.overlay - s.seen).norm(), 1e-9 * depths[k]);
   }
 }
 
@@ -202,8 +205,8 @@ TEST(ErrsimGolden, FiducialRegistrationFollowsFitzpatrick) {
   ChainModel model = ChainModel::WithZeroErrors(g, fiducials);
   const double fle = 0.5;  // mm, RMS of the 3-D localization error
   const double sigma = fle / std::sqrt(3.0);
-  const int begin = model.layout.Begin(Source::kVirtualObjectAlignment);
-  const int end = model.layout.End(Source::kVirtualObjectAlignment);
+  const int begin = model.layout.Offset(Term::kFiducial);
+  const int end = begin + model.layout.Size(Term::kFiducial);
   for (int i = begin; i < end; ++i) model.parameters[i].distribution = Distribution::MakeNormal(0, sigma);
   const ChainEvaluator chain(model);
 
@@ -232,8 +235,9 @@ TEST(ErrsimGolden, FiducialRegistrationFollowsFitzpatrick) {
     }
     chain.Evaluate(theta.data(), &sample);
     for (size_t t = 0; t < targets_in_object.size(); ++t) {
-      ASSERT_TRUE(sample.points[t].valid);
-      const double tre2 = MeasurePoint(chain, sample, theta.data(), t).linear;
+      ASSERT_TRUE(sample.points[t].valid());
+      // A perfect display: the overlay is seen at the registered point, the video at the truth.
+      const double tre2 = MeasurePoint(chain, sample, theta.data(), t).misregistration.linear;
       sum[t] += tre2 * tre2;
       sum2[t] += tre2 * tre2 * tre2 * tre2;
     }
@@ -250,6 +254,85 @@ TEST(ErrsimGolden, FiducialRegistrationFollowsFitzpatrick) {
     const double standard_error = std::sqrt((sum2[t] / n - mean * mean) / (n - 1));
     EXPECT_NEAR(mean, predicted, 4 * standard_error + 1e-4 * predicted)
         << "target " << t << ": TRE² " << mean << " vs Fitzpatrick " << predicted;
+  }
+}
+
+// Every display-only error moves the overlay and the video of the point together: zero
+// misregistration, in the image and in 3-D, and a non-zero misperception (issue 12 item 1).
+TEST(ErrsimGolden, DisplayErrorsGiveNoMisregistrationButMisperception) {
+  ChainGeometry g = ParallelRig(HmdPoints({{100, -50, 800}, {-300, 200, 2500}}));
+  g.display.inverse_image_distance = 1 / 1500.0;
+  g.head_angular_velocity = Eigen::Vector3d(0.1, 0.5, 0);
+  const std::vector<std::pair<std::string, double>> cases = {
+      {"display.left.eyepoint.x", 4.0},   {"display.right.eyepoint.y", -3.0}, {"display.left.screen_shift.u", 2.0},
+      {"display.right.magnification", 0.01}, {"display.left.lens_k1", 0.05},  {"display.eye_offset.z", 10.0},
+      {"display.ipd", 5.0},               {"display.latency", 0.03}};
+  for (const auto& [name, value] : cases) {
+    SCOPED_TRACE(name);
+    const auto e = EvaluateWith(g, {{name, value}});
+    for (size_t k = 0; k < e.sample.points.size(); ++k) {
+      const PointErrors m = MeasurePoint(e.chain, e.sample, e.theta.data(), k);
+      EXPECT_LT(m.pixel_px[0] + m.pixel_px[1], 1e-9);
+      EXPECT_LT(m.misregistration.linear, 1e-9);
+      EXPECT_GT(m.misperception.linear, 1e-3);
+    }
+  }
+}
+
+// The camera–eye offset (Biocca & Rolland 1998): with the eyes at the cameras' centres moved by o
+// (both eyes alike), each eye looks along its camera's rays from a point o away, so the whole seen
+// world is displaced by exactly o — the systematic misperception, at every depth and for any
+// virtual image distance (the eyes sit at their design eyepoints). Its visual angle at the eyes,
+// ∠(P − c − o, P − c), falls with depth.
+TEST(ErrsimGolden, CameraEyeOffsetDisplacesTheSeenWorld) {
+  const std::vector<Eigen::Vector3d> points = {{0, 0, 400}, {0, 0, 1000}, {150, -80, 2500}, {-300, 100, 6000}};
+  for (const double inverse_distance : {0.0, 1 / 1200.0}) {
+    ChainGeometry g = ParallelRig(HmdPoints(points));
+    const Eigen::Vector3d offset(0, 40, -85);  // eyes 40 mm below, 85 mm behind the cameras
+    g.display.eye_centre_in_hmd = offset;
+    g.display.inverse_image_distance = inverse_distance;
+    const auto e = EvaluateWith(g, {});
+    double previous_angle = HUGE_VAL;
+    for (size_t k = 0; k < points.size(); ++k) {
+      const auto& s = e.sample.points[k];
+      ASSERT_TRUE(s.valid());
+      EXPECT_LT((s.seen - (points[k] + offset)).norm(), 1e-9 * points[k].norm());
+      const Systematic& systematic = e.chain.systematic(k);
+      EXPECT_LT((systematic.offset - offset).norm(), 1e-9 * points[k].norm());
+      EXPECT_NEAR(systematic.error.linear, offset.norm(), 1e-9 * points[k].norm());
+      const double angle = std::atan2((points[k] - offset).cross(points[k]).norm(), (points[k] - offset).dot(points[k]));
+      EXPECT_NEAR(systematic.error.angular, angle, 1e-12);
+      EXPECT_LT(angle, previous_angle);
+      previous_angle = angle;
+      // Relative to the systematic error nothing is left.
+      EXPECT_LT(MeasurePoint(e.chain, e.sample, e.theta.data(), k).misperception.linear, 1e-9 * points[k].norm());
+    }
+  }
+}
+
+// Display optics: the virtual image at distance D. Both eyes off their design eyepoints by δ (the
+// HMD slipped) see pixel q at E⁰ + D·d(q) from E⁰ + δ: for a point at depth Z (parallel rig, eyes
+// in one plane) both rays pass through P + δ(1 − Z/D) — no error at the image plane, the full δ at
+// infinity. One eye moved by its IPD share: the rays meet at depth (h + δ)/(h/Z + δ/D), h half
+// the baseline — Z·I/b for a collimated display, exactly Z at Z = D.
+TEST(ErrsimGolden, EyepointErrorsTurnRaysThroughTheVirtualImage) {
+  const double distance = 1500;
+  const std::vector<Eigen::Vector3d> points = {{0, 0, 600}, {80, -40, 1500}, {-200, 60, 4000}};
+  ChainGeometry g = ParallelRig(HmdPoints(points));
+  g.display.inverse_image_distance = 1 / distance;
+  const Eigen::Vector3d delta(6, -4, 3);
+  const auto e = EvaluateWith(g, {{"display.eye_offset.x", delta.x()}, {"display.eye_offset.y", delta.y()},
+                                  {"display.eye_offset.z", delta.z()}});
+  for (size_t k = 0; k < points.size(); ++k) {
+    // Z: depth from the design eyepoints' plane (the image plane is D in front of it).
+    const Eigen::Vector3d expected = points[k] + delta * (1 - points[k].z() / distance);
+    EXPECT_LT((e.sample.points[k].seen - expected).norm(), 1e-9 * points[k].norm()) << k;
+  }
+  const double ipd_error = 6.0;
+  const auto i = EvaluateWith(g, {{"display.ipd", ipd_error}});
+  for (size_t k = 0; k < points.size(); ++k) {
+    const double z = points[k].z(), shift = ipd_error / 2;
+    EXPECT_NEAR(i.sample.points[k].seen.z(), (kHalf + shift) / (kHalf / z + shift / distance), 1e-9 * z) << k;
   }
 }
 

@@ -26,10 +26,11 @@ errsim::ChainGeometry ParallelRig(std::vector<Eigen::Vector3d> points_in_world, 
   }
   g.world_from_virtual = Pose(0.05, 0.02, -0.03, 10, 20, -30);
   g.world_from_object = Pose(-0.1, 0.2, 0.05, 300, 0, 100);
-  g.ipd = baseline;
-  g.eye_centre_in_hmd = Eigen::Vector3d::Zero();
+  g.display.ipd = baseline;
+  g.display.eye_centre_in_hmd = Eigen::Vector3d::Zero();
+  g.display.inverse_image_distance = 0;  // collimated: the closed forms that do not need the optics
   for (size_t i = 0; i < points_in_world.size(); ++i) {
-    g.test_points.push_back({"p" + std::to_string(i), points_in_world[i], std::nullopt});
+    g.test_points.push_back({std::string("p").append(std::to_string(i)), points_in_world[i], std::nullopt});
   }
   return g;
 }

@@ -9,7 +9,8 @@ namespace vstcal::testing {
 
 // A parallel orthostereo rig: two pinhole cameras (1280×720, fx = fy = `focal`, principal point
 // at the image centre) with axes along the hmd's, centres at (∓baseline/2, 0, 0) in the hmd frame,
-// eyes at the camera centres (ipd = baseline). The hmd sits 2 m behind the world origin looking
+// eyes at the camera centres (ipd = baseline), a collimated display (virtual image at infinity).
+// The hmd sits 2 m behind the world origin looking
 // along world +z (hmd_from_tracker · tracker_from_world = translation (0, 0, 2000) mm with a
 // non-trivial tracker in between); the virtual world and the object frame are rotated and
 // shifted away from the world so that every frame of the chain is exercised. Test points are

@@ -1,34 +1,41 @@
 // The error budget's arithmetic on a nearly linear chain (small, independent errors of four
 // sources): the sources' alone mean squares add up to the whole chain's, and halving a source
 // removes ¾ of its mean square — both within the Monte Carlo error of the cross terms, which
-// common random numbers do not cancel. Display errors never reach the image. The simulation's
-// numbers do not depend on threads or shards.
+// common random numbers do not cancel. Display errors never reach the misregistration. The budget
+// is measured against the error-free chain's systematic misperception: with the eyes 80 mm behind
+// the cameras, or a design IPD of 60 mm on a 64 mm baseline, a source that does not touch what the
+// eyes see contributes no misperception, and the display's contribution is its closed form. The
+// simulation's numbers do not depend on threads or shards.
 #include <gtest/gtest.h>
 
 #include <cmath>
 
 #include "support/vst_scenes.h"
-#include "vstcal/errsim/report.h"
+#include "vstcal/errsim/budget.h"
 #include "vstcal/errsim/simulation.h"
 
 namespace vstcal::errsim {
 namespace {
 
-ChainModel LinearishChain() {
-  ChainGeometry g = testing::ParallelRig({testing::WorldFromHmdPoint({100, -50, 800}), testing::WorldFromHmdPoint({-200, 80, 1500}),
-                                          testing::WorldFromHmdPoint({0, 0, 2500})});
-  ChainModel m = ChainModel::WithZeroErrors(g);
-  auto set = [&](const std::string& name, double sigma) {
-    for (auto& p : m.parameters) {
-      if (p.name == name) p.distribution = Distribution::MakeNormal(0, sigma);
-    }
-  };
-  set("tracker_alignment.translation.x", 2.0);
-  set("tracking.translation.y", 1.5);
-  set("virtual_object_alignment.translation.x", 1.0);
-  set("virtual_object_alignment.translation.y", 1.0);
-  set("display.ipd", 3.0);
+void SetNormal(ChainModel* m, const std::string& name, double sigma) {
+  ChainParameter* p = m->Find(name);
+  ASSERT_NE(p, nullptr) << name;
+  p->distribution = Distribution::MakeNormal(0, sigma);
+}
+
+ChainModel LinearishChain(ChainGeometry g) {
+  ChainModel m = ChainModel::WithZeroErrors(std::move(g));
+  SetNormal(&m, "tracker_alignment.translation.x", 2.0);
+  SetNormal(&m, "tracking.translation.y", 1.5);
+  SetNormal(&m, "virtual_object_alignment.translation.x", 1.0);
+  SetNormal(&m, "virtual_object_alignment.translation.y", 1.0);
+  SetNormal(&m, "display.ipd", 3.0);
   return m;
+}
+
+std::vector<Eigen::Vector3d> Points() {
+  return {testing::WorldFromHmdPoint({100, -50, 800}), testing::WorldFromHmdPoint({-200, 80, 1500}),
+          testing::WorldFromHmdPoint({0, 0, 2500})};
 }
 
 SimulationOptions Options(uint64_t samples) {
@@ -39,19 +46,23 @@ SimulationOptions Options(uint64_t samples) {
 }
 
 TEST(ErrorBudget, AloneMeanSquaresAddUpAndHalvingRemovesThreeQuarters) {
-  const ChainModel model = LinearishChain();
+  const ChainModel model = LinearishChain(testing::ParallelRig(Points()));
   const uint64_t n = 40000;
   const SimulationResult r = RunSimulation(MakeScenarios(model, true), Options(n), ChainDigest(model));
-  const ScenarioTotals all = Totals(model, r.summaries[0]);
-  const std::vector<BudgetEntry> budget = Budget(model, r);
-  ASSERT_EQ(budget.size(), 4u);
+  const ScenarioTotals all = Totals(model, r.summaries[0], OutputSet::kFull);
+  const ErrorBudget budget = Budget(model, r);
+  ASSERT_EQ(budget.entries.size(), 4u);
   double sum = 0, cross = 0;
-  for (const BudgetEntry& e : budget) {
+  for (const BudgetEntry& e : budget.entries) {
     const double ms = e.alone.image_rms_px * e.alone.image_rms_px;
     if (e.source == Source::kDisplay) {
-      EXPECT_LT(e.alone.image_rms_px, 1e-9);  // cancels in the image, to rounding
+      EXPECT_LT(e.alone.image_rms_px, 1e-9);         // cancels in the image, to rounding
+      EXPECT_LT(e.alone.misregistration_rms, 1e-9);  // and in what the eyes see as misalignment
+      EXPECT_GT(e.alone.misperception_rms, 1.0);     // but not in where things seem to be
+    } else {
+      EXPECT_EQ(e.alone.misperception_rms, 0.0);  // the video of the physical point does not move
     }
-    for (const BudgetEntry& f : budget) {
+    for (const BudgetEntry& f : budget.entries) {
       if (&f < &e) cross += 4 * ms * f.alone.image_rms_px * f.alone.image_rms_px;
     }
     sum += ms;
@@ -59,16 +70,62 @@ TEST(ErrorBudget, AloneMeanSquaresAddUpAndHalvingRemovesThreeQuarters) {
   // The cross terms 2·mean(e_s·e_t) have mean 0 and standard error ≈ 2σ_sσ_t/√N.
   const double tolerance = 5 * std::sqrt(cross / n);
   EXPECT_NEAR(all.image_rms_px * all.image_rms_px, sum, tolerance);
-  for (const BudgetEntry& e : budget) {
+  for (const BudgetEntry& e : budget.entries) {
     const double ms_alone = e.alone.image_rms_px * e.alone.image_rms_px;
     EXPECT_NEAR(e.halved.image_rms_px * e.halved.image_rms_px, all.image_rms_px * all.image_rms_px - 0.75 * ms_alone, tolerance)
         << SourceKey(e.source);
     EXPECT_NEAR(e.share_of_image_ms, ms_alone / sum, 1e-12);
   }
+  EXPECT_EQ(budget.entries[budget.by_misperception[0]].source, Source::kDisplay);
+  EXPECT_EQ(budget.entries[budget.by_misregistration[0]].source, Source::kTrackerAlignment);
+}
+
+// The display alone, relative to the systematic misperception: an IPD error δI on a parallel rig
+// (collimated display) makes the eyes see c + o + ((I + δI)/b)(P − c) where the error-free chain
+// shows c + o + (I/b)(P − c) — o the camera–eye offset, c the cameras' midpoint — so the
+// contribution is (δI/b)(P − c): RMS σ_I·|P − c|/b, whatever o and I. The systematic part is o +
+// (I/b − 1)(P − c), reported on its own.
+TEST(ErrorBudget, ContributionsAreMeasuredFromTheSystematicError) {
+  struct Case {
+    const char* name;
+    Eigen::Vector3d eye_offset;
+    double ipd;
+  };
+  const double baseline = 64.0;
+  for (const Case& c : {Case{"eyes 80 mm behind", {0, 0, -80}, 64.0}, Case{"ipd 60 on 64", {0, 0, 0}, 60.0}}) {
+    SCOPED_TRACE(c.name);
+    ChainGeometry g = testing::ParallelRig(Points(), 700.0, baseline);
+    g.display.eye_centre_in_hmd = c.eye_offset;
+    g.display.ipd = c.ipd;
+    const ChainModel model = LinearishChain(g);
+    const ChainEvaluator chain(model);
+    const Rigid3d hmd_from_world = g.hmd_from_tracker * g.tracker_from_world;
+    double expected_ms = 0;
+    for (size_t k = 0; k < g.test_points.size(); ++k) {
+      const Eigen::Vector3d p = hmd_from_world * g.test_points[k].point_in_world;
+      const Eigen::Vector3d systematic = c.eye_offset + (c.ipd / baseline - 1) * p;
+      EXPECT_LT((chain.systematic(k).offset - systematic).norm(), 1e-9 * p.norm());
+      expected_ms += std::pow(3.0 * p.norm() / baseline, 2);
+    }
+    const double expected_rms = std::sqrt(expected_ms / g.test_points.size());
+    const uint64_t n = 20000;
+    const SimulationResult r = RunSimulation(MakeScenarios(model, true), Options(n), ChainDigest(model));
+    const ErrorBudget budget = Budget(model, r);
+    for (const BudgetEntry& e : budget.entries) {
+      if (e.source == Source::kDisplay) {
+        // δI²'s sample mean has relative standard error √(2/N).
+        EXPECT_NEAR(e.alone.misperception_rms, expected_rms, 5 * std::sqrt(2.0 / n) * expected_rms);
+        EXPECT_LT(e.alone.misregistration_rms, 1e-9);
+      } else {
+        EXPECT_EQ(e.alone.misperception_rms, 0.0) << SourceKey(e.source);
+        EXPECT_GT(e.alone.misregistration_rms, 0.1) << SourceKey(e.source);
+      }
+    }
+  }
 }
 
 TEST(Simulation, SameBitsForAnyThreadCountAndShardSplit) {
-  const ChainModel model = LinearishChain();
+  const ChainModel model = LinearishChain(testing::ParallelRig(Points()));
   const auto scenarios = MakeScenarios(model, true);
   SimulationOptions one = Options(5000), two = Options(5000);
   one.threads = 1;

@@ -5,7 +5,7 @@
 #include "common/validators.h"
 #include "vstcal/core/error.h"
 #include "vstcal/io/camera_convert.h"
-#include "vstcal/io/json_writer.h"
+#include "vstcal/json/json_writer.h"
 
 namespace {
 

@@ -1,6 +1,11 @@
 #include "vstcal/camera/camera.h"
 
+#include <array>
+#include <cmath>
+#include <limits>
+
 #include "vstcal/core/error.h"
+#include "vstcal/geometry/rotation.h"
 
 namespace vstcal {
 
@@ -81,6 +86,59 @@ std::optional<Eigen::Vector3d> Camera::Unproject(const Eigen::Vector2d& px) cons
 
 bool Camera::InImage(const Eigen::Vector2d& px) const {
   return px.x() >= -0.5 && px.y() >= -0.5 && px.x() <= image_size.width - 0.5 && px.y() <= image_size.height - 0.5;
+}
+
+namespace {
+
+// det ∂(x_d, y_d)/∂(x, y) of the distortion at (x, y), by ceres::Jet through Model::Distort.
+template <typename Model>
+double DistortionJacobianDeterminant(const double* distortion, double x, double y) {
+  using Jet = ceres::Jet<double, 2>;
+  constexpr int kDistortion = Model::kNumParams - kNumIntrinsicParams;
+  std::array<Jet, kDistortion> d;
+  for (int i = 0; i < kDistortion; ++i) d[i] = Jet(distortion[i]);
+  Jet xd, yd;
+  Model::Distort(d.data(), Jet(x, 0), Jet(y, 1), &xd, &yd);
+  return xd.v[0] * yd.v[1] - xd.v[1] * yd.v[0];
+}
+
+}  // namespace
+
+double Camera::ValidRadiusSquared() const {
+  return std::visit(
+      [&](const auto& m) -> double {
+        using Model = std::decay_t<decltype(m)>;
+        if constexpr (Model::kNumParams == kNumIntrinsicParams) {
+          return std::numeric_limits<double>::infinity();
+        } else {
+          const double* distortion = params.data() + kNumIntrinsicParams;
+          constexpr int kDirections = 64;
+          auto folds = [&](double r) {
+            for (int k = 0; k < kDirections; ++k) {
+              const double a = 2 * kPi * k / kDirections;
+              if (!(DistortionJacobianDeterminant<Model>(distortion, r * std::cos(a), r * std::sin(a)) > 0)) return true;
+            }
+            return false;
+          };
+          constexpr double kMaxRadius = 100;
+          // Outward in steps of 1 % until the determinant is no longer positive somewhere, then bisect.
+          double good = 0, bad = 0;
+          for (double r = 1e-3; r <= kMaxRadius; r *= 1.01) {
+            if (folds(r)) {
+              bad = r;
+              break;
+            }
+            good = r;
+          }
+          if (bad == 0) return std::numeric_limits<double>::infinity();
+          while (bad - good > 1e-9 * bad) {
+            const double mid = 0.5 * (good + bad);
+            (folds(mid) ? bad : good) = mid;
+          }
+          return good * good;
+        }
+      },
+      model);
 }
 
 }  // namespace vstcal

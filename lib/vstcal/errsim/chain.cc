@@ -4,9 +4,20 @@
 
 namespace vstcal::errsim {
 
+const char* UndefinedName(Undefined why) {
+  switch (why) {
+    case Undefined::kNone: return "defined";
+    case Undefined::kBehindCamera: return "behind a camera";
+    case Undefined::kOutsideLensDomain: return "outside the lens's valid domain";
+    case Undefined::kOutsideImage: return "outside the image";
+    case Undefined::kParallelRays: return "the eyes' rays are parallel";
+  }
+  return "?";
+}
+
 ChainEvaluator::ChainEvaluator(const ChainModel& model) : model_(model), layout_(model.layout) {
   const ChainGeometry& g = model_.geometry;
-  VSTCAL_CHECK(static_cast<int>(model_.parameters.size()) == layout_.size, "θ layout and parameter list disagree");
+  VSTCAL_CHECK(static_cast<int>(model_.parameters.size()) == layout_.size(), "θ layout and parameter list disagree");
   tracker_from_virtual_ = g.tracker_from_world * g.world_from_virtual;
   virtual_from_object_ = g.world_from_virtual.inverse() * g.world_from_object;
   hmd_from_tracker_ = g.hmd_from_tracker;
@@ -23,14 +34,21 @@ ChainEvaluator::ChainEvaluator(const ChainModel& model) : model_(model), layout_
   const Eigen::Vector3d baseline_direction = (right_centre - left_centre) / baseline;
 
   for (int e = 0; e < kNumEyes; ++e) {
+    const Camera& camera = g.cameras[e];
+    VSTCAL_CHECK(model_.intrinsic_mixing[e].rows() == static_cast<int>(model_.renderer[e].params.size()) &&
+                     model_.intrinsic_mixing[e].cols() == model_.intrinsic_mixing[e].rows(),
+                 "intrinsic mixing and renderer lens disagree");
+    VSTCAL_CHECK(layout_.Size(Term::kLens, e) == static_cast<int>(model_.renderer[e].params.size()),
+                 "θ's lens block and renderer lens disagree");
     camera_from_hmd_[e] = g.camera_from_hmd[e];
     baseline_step_[e] = (e == 0 ? 0.5 : -0.5) * (g.camera_from_hmd[e].R * baseline_direction);
-    lens_[e].fill(0.0);
-    const std::vector<double>& params = g.cameras[e].params;
-    for (size_t i = 0; i < params.size(); ++i) lens_[e][i] = params[i];
+    design_eyepoint_[e] = g.display.DesignEyepoint(e);
+    focal_baseline_[e] = camera.params[0] * baseline;
     mixing_is_identity_[e] = model_.intrinsic_mixing[e].isIdentity(0.0);
-    display_[e] = {lens_[e][2], lens_[e][3], lens_[e][4], 1.0 / lens_[e][0], 1.0 / lens_[e][1],
-                   g.camera_from_hmd[e].R.transpose()};
+    const std::vector<double>& p = camera.params;
+    display_[e] = {p[2], p[3], p[4], 1.0 / p[0], 1.0 / p[1], g.camera_from_hmd[e].R.transpose(),
+                   g.camera_from_hmd[e].R == Eigen::Matrix3d::Identity(), -0.5, camera.image_size.width - 0.5, -0.5,
+                   camera.image_size.height - 0.5};
   }
   for (const TestPoint& tp : g.test_points) {
     point_in_object_.push_back(object_from_world * tp.point_in_world);
@@ -40,13 +58,30 @@ ChainEvaluator::ChainEvaluator(const ChainModel& model) : model_(model), layout_
       const auto q = g.cameras[e].Project(x);
       VSTCAL_CHECK(q.has_value(), "test point \"" + tp.name + "\" is behind a camera");
       real_pixel_[e].push_back(*q);
+      real_centred_[e].push_back(*q - Eigen::Vector2d(display_[e].cx, display_[e].cy));
       real_depth_[e].push_back(x.z());
+      surface_disparity_[e].push_back(tp.surface_behind ? focal_baseline_[e] / (x.z() + *tp.surface_behind) : 0.0);
     }
   }
   if (!model_.fiducials_in_object.empty()) {
     fiducials_ = RegistrationFrame::For(model_.fiducials_in_object);
     VSTCAL_CHECK(fiducials_.has_value(), "the fiducial layout is collinear");
     for (const auto& f : model_.fiducials_in_object) fiducials_in_virtual_.push_back(virtual_from_object_ * f);
+  }
+
+  // The error-free chain: every θ at 0 (not the mean — a bias is an error).
+  systematic_.assign(num_points(), Systematic{});
+  const std::vector<double> zero(layout_.size(), 0.0);
+  ChainSample<double> nominal(num_points());
+  Evaluate(zero.data(), &nominal);
+  const Eigen::Vector3d cyclops = 0.5 * (nominal.eye[0] + nominal.eye[1]);
+  nominal_undefined_.resize(num_points());
+  for (size_t k = 0; k < num_points(); ++k) {
+    const PointSample<double>& s = nominal.points[k];
+    nominal_undefined_[k] = s.undefined;
+    if (!s.valid()) continue;
+    systematic_[k].offset = s.seen - s.truth;
+    systematic_[k].error = RegistrationError<double>(cyclops, s.truth, systematic_[k].offset);
   }
 }
 

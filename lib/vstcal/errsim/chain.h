@@ -1,23 +1,28 @@
 // The VST registration chain, written once and templated on the scalar: Monte Carlo runs it with
-// double, linear propagation with ceres::Jet (docs/math/vst-chain.md).
+// double and SimdDouble (four samples at once, sample_measurer.h), linear propagation and sweep
+// slopes with ceres::Jet (docs/math/vst-chain.md).
 //
 // For each test point p (world frame) and each eye e:
-//   real path     q_real = project(K_e, x),  x = camera_from_hmd_e · hmd_from_tracker · tracker_from_world · p
-//   virtual path  q_virt = project(K̂_e, x̂), x̂ = ĉamera_from_hmd_e · ĥmd_from_tracker · t̂racker_from_virtual
-//                                                · v̂irtual_from_object · p_object
-// with p_object = object_from_world · p (the virtual twin has the physical object's nominal
-// coordinates). Every hat is the nominal transform perturbed by its source's block of θ
-// (chain_model.h). Image misregistration is q_virt − q_real, per eye. The viewer then sees each
-// eye's composited pixel through the display (screen mapping, lens residual) from the true eye
-// position; the perceived overlay is the midpoint of the two eyes' rays, compared with the physical
-// point in the head frame at display time (display latency) — Holloway's errors (holloway.h).
+//   real path     q_e = project(camera_e, x),  x = camera_from_hmd_e · hmd_from_tracker · tracker_from_world · p
+//   virtual path  q̂_e = project(renderer_e, x̂), x̂ = ĉamera_from_hmd_e · ĥmd_from_tracker · t̂racker_from_virtual
+//                                                    · v̂irtual_from_object · p_object
+// with p_object = object_from_world · p. Every hat is the nominal transform perturbed by its
+// term of θ (schema.h). The display shows eye e its composited video: pixel q on a virtual image
+// plane at distance D (chain_model.h, DisplayGeometry), seen from the eye's actual eyepoint E_e. So
+// the eyes see the overlay along the rays through q̂_l, q̂_r and the video image of the physical
+// point along the rays through q_l, q_r; each pair is triangulated (report/registration_error.h):
+//   overlay P̂' and seen P' — misregistration = P̂' − P' (what the user sees as misalignment; the
+//   display moves both together), misperception = P' − P (where the user perceives the point
+//   against where it is at display time), measured relative to the error-free chain's own
+//   (systematic) misperception.
 //
-// The same code runs with double, ceres::Jet and SimdDouble (four samples at once,
-// sample_measurer.h). Products and sums go through fixed_order.h, so double and SimdDouble give
-// the same bits for every sample.
+// Products and sums go through fixed_order.h, so double and SimdDouble give the same bits for every
+// sample.
 #pragma once
 
 #include <array>
+#include <cstdint>
+#include <optional>
 #include <vector>
 
 #include <Eigen/Core>
@@ -26,33 +31,57 @@
 #include "vstcal/errsim/point_registration.h"
 #include "vstcal/geometry/fixed_order.h"
 #include "vstcal/geometry/rigid3.h"
+#include "vstcal/report/registration_error.h"
 
 namespace vstcal::errsim {
 
 template <typename T>
 using Vec2 = Eigen::Matrix<T, 2, 1>;
 
+// Why a test point of a sample is undefined (docs/math/vst-chain.md#undefined). Such a point is
+// counted and left out of every statistic, never zeroed.
+enum class Undefined : uint8_t {
+  kNone = 0,
+  kBehindCamera,       // the virtual point is not in front of the renderer's camera
+  kOutsideLensDomain,  // beyond the lens's valid domain (Camera::ValidRadiusSquared)
+  kOutsideImage,       // the overlay pixel leaves the image
+  kParallelRays,       // the eyes' rays do not meet: no point is seen
+};
+const char* UndefinedName(Undefined why);
+
 template <typename T>
 struct PointSample {
-  bool valid = false;                   // false: behind a virtual camera, or the eyes' rays are parallel
-  std::array<Vec2<T>, kNumEyes> pixel_error;  // q_virt − q_real, px
-  std::array<T, kNumEyes> virtual_depth;      // z of the virtual point in each virtual camera (occlusion)
-  std::array<Vec3<T>, kNumEyes> ray;          // perceived direction from each eye, hmd frame, not unit
-  Vec3<T> perceived;                          // the perceived overlay, hmd frame
-  Vec3<T> truth;                              // the physical point, hmd frame at display time
+  Undefined undefined = Undefined::kNone;  // SimdDouble: the lanes agree, else the group is redone
+  int undefined_eye = 0;                   // the eye it happened in (kBehindCamera … kOutsideImage)
+  std::array<Vec2<T>, kNumEyes> pixel_error;  // q̂ − q, px
+  std::array<T, kNumEyes> virtual_depth;      // z of the virtual point in each renderer camera (occlusion)
+  std::array<Vec3<T>, kNumEyes> overlay_ray, seen_ray;  // from each eye, hmd frame, not unit
+  Vec3<T> overlay;  // where the eyes see the overlay, hmd frame
+  Vec3<T> seen;     // where the eyes see the video image of the physical point, hmd frame
+  Vec3<T> truth;    // the physical point, hmd frame at display time
+  bool valid() const { return undefined == Undefined::kNone; }
 };
 
 template <typename T>
 struct ChainSample {
   explicit ChainSample(size_t num_points) : points(num_points) {}
-  std::array<Vec3<T>, kNumEyes> eye;  // the viewer's eyes, hmd frame
+  std::array<Vec3<T>, kNumEyes> eye;  // the viewer's eyepoints, hmd frame
   std::vector<PointSample<T>> points;
+};
+
+// The error-free chain's misperception of a test point: the camera–eye offset, an IPD other than
+// the camera baseline and a distorting camera shown undistorted-as-pinhole make the viewer see the
+// world displaced even with every error at 0. Reported on its own; the misperception of every
+// sample is measured relative to it.
+struct Systematic {
+  Eigen::Vector3d offset = Eigen::Vector3d::Zero();  // seen − truth at θ = 0, hmd frame
+  RegistrationErrorOf<double> error{};               // Holloway's terms of it (angular in radians)
 };
 
 class ChainEvaluator {
  public:
-  // Requires every test point in front of both cameras (chain_io checks and names the point) and,
-  // with fiducials, a non-collinear layout; InternalError otherwise.
+  // Requires every test point in front of both cameras (the chain reader checks and names the
+  // point) and, with fiducials, a non-collinear layout; InternalError otherwise.
   explicit ChainEvaluator(const ChainModel& model);
 
   const ChainModel& model() const { return model_; }
@@ -60,22 +89,39 @@ class ChainEvaluator {
   const Eigen::Vector2d& real_pixel(int eye, size_t point) const { return real_pixel_[eye][point]; }
   double real_depth(int eye, size_t point) const { return real_depth_[eye][point]; }
   double camera_baseline() const { return camera_baseline_; }
+  // For the occlusion decision: f·b of eye e's camera (fx times the baseline), and the disparity
+  // f·b/z_s of the real surface behind test point k (0 without surface_behind).
+  double focal_baseline(int eye) const { return focal_baseline_[eye]; }
+  double surface_disparity(int eye, size_t point) const { return surface_disparity_[eye][point]; }
+  const Systematic& systematic(size_t point) const { return systematic_[point]; }
+  // Why the error-free chain cannot see test point k (kNone when it can; the chain reader refuses
+  // such a chain, naming the point).
+  Undefined nominal_undefined(size_t point) const { return nominal_undefined_[point]; }
 
   template <typename T>
   void Evaluate(const T* theta, ChainSample<T>* out) const;
 
   // Vector outputs for linear propagation (sensitivity::Model::Templated): per test point
-  // [du_left, dv_left, du_right, dv_right, dx, dy, dz] (px, then perceived − true in the hmd frame).
-  static constexpr int kOutputsPerPoint = 7;
+  // [du_left, dv_left, du_right, dv_right] (px), the misregistration P̂' − P' (3) and the
+  // misperception relative to the systematic one (3), hmd frame. False when a point is undefined.
+  static constexpr int kOutputsPerPoint = 10;
   size_t num_vector_outputs() const { return kOutputsPerPoint * num_points(); }
   template <typename T>
   bool operator()(const T* theta, T* y) const;
 
  private:
   template <typename T>
-  Rigid3<T> VirtualFromObject(const T* block) const;
+  const T* At(const T* theta, Term term, int eye = 0) const {
+    return theta + layout_.Offset(term, eye);
+  }
   template <typename T>
-  Vec3<T> DisplayedRay(int eye, const Vec2<T>& pixel, const T* display_block) const;
+  static Vec3<T> Vec(const T* p) {
+    return Vec3<T>(p[0], p[1], p[2]);
+  }
+  template <typename T>
+  Rigid3<T> VirtualFromObject(const T* theta) const;
+  template <typename T>
+  Vec3<T> DisplayedDirection(int eye, const Vec2<T>& centred, const T* shift, const T& scale, const T& lens_k1) const;
 
   ChainModel model_;
   ParameterLayout layout_;
@@ -83,30 +129,35 @@ class ChainEvaluator {
   Rigid3d tracker_from_virtual_, virtual_from_object_, hmd_from_tracker_;
   std::array<Rigid3d, kNumEyes> camera_from_hmd_;
   std::array<Eigen::Vector3d, kNumEyes> baseline_step_;  // ρ per unit of baseline error, camera frame
-  std::array<std::array<double, kNumLensParams>, kNumEyes> lens_;
+  std::array<Eigen::Vector3d, kNumEyes> design_eyepoint_;
   std::array<bool, kNumEyes> mixing_is_identity_;
   std::vector<Eigen::Vector3d> point_in_object_, point_in_hmd_;
-  std::array<std::vector<Eigen::Vector2d>, kNumEyes> real_pixel_;
-  std::array<std::vector<double>, kNumEyes> real_depth_;
+  std::array<std::vector<Eigen::Vector2d>, kNumEyes> real_pixel_, real_centred_;  // q, and q − principal point
+  std::array<std::vector<double>, kNumEyes> real_depth_, surface_disparity_;
+  std::array<double, kNumEyes> focal_baseline_{};
   struct DisplayConstants {
-    double cx, cy, s, inverse_fx, inverse_fy;
-    Eigen::Matrix3d hmd_from_camera;  // nominal rotation: the eye looks along its camera's axes
+    double cx, cy, s, inverse_fx, inverse_fy;  // the true camera's K⁻¹: the display shows its field of view
+    Eigen::Matrix3d hmd_from_camera;           // nominal rotation: the display is aligned with the camera's axes
+    bool camera_axes_are_hmd_axes;             // hmd_from_camera is exactly I (most rigs): no rotation to apply
+    double min_u, max_u, min_v, max_v;         // the image, px
   };
   std::array<DisplayConstants, kNumEyes> display_;
   std::optional<RegistrationFrame> fiducials_;
   std::vector<Eigen::Vector3d> fiducials_in_virtual_;  // nominal measured positions
+  std::vector<Systematic> systematic_;
+  std::vector<Undefined> nominal_undefined_;
 };
 
 // ---------------------------------------------------------------------------------------------
 
 template <typename T>
-Rigid3<T> ChainEvaluator::VirtualFromObject(const T* block) const {
-  if (!fiducials_) {
-    return fixed_order::PerturbLeft(virtual_from_object_, Vec3<T>(block[0], block[1], block[2]),
-                                    Vec3<T>(block[3], block[4], block[5]));
-  }
+Rigid3<T> ChainEvaluator::VirtualFromObject(const T* theta) const {
+  namespace fo = fixed_order;
+  const Vec3<T> rotation = Vec(At(theta, Term::kObjectRotation)), translation = Vec(At(theta, Term::kObjectTranslation));
+  if (!fiducials_) return fo::PerturbLeft(virtual_from_object_, rotation, translation);
   // The fiducials as measured in the virtual world (true position + localization error), then the
-  // least-squares registration of the object-frame layout onto them.
+  // least-squares registration of the object-frame layout onto them. (The pose terms are 0 here.)
+  const T* block = At(theta, Term::kFiducial);
   const size_t n = fiducials_in_virtual_.size();
   std::array<Vec3<T>, 64> measured_small;
   std::vector<Vec3<T>> measured_large;
@@ -115,126 +166,139 @@ Rigid3<T> ChainEvaluator::VirtualFromObject(const T* block) const {
     measured_large.resize(n);
     measured = measured_large.data();
   }
-  for (size_t k = 0; k < n; ++k) {
-    measured[k] = fiducials_in_virtual_[k].cast<T>() + Vec3<T>(block[3 * k], block[3 * k + 1], block[3 * k + 2]);
-  }
-  return RefineRegistration<T>(*fiducials_, virtual_from_object_.R.cast<T>(), measured);
+  for (size_t k = 0; k < n; ++k) measured[k] = fiducials_in_virtual_[k].cast<T>() + Vec(block + 3 * k);
+  return fo::PerturbLeft(RefineRegistration<T>(*fiducials_, virtual_from_object_.R.cast<T>(), measured), rotation,
+                         translation);
 }
 
 template <typename T>
-Vec3<T> ChainEvaluator::DisplayedRay(int eye, const Vec2<T>& pixel, const T* d) const {
-  // d: this eye's display block [eyepoint(3), shift u, shift v, magnification, lens k1]. The display
-  // shows the image with the true camera's field of view (K⁻¹ of the true K), about its principal point.
+Vec3<T> ChainEvaluator::DisplayedDirection(int eye, const Vec2<T>& centred, const T* shift, const T& scale,
+                                           const T& lens_k1) const {
+  // The screen mapping (scale = 1 + magnification about the principal point, shift), the true
+  // camera's K⁻¹, the HMD lens's uncorrected radial term 1 + k1·r², the camera's nominal axes.
   const DisplayConstants& c = display_[eye];
-  const T du = (T(1) + d[5]) * (pixel(0) - T(c.cx)) + d[3];
-  const T dv = (T(1) + d[5]) * (pixel(1) - T(c.cy)) + d[4];
+  const T du = scale * centred(0) + shift[0];
+  const T dv = scale * centred(1) + shift[1];
   const T yn = dv * T(c.inverse_fy);
   const T xn = (du - T(c.s) * yn) * T(c.inverse_fx);
-  // The HMD lens's uncorrected radial term scales the direction by 1 + k1·r².
-  const T radial = T(1) + d[6] * (xn * xn + yn * yn);
+  const T radial = T(1) + lens_k1 * (xn * xn + yn * yn);
   const Vec3<T> direction(xn * radial, yn * radial, T(1));
-  return fixed_order::Times(c.hmd_from_camera, direction);
+  // Branching on a constant of the chain, the same for every lane. I·v gives v's bits too (x·1 + 0
+  // adds nothing but the sign of a zero, which no later step can see): the shortcut changes no number.
+  return c.camera_axes_are_hmd_axes ? direction : fixed_order::Times(c.hmd_from_camera, direction);
 }
 
 template <typename T>
 void ChainEvaluator::Evaluate(const T* theta, ChainSample<T>* out) const {
   namespace fo = fixed_order;
-  const ParameterLayout& L = layout_;
-  const T* ta = theta + L.tracker_alignment;
-  const Rigid3<T> tracker_from_virtual =
-      fo::PerturbLeft(tracker_from_virtual_, Vec3<T>(ta[0], ta[1], ta[2]), Vec3<T>(ta[3], ta[4], ta[5]));
-  const Rigid3<T> virtual_from_object = VirtualFromObject(theta + L.virtual_object_alignment);
+  const Rigid3<T> tracker_from_virtual = fo::PerturbLeft(tracker_from_virtual_, Vec(At(theta, Term::kTrackerAlignmentRotation)),
+                                                         Vec(At(theta, Term::kTrackerAlignmentTranslation)));
+  const Rigid3<T> virtual_from_object = VirtualFromObject(theta);
 
   // The renderer's pose is older than the video frame by the tracking and render latencies: the
   // head moved by (ω·age, v·age) in between (hmd(t − age)_from_hmd(t), first order in the motion).
-  const T* tr = theta + L.tracking;
-  const T age = tr[6] + theta[L.rendering];
+  const T age = At(theta, Term::kTrackingLatency)[0] + At(theta, Term::kRenderLatency)[0];
   const Eigen::Vector3d& w = model_.geometry.head_angular_velocity;
   const Eigen::Vector3d& v = model_.geometry.head_linear_velocity;
   const Rigid3<T> lagged = fo::PerturbLeft(hmd_from_tracker_, Vec3<T>(w.cast<T>() * age), Vec3<T>(v.cast<T>() * age));
   const Rigid3<T> hmd_from_tracker =
-      fo::PerturbLeft(lagged, Vec3<T>(tr[0], tr[1], tr[2]), Vec3<T>(tr[3], tr[4], tr[5]));
+      fo::PerturbLeft(lagged, Vec(At(theta, Term::kTrackingRotation)), Vec(At(theta, Term::kTrackingTranslation)));
   // The stereo rig's mount error is common to both eyes: camera_from_hmd_e · (Exp(ω), ρ) · hmd_from_object.
-  const T* rig = theta + L.camera_extrinsic + 13;
   const Rigid3<T> hmd_from_object =
       fo::PerturbLeft(fo::Compose(hmd_from_tracker, fo::Compose(tracker_from_virtual, virtual_from_object)),
-                      Vec3<T>(rig[0], rig[1], rig[2]), Vec3<T>(rig[3], rig[4], rig[5]));
+                      Vec(At(theta, Term::kRigRotation)), Vec(At(theta, Term::kRigTranslation)));
 
+  const T baseline = At(theta, Term::kBaseline)[0];
   auto camera_from_object_of = [&](int e) {
-    const T* ce = theta + L.camera_extrinsic + 6 * e;
-    const T baseline = theta[L.camera_extrinsic + 12];
-    const Vec3<T> rho = Vec3<T>(ce[3], ce[4], ce[5]) + baseline_step_[e].cast<T>() * baseline;
-    return fo::Compose(fo::PerturbLeft(camera_from_hmd_[e], Vec3<T>(ce[0], ce[1], ce[2]), rho), hmd_from_object);
+    const Vec3<T> rho = Vec(At(theta, Term::kCameraTranslation, e)) + baseline_step_[e].cast<T>() * baseline;
+    return fo::Compose(fo::PerturbLeft(camera_from_hmd_[e], Vec(At(theta, Term::kCameraRotation, e)), rho), hmd_from_object);
   };
   // Built in place: a default Rigid3 would first be written as the identity.
   const std::array<Rigid3<T>, kNumEyes> camera_from_object = {camera_from_object_of(0), camera_from_object_of(1)};
-  std::array<std::array<T, kNumLensParams>, kNumEyes> lens;
-  const T* ds = theta + L.display;
-  const T ipd = T(model_.geometry.ipd) + ds[2 * ParameterLayout::kDisplayPerEye];
+
+  // The renderer's lens parameters, and the eyes: each at its design eyepoint moved by its own
+  // eyepoint error, the common offset of both (how the HMD sits) and half the IPD error. A display
+  // whose virtual image is at distance D shows pixel q at E⁰ + D·d(q); seen from E = E⁰ + Δ the
+  // ray's direction is D·d(q) − Δ ∝ d(q) − Δ/D.
+  std::array<std::array<T, kMaxLensParams>, kNumEyes> lens;
+  std::array<Vec3<T>, kNumEyes> towards_eye;
+  std::array<T, kNumEyes> screen_scale;
+  const T ipd_error = At(theta, Term::kIpd)[0];
+  const Vec3<T> eye_offset = Vec(At(theta, Term::kEyeOffset));
+  const T inverse_image_distance = T(model_.geometry.display.inverse_image_distance);
   for (int e = 0; e < kNumEyes; ++e) {
-    const T* ci = theta + L.camera_intrinsic + kNumLensParams * e;
-    for (int i = 0; i < kNumLensParams; ++i) {
+    const T* ci = At(theta, Term::kLens, e);
+    const std::vector<double>& nominal = model_.renderer[e].params;
+    const int n = static_cast<int>(nominal.size());
+    for (int i = 0; i < n; ++i) {
       T delta = ci[i];
       if (!mixing_is_identity_[e]) {
         delta = T(0);
-        for (int j = 0; j < kNumLensParams; ++j) delta += model_.intrinsic_mixing[e](i, j) * ci[j];
+        for (int j = 0; j < n; ++j) delta += model_.intrinsic_mixing[e](i, j) * ci[j];
       }
-      lens[e][i] = T(lens_[e][i]) + delta;
+      lens[e][i] = T(nominal[i]) + delta;
     }
-    const T* de = ds + ParameterLayout::kDisplayPerEye * e;
     const T side = T(e == 0 ? -0.5 : 0.5);
-    out->eye[e] = model_.geometry.eye_centre_in_hmd.cast<T>() + Vec3<T>(side * ipd, T(0), T(0)) + Vec3<T>(de[0], de[1], de[2]);
+    const Vec3<T> displacement = Vec(At(theta, Term::kEyepoint, e)) + eye_offset + Vec3<T>(side * ipd_error, T(0), T(0));
+    out->eye[e] = design_eyepoint_[e].cast<T>() + displacement;
+    towards_eye[e] = inverse_image_distance * displacement;
+    screen_scale[e] = T(1) + At(theta, Term::kMagnification, e)[0];
   }
 
   // What the eyes see now was captured display_latency ago: the physical point, in the head frame
   // at display time, is hmd(t)_from_hmd(t − τ) · p = δ⁻¹ · p with δ = (Exp(ω τ), v τ).
-  const T display_latency = ds[2 * ParameterLayout::kDisplayPerEye + 1];
+  const T display_latency = At(theta, Term::kDisplayLatency)[0];
   const Rigid3<T> motion{fo::Exp(Vec3<T>(w.cast<T>() * display_latency)), Vec3<T>(v.cast<T>() * display_latency)};
   const Rigid3<T> now_from_captured = fo::Inverse(motion);
 
-  // Point by point in three passes (the truth, each eye's path, the perceived point) rather than
-  // one: the iterations of a pass are independent, short enough for the processor to overlap them
-  // (each eye's path waits on two divisions), and the numbers are the same.
+  // Point by point in three passes (the truth, each eye's paths, the seen points) rather than one:
+  // the iterations of a pass are independent, short enough for the processor to overlap them, and
+  // the numbers are the same.
   const size_t num_points = point_in_object_.size();
   for (size_t k = 0; k < num_points; ++k) {
     PointSample<T>& s = out->points[k];
-    s.valid = true;
+    s.undefined = Undefined::kNone;
     s.truth = fo::Apply(now_from_captured, Vec3<T>(point_in_hmd_[k].cast<T>()));
   }
   for (size_t k = 0; k < num_points; ++k) {
     PointSample<T>& s = out->points[k];
-    for (int e = 0; e < kNumEyes && s.valid; ++e) {
+    for (int e = 0; e < kNumEyes; ++e) {
+      const DisplayConstants& c = display_[e];
       const Vec3<T> x = fo::Apply(camera_from_object[e], Vec3<T>(point_in_object_[k].cast<T>()));
-      Vec2<T> q;
-      if (!VirtualLens::Project(lens[e].data(), x.data(), q.data())) {
-        s.valid = false;
+      Undefined why = Undefined::kNone;
+      Vec2<T> q(T(0), T(0));  // ProjectWith writes it (z > 0 here); set for the compiler
+      if (!(x(2) > T(0))) {
+        why = Undefined::kBehindCamera;
+      } else if (!(x(0) * x(0) + x(1) * x(1) <= T(model_.renderer_valid_radius2[e]) * (x(2) * x(2)))) {
+        why = Undefined::kOutsideLensDomain;
+      } else {
+        ProjectWith(model_.renderer[e].model, lens[e].data(), x.data(), q.data());
+        if (!(q(0) >= T(c.min_u) && q(0) <= T(c.max_u) && q(1) >= T(c.min_v) && q(1) <= T(c.max_v))) {
+          why = Undefined::kOutsideImage;
+        }
+      }
+      if (why != Undefined::kNone) {
+        s.undefined = why;
+        s.undefined_eye = e;
         break;
       }
       s.pixel_error[e] = q - real_pixel_[e][k].cast<T>();
       s.virtual_depth[e] = x(2);
-      s.ray[e] = DisplayedRay(e, q, ds + ParameterLayout::kDisplayPerEye * e);
+      const T* shift = At(theta, Term::kScreenShift, e);
+      const T& lens_k1 = At(theta, Term::kLensK1, e)[0];
+      s.overlay_ray[e] =
+          DisplayedDirection(e, Vec2<T>(q(0) - T(c.cx), q(1) - T(c.cy)), shift, screen_scale[e], lens_k1) - towards_eye[e];
+      s.seen_ray[e] = DisplayedDirection(e, Vec2<T>(real_centred_[e][k].cast<T>()), shift, screen_scale[e], lens_k1) -
+                      towards_eye[e];
     }
   }
-  const Vec3<T> between = out->eye[1] - out->eye[0];
   for (size_t k = 0; k < num_points; ++k) {
     PointSample<T>& s = out->points[k];
-    if (!s.valid) continue;
-    // Midpoint of the closest approach of eye_l + s0·ray_l and eye_r + s1·ray_r. With n = d0 × d1,
-    // s0 = ((e1 − e0) × d1)·n/|n|² and s1 = ((e1 − e0) × d0)·n/|n|²: unlike the textbook
-    // (a c − b²) form these do not cancel catastrophically when the rays are nearly parallel
-    // (vergence 0.02 rad at 3 m with a 63 mm baseline).
-    const Vec3<T>& d0 = s.ray[0];
-    const Vec3<T>& d1 = s.ray[1];
-    const Vec3<T> n = fo::Cross(d0, d1);
-    const T n2 = fo::SquaredNorm(n);
-    if (!(n2 > T(1e-24) * fo::SquaredNorm(d0) * fo::SquaredNorm(d1))) {
-      s.valid = false;
-      continue;
+    if (!s.valid()) continue;
+    if (!TriangulateMidpoint(out->eye[0], s.overlay_ray[0], out->eye[1], s.overlay_ray[1], &s.overlay) ||
+        !TriangulateMidpoint(out->eye[0], s.seen_ray[0], out->eye[1], s.seen_ray[1], &s.seen)) {
+      s.undefined = Undefined::kParallelRays;
     }
-    const T inverse_n2 = T(1) / n2;
-    const T s0 = fo::Dot(fo::Cross(between, d1), n) * inverse_n2;
-    const T s1 = fo::Dot(fo::Cross(between, d0), n) * inverse_n2;
-    s.perceived = T(0.5) * (out->eye[0] + s0 * d0 + out->eye[1] + s1 * d1);
   }
 }
 
@@ -244,16 +308,18 @@ bool ChainEvaluator::operator()(const T* theta, T* y) const {
   Evaluate(theta, &sample);
   for (size_t k = 0; k < sample.points.size(); ++k) {
     const PointSample<T>& s = sample.points[k];
-    if (!s.valid) return false;
+    if (!s.valid()) return false;
     T* out = y + kOutputsPerPoint * k;
     out[0] = s.pixel_error[0](0);
     out[1] = s.pixel_error[0](1);
     out[2] = s.pixel_error[1](0);
     out[3] = s.pixel_error[1](1);
-    const Vec3<T> delta = s.perceived - s.truth;
-    out[4] = delta(0);
-    out[5] = delta(1);
-    out[6] = delta(2);
+    const Vec3<T> misregistration = s.overlay - s.seen;
+    const Vec3<T> misperception = s.seen - s.truth - systematic_[k].offset.cast<T>();
+    for (int i = 0; i < 3; ++i) {
+      out[4 + i] = misregistration(i);
+      out[7 + i] = misperception(i);
+    }
   }
   return true;
 }

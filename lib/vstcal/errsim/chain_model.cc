@@ -5,9 +5,11 @@
 namespace vstcal::errsim {
 
 double ChainGeometry::CameraBaseline() const {
-  const Eigen::Vector3d left = camera_from_hmd[0].inverse().t;
-  const Eigen::Vector3d right = camera_from_hmd[1].inverse().t;
-  return (right - left).norm();
+  return (camera_from_hmd[1].inverse().t - camera_from_hmd[0].inverse().t).norm();
+}
+
+Eigen::Vector3d ChainGeometry::CameraCentre() const {
+  return 0.5 * (camera_from_hmd[0].inverse().t + camera_from_hmd[1].inverse().t);
 }
 
 Distribution Scaled(const Distribution& d, double s) {
@@ -17,114 +19,40 @@ Distribution Scaled(const Distribution& d, double s) {
   return Distribution::MakeFixed(s * d.Mean());
 }
 
-ParameterLayout ParameterLayout::For(size_t num_test_points, size_t num_fiducials) {
-  ParameterLayout l;
-  int at = 0;
-  l.tracker_alignment = at, at += kTrackerAlignmentSize;
-  l.tracking = at, at += kTrackingSize;
-  l.camera_extrinsic = at, at += kCameraExtrinsicSize;
-  l.camera_intrinsic = at, at += kCameraIntrinsicSize;
-  l.rendering = at, at += 1 + static_cast<int>(num_test_points);
-  l.display = at, at += kDisplaySize;
-  l.virtual_object_alignment = at, at += num_fiducials == 0 ? 6 : 3 * static_cast<int>(num_fiducials);
-  l.size = at;
-  return l;
-}
-
-int ParameterLayout::Begin(Source source) const {
-  switch (source) {
-    case Source::kTrackerAlignment: return tracker_alignment;
-    case Source::kTracking: return tracking;
-    case Source::kCameraExtrinsic: return camera_extrinsic;
-    case Source::kCameraIntrinsic: return camera_intrinsic;
-    case Source::kRendering: return rendering;
-    case Source::kDisplay: return display;
-    case Source::kVirtualObjectAlignment: return virtual_object_alignment;
-  }
-  return size;
-}
-
-int ParameterLayout::End(Source source) const {
-  const int next = static_cast<int>(source) + 1;
-  return next == kNumSources ? size : Begin(static_cast<Source>(next));
-}
-
-namespace {
-
-constexpr double kDegPerRad = 180.0 / kPi;
-constexpr std::array<const char*, 3> kAxes = {"x", "y", "z"};
-
-class ParameterNamer {
- public:
-  ParameterNamer(std::vector<ChainParameter>* out, std::string length_unit)
-      : out_(out), length_unit_(std::move(length_unit)) {}
-
-  void Add(Source source, const std::string& name, const std::string& unit, double file_per_internal = 1) {
-    out_->push_back({std::string(SourceKey(source)) + "." + name, source, Distribution::MakeFixed(0), unit,
-                     file_per_internal});
-  }
-  void Rotation(Source source, const std::string& prefix) {
-    for (const char* axis : kAxes) Add(source, prefix + "rotation." + axis, "deg", kDegPerRad);
-  }
-  void Translation(Source source, const std::string& prefix, const std::string& what = "translation") {
-    for (const char* axis : kAxes) Add(source, prefix + what + "." + axis, length_unit_);
-  }
-  const std::string& length_unit() const { return length_unit_; }
-
- private:
-  std::vector<ChainParameter>* out_;
-  std::string length_unit_;
-};
-
-}  // namespace
-
-ChainModel ChainModel::WithZeroErrors(ChainGeometry geometry, std::vector<Eigen::Vector3d> fiducials_in_object) {
+ChainModel ChainModel::WithZeroErrors(ChainGeometry geometry, std::vector<Eigen::Vector3d> fiducials_in_object,
+                                      const std::optional<std::array<AnyLensModel, kNumEyes>>& renderer_lens) {
   ChainModel m;
-  m.layout = ParameterLayout::For(geometry.test_points.size(), fiducials_in_object.size());
+  ChainShape shape;
+  for (const TestPoint& tp : geometry.test_points) shape.test_points.push_back(tp.name);
+  shape.fiducials = fiducials_in_object.size();
+  shape.length_unit = geometry.length_unit;
+  for (int e = 0; e < kNumEyes; ++e) {
+    const Camera& camera = geometry.cameras[e];
+    shape.renderer_lens[e] = renderer_lens ? (*renderer_lens)[e] : camera.model;
+    // Every lens model extends the smaller ones' parameter layout ([fx … s, k1, k2, p1, p2, k3, k4 …]):
+    // the true parameters, padded with zeros, are the renderer's nominal ones.
+    const int n = LensModelNumParams(shape.renderer_lens[e]);
+    VSTCAL_CHECK(n >= static_cast<int>(camera.params.size()), "the renderer's lens model must hold the camera's");
+    m.renderer[e] = camera;
+    m.renderer[e].model = shape.renderer_lens[e];
+    m.renderer[e].params.resize(n, 0.0);
+    m.renderer_valid_radius2[e] = m.renderer[e].ValidRadiusSquared();
+    m.intrinsic_mixing[e] = Eigen::MatrixXd::Identity(n, n);
+  }
+  m.layout = ParameterLayout(shape);
   m.geometry = std::move(geometry);
   m.fiducials_in_object = std::move(fiducials_in_object);
-  for (auto& mixing : m.intrinsic_mixing) mixing.setIdentity();
-
-  ParameterNamer n(&m.parameters, std::string(LengthUnitName(m.geometry.length_unit)));
-  n.Rotation(Source::kTrackerAlignment, "");
-  n.Translation(Source::kTrackerAlignment, "");
-  n.Rotation(Source::kTracking, "");
-  n.Translation(Source::kTracking, "");
-  n.Add(Source::kTracking, "latency", "s");
-  for (const std::string_view eye : kEyeNames) {
-    n.Rotation(Source::kCameraExtrinsic, std::string(eye) + ".");
-    n.Translation(Source::kCameraExtrinsic, std::string(eye) + ".");
+  for (const SlotInfo& slot : m.layout.slots()) {
+    m.parameters.push_back({slot, Declaration(slot.term).source, Distribution::MakeFixed(0)});
   }
-  n.Add(Source::kCameraExtrinsic, "baseline", n.length_unit());
-  n.Rotation(Source::kCameraExtrinsic, "rig.");
-  n.Translation(Source::kCameraExtrinsic, "rig.");
-  for (const std::string_view eye : kEyeNames) {
-    for (const std::string_view p : VirtualLens::kParamNames) {
-      n.Add(Source::kCameraIntrinsic, std::string(eye) + "." + std::string(p), p[0] == 'f' || p[0] == 'c' || p == "s" ? "px" : "1");
-    }
-  }
-  n.Add(Source::kRendering, "latency", "s");
-  for (const TestPoint& tp : m.geometry.test_points) n.Add(Source::kRendering, "disparity[" + tp.name + "]", "px");
-  for (const std::string_view eye : kEyeNames) {
-    const std::string e = std::string(eye) + ".";
-    n.Translation(Source::kDisplay, e, "eyepoint");
-    n.Add(Source::kDisplay, e + "screen_shift.u", "px");
-    n.Add(Source::kDisplay, e + "screen_shift.v", "px");
-    n.Add(Source::kDisplay, e + "magnification", "1");
-    n.Add(Source::kDisplay, e + "lens_k1", "1");
-  }
-  n.Add(Source::kDisplay, "ipd", n.length_unit());
-  n.Add(Source::kDisplay, "latency", "s");
-  if (m.fiducials_in_object.empty()) {
-    n.Rotation(Source::kVirtualObjectAlignment, "");
-    n.Translation(Source::kVirtualObjectAlignment, "");
-  } else {
-    for (size_t k = 0; k < m.fiducials_in_object.size(); ++k) {
-      n.Translation(Source::kVirtualObjectAlignment, "", "fiducial[" + std::to_string(k) + "]");
-    }
-  }
-  VSTCAL_CHECK(static_cast<int>(m.parameters.size()) == m.layout.size, "parameter names and layout disagree");
   return m;
+}
+
+ChainParameter* ChainModel::Find(const std::string& name) {
+  for (ChainParameter& p : parameters) {
+    if (p.name() == name) return &p;
+  }
+  return nullptr;
 }
 
 std::vector<double> ChainModel::MeanTheta() const {

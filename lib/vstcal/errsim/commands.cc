@@ -1,13 +1,22 @@
 #include "vstcal/errsim/commands.h"
 
+#include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <set>
 
 #include "vstcal/core/error.h"
 #include "vstcal/core/suggest.h"
-#include "vstcal/errsim/chain_io.h"
+#include "vstcal/errsim/chain.h"
+#include "vstcal/errsim/engine.h"
+#include "vstcal/errsim/formats/chain_reader.h"
+#include "vstcal/errsim/formats/chain_writer.h"
+#include "vstcal/errsim/formats/report_format.h"
+#include "vstcal/errsim/formats/sensitivity_format.h"
+#include "vstcal/errsim/formats/shard_format.h"
 #include "vstcal/errsim/models.h"
-#include "vstcal/errsim/report.h"
+#include "vstcal/errsim/sampler.h"
+#include "vstcal/json/json_reader.h"
 #include "vstcal/sensitivity/linear_propagation.h"
 #include "vstcal/sensitivity/monte_carlo.h"
 #include "vstcal/sensitivity/oat_sweep.h"
@@ -15,8 +24,6 @@
 
 namespace vstcal::errsim {
 namespace {
-
-using io::OrderedJson;
 
 std::vector<Source> ParseSources(const std::vector<std::string>& keys, const std::string& flag) {
   std::vector<Source> out;
@@ -29,75 +36,135 @@ std::vector<Source> ParseSources(const std::vector<std::string>& keys, const std
   return out;
 }
 
-OrderedJson Header(std::string_view format, const ChainRequest& request, const ChainModel& model) {
-  OrderedJson j;
-  j["format"] = format;
-  j["chain"] = request.chain;
-  j["chain_digest"] = ChainDigest(model);
-  j["length_unit"] = LengthUnitName(model.geometry.length_unit);
-  j["only"] = request.only;
-  j["without"] = request.without;
-  return j;
-}
-
 std::string ShardName(uint64_t shard, uint64_t shards) { return std::to_string(shard) + "/" + std::to_string(shards); }
 
+// The provenance records the seed the run used, whether it came from the flag or the chain file.
+io::Provenance WithSeed(io::Provenance provenance, uint64_t seed) {
+  provenance.seed = seed;
+  return provenance;
+}
+
+RunDescription Describe(const ChainRequest& request, const ChainModel& model) {
+  RunDescription run{request.chain, ChainDigest(model), request.only, request.without, {}};
+  run.options.samples = model.samples;
+  run.options.seed = model.seed;
+  run.options.threads = request.threads;
+  return run;
+}
+
+void CheckThreads(unsigned threads) {
+  if (threads > kMaxThreads) {
+    throw InputError("--threads: " + std::to_string(threads) + " is more than " + std::to_string(kMaxThreads) +
+                     "; give at most " + std::to_string(kMaxThreads) + " (0: one per core)");
+  }
+}
+
+void CheckSamples(uint64_t samples, const std::string& flag) {
+  if (samples == 0 || samples > kMaxSamples) {
+    throw InputError(flag + ": " + std::to_string(samples) + " is outside 1 … 10^12; give at most 10^12 (split larger runs into --shard i/N)");
+  }
+}
+
+// Why sample 0 of the chain leaves test point k undefined, for the message of a point that is
+// undefined in every sample.
+std::string FirstSampleCause(const ChainModel& model, size_t k) {
+  const ChainEvaluator chain(model);
+  const ThetaSampler sampler(model, model.seed);
+  std::vector<double> theta(sampler.size());
+  sampler.Fill(0, 1, theta.data());
+  ChainSample<double> sample(chain.num_points());
+  chain.Evaluate(theta.data(), &sample);
+  const PointSample<double>& s = sample.points[k];
+  std::string cause = UndefinedName(s.undefined);
+  if (s.undefined != Undefined::kParallelRays && s.undefined != Undefined::kNone) {
+    cause += std::string(" in the ") + std::string(kEyeNames[s.undefined_eye]) + " eye";
+  }
+  return cause;
+}
+
+// Exit code 3 when a test point has no defined sample in the "all" scenario.
+void RequireDefinedPoints(const ChainModel& model, const SimulationResult& result, const std::string& chain_path) {
+  const ErrorOutputs outputs(model);
+  const sensitivity::MonteCarloSummary& all = result.summaries.at(0);
+  for (size_t k = 0; k < outputs.num_points(); ++k) {
+    if (all.Statistics(outputs.offset(k)).count > 0) continue;
+    throw DegenerateError(chain_path + ": test point \"" + model.geometry.test_points[k].name + "\": every one of the " +
+                          std::to_string(model.samples) + " samples is undefined (sample 0: " + FirstSampleCause(model, k) +
+                          "); reduce the errors that move the overlay out of the cameras' view, or move the point");
+  }
+}
+
 }  // namespace
+
+std::string Outcome::Text() const { return compact ? io::DumpJsonCompact(json) : io::DumpJson(json); }
 
 ChainModel LoadChain(const ChainRequest& request) {
   const std::vector<Source> only = ParseSources(request.only, "--only");  // flags before files
   const std::vector<Source> without = ParseSources(request.without, "--without");
+  for (const Source s : without) {
+    if (std::find(only.begin(), only.end(), s) != only.end()) {
+      throw InputError("--without: \"" + std::string(SourceKey(s)) +
+                       "\" is also given to --only; give each source to one of them (--only keeps, --without drops)");
+    }
+  }
+  CheckThreads(request.threads);
+  if (request.samples) CheckSamples(*request.samples, "--samples");
   ChainModel model = ReadChain(request.chain);
   if (request.samples) model.samples = *request.samples;
   if (request.seed) model.seed = *request.seed;
   return SelectSources(model, only, without);
 }
 
-// The provenance records the seed the run used, whether it came from the flag or the chain file.
-static io::Provenance WithSeed(io::Provenance provenance, uint64_t seed) {
-  provenance.seed = seed;
-  return provenance;
-}
-
 Outcome RunErrSim(const RunRequest& request, const io::Provenance& given, const Progress& progress) {
+  if (!request.budget && request.budget_samples) {
+    throw InputError("--budget-samples: there is no budget with --no-budget; drop one of the two flags");
+  }
+  if (request.budget_samples) CheckSamples(*request.budget_samples, "--budget-samples");
+  if (request.shards == 0 || request.shards > kMaxShards || request.shard >= request.shards) {
+    throw InputError("--shard: " + ShardName(request.shard, request.shards) + " is not a shard i/N with 0 ≤ i < N ≤ 10^6");
+  }
   const ChainModel model = LoadChain(request.chain);
   const io::Provenance provenance = WithSeed(given, model.seed);
-  RunDescription run{request.chain.chain, ChainDigest(model), request.chain.only, request.chain.without, {}};
-  run.options.samples = model.samples;
+  RunDescription run = Describe(request.chain, model);
   run.options.budget_samples = request.budget_samples.value_or(model.samples);
-  run.options.seed = model.seed;
   run.options.budget = request.budget;
-  run.options.threads = request.chain.threads;
   run.options.shard = request.shard;
   run.options.shards = request.shards;
   const SimulationResult result = RunSimulation(MakeScenarios(model, request.budget), run.options, run.digest, progress);
-  if (request.shards > 1) return {ShardToJson(result, run, provenance), ""};
-  return {ReportToJson(model, result, run, provenance), ReportText(model, result, run)};
+  if (request.shards > 1) return {ShardToJson(result, run, provenance), "", true};
+  RequireDefinedPoints(model, result, request.chain.chain);
+  const ChainEvaluator chain(model);
+  return {ReportToJson(chain, result, run, provenance), ReportText(chain, result, run)};
 }
 
 Outcome MergeErrSim(const std::string& chain, const std::vector<std::string>& shard_files, const io::Provenance& given) {
   if (shard_files.empty()) throw InputError("merge: no shard files; pass every shard file of the run");
-  std::optional<SimulationResult> merged;
-  RunDescription first;
-  std::set<uint64_t> seen;
+  std::vector<RunDescription> runs;
+  std::vector<SimulationResult> shards;
   for (const std::string& file : shard_files) {
     RunDescription run;
-    const SimulationResult shard = ShardFromJson(io::JsonDocument::Load(file), &run);
-    if (!merged) {
-      first = run;
-      merged = shard;
-    } else {
-      if (run.digest != first.digest || run.options.samples != first.options.samples || run.options.seed != first.options.seed ||
-          run.options.budget != first.options.budget || run.options.shards != first.options.shards ||
-          run.only != first.only || run.without != first.without) {
-        throw InputError(file + ": comes from another run than " + shard_files[0] +
-                         " (chain, samples, seed, sources or shard count differ); merge the shards of one run");
-      }
-      if (seen.count(run.options.shard)) throw InputError(file + ": shard " + ShardName(run.options.shard, run.options.shards) + " is given twice; pass each shard once");
-      MergeSimulation(&*merged, shard);
-    }
-    seen.insert(run.options.shard);
+    shards.push_back(ShardFromJson(io::JsonDocument::Load(file), &run));
+    runs.push_back(std::move(run));
   }
+  const RunDescription& first = runs[0];
+  for (size_t i = 1; i < runs.size(); ++i) {
+    const RunDescription& run = runs[i];
+    if (run.digest != first.digest || run.options.samples != first.options.samples || run.options.seed != first.options.seed ||
+        run.options.budget != first.options.budget || run.options.budget_samples != first.options.budget_samples ||
+        run.options.shards != first.options.shards || run.options.block_size != first.options.block_size ||
+        run.only != first.only || run.without != first.without) {
+      throw InputError(shard_files[i] + ": comes from another run than " + shard_files[0] +
+                       " (chain, samples, seed, sources or shard count differ); merge the shards of one run");
+    }
+    for (size_t j = 0; j < i; ++j) {
+      if (runs[j].options.shard == run.options.shard) {
+        throw InputError(shard_files[i] + ": shard " + ShardName(run.options.shard, run.options.shards) + " is given twice (also " +
+                         shard_files[j] + "); pass each shard once");
+      }
+    }
+  }
+  std::set<uint64_t> seen;
+  for (const RunDescription& run : runs) seen.insert(run.options.shard);
   for (uint64_t i = 0; i < first.options.shards; ++i) {
     if (!seen.count(i)) throw InputError("merge: shard " + ShardName(i, first.options.shards) + " is missing; pass every shard file of the run");
   }
@@ -107,89 +174,106 @@ Outcome MergeErrSim(const std::string& chain, const std::vector<std::string>& sh
     throw InputError(chain + ": is not the chain the shards ran (digest " + ChainDigest(model) + ", shards " + first.digest +
                      "); pass the same chain file, unchanged");
   }
-  first.chain_path = chain;
+  // Every shard must hold exactly the summaries this chain's run makes: the same scenarios, each
+  // with the plan (outputs, sizes, run id) the run gives it.
+  RunDescription run = first;
+  run.chain_path = chain;
+  run.options.shard = 0;
+  run.options.shards = 1;
+  const SimulationResult expected = EmptySimulation(MakeScenarios(model, run.options.budget), run.options, run.digest);
+  SimulationResult merged = expected;
+  for (size_t i = 0; i < shards.size(); ++i) {
+    const SimulationResult& shard = shards[i];
+    if (shard.scenarios != expected.scenarios) {
+      throw InputError(shard_files[i] + ": scenarios: not the scenarios of this run (" + std::to_string(shard.scenarios.size()) +
+                       " given, " + std::to_string(expected.scenarios.size()) + " expected); regenerate the shard file");
+    }
+    for (size_t s = 0; s < shard.summaries.size(); ++s) {
+      if (!(shard.summaries[s].plan() == expected.summaries[s].plan())) {
+        throw InputError(shard_files[i] + ": scenarios[" + std::to_string(s) + "].summary: its plan is not the one this chain's run makes; regenerate the shard file");
+      }
+      try {
+        merged.summaries[s].Merge(shard.summaries[s]);
+      } catch (const InputError& e) {
+        throw InputError(shard_files[i] + ": scenarios[" + std::to_string(s) + "].summary: " + e.what());
+      }
+    }
+  }
+  if (!merged.complete()) throw InputError("merge: the shards do not cover every block of the run; regenerate the missing shards");
+  RequireDefinedPoints(model, merged, chain);
   const io::Provenance provenance = WithSeed(given, model.seed);
-  first.options.shard = 0;
-  first.options.shards = 1;
-  return {ReportToJson(model, *merged, first, provenance), ReportText(model, *merged, first)};
+  const ChainEvaluator evaluator(model);
+  return {ReportToJson(evaluator, merged, run, provenance), ReportText(evaluator, merged, run)};
 }
 
 Outcome SweepErrSim(const SweepRequest& request, const io::Provenance& provenance) {
+  if (request.points < 2 || request.points > kMaxSweepPoints) {
+    throw InputError("--points: " + std::to_string(request.points) + " is outside 2 … " + std::to_string(kMaxSweepPoints) +
+                     "; give at most " + std::to_string(kMaxSweepPoints));
+  }
+  if ((request.lo || request.hi) && request.parameters.size() != 1) {
+    throw InputError(std::string(request.lo ? "--lo" : "--hi") +
+                     ": a range is in one parameter's unit; give it with exactly one --parameter");
+  }
+  if (request.lo && request.hi && !(*request.lo < *request.hi)) {
+    throw InputError("--lo: " + io::ShortestDecimal(*request.lo) + " is not below --hi " + io::ShortestDecimal(*request.hi) +
+                     "; give --lo < --hi");
+  }
   const ChainModel model = LoadChain(request.chain);
   const sensitivity::ParameterSpace space = MakeParameterSpace(model);
   const sensitivity::Model vector_model = VectorModel(model);
+  std::vector<std::string_view> names;
+  for (const ChainParameter& p : model.parameters) names.push_back(p.name());
   std::vector<size_t> chosen;
   if (request.parameters.empty()) {
     for (size_t i = 0; i < model.parameters.size(); ++i) {
       if (!model.parameters[i].distribution.IsConstant()) chosen.push_back(i);
     }
   } else {
-    for (const std::string& name : request.parameters) chosen.push_back(space.IndexOf(name));
+    for (const std::string& name : request.parameters) {
+      const auto it = std::find(names.begin(), names.end(), name);
+      if (it == names.end()) {
+        throw InputError(request.chain.chain + ": --parameter: the chain has no parameter \"" + name + "\"; " +
+                         SuggestKey(name, names));
+      }
+      const size_t i = static_cast<size_t>(it - names.begin());
+      if (model.parameters[i].distribution.IsConstant() && !(request.lo && request.hi)) {
+        throw InputError("--parameter " + name + ": the chain gives it a constant value (" +
+                         model.parameters[i].distribution.Describe() + "), which has no default range; give --lo and --hi");
+      }
+      chosen.push_back(i);
+    }
   }
-  const size_t points = model.geometry.test_points.size();
-  OrderedJson j = Header("vstcal/err-sim-sweep@1", request.chain, model);
-  j["outputs"] = VectorOutputNames(model);
-  OrderedJson list = OrderedJson::array();
-  std::string text = "err-sim sweep: " + request.chain.chain + ": " + std::to_string(chosen.size()) +
-                     " parameters, slope at nominal of the RMS errors per unit of the parameter\n";
+  std::vector<ParameterSweep> sweeps;
   for (const size_t i : chosen) {
-    const ChainParameter& p = model.parameters[i];
+    const double per = model.parameters[i].slot.file_per_internal;
     sensitivity::SweepOptions options;
     options.points = request.points;
-    if (request.lo) options.lo = *request.lo / p.file_per_internal;
-    if (request.hi) options.hi = *request.hi / p.file_per_internal;
-    const sensitivity::SweepResult r = sensitivity::SweepParameter(space, vector_model, i, options);
-    OrderedJson values = OrderedJson::array(), image = OrderedJson::array(), perceived = OrderedJson::array();
-    for (size_t k = 0; k < r.values.size(); ++k) {
-      values.push_back(r.values[k] * p.file_per_internal);
-      if (!r.defined[k]) {
-        image.push_back(nullptr);
-        perceived.push_back(nullptr);
-        continue;
-      }
-      double px = 0, mm = 0;
-      for (size_t t = 0; t < points; ++t) {
-        const auto row = r.outputs.row(k).segment(7 * t, 7);
-        px += row.head<4>().squaredNorm();
-        mm += row.tail<3>().squaredNorm();
-      }
-      image.push_back(std::sqrt(px / (2.0 * points)));
-      perceived.push_back(std::sqrt(mm / points));
-    }
-    OrderedJson e;
-    e["name"] = p.name;
-    e["source"] = SourceKey(p.source);
-    e["unit"] = p.file_unit;
-    e["values"] = std::move(values);
-    e["image_rms_px"] = std::move(image);
-    e["perceived_rms"] = std::move(perceived);
-    OrderedJson slope = nullptr;
-    if (r.slope_defined) {
-      slope = OrderedJson::array();
-      for (Eigen::Index o = 0; o < r.slope.size(); ++o) slope.push_back(r.slope(o) / p.file_per_internal);
-    }
-    e["slope_per_unit"] = std::move(slope);
-    list.push_back(std::move(e));
-    if (r.slope_defined) {
-      double px = 0, mm = 0;
-      for (size_t t = 0; t < points; ++t) {
-        px += r.slope.segment(7 * t, 4).squaredNorm();
-        mm += r.slope.segment(7 * t + 4, 3).squaredNorm();
-      }
-      char line[256];
-      std::snprintf(line, sizeof line, "  %-44s %10.4g px/%s  %10.4g %s/%s\n", p.name.c_str(), std::sqrt(px / (2.0 * points)) / p.file_per_internal,
-                    p.file_unit.c_str(), std::sqrt(mm / points) / p.file_per_internal, std::string(LengthUnitName(model.geometry.length_unit)).c_str(),
-                    p.file_unit.c_str());
-      text += line;
-    }
+    if (request.lo) options.lo = *request.lo / per;
+    if (request.hi) options.hi = *request.hi / per;
+    sweeps.push_back({i, sensitivity::SweepParameter(space, vector_model, i, options)});
   }
-  j["parameters"] = std::move(list);
-  j["provenance"] = io::ProvenanceToJson(provenance);
-  return {j, text};
+  RunDescription run = Describe(request.chain, model);
+  const TextAndJson out = SweepOutput(model, run, sweeps, provenance);
+  return {out.json, out.text};
 }
 
 Outcome SobolErrSim(const SobolRequest& request, const io::Provenance& given) {
+  if (request.bootstrap > kMaxBootstrap) {
+    throw InputError("--bootstrap: " + std::to_string(request.bootstrap) + " is more than " + std::to_string(kMaxBootstrap) +
+                     "; give at most " + std::to_string(kMaxBootstrap) + " (the interval's own error is already below 1 % there)");
+  }
   const ChainModel model = LoadChain(request.chain);
+  if (model.samples < 2 || model.samples > kMaxSobolSamples) {
+    throw InputError("--samples: " + std::to_string(model.samples) + " is outside 2 … 2^24 for sobol; give a power of two up to 16777216");
+  }
+  int groups = 0;
+  for (int s = 0; s < kNumSources; ++s) groups += model.SourceActive(static_cast<Source>(s));
+  const double bytes = 8.0 * static_cast<double>(model.samples) * (groups + 2) * static_cast<double>(ErrorOutputs(model).size());
+  if (bytes > kMaxSobolBytes) {
+    throw InputError("--samples: sobol keeps 8·N·(sources + 2)·outputs bytes, " + std::to_string(static_cast<long long>(bytes / (1 << 20))) +
+                     " MiB for N = " + std::to_string(model.samples) + "; give fewer samples (at most 1 GiB) or fewer sources");
+  }
   const io::Provenance provenance = WithSeed(given, model.seed);
   sensitivity::SobolOptions options;
   options.samples = model.samples;
@@ -199,94 +283,54 @@ Outcome SobolErrSim(const SobolRequest& request, const io::Provenance& given) {
   options.bootstrap_seed = model.seed;
   options.threads = request.chain.threads;
   const sensitivity::SobolResult r = sensitivity::EstimateSobolIndices(MakeParameterSpace(model), ErrorModel(model), options);
-  if (r.status != sensitivity::SobolStatus::kOk) throw Error(ExitCode::kDegenerate, request.chain.chain + ": " + r.message);
-  OrderedJson j = Header("vstcal/err-sim-sobol@1", request.chain, model);
-  j["samples"] = options.samples;
-  j["sampling"] = request.sampling;
-  j["seed"] = model.seed;
-  j["evaluations"] = r.evaluations;
-  j["groups"] = r.group_names;
-  auto estimate = [](const sensitivity::Estimate& e) {
-    return OrderedJson{{"value", e.value}, {"standard_error", e.standard_error}, {"interval", {e.interval.lo, e.interval.hi}}};
-  };
-  OrderedJson outputs = OrderedJson::array();
-  std::string text = "err-sim sobol: " + request.chain.chain + ": N = " + std::to_string(options.samples) + " (" + request.sampling +
-                     "), " + std::to_string(r.evaluations) + " evaluations; total index S_T per source\n";
-  text += "  " + std::string(28, ' ');
-  for (const std::string& g : r.group_names) text += g.substr(0, 11) + std::string(g.size() < 12 ? 12 - std::min<size_t>(g.size(), 11) : 1, ' ');
-  text += "\n";
-  for (const sensitivity::OutputSensitivity& o : r.outputs) {
-    OrderedJson groups;
-    for (size_t g = 0; g < r.group_names.size(); ++g) {
-      groups[r.group_names[g]] = {{"first", estimate(o.groups[g].first_order)}, {"total", estimate(o.groups[g].total)}};
-    }
-    outputs.push_back({{"name", o.name}, {"mean", o.mean}, {"variance", o.variance}, {"indices", groups}});
-    if (o.name.find("pixel_px") != std::string::npos || o.name.ends_with(".linear")) {
-      char line[64];
-      std::snprintf(line, sizeof line, "  %-28s", o.name.substr(0, 27).c_str());
-      text += line;
-      for (const auto& g : o.groups) {
-        std::snprintf(line, sizeof line, "%-12.3f", g.total.value);
-        text += line;
-      }
-      text += "\n";
-    }
-  }
-  j["outputs"] = std::move(outputs);
-  j["provenance"] = io::ProvenanceToJson(provenance);
-  return {j, text};
+  if (r.status != sensitivity::SobolStatus::kOk) throw DegenerateError(request.chain.chain + ": " + r.message);
+  const TextAndJson out = SobolOutput(model, Describe(request.chain, model), request.sampling, r, provenance);
+  return {out.json, out.text};
 }
 
 Outcome LinearErrSim(const ChainRequest& request, const io::Provenance& given) {
   const ChainModel model = LoadChain(request);
+  const size_t outputs = VectorOutputNames(model).size();
+  if (outputs > kMaxLinearOutputs) {
+    throw InputError(request.chain + ": linear propagation keeps an outputs² covariance: " + std::to_string(outputs) +
+                     " outputs are more than " + std::to_string(kMaxLinearOutputs) + "; give at most " +
+                     std::to_string(kMaxLinearOutputs / ChainEvaluator::kOutputsPerPoint) + " test points");
+  }
   const io::Provenance provenance = WithSeed(given, model.seed);
   const sensitivity::ParameterSpace space = MakeParameterSpace(model);
   const sensitivity::Model vector_model = VectorModel(model);
   const sensitivity::LinearPropagation linear = sensitivity::PropagateLinear(space, vector_model);
-  if (!linear.defined) throw Error(ExitCode::kDegenerate, request.chain + ": " + linear.message);
+  if (!linear.defined) throw DegenerateError(request.chain + ": " + linear.message);
   sensitivity::MonteCarloOptions mc;
   mc.samples = model.samples;
   mc.sampling.seed = model.seed;
   mc.threads = request.threads;
   mc.run_id = "err-sim-linear/" + ChainDigest(model);
   const sensitivity::MonteCarloSummary summary = sensitivity::RunMonteCarlo(space, vector_model, mc);
-  const auto comparison = sensitivity::CompareLinearWithMonteCarlo(linear, summary);
-  OrderedJson j = Header("vstcal/err-sim-linear@1", request, model);
-  j["samples"] = model.samples;
-  j["seed"] = model.seed;
-  j["derivatives"] = sensitivity::DerivativeMethodName(linear.method);
-  j["undefined_samples"] = summary.undefined_samples();
-  OrderedJson outputs = OrderedJson::array();
-  int disagreements = 0;
-  std::string text = "err-sim linear: " + request.chain + ": first-order σ (J Σ Jᵀ, autodiff) vs Monte Carlo (" +
-                     std::to_string(model.samples) + " samples)\n  output                          linear σ     MC σ         rel. diff   \n";
-  for (size_t k = 0; k < comparison.size(); ++k) {
-    const auto& c = comparison[k];
-    OrderedJson groups;
-    for (size_t g = 0; g < linear.group_names.size(); ++g) groups[linear.group_names[g]] = std::sqrt(linear.group_variance(k, g));
-    outputs.push_back({{"name", c.name},
-                       {"linear_mean", c.linear_mean},
-                       {"monte_carlo_mean", c.monte_carlo_mean},
-                       {"mean_standard_error", c.mean_standard_error},
-                       {"linear_sigma", c.linear_sigma},
-                       {"monte_carlo_sigma", c.monte_carlo_sigma},
-                       {"sigma_standard_error", c.sigma_standard_error},
-                       {"sigma_relative_difference", c.sigma_relative_difference},
-                       {"mean_disagrees", c.mean_disagrees},
-                       {"sigma_disagrees", c.sigma_disagrees},
-                       {"linear_sigma_by_source", groups}});
-    disagreements += c.mean_disagrees || c.sigma_disagrees;
-    char line[160];
-    std::snprintf(line, sizeof line, "  %-30s %-12.4g %-12.4g %+8.2f %%%s\n", c.name.substr(0, 30).c_str(), c.linear_sigma, c.monte_carlo_sigma,
-                  100 * c.sigma_relative_difference, c.mean_disagrees || c.sigma_disagrees ? "  ← not linear here" : "");
-    text += line;
+  const TextAndJson out = LinearOutput(model, Describe(request, model), linear, summary, provenance);
+  return {out.json, out.text};
+}
+
+Outcome NormalizeErrSim(const std::string& chain, const std::string& output, const io::Provenance& provenance) {
+  ChainSpec spec = ReadChainSpec(chain);
+  const ChainModel model = BuildChainModel(spec);
+  // Camera files stay where they are: their references are made relative to the output's folder.
+  namespace fs = std::filesystem;
+  const fs::path from = fs::path(chain).parent_path(), to = fs::path(output).parent_path();
+  for (CameraSpec& camera : spec.cameras) {
+    if (camera.file.empty()) continue;
+    std::error_code ec;
+    const fs::path target = fs::weakly_canonical(fs::absolute(from / camera.file), ec);
+    const fs::path base = fs::weakly_canonical(fs::absolute(to.empty() ? fs::path(".") : to), ec);
+    const fs::path rebased = ec ? fs::path() : target.lexically_relative(base);
+    if (!rebased.empty()) camera.file = rebased.generic_string();
   }
-  text += "  " + std::to_string(disagreements) + " of " + std::to_string(comparison.size()) +
-          " outputs differ by more than the Monte Carlo error explains (3 standard errors)\n";
-  j["outputs"] = std::move(outputs);
-  j["disagreements"] = disagreements;
-  j["provenance"] = io::ProvenanceToJson(provenance);
-  return {j, text};
+  int random = 0;
+  for (const ChainParameter& p : model.parameters) random += !p.distribution.IsConstant();
+  std::string text = "err-sim normalize: " + chain + ": " + std::to_string(model.parameters.size()) + " parameters, " +
+                     std::to_string(random) + " random; renderer lenses " + std::string(LensModelName(model.renderer[0].model)) +
+                     " and " + std::string(LensModelName(model.renderer[1].model)) + "\n";
+  return {ChainSpecToJson(spec, provenance), text};
 }
 
 }  // namespace vstcal::errsim

@@ -1,16 +1,17 @@
 #include "vstcal/errsim/models.h"
 
+#include <algorithm>
 #include <memory>
 
 #include "vstcal/errsim/chain.h"
-#include "vstcal/errsim/holloway.h"
+#include "vstcal/errsim/measures.h"
 
 namespace vstcal::errsim {
 
 sensitivity::ParameterSpace MakeParameterSpace(const ChainModel& model) {
   sensitivity::ParameterSpace space;
   for (const ChainParameter& p : model.parameters) {
-    space.Add({p.name, std::string(SourceKey(p.source)), p.distribution, 0.0});
+    space.Add({p.name(), std::string(SourceKey(p.source)), p.distribution, 0.0});
   }
   return space;
 }
@@ -19,11 +20,17 @@ sensitivity::Model ErrorModel(const ChainModel& model) {
   auto chain = std::make_shared<const ChainEvaluator>(model);
   auto outputs = std::make_shared<const ErrorOutputs>(model);
   return sensitivity::Model(model.parameters.size(), outputs->names(), [chain, outputs](const double* theta, double* y) {
-    // One buffer per thread: the model is called concurrently and must not allocate per sample.
+    // Buffers per thread: the model is called concurrently and must not allocate per sample.
     thread_local ChainSample<double> sample(0);
-    if (sample.points.size() != chain->num_points()) sample = ChainSample<double>(chain->num_points());
+    thread_local std::unique_ptr<bool[]> defined;
+    const size_t points = chain->num_points();
+    if (sample.points.size() != points || !defined) {
+      sample.points.resize(points);
+      defined.reset(new bool[points + 1]);
+    }
     chain->Evaluate(theta, &sample);
-    return outputs->Measure(*chain, sample, theta, y);
+    outputs->Measure(*chain, sample, theta, y, defined.get());
+    return std::all_of(defined.get(), defined.get() + points, [](bool d) { return d; });
   });
 }
 
@@ -34,7 +41,9 @@ sensitivity::Model VectorModel(const ChainModel& model) {
 std::vector<std::string> VectorOutputNames(const ChainModel& model) {
   std::vector<std::string> names;
   for (const TestPoint& tp : model.geometry.test_points) {
-    for (const char* n : {".left.du_px", ".left.dv_px", ".right.du_px", ".right.dv_px", ".dx", ".dy", ".dz"}) {
+    for (const char* n : {".left.du_px", ".left.dv_px", ".right.du_px", ".right.dv_px", ".misregistration.dx",
+                          ".misregistration.dy", ".misregistration.dz", ".misperception.dx", ".misperception.dy",
+                          ".misperception.dz"}) {
       names.push_back(tp.name + n);
     }
   }

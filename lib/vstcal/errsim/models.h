@@ -1,9 +1,9 @@
 // The chain as the sensitivity module sees it (lib/vstcal/sensitivity): a parameter space whose
 // groups are the seven source keys, and two models over it —
-//  - ErrorModel: the error measures of holloway.h (magnitudes, angles, occlusion decisions), double
+//  - ErrorModel: the error measures of measures.h (magnitudes, angles, occlusion decisions), double
 //    only (a norm has no derivative at zero error): Monte Carlo and Sobol indices;
-//  - VectorModel: the signed vector errors of ChainEvaluator (px per eye, perceived − true in the
-//    hmd frame), templated: linear propagation and sweep slopes by ceres::Jet.
+//  - VectorModel: the signed vector errors of ChainEvaluator (px per eye, misregistration and
+//    misperception in the hmd frame), templated: linear propagation and sweep slopes by ceres::Jet.
 #pragma once
 
 #include "vstcal/errsim/chain_model.h"
@@ -12,15 +12,17 @@
 
 namespace vstcal::errsim {
 
-// One parameter per θ entry, group = its source key, nominal 0 (an error's nominal value: a bias or
-// a non-zero mean then shows as a mean shift in linear propagation).
+// One parameter per θ slot, named as the slot, group = its source key, nominal 0 (an error's
+// nominal value: a bias or a non-zero mean then shows as a mean shift in linear propagation).
 sensitivity::ParameterSpace MakeParameterSpace(const ChainModel& model);
 
+// Undefined (false) when any test point is undefined.
 sensitivity::Model ErrorModel(const ChainModel& model);
 sensitivity::Model VectorModel(const ChainModel& model);
 
-// Names of VectorModel's outputs: "<point>.left.du_px", "<point>.left.dv_px", "<point>.right.du_px",
-// "<point>.right.dv_px", "<point>.dx", "<point>.dy", "<point>.dz" (perceived − true, hmd frame).
+// Names of VectorModel's outputs, per test point "<point>." followed by left.du_px, left.dv_px,
+// right.du_px, right.dv_px, misregistration.{dx,dy,dz}, misperception.{dx,dy,dz} (hmd frame; the
+// misperception relative to the systematic one).
 std::vector<std::string> VectorOutputNames(const ChainModel& model);
 
 }  // namespace vstcal::errsim

@@ -2,17 +2,19 @@
 // time: ChainEvaluator::Evaluate and ErrorOutputs::Measure instantiated with SimdDouble, one
 // sample per lane, compiled for AVX2 where the CPU has it. The same templates with double give
 // every lane's numbers bit for bit (simd_double.h, geometry/fixed_order.h), so where the lanes
-// would branch differently (in some lanes only: a point behind a camera, a rotation or an angle
-// beyond 0.1 rad, parallel rays) the group is redone one sample at a time, and the results never
-// depend on the grouping (docs/math/vst-chain.md#lanes).
+// would branch differently (in some lanes only: a point undefined, a rotation or an angle beyond
+// 0.1 rad, a fiducial registration that converges later) the group is redone one sample at a time,
+// and the results never depend on the grouping (docs/math/vst-chain.md#lanes).
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "vstcal/core/simd_double.h"
 #include "vstcal/errsim/chain.h"
-#include "vstcal/errsim/holloway.h"
+#include "vstcal/errsim/measures.h"
 
 namespace vstcal::errsim {
 
@@ -25,11 +27,11 @@ class SampleMeasurer {
 
   // Four samples, one per lane of θ (one group of ThetaSampler::FillLanes). Writes the outputs
   // lane-interleaved, output k of lane l at y[kLanes·k + l] (kLanes·outputs.size() values), and
-  // defined[l] (false: the sample is undefined, ErrorOutputs::Measure; its outputs are then
-  // unspecified).
-  void MeasureLanes(const SimdDouble* theta, double* y, bool* defined);
-  // One sample from a row of θ, with double: ErrorOutputs::Measure's result.
-  bool MeasureOne(const double* theta, double* y);
+  // defined[k], the lanes (bit l) where output k's test point is defined (elsewhere y is
+  // unspecified). Returns how many of the four samples have some test point undefined.
+  int MeasureLanes(const SimdDouble* theta, double* y, uint8_t* defined);
+  // One sample from a row of θ, with double: y and defined[k] per test point (ErrorOutputs::Measure).
+  void MeasureOne(const double* theta, double* y, bool* defined);
   // Groups redone one sample at a time since construction (lanes that took different branches).
   size_t divergent_groups() const { return divergent_groups_; }
 
@@ -40,6 +42,8 @@ class SampleMeasurer {
   ChainSample<SimdDouble> lanes_sample_;
   std::vector<SimdDouble> y_lanes_;
   std::vector<double> row_, y_row_;
+  std::vector<uint8_t> point_defined_;  // per test point, one byte of lane bits
+  std::unique_ptr<bool[]> row_defined_;
   size_t divergent_groups_ = 0;
 };
 

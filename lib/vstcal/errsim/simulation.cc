@@ -72,14 +72,17 @@ std::string ChainDigest(const ChainModel& model) {
                            g.world_from_virtual, g.world_from_object}) {
     h.Add(t);
   }
-  for (const Camera& c : g.cameras) {
-    h.Add(std::string(LensModelName(c.model)));
-    for (double p : c.params) h.Add(p);
-    h.Add(static_cast<double>(c.image_size.width));
-    h.Add(static_cast<double>(c.image_size.height));
+  for (const auto& cameras : {g.cameras, model.renderer}) {
+    for (const Camera& c : cameras) {
+      h.Add(std::string(LensModelName(c.model)));
+      for (double p : c.params) h.Add(p);
+      h.Add(static_cast<double>(c.image_size.width));
+      h.Add(static_cast<double>(c.image_size.height));
+    }
   }
-  h.Add(g.ipd);
-  h.Add(g.eye_centre_in_hmd);
+  h.Add(g.display.ipd);
+  h.Add(g.display.eye_centre_in_hmd);
+  h.Add(g.display.inverse_image_distance);
   h.Add(g.head_angular_velocity);
   h.Add(g.head_linear_velocity);
   for (const TestPoint& tp : g.test_points) {
@@ -90,7 +93,7 @@ std::string ChainDigest(const ChainModel& model) {
   for (const auto& f : model.fiducials_in_object) h.Add(f);
   for (const auto& m : model.intrinsic_mixing) h.Add(m);
   for (const ChainParameter& p : model.parameters) {
-    h.Add(p.name);
+    h.Add(p.name());
     h.Add(p.distribution.Describe());
   }
   return h.Hex();
@@ -98,6 +101,31 @@ std::string ChainDigest(const ChainModel& model) {
 
 bool SimulationResult::complete() const {
   return std::all_of(summaries.begin(), summaries.end(), [](const auto& s) { return s.complete(); });
+}
+
+namespace {
+
+ChainMonteCarloOptions ScenarioOptions(const Scenario& scenario, const SimulationOptions& options, const std::string& digest) {
+  ChainMonteCarloOptions mc;
+  mc.samples = scenario.name == "all" ? options.samples : options.budget_samples;
+  mc.block_size = options.block_size;
+  mc.seed = options.seed;
+  mc.run_id = "err-sim/" + digest + "/" + scenario.name + "/seed=" + std::to_string(options.seed);
+  mc.threads = options.threads;
+  mc.outputs = scenario.name == "all" ? OutputSet::kFull : OutputSet::kTotals;
+  return mc;
+}
+
+}  // namespace
+
+SimulationResult EmptySimulation(const std::vector<Scenario>& scenarios, const SimulationOptions& options,
+                                 const std::string& digest) {
+  SimulationResult result;
+  for (const Scenario& scenario : scenarios) {
+    result.scenarios.push_back(scenario.name);
+    result.summaries.emplace_back(ChainPlan(scenario.model, ScenarioOptions(scenario, options, digest)));
+  }
+  return result;
 }
 
 SimulationResult RunSimulation(const std::vector<Scenario>& scenarios, const SimulationOptions& options,
@@ -109,12 +137,7 @@ SimulationResult RunSimulation(const std::vector<Scenario>& scenarios, const Sim
   double total = 0, done = 0;
   for (const Scenario& s : scenarios) total += static_cast<double>(s.name == "all" ? options.samples : options.budget_samples);
   for (const Scenario& scenario : scenarios) {
-    ChainMonteCarloOptions mc;
-    mc.samples = scenario.name == "all" ? options.samples : options.budget_samples;
-    mc.block_size = options.block_size;
-    mc.seed = options.seed;
-    mc.run_id = "err-sim/" + digest + "/" + scenario.name + "/seed=" + std::to_string(options.seed);
-    mc.threads = options.threads;
+    ChainMonteCarloOptions mc = ScenarioOptions(scenario, options, digest);
     const sensitivity::SummaryPlan plan = ChainPlan(scenario.model, mc);
     const sensitivity::BlockRange range = sensitivity::ShardBlocks(plan, options.shard, options.shards);
     const uint64_t pieces = std::clamp<uint64_t>((range.end - range.begin) / 16, 1, 50);

@@ -42,6 +42,14 @@ struct SimulationOptions {
   uint64_t block_size = 1024;
 };
 
+// How a run was asked for: what its report and shard files record.
+struct RunDescription {
+  std::string chain_path;  // as given on the command line
+  std::string digest;
+  std::vector<std::string> only, without;
+  SimulationOptions options;
+};
+
 struct SimulationResult {
   std::vector<std::string> scenarios;
   std::vector<sensitivity::MonteCarloSummary> summaries;  // one per scenario
@@ -53,6 +61,11 @@ using Progress = std::function<void(double fraction)>;
 
 SimulationResult RunSimulation(const std::vector<Scenario>& scenarios, const SimulationOptions& options,
                                const std::string& digest, const Progress& progress = {});
+
+// The scenarios' summaries before any sample, with the plans RunSimulation gives them: what
+// `merge` checks shard files against and merges them into.
+SimulationResult EmptySimulation(const std::vector<Scenario>& scenarios, const SimulationOptions& options,
+                                 const std::string& digest);
 
 // Adds `other`'s blocks (InputError for shards of a different run or overlapping blocks).
 void MergeSimulation(SimulationResult* into, const SimulationResult& other);

@@ -8,7 +8,7 @@
 
 #include "vstcal/calib/pipeline.h"
 #include "vstcal/calib/uncertainty.h"
-#include "vstcal/io/json_writer.h"
+#include "vstcal/json/json_writer.h"
 
 namespace vstcal::io {
 

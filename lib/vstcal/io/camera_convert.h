@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "vstcal/core/units.h"
-#include "vstcal/io/provenance.h"
+#include "vstcal/json/provenance.h"
 
 namespace vstcal::io {
 

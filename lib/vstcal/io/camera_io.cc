@@ -10,8 +10,8 @@
 #include "vstcal/calib/decompose.h"
 #include "vstcal/camera/intrinsics.h"
 #include "vstcal/core/suggest.h"
-#include "vstcal/io/correspondences_io.h"
-#include "vstcal/io/format_check.h"
+#include "vstcal/json/fields.h"
+#include "vstcal/json/format_check.h"
 
 namespace vstcal::io {
 namespace {
@@ -184,18 +184,6 @@ void ReadPoseBlocks(const JsonNode& node, const std::optional<CovariancePoses>& 
 }
 
 }  // namespace
-
-Rigid3d ReadRigid(const JsonNode& node) {
-  Rigid3d pose;
-  const JsonNode R = node.at("R");
-  pose.R = R.Matrix<3, 3>();
-  if (!IsRotation(pose.R, 1e-6)) {
-    R.Fail("not a rotation matrix (RᵀR ≠ I or det R < 0, tolerance 1e-6)", "write R with at least 7 significant digits");
-  }
-  pose.R = NearestRotation(pose.R);
-  pose.t = node.at("t").Vector<3>();
-  return pose;
-}
 
 ParameterCovariance ReadCovariance(const JsonNode& node, const Camera& camera, const std::optional<CovariancePoses>& poses) {
   ParameterCovariance cov;

@@ -5,10 +5,11 @@
 #include <optional>
 
 #include "vstcal/calib/calibrated_camera.h"
-#include "vstcal/io/json_reader.h"
-#include "vstcal/io/json_writer.h"
-#include "vstcal/io/provenance.h"
-#include "vstcal/io/reader_common.h"
+#include "vstcal/json/fields.h"
+#include "vstcal/json/json_reader.h"
+#include "vstcal/json/json_writer.h"
+#include "vstcal/json/provenance.h"
+#include "vstcal/json/reader_common.h"
 
 namespace vstcal::io {
 
@@ -32,9 +33,6 @@ std::optional<FieldProblem> CameraMatrixProblem(const Eigen::Matrix3d& K);
 // has image_size, K and distortion (used by other formats that embed a camera).
 OrderedJson DistortionToJson(const Camera& camera);
 Camera ReadCameraIntrinsics(const JsonNode& node);
-
-// A transform {"R": 3×3, "t": [3]}: R must be a rotation to 1e-6 (then re-orthonormalized).
-Rigid3d ReadRigid(const JsonNode& node);
 
 // The poses a camera file has, which a covariance's pose tangents may name.
 struct CovariancePoses {

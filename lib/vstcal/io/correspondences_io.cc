@@ -2,7 +2,8 @@
 
 #include <set>
 
-#include "vstcal/io/format_check.h"
+#include "vstcal/json/fields.h"
+#include "vstcal/json/format_check.h"
 
 namespace vstcal::io {
 namespace {
@@ -46,15 +47,6 @@ Observation ReadPoint(const JsonNode& node, const Correspondences& c) {
 }
 
 }  // namespace
-
-ImageSize ReadImageSize(const JsonNode& node) {
-  node.ArraySize(2);
-  return ImageSize{node.at(0).PositiveInteger(), node.at(1).PositiveInteger()};
-}
-
-LengthUnit ReadLengthUnit(const JsonNode& node) {
-  return *LengthUnitFromName(node.OneOf(kLengthUnitNames));
-}
 
 Correspondences CorrespondencesFromJson(const JsonDocument& doc) {
   const JsonNode root = doc.root();

@@ -4,9 +4,9 @@
 #include <filesystem>
 
 #include "vstcal/calib/correspondences.h"
-#include "vstcal/io/json_reader.h"
-#include "vstcal/io/json_writer.h"
-#include "vstcal/io/provenance.h"
+#include "vstcal/json/json_reader.h"
+#include "vstcal/json/json_writer.h"
+#include "vstcal/json/provenance.h"
 
 namespace vstcal::io {
 
@@ -16,10 +16,5 @@ Correspondences ReadCorrespondences(const std::filesystem::path& path);
 Correspondences CorrespondencesFromJson(const JsonDocument& doc);
 
 OrderedJson CorrespondencesToJson(const Correspondences& c, const Provenance& provenance);
-
-// Parses image_size [width, height] (positive integers).
-ImageSize ReadImageSize(const JsonNode& node);
-// Parses length_unit.
-LengthUnit ReadLengthUnit(const JsonNode& node);
 
 }  // namespace vstcal::io

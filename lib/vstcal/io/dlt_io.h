@@ -5,7 +5,7 @@
 
 #include "vstcal/calib/decompose.h"
 #include "vstcal/calib/dlt.h"
-#include "vstcal/io/json_writer.h"
+#include "vstcal/json/json_writer.h"
 
 namespace vstcal::io {
 

@@ -9,7 +9,7 @@
 #include "vstcal/camera/opencv_distortion.h"
 #include "vstcal/core/error.h"
 #include "vstcal/io/camera_io.h"
-#include "vstcal/io/reader_common.h"
+#include "vstcal/json/reader_common.h"
 
 namespace vstcal::io {
 namespace {

@@ -5,17 +5,9 @@
 #include <cstdio>
 
 #include "vstcal/core/error.h"
+#include "vstcal/json/reader_common.h"
 
 namespace vstcal::io {
-namespace {
-
-std::string Short(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.6g", v);
-  return buf;
-}
-
-}  // namespace
 
 void RefuseSkew(const Camera& camera, std::string_view source, std::string_view peer) {
   const Eigen::Matrix3d K = camera.K();
@@ -24,9 +16,9 @@ void RefuseSkew(const Camera& camera, std::string_view source, std::string_view 
   // u moves by s·y_d, and y_d = (v − cy)/fy exactly: the largest move is at the top or bottom row.
   const double rows = std::max(std::abs(-0.5 - K(1, 2)), std::abs(camera.image_size.height - 0.5 - K(1, 2)));
   const double shift = std::abs(s) * rows / K(1, 1);
-  throw InputError(std::string(source) + ": K[0][1]: the camera has skew " + Short(s) + " px, and " +
+  throw InputError(std::string(source) + ": K[0][1]: the camera has skew " + MessageNumber(s) + " px, and " +
                    std::string(peer) + " has no skew term: written without it, pixels would move by up to " +
-                   Short(shift) +
+                   MessageNumber(shift) +
                    " px; solve the camera without skew, or set K[0][1] to 0 (and delete \"intrinsics\") "
                    "in a copy if that error is acceptable");
 }

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "vstcal/calib/calibrated_camera.h"
-#include "vstcal/io/provenance.h"
+#include "vstcal/json/provenance.h"
 
 namespace vstcal::io {
 

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <cstdlib>
 
-#include "vstcal/io/reader_common.h"
+#include "vstcal/json/reader_common.h"
 
 namespace vstcal::io {
 namespace {

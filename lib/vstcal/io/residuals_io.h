@@ -3,8 +3,8 @@
 
 #include "vstcal/calib/correspondences.h"
 #include "vstcal/calib/fit.h"
-#include "vstcal/io/json_writer.h"
-#include "vstcal/io/provenance.h"
+#include "vstcal/json/json_writer.h"
+#include "vstcal/json/provenance.h"
 
 namespace vstcal::io {
 

@@ -3,166 +3,146 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
-#include <cstdint>
-#include <numbers>
-#include <map>
-#include <memory>
-#include <mutex>
-#include <tuple>
 
 #include "vstcal/core/error.h"
 
 namespace vstcal::sensitivity {
 namespace {
 
-// Layout: [0] y ≤ −max, [1, K] negative bins from the largest magnitude down, [K + 1] central,
-// [K + 2, 2K + 1] positive bins from the smallest magnitude up, [2K + 2] y ≥ max.
-size_t BinsPerSide(const HistogramSpec& spec) {
-  return static_cast<size_t>(std::ceil(std::log10(spec.max_magnitude / spec.min_magnitude) * spec.bins_per_decade));
-}
+constexpr uint64_t kMagnitude = 0x7fffffffffffffffull;
+constexpr uint64_t kSign = 0x8000000000000000ull;
+
+uint64_t ExponentBits(int exponent) { return static_cast<uint64_t>(1023 + exponent) << 52; }
 
 }  // namespace
 
 void HistogramSpec::Validate() const {
-  if (!(std::isfinite(min_magnitude) && std::isfinite(max_magnitude) && min_magnitude > 0 &&
-        max_magnitude > min_magnitude)) {
-    throw InputError("histogram: need 0 < min_magnitude < max_magnitude, both finite");
+  if (!(-1000 <= min_exponent && min_exponent < max_exponent && max_exponent <= 1000)) {
+    throw InputError("histogram: need -1000 <= min_exponent < max_exponent <= 1000");
   }
-  if (bins_per_decade < 1 || bins_per_decade > 10000) {
-    throw InputError("histogram: bins_per_decade must be in [1, 10000]");
-  }
+  if (sub_bins_log2 < 0 || sub_bins_log2 > 12) throw InputError("histogram: sub_bins_log2 must be in [0, 12]");
+  if (BinsPerSide() > (size_t{1} << 20)) throw InputError("histogram: more than 2^20 bins a side; narrow the exponent range");
 }
-
-size_t HistogramSpec::NumBins() const { return 2 * BinsPerSide(*this) + 3; }
 
 size_t HistogramSpec::BinOf(double y) const {
-  const size_t k = BinsPerSide(*this);
-  const double magnitude = std::abs(y);
-  if (magnitude < min_magnitude) return k + 1;
-  if (magnitude >= max_magnitude) return y > 0 ? 2 * k + 2 : 0;
-  // Rounding of log10 near an edge can only move a value to the neighbouring bin.
-  const size_t b = std::min(k - 1, static_cast<size_t>(std::log10(magnitude / min_magnitude) * bins_per_decade));
-  return y > 0 ? k + 2 + b : k - b;
+  const size_t k = BinsPerSide();
+  const uint64_t bits = std::bit_cast<uint64_t>(y);
+  const uint64_t magnitude = bits & kMagnitude;
+  const uint64_t low = ExponentBits(min_exponent), high = ExponentBits(max_exponent);
+  if (magnitude < low || magnitude > 0x7ff0000000000000ull) return k + 1;  // tiny, or NaN
+  if (magnitude >= high) return (bits & kSign) ? 0 : 2 * k + 2;
+  const size_t b = static_cast<size_t>((magnitude - low) >> (52 - sub_bins_log2));
+  return (bits & kSign) ? k - b : k + 2 + b;
 }
 
-HistogramBinner::HistogramBinner(const HistogramSpec& spec) : spec_(spec) {
-  spec_.Validate();
-  bins_per_side_ = BinsPerSide(spec_);
-  log2_min_ = std::log2(spec_.min_magnitude);
-  for (size_t j = 0; j < log2_centre_.size(); ++j) {
-    const double centre = 1 + (static_cast<double>(j) + 0.5) / 64;
-    log2_centre_[j] = std::log2(centre);
-    inverse_centre_[j] = 1 / centre;
+[[gnu::target_clones("avx2", "default")]] void HistogramSpec::BinsOf4(const double* y, uint32_t* bins) const {
+  BinsOf4Inline(*this, y, bins);
+}
+
+double HistogramSpec::BinLow(size_t bin) const {
+  const size_t k = BinsPerSide();
+  if (bin == k + 1) return 0.0;
+  if (bin == 0 || bin == 2 * k + 2) return std::ldexp(1.0, max_exponent);
+  const size_t b = bin > k + 1 ? bin - (k + 2) : k - bin;
+  return std::bit_cast<double>(ExponentBits(min_exponent) + (static_cast<uint64_t>(b) << (52 - sub_bins_log2)));
+}
+
+double HistogramSpec::BinHigh(size_t bin) const {
+  const size_t k = BinsPerSide();
+  if (bin == k + 1) return std::ldexp(1.0, min_exponent);
+  if (bin == 0 || bin == 2 * k + 2) return HUGE_VAL;
+  const size_t b = bin > k + 1 ? bin - (k + 2) : k - bin;
+  return std::bit_cast<double>(ExponentBits(min_exponent) + (static_cast<uint64_t>(b + 1) << (52 - sub_bins_log2)));
+}
+
+double HistogramSpec::RelativeResolution() const { return std::ldexp(1.0, -(sub_bins_log2 + 1)); }
+
+LogHistogram::LogHistogram(const HistogramSpec& spec) : spec_(spec) { spec_.Validate(); }
+
+LogHistogram::LogHistogram(const LogHistogram& other) : spec_(other.spec_), total_(other.total_) {
+  pages_.resize(other.pages_.size());
+  for (size_t p = 0; p < pages_.size(); ++p) {
+    if (other.pages_[p]) pages_[p] = std::make_unique<Page>(*other.pages_[p]);
   }
-  bins_per_octave_ = spec_.bins_per_decade * std::log10(2.0);
-  // lower_[b] is where BinOf's positive index reaches b: start at the exact edge min·10^(b/d) and
-  // step by ulps (BinOf's logarithm is off by at most a few).
-  const size_t first_positive = bins_per_side_ + 2;
-  auto index = [&](double m) { return spec_.BinOf(m) - first_positive; };
-  lower_.resize(bins_per_side_);
-  lower_[0] = spec_.min_magnitude;
-  for (size_t b = 1; b < bins_per_side_; ++b) {
-    const double edge = spec_.min_magnitude * std::pow(10.0, static_cast<double>(b) / spec_.bins_per_decade);
-    double m = std::max(lower_[b - 1], edge);
-    while (m > lower_[b - 1] && index(std::nextafter(m, 0.0)) >= b) m = std::nextafter(m, 0.0);
-    while (index(m) < b) m = std::nextafter(m, HUGE_VAL);
-    lower_[b] = m;
-  }
 }
 
-const HistogramBinner& HistogramBinner::For(const HistogramSpec& spec) {
-  static std::mutex mutex;
-  static std::map<std::tuple<double, double, int>, std::unique_ptr<const HistogramBinner>> binners;
-  const std::lock_guard<std::mutex> lock(mutex);
-  auto& binner = binners[{spec.min_magnitude, spec.max_magnitude, spec.bins_per_decade}];
-  if (!binner) binner = std::make_unique<const HistogramBinner>(spec);
-  return *binner;
-}
-
-size_t HistogramBinner::BinOf(double y) const {
-  const size_t k = bins_per_side_;
-  const double magnitude = std::abs(y);
-  if (magnitude < spec_.min_magnitude) return k + 1;
-  if (magnitude >= spec_.max_magnitude) return y > 0 ? 2 * k + 2 : 0;
-  // log2 of the magnitude: its exponent, plus log2 f for its mantissa f in [1, 2) from a table at
-  // the 64 centres c_j = 1 + (j + ½)/64 and ln(1 + r) through r⁴ for r = f/c_j − 1, |r| < 1/128:
-  // error below 1e-11, so the estimate of BinOf's log10(|y|/min)·d is within 1e-7 of a bin (d ≤
-  // 10000), and BinOf's own rounding is far smaller. Unless the estimate is that close to a bin
-  // edge its floor is BinOf's bin; near an edge the stored edges decide. (A subnormal magnitude
-  // gets a poor estimate; the edges correct that too.)
-  const uint64_t bits = std::bit_cast<uint64_t>(magnitude);
-  const double exponent = static_cast<double>(static_cast<int>(bits >> 52) - 1023);
-  const double f = std::bit_cast<double>((bits & 0x000fffffffffffffu) | 0x3ff0000000000000u);
-  const size_t j = (bits >> 46) & 63;
-  const double r = f * inverse_centre_[j] - 1;
-  const double ln_1_plus_r = r * (1 - r * (0.5 - r * (1.0 / 3 - r * 0.25)));
-  const double estimate =
-      (exponent + log2_centre_[j] + ln_1_plus_r * (1 / std::numbers::ln2) - log2_min_) * bins_per_octave_;
-  if (!(estimate > 0)) return BinOnSide(y, EdgeSearch(magnitude, 0));
-  if (!(estimate < static_cast<double>(k - 1))) return BinOnSide(y, EdgeSearch(magnitude, k - 1));
-  const size_t b = static_cast<size_t>(estimate);  // the floor, estimate being positive
-  const double fraction = estimate - static_cast<double>(b);
-  return BinOnSide(y, fraction > 1e-6 && fraction < 1 - 1e-6 ? b : EdgeSearch(magnitude, b));
-}
-
-size_t HistogramBinner::EdgeSearch(double magnitude, size_t b) const {
-  const size_t k = bins_per_side_;
-  while (b + 1 < k && magnitude >= lower_[b + 1]) ++b;
-  while (b > 0 && magnitude < lower_[b]) --b;
-  return b;
-}
-
-size_t HistogramBinner::BinOnSide(double y, size_t b) const {
-  // Without a branch: for signed outputs the side is a coin toss.
-  const size_t positive = bins_per_side_ + 2 + b, negative = bins_per_side_ - b;
-  return y > 0 ? positive : negative;
-}
-
-double HistogramSpec::RelativeResolution() const { return std::pow(10.0, 0.5 / bins_per_decade) - 1.0; }
-
-LogHistogram::LogHistogram(const HistogramSpec& spec) : spec_(spec) {
-  spec_.Validate();
-  bins_per_side_ = BinsPerSide(spec_);
-  counts_.assign(spec_.NumBins(), 0);
+LogHistogram& LogHistogram::operator=(const LogHistogram& other) {
+  if (this != &other) *this = LogHistogram(other);
+  return *this;
 }
 
 void LogHistogram::AddBin(size_t bin, uint64_t count) {
-  VSTCAL_CHECK(bin < counts_.size(), "histogram bin out of range");
-  counts_[bin] += count;
+  VSTCAL_CHECK(bin < spec_.NumBins(), "histogram bin out of range");
+  if (bin / kPageSize >= pages_.size()) pages_.resize(bin / kPageSize + 1);
+  std::unique_ptr<Page>& page = pages_[bin / kPageSize];
+  if (!page) page = std::make_unique<Page>(Page{});
+  (*page)[bin % kPageSize] += count;
   total_ += count;
+}
+
+void LogHistogram::AddBins(const uint32_t* bins, size_t n, uint32_t skip) {
+  const size_t num_bins = spec_.NumBins();
+  uint64_t added = 0;
+  for (size_t i = 0; i < n; ++i) {
+    const uint32_t bin = bins[i];
+    if (bin == skip) continue;
+    VSTCAL_CHECK(bin < num_bins, "histogram bin out of range");
+    const size_t p = bin / kPageSize;
+    if (p >= pages_.size()) pages_.resize(p + 1);
+    if (!pages_[p]) pages_[p] = std::make_unique<Page>(Page{});
+    ++(*pages_[p])[bin % kPageSize];
+    ++added;
+  }
+  total_ += added;
+}
+
+uint64_t LogHistogram::count(size_t bin) const {
+  if (bin / kPageSize >= pages_.size()) return 0;
+  const std::unique_ptr<Page>& page = pages_[bin / kPageSize];
+  return page ? (*page)[bin % kPageSize] : 0;
 }
 
 void LogHistogram::Merge(const LogHistogram& other) {
   VSTCAL_CHECK(other.spec_ == spec_, "merging histograms of different specs");
-  for (size_t b = 0; b < counts_.size(); ++b) counts_[b] += other.counts_[b];
+  if (other.pages_.size() > pages_.size()) pages_.resize(other.pages_.size());
+  for (size_t p = 0; p < other.pages_.size(); ++p) {
+    if (!other.pages_[p]) continue;
+    if (!pages_[p]) pages_[p] = std::make_unique<Page>(Page{});
+    for (size_t i = 0; i < kPageSize; ++i) (*pages_[p])[i] += (*other.pages_[p])[i];
+  }
   total_ += other.total_;
 }
 
-double LogHistogram::BinCentre(size_t bin) const {
-  const size_t k = bins_per_side_;
-  if (bin == k + 1) return 0.0;
-  const bool positive = bin > k + 1;
-  const size_t b = positive ? bin - (k + 2) : k - bin;
-  const double centre = spec_.min_magnitude * std::pow(10.0, (static_cast<double>(b) + 0.5) / spec_.bins_per_decade);
-  return positive ? centre : -centre;
+size_t LogHistogram::MemoryBytes() const {
+  size_t pages = 0;
+  for (const auto& page : pages_) pages += page != nullptr;
+  return pages * sizeof(Page) + pages_.size() * sizeof(pages_[0]);
 }
 
 Percentile LogHistogram::Quantile(double p, double observed_min, double observed_max) const {
   VSTCAL_CHECK(total_ > 0 && p > 0 && p < 1, "quantile of an empty histogram or p outside (0, 1)");
   const uint64_t rank = std::max<uint64_t>(1, static_cast<uint64_t>(std::ceil(p * static_cast<double>(total_))));
   uint64_t cumulative = 0;
-  size_t bin = 0;
-  for (; bin < counts_.size(); ++bin) {
-    cumulative += counts_[bin];
-    if (cumulative >= rank) break;
+  size_t bin = spec_.NumBins() - 1;
+  for (size_t page = 0; page < pages_.size() && cumulative < rank; ++page) {
+    if (!pages_[page]) continue;
+    for (size_t i = 0; i < kPageSize; ++i) {
+      cumulative += (*pages_[page])[i];
+      if (cumulative >= rank) {
+        bin = page * kPageSize + i;
+        break;
+      }
+    }
   }
   Percentile out;
-  if (bin == 0 || bin == counts_.size() - 1) {
+  const size_t k = spec_.BinsPerSide();
+  if (bin == 0 || bin == 2 * k + 2) {
     out.in_range = false;
     out.value = bin == 0 ? observed_min : observed_max;
     return out;
   }
-  out.value = std::clamp(BinCentre(bin), observed_min, observed_max);
+  const double midpoint = bin == k + 1 ? 0.0 : 0.5 * (spec_.BinLow(bin) + spec_.BinHigh(bin));
+  out.value = std::clamp(bin < k + 1 ? -midpoint : midpoint, observed_min, observed_max);
   return out;
 }
 

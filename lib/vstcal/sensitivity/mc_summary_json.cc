@@ -3,46 +3,46 @@
 #include <cmath>
 
 #include "vstcal/core/error.h"
+#include "vstcal/json/format_check.h"
 
 namespace vstcal::sensitivity {
 namespace {
 
-io::OrderedJson MomentsToJson(const Moments& m) {
-  if (m.count == 0) return io::OrderedJson::array({0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0});
+constexpr const char* kRegenerate = "regenerate the shard file (it was changed or truncated)";
+
+// [count, mean, m2, m3, m4, min, max], or [count, mean, m2, min, max] without the higher moments.
+io::OrderedJson MomentsToJson(const Moments& m, bool higher) {
+  if (m.count == 0) return io::OrderedJson::array({0});
+  if (!higher) return io::OrderedJson::array({m.count, m.mean, m.m2, m.min, m.max});
   return io::OrderedJson::array({m.count, m.mean, m.m2, m.m3, m.m4, m.min, m.max});
 }
 
-io::OrderedJson MomentsListToJson(const std::vector<Moments>& list) {
-  io::OrderedJson out = io::OrderedJson::array();
-  for (const Moments& m : list) out.push_back(MomentsToJson(m));
-  return out;
-}
-
 uint64_t Count(const io::JsonNode& node) {
-  if (!node.json().is_number_unsigned()) node.Fail("expected a non-negative integer", "write a count");
+  if (!node.json().is_number_unsigned()) node.Fail("expected a non-negative integer, got " + node.json().dump(), kRegenerate);
   return node.json().get<uint64_t>();
 }
 
-Moments MomentsFromJson(const io::JsonNode& node) {
-  node.ArraySize(7);
+Moments MomentsFromJson(const io::JsonNode& node, bool higher) {
+  const size_t n = node.ArraySize();
   Moments m;
   m.count = Count(node.at(size_t{0}));
-  if (m.count == 0) return m;
+  if (m.count == 0) {
+    if (n != 1) node.Fail("an empty moment set has one number, [0]", kRegenerate);
+    return m;
+  }
+  node.ArraySize(higher ? 7 : 5);
   m.mean = node.at(1).Number();
   m.m2 = node.at(2).NonNegativeNumber();
-  m.m3 = node.at(3).Number();
-  m.m4 = node.at(4).NonNegativeNumber();
-  m.min = node.at(5).Number();
-  m.max = node.at(6).Number();
-  if (m.min > m.max) node.Fail("min exceeds max", "regenerate the shard file");
+  const size_t extremes = higher ? 5 : 3;
+  if (higher) {
+    m.m3 = node.at(3).Number();
+    m.m4 = node.at(4).NonNegativeNumber();
+  }
+  m.min = node.at(extremes).Number();
+  m.max = node.at(extremes + 1).Number();
+  if (m.min > m.max) node.Fail("min exceeds max", kRegenerate);
+  if (m.mean < m.min || m.mean > m.max) node.Fail("the mean lies outside [min, max]", kRegenerate);
   return m;
-}
-
-std::vector<Moments> MomentsListFromJson(const io::JsonNode& node, size_t m) {
-  node.ArraySize(m);
-  std::vector<Moments> list;
-  for (size_t k = 0; k < m; ++k) list.push_back(MomentsFromJson(node.at(k)));
-  return list;
 }
 
 }  // namespace
@@ -54,25 +54,30 @@ io::OrderedJson SummaryToJson(const MonteCarloSummary& summary) {
   j["run_id"] = plan.run_id;
   j["total_samples"] = plan.total_samples;
   j["block_size"] = plan.block_size;
-  j["histogram"] = {{"min_magnitude", plan.histogram.min_magnitude},
-                    {"max_magnitude", plan.histogram.max_magnitude},
-                    {"bins_per_decade", plan.histogram.bins_per_decade}};
+  j["histogram"] = {{"min_exponent", plan.histogram.min_exponent},
+                    {"max_exponent", plan.histogram.max_exponent},
+                    {"sub_bins_log2", plan.histogram.sub_bins_log2}};
   j["outputs"] = plan.output_names;
+  j["percentile_outputs"] = plan.all_percentiles ? io::OrderedJson("all") : io::OrderedJson(plan.percentile_outputs);
+  j["higher_moments"] = plan.higher_moments;
   j["undefined_samples"] = summary.undefined_samples();
-  j["folded_blocks"] = summary.folded_blocks();
-  j["folded"] = MomentsListToJson(summary.folded());
-  io::OrderedJson pending = io::OrderedJson::array();
-  for (const auto& [block, moments] : summary.pending()) {
-    pending.push_back({{"block", block}, {"moments", MomentsListToJson(moments)}});
+  io::OrderedJson nodes = io::OrderedJson::array();
+  for (const auto& [key, moments] : summary.nodes()) {
+    io::OrderedJson list = io::OrderedJson::array();
+    for (const Moments& m : moments) list.push_back(MomentsToJson(m, plan.higher_moments));
+    nodes.push_back({key.first, key.second, std::move(list)});
   }
-  j["pending"] = std::move(pending);
+  j["nodes"] = std::move(nodes);
   io::OrderedJson histograms = io::OrderedJson::array();
   for (const LogHistogram& h : summary.histograms()) {
-    io::OrderedJson bins = io::OrderedJson::array();
-    for (size_t b = 0; b < h.counts().size(); ++b) {
-      if (h.counts()[b] > 0) bins.push_back({b, h.counts()[b]});
-    }
-    histograms.push_back(std::move(bins));
+    io::OrderedJson runs = io::OrderedJson::array();
+    size_t next = 0;
+    h.ForEachBin([&](size_t bin, uint64_t count) {
+      if (runs.empty() || bin != next) runs.push_back(io::OrderedJson::array({bin}));
+      runs.back().push_back(count);
+      next = bin + 1;
+    });
+    histograms.push_back(std::move(runs));
   }
   j["histograms"] = std::move(histograms);
   return j;
@@ -80,48 +85,71 @@ io::OrderedJson SummaryToJson(const MonteCarloSummary& summary) {
 
 MonteCarloSummary SummaryFromJson(const io::JsonNode& root) {
   root.ExpectObject();
-  const io::JsonNode format = root.at("format");
-  if (format.String() != kSummaryFormat) {
-    format.Fail("is '" + format.String() + "'", std::string("expected '") + kSummaryFormat + "'");
-  }
+  io::CheckFormat(root, kSummaryFormat);
   SummaryPlan plan;
   plan.run_id = root.at("run_id").String();
   plan.total_samples = Count(root.at("total_samples"));
   plan.block_size = Count(root.at("block_size"));
   const io::JsonNode histogram = root.at("histogram");
-  plan.histogram.min_magnitude = histogram.at("min_magnitude").PositiveNumber();
-  plan.histogram.max_magnitude = histogram.at("max_magnitude").PositiveNumber();
-  plan.histogram.bins_per_decade = histogram.at("bins_per_decade").PositiveInteger();
+  plan.histogram.min_exponent = histogram.at("min_exponent").Integer();
+  plan.histogram.max_exponent = histogram.at("max_exponent").Integer();
+  plan.histogram.sub_bins_log2 = histogram.at("sub_bins_log2").Integer();
   const io::JsonNode outputs = root.at("outputs");
   const size_t m = outputs.ArraySize();
   for (size_t k = 0; k < m; ++k) plan.output_names.push_back(outputs.at(k).String());
-  plan.Validate();
+  const io::JsonNode percentiles = root.at("percentile_outputs");
+  if (percentiles.json().is_string()) {
+    if (percentiles.String() != "all") percentiles.Fail("expected \"all\" or a list of output indices", kRegenerate);
+  } else {
+    plan.all_percentiles = false;
+    for (size_t i = 0; i < percentiles.ArraySize(); ++i) plan.percentile_outputs.push_back(Count(percentiles.at(i)));
+  }
+  plan.higher_moments = root.at("higher_moments").Boolean();
+  try {
+    plan.Validate();
+  } catch (const InputError& e) {
+    root.Fail(e.what(), kRegenerate);
+  }
 
-  std::map<uint64_t, std::vector<Moments>> pending;
-  const io::JsonNode pending_node = root.at("pending");
-  for (size_t i = 0; i < pending_node.ArraySize(); ++i) {
-    const io::JsonNode entry = pending_node.at(i);
-    const uint64_t block = Count(entry.at("block"));
-    if (!pending.emplace(block, MomentsListFromJson(entry.at("moments"), m)).second) {
-      entry.at("block").Fail("repeats a block", "regenerate the shard file");
-    }
+  std::map<MonteCarloSummary::NodeKey, std::vector<Moments>> nodes;
+  const io::JsonNode nodes_node = root.at("nodes");
+  for (size_t i = 0; i < nodes_node.ArraySize(); ++i) {
+    const io::JsonNode entry = nodes_node.at(i);
+    entry.ArraySize(3);
+    const uint64_t level = Count(entry.at(size_t{0}));
+    if (level > 64) entry.at(size_t{0}).Fail("a tree level above 64", kRegenerate);
+    const MonteCarloSummary::NodeKey key{static_cast<uint32_t>(level), Count(entry.at(1))};
+    const io::JsonNode list = entry.at(2);
+    list.ArraySize(m);
+    std::vector<Moments> moments;
+    for (size_t k = 0; k < m; ++k) moments.push_back(MomentsFromJson(list.at(k), plan.higher_moments));
+    if (!nodes.emplace(key, std::move(moments)).second) entry.Fail("repeats a node", kRegenerate);
   }
-  std::vector<LogHistogram> histograms(m, LogHistogram(plan.histogram));
+  std::vector<LogHistogram> histograms(plan.NumHistograms(), LogHistogram(plan.histogram));
   const io::JsonNode hist_node = root.at("histograms");
-  hist_node.ArraySize(m);
-  for (size_t k = 0; k < m; ++k) {
-    const io::JsonNode bins = hist_node.at(k);
-    for (size_t i = 0; i < bins.ArraySize(); ++i) {
-      const io::JsonNode pair = bins.at(i);
-      pair.ArraySize(2);
-      const uint64_t bin = Count(pair.at(size_t{0}));
-      if (bin >= plan.histogram.NumBins()) pair.Fail("names a bin beyond the histogram", "regenerate the shard file");
-      histograms[k].AddBin(bin, Count(pair.at(1)));
+  hist_node.ArraySize(histograms.size());
+  const size_t num_bins = plan.histogram.NumBins();
+  for (size_t h = 0; h < histograms.size(); ++h) {
+    const io::JsonNode runs = hist_node.at(h);
+    for (size_t i = 0; i < runs.ArraySize(); ++i) {
+      const io::JsonNode run = runs.at(i);
+      const size_t length = run.ArraySize();
+      if (length < 2) run.Fail("a run of bins needs its first bin and at least one count", kRegenerate);
+      const uint64_t first = Count(run.at(size_t{0}));
+      if (first >= num_bins || length - 1 > num_bins - first) run.Fail("names a bin beyond the histogram", kRegenerate);
+      for (size_t b = 1; b < length; ++b) {
+        const uint64_t count = Count(run.at(b));
+        if (count > plan.total_samples) run.at(b).Fail("counts more samples than the run has", kRegenerate);
+        histograms[h].AddBin(first + b - 1, count);
+      }
     }
   }
-  return MonteCarloSummary::FromState(std::move(plan), Count(root.at("folded_blocks")),
-                                      MomentsListFromJson(root.at("folded"), m), std::move(pending),
-                                      std::move(histograms), Count(root.at("undefined_samples")));
+  try {
+    return MonteCarloSummary::FromState(std::move(plan), std::move(nodes), std::move(histograms),
+                                        Count(root.at("undefined_samples")));
+  } catch (const InputError& e) {
+    root.Fail(e.what(), kRegenerate);
+  }
 }
 
 }  // namespace vstcal::sensitivity

@@ -27,7 +27,7 @@ MonteCarloSummary RunMonteCarlo(const ParameterSpace& space, const Model& model,
 
   MonteCarloSummary summary(plan);
   std::mutex summary_mutex;
-  // Blocks are folded in block order by the summary itself, so the order they finish in is free.
+  // Blocks are combined in a fixed tree by the summary itself, so the order they finish in is free.
   ParallelFor(range.end - range.begin, options.threads, [&](size_t task) {
     const uint64_t block = range.begin + task;
     const uint64_t first = block * plan.block_size;

@@ -3,7 +3,7 @@
 
 #include <string_view>
 
-#include "vstcal/io/json_reader.h"
+#include "vstcal/json/json_reader.h"
 
 namespace vstcal::io {
 

@@ -21,6 +21,9 @@ bool IsBlank(std::string_view text);
 // 1-based "line L, column C" of a byte offset in a text (columns count bytes).
 std::string LineColumn(std::string_view text, size_t offset);
 
+// A number as messages quote it: six significant digits ("%.6g": 61.3, 1e+06, -0.00125).
+std::string MessageNumber(double v);
+
 // A value's problem, before it is tied to a file and a field.
 struct FieldProblem {
   std::string reason;  // what is wrong

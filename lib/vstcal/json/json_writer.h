@@ -41,6 +41,9 @@ inline std::string ShortestDecimal(double v) { return OrderedJson(v).dump(); }
 
 // Two-space indented text with a final newline; doubles in shortest round-trip form.
 std::string DumpJson(const OrderedJson& json);
+// The same on one line (and a final newline): for machine-to-machine files whose size matters
+// (err-sim's shard files), where the indentation would triple it.
+std::string DumpJsonCompact(const OrderedJson& json);
 
 // Writes text to `path` through a temporary file in the same directory and a rename, so the
 // path either holds the complete new file or is untouched. Throws InputError when the directory

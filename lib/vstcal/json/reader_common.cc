@@ -1,6 +1,7 @@
-#include "vstcal/io/reader_common.h"
+#include "vstcal/json/reader_common.h"
 
 #include <cerrno>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <sstream>
@@ -36,6 +37,12 @@ std::string LineColumn(std::string_view text, size_t offset) {
     }
   }
   return "line " + std::to_string(line) + ", column " + std::to_string(column);
+}
+
+std::string MessageNumber(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.6g", v);
+  return buf;
 }
 
 void FailField(std::string_view file, std::string_view field, std::string_view reason, std::string_view fix) {

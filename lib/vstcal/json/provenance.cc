@@ -1,4 +1,4 @@
-#include "vstcal/io/provenance.h"
+#include "vstcal/json/provenance.h"
 
 #include "vstcal/core/version.h"
 

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "vstcal/io/json_writer.h"
+#include "vstcal/json/json_writer.h"
 
 namespace vstcal::io {
 

@@ -1,4 +1,4 @@
-#include "vstcal/io/format_check.h"
+#include "vstcal/json/format_check.h"
 
 #include <string>
 

@@ -1,10 +1,10 @@
-#include "vstcal/io/json_reader.h"
+#include "vstcal/json/json_reader.h"
 
 #include <cctype>
 #include <cmath>
 
 #include "vstcal/core/error.h"
-#include "vstcal/io/reader_common.h"
+#include "vstcal/json/reader_common.h"
 
 namespace vstcal::io {
 namespace {

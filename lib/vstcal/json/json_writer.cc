@@ -1,4 +1,4 @@
-#include "vstcal/io/json_writer.h"
+#include "vstcal/json/json_writer.h"
 
 #include <sys/stat.h>
 #include <unistd.h>
@@ -20,6 +20,8 @@ OrderedJson RigidToJson(const Rigid3d& a_from_b) {
 }
 
 std::string DumpJson(const OrderedJson& json) { return json.dump(2) + "\n"; }
+
+std::string DumpJsonCompact(const OrderedJson& json) { return json.dump() + "\n"; }
 
 namespace {
 

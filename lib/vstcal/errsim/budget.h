@@ -1,0 +1,47 @@
+// err-sim's totals and error budget (docs/math/vst-chain.md#budget): per scenario the RMS of the
+// image misregistration, of the 3-D misregistration and of the misperception (relative to the
+// error-free chain's systematic one); per active source its contribution alone, the whole chain
+// with it halved, and its share of each mean square, ranked for each measure.
+#pragma once
+
+#include <vector>
+
+#include "vstcal/errsim/chain_model.h"
+#include "vstcal/errsim/measures.h"
+#include "vstcal/errsim/simulation.h"
+#include "vstcal/sensitivity/mc_summary.h"
+
+namespace vstcal::errsim {
+
+// Aggregates of one scenario; NaN (null in files) where undefined: a test point without a defined
+// sample, or no occlusion points.
+struct ScenarioTotals {
+  double image_rms_px;          // √(mean over test points and eyes of RMS(|q̂ − q|)²)
+  double misregistration_rms;   // √(mean over test points of RMS(misregistration linear)²)
+  double misperception_rms;     // the same for the misperception, relative to the systematic one
+  double wrong_occlusion_rate;  // mean over occlusion points and eyes
+};
+// `summary` holds the outputs of ErrorOutputs(model, set).
+ScenarioTotals Totals(const ChainModel& model, const sensitivity::MonteCarloSummary& summary, OutputSet set);
+
+// √(mean over test points of the systematic misperception's linear term²).
+double SystematicMisperceptionRms(const ChainEvaluator& chain);
+
+struct BudgetEntry {
+  Source source;
+  ScenarioTotals alone, halved;
+  // Its alone mean square over the sum of every source's (exact for independent, linearly adding
+  // sources; a ranking otherwise). NaN where some total is undefined.
+  double share_of_image_ms = 0;
+  double share_of_misregistration_ms = 0;
+  double share_of_misperception_ms = 0;
+};
+
+struct ErrorBudget {
+  std::vector<BudgetEntry> entries;            // in source order
+  std::vector<size_t> by_misregistration;      // entry indices, largest share first (ties: image share)
+  std::vector<size_t> by_misperception;        // entry indices, largest share first
+};
+ErrorBudget Budget(const ChainModel& model, const SimulationResult& result);
+
+}  // namespace vstcal::errsim

@@ -1,0 +1,27 @@
+// vstcal/vst-chain@1 reader (docs/formats.md#vst-chain): the nominal chain, both cameras (inline or
+// a camera@1 file, with its covariance when asked), display geometry, head motion, test points, the
+// seven error sources with their distributions (the terms schema.h declares), samples and seed.
+// Unknown keys are refused with a did-you-mean: a mistyped error term would otherwise simulate
+// nothing. Limits: kMaxTestPoints test points, kMaxFiducials fiducials.
+#pragma once
+
+#include <filesystem>
+
+#include "vstcal/errsim/chain_model.h"
+#include "vstcal/errsim/formats/chain_spec.h"
+#include "vstcal/json/json_reader.h"
+
+namespace vstcal::errsim {
+
+inline constexpr size_t kMaxTestPoints = 1000;
+inline constexpr size_t kMaxFiducials = 1000;
+
+// Reads and validates every field; InputError "<file>: <field>: <what>; <fix>" otherwise. Camera
+// files are resolved relative to the chain file's directory.
+ChainSpec ReadChainSpec(const std::filesystem::path& path);
+ChainSpec ChainSpecFromJson(const io::JsonDocument& doc, const std::filesystem::path& directory);
+
+// ReadChainSpec then BuildChainModel.
+ChainModel ReadChain(const std::filesystem::path& path);
+
+}  // namespace vstcal::errsim
