@@ -1,15 +1,25 @@
 // Calibration solvers (issue 3 targets, 600 points: Tsai including its nonlinear stage < 1 ms,
 // full refinement from a DLT start < 3 ms), with OpenCV's calibrateCamera on the same data as the
 // peer, and the three solvers of seed 000's comparison on the shipped distorted seed-000 volume.
+// Planar views at scale (issue 10: 50 … 2,000 views of a 10×7 board, 1280×720): the whole solve
+// with its covariance, beside OpenCV's calibrateCamera and the dense covariance it replaced
+// (tests/support/dense_covariance.h), which are cubic in the views and run only where they finish.
 #include <benchmark/benchmark.h>
+
+#include <map>
 
 #include <opencv2/calib3d.hpp>
 
+#include "support/dense_covariance.h"
+#include "support/opencv_views.h"
+#include "support/scenes.h"
 #include "vstcal/calib/decompose.h"
 #include "vstcal/calib/dlt.h"
+#include "vstcal/calib/information.h"
 #include "vstcal/calib/pipeline.h"
 #include "vstcal/calib/refine.h"
 #include "vstcal/calib/tsai.h"
+#include "vstcal/capture/synthetic_views.h"
 #include "vstcal/capture/synthetic_volume.h"
 #include "vstcal/io/correspondences_io.h"
 
@@ -87,19 +97,75 @@ void BM_TsaiRefined(benchmark::State& state) {
 // the same parameters and objective, without covariance.
 void BM_OpenCvCalibrateCamera(benchmark::State& state) {
   const Correspondences& c = state.range(0) == 600 ? Volume600() : Seed000();
-  std::vector<std::vector<cv::Point3f>> object(1);
-  std::vector<std::vector<cv::Point2f>> image(1);
-  for (const Observation& o : AllObservations(c)) {
-    object[0].emplace_back(o.point.x(), o.point.y(), o.point.z());
-    image[0].emplace_back(o.pixel.x(), o.pixel.y());
-  }
+  const testing::OpenCvViews views = testing::ToOpenCvViews(c);  // a volume: one view of all points
   const auto d = *DecomposeProjection(SolveDlt(AllObservations(c)).P);
   for (auto _ : state) {
     cv::Mat K = (cv::Mat_<double>(3, 3) << d.K(0, 0), 0, d.K(0, 2), 0, d.K(1, 1), d.K(1, 2), 0, 0, 1);
     cv::Mat dist = cv::Mat::zeros(5, 1, CV_64F);
     std::vector<cv::Mat> rvecs, tvecs;
-    const double rms = cv::calibrateCamera(object, image, cv::Size(c.image_size.width, c.image_size.height), K, dist,
-                                           rvecs, tvecs, cv::CALIB_USE_INTRINSIC_GUESS | cv::CALIB_FIX_K3);
+    const double rms = cv::calibrateCamera(views.object, views.image, cv::Size(c.image_size.width, c.image_size.height), K,
+                                           dist, rvecs, tvecs, cv::CALIB_USE_INTRINSIC_GUESS | cv::CALIB_FIX_K3);
+    benchmark::DoNotOptimize(rms);
+  }
+}
+
+// V views of a 10×7 board (30 mm) by a 1280×720 camera with barrel distortion, 0.3 px noise, as
+// calib-synth --rig planar-views --views V makes them; built once per V.
+const Correspondences& PlanarViews(int views) {
+  static std::map<int, Correspondences> cache;
+  auto it = cache.find(views);
+  if (it != cache.end()) return it->second;
+  PlanarViewsSpec spec;
+  spec.num_views = views;
+  spec.noise_px = 0.3;
+  return cache[views] = SynthesizePlanarViews(testing::DistortedWideCamera(), spec).correspondences;
+}
+
+// calib-tsai's solve of planar views: Zhang's start, the refinement (k1, k2, p1, p2) and its
+// covariance, poses eliminated by the Schur complement.
+void BM_CalibratePlanarViews(benchmark::State& state) {
+  const Correspondences& c = PlanarViews(static_cast<int>(state.range(0)));
+  int iterations = 0;
+  for (auto _ : state) {
+    CalibrationResult r = Calibrate(c, CalibrationOptions{});
+    iterations = r.refinement->iterations;
+    benchmark::DoNotOptimize(r);
+  }
+  state.counters["points"] = static_cast<double>(NumObservations(c));
+  state.counters["iterations"] = iterations;
+}
+
+// The covariance alone at the optimum: by the Schur complement (CovarianceAt) and by the dense
+// inverse of the whole information matrix it replaced (the test oracle, long double).
+void BM_SchurCovariance(benchmark::State& state) {
+  const Correspondences& c = PlanarViews(static_cast<int>(state.range(0)));
+  const CalibrationResult r = Calibrate(c, CalibrationOptions{});
+  for (auto _ : state) {
+    CalibrationCovariance cov = CovarianceAt(c, r.refinement->camera, r.refinement->poses, RefineOptions{}, r.refinement->sigma_px);
+    benchmark::DoNotOptimize(cov);
+  }
+}
+
+void BM_DenseCovariance(benchmark::State& state) {
+  const Correspondences& c = PlanarViews(static_cast<int>(state.range(0)));
+  const CalibrationResult r = Calibrate(c, CalibrationOptions{});
+  for (auto _ : state) {
+    testing::DenseCovariance cov =
+        testing::DenseCovarianceAt(c, r.refinement->camera, r.refinement->poses, RefineOptions{}, r.refinement->sigma_px);
+    benchmark::DoNotOptimize(cov);
+  }
+}
+
+// Peer: OpenCV's calibrateCamera on the same views (its own start, k3 fixed, as calib-tsai's
+// default terms): it solves the normal equations of every pose at once, cubic in the views.
+void BM_OpenCvPlanarViews(benchmark::State& state) {
+  const Correspondences& c = PlanarViews(static_cast<int>(state.range(0)));
+  const testing::OpenCvViews views = testing::ToOpenCvViews(c);
+  for (auto _ : state) {
+    cv::Mat K, dist;
+    std::vector<cv::Mat> rvecs, tvecs;
+    const double rms = cv::calibrateCamera(views.object, views.image, cv::Size(c.image_size.width, c.image_size.height), K,
+                                           dist, rvecs, tvecs, cv::CALIB_FIX_K3);
     benchmark::DoNotOptimize(rms);
   }
 }
@@ -110,6 +176,10 @@ BENCHMARK(BM_Tsai)->Arg(600)->Arg(0)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_RefineFromDlt)->Arg(600)->Arg(0)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_TsaiRefined)->Arg(600)->Arg(0)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_OpenCvCalibrateCamera)->Arg(600)->Arg(0)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_CalibratePlanarViews)->Arg(50)->Arg(100)->Arg(200)->Arg(400)->Arg(1000)->Arg(2000)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_SchurCovariance)->Arg(50)->Arg(100)->Arg(200)->Arg(400)->Arg(1000)->Arg(2000)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_DenseCovariance)->Arg(50)->Arg(100)->Arg(200)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_OpenCvPlanarViews)->Arg(50)->Arg(100)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 

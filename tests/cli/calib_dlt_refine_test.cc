@@ -165,7 +165,7 @@ INSTANTIATE_TEST_SUITE_P(
                   kBadInput,
                   {"--distortion", "k1,p3"},
                   "--distortion: ",
-                  {"unknown term \"p3\" for the radial-tangential model", "did you mean \"p1\"?"}},
+                  {"unknown term \"p3\"", "did you mean \"p1\"?"}},
         BadRefine{"PixelOutsideTheImage",
                   kBadInput,
                   {"--uncertainty-pixel", "-1,100,1000"},
@@ -189,6 +189,7 @@ struct BadCovariance {
   std::vector<std::string> phrases;
   std::function<void(Json& covariance)> edit;
   std::function<void(Json& camera)> edit_camera = [](Json&) {};  // the rest of the file
+  bool planar = false;  // a planar-views camera from calib-tsai (its covariance has pose blocks)
 };
 
 void PrintTo(const BadCovariance& c, std::ostream* os) { *os << c.name; }
@@ -197,10 +198,16 @@ class CliBadCovariance : public CliTest, public ::testing::WithParamInterface<Ba
 
 TEST_P(CliBadCovariance, IsRefusedByCompareAndConvert) {
   const BadCovariance& c = GetParam();
-  Synth("in/volume.json", VolumeArgs());
-  ASSERT_EQ(Run(kTool, {"in/volume.json", "-o", "in/good.json", "--refine", "-q"}).exit_code, kOk);
+  const std::string truth = c.planar ? "in/views.truth.json" : "in/volume.truth.json";
+  if (c.planar) {
+    Synth("in/views.json", PlanarArgs());
+    ASSERT_EQ(Run("calib-tsai", {"in/views.json", "-o", "in/good.json", "-q"}).exit_code, kOk);
+  } else {
+    Synth("in/volume.json", VolumeArgs());
+    ASSERT_EQ(Run(kTool, {"in/volume.json", "-o", "in/good.json", "--refine", "-q"}).exit_code, kOk);
+  }
   // The good file is read back by both tools.
-  ASSERT_EQ(Run("calib-compare", {"in/volume.truth.json", "in/good.json"}).exit_code, kOk);
+  ASSERT_EQ(Run("calib-compare", {truth, "in/good.json"}).exit_code, kOk);
   ASSERT_EQ(Run("calib-convert", {"in/good.json", "-o", "in/again.json"}).exit_code, kOk);
   EXPECT_EQ(ReadJson("in/again.json").at("covariance"), ReadJson("in/good.json").at("covariance"));
 
@@ -209,7 +216,7 @@ TEST_P(CliBadCovariance, IsRefusedByCompareAndConvert) {
   c.edit_camera(camera);
   WriteJson("in/camera.json", camera);
   const std::string location = "in/camera.json: " + c.field + ": ";
-  EXPECT_TRUE(FailsWith(Run("calib-compare", {"in/volume.truth.json", "in/camera.json"}), "calib-compare", kBadInput,
+  EXPECT_TRUE(FailsWith(Run("calib-compare", {truth, "in/camera.json"}), "calib-compare", kBadInput,
                         location, c.phrases));
   EXPECT_TRUE(FailsWith(Run("calib-convert", {"in/camera.json", "-o", "out/camera.yaml"}), "calib-convert", kBadInput,
                         location, c.phrases));
@@ -300,7 +307,58 @@ INSTANTIATE_TEST_SUITE_P(
                       [](Json& camera) {
                         camera.erase("camera_from_world");
                         camera.erase("P");
-                      }}),
+                      }},
+        // A planar-views camera's pose blocks (docs/formats.md#camera-covariance): its covariance
+        // names fx, fy, cx, cy, k1, k2, p1, p2 and has 8 pose blocks.
+        BadCovariance{"UnknownPose",
+                      "covariance.poses[0].pose",
+                      {"unknown pose \"views[0].camera\"", "name camera_from_world or views[i].camera_from_board"},
+                      [](Json& c) { c["poses"][0]["pose"] = "views[0].camera"; },
+                      [](Json&) {}, true},
+        BadCovariance{"PoseBeyondTheViews",
+                      "covariance.poses[1].pose",
+                      {"\"views[8].camera_from_board\" names view 8, but the file has 8 views",
+                       "use views[0] … views[7] or drop the parameter"},
+                      [](Json& c) { c["poses"][1]["pose"] = "views[8].camera_from_board"; },
+                      [](Json&) {}, true},
+        BadCovariance{"WorldPoseWithoutCameraFromWorld",
+                      "covariance.poses[2].pose",
+                      {"is a tangent of camera_from_world, which the file does not have"},
+                      [](Json& c) { c["poses"][2]["pose"] = "camera_from_world"; },
+                      [](Json&) {}, true},
+        BadCovariance{"DuplicatePose",
+                      "covariance.poses[3].pose",
+                      {"duplicate pose \"views[0].camera_from_board\"", "give each pose one block"},
+                      [](Json& c) { c["poses"][3]["pose"] = "views[0].camera_from_board"; },
+                      [](Json&) {}, true},
+        BadCovariance{"PoseBlockNotSymmetric",
+                      "covariance.poses[0].matrix[1][0]",
+                      {"differs from matrix[0][1]: not symmetric"},
+                      [](Json& c) {
+                        Json& m = c["poses"][0]["matrix"];
+                        m[1][0] = 2 * m[0][1].get<double>() + 1;
+                      },
+                      [](Json&) {}, true},
+        BadCovariance{"PoseBlockNegativeVariance",
+                      "covariance.poses[0].matrix[4][4]",
+                      {"the variance of \"views[0].camera_from_board.ty\" is negative"},
+                      [](Json& c) { c["poses"][0]["matrix"][4][4] = -1.0; },
+                      [](Json&) {}, true},
+        BadCovariance{"PoseBlockShortCrossRow",
+                      "covariance.poses[5].with_parameters[2]",
+                      {"expected 8 items, got 7"},
+                      [](Json& c) { c["poses"][5]["with_parameters"][2].erase(0); },
+                      [](Json&) {}, true},
+        BadCovariance{"PoseBlockCrossCovarianceTooLarge",
+                      "covariance.poses[6]",
+                      {"with the parameters, not positive semi-definite"},
+                      [](Json& c) { c["poses"][6]["with_parameters"][0][0] = 1e3; },
+                      [](Json&) {}, true},
+        BadCovariance{"PoseBlockMissingMatrix",
+                      "covariance.poses[7].matrix",
+                      {"missing field", "add \"matrix\""},
+                      [](Json& c) { c["poses"][7].erase("matrix"); },
+                      [](Json&) {}, true}),
     [](const auto& param_info) { return param_info.param.name; });
 
 }  // namespace

@@ -5,6 +5,7 @@
 // output file.
 #include <cmath>
 #include <functional>
+#include <map>
 #include <ostream>
 
 #include "calibration_checks.h"
@@ -14,13 +15,6 @@ namespace vstcal::cli_test {
 namespace {
 
 constexpr std::string_view kTool = "calib-tsai";
-// The camera of DistortedVolumeArgs() and a 9×7 board (30 mm) at 8 poses about 0.5 m away,
-// rig "planar-views".
-std::vector<std::string> PlanarArgs() {
-  return {"--rig",      "planar-views", "--image-size", "640x480", "--fx",         "600",
-          "--grid",     "9x7",          "--spacing",    "30",      "--views",      "8",
-          "--distance", "500",          "--noise",      "0.5",     "--distortion", "-0.15,0.05,0,0,0"};
-}
 
 // One plane of DistortedVolumeArgs(), tilted 30° (coplanar data).
 std::vector<std::string> PlaneArgs() {
@@ -146,11 +140,51 @@ TEST_F(CliCalibTsai, SinglePlaneIsCoplanarWithoutRefinement) {
   EXPECT_EQ(Calibrate("in/plane.json", {"--no-refine", "--variant", "coplanar"}).at("K"), camera.at("K"));
 }
 
-TEST_F(CliCalibTsai, SinglePlaneWithRefinementIsRefused) {
+// One plane is refined with Tsai's sx and principal point held (the truth's principal point is
+// the image centre, where Tsai assumes it): fx/fy stays 1, the file says what was held and why,
+// fx and fy are one parameter (correlation 1) and the estimate lies within 5σ of the truth.
+TEST_F(CliCalibTsai, SinglePlaneIsRefinedHoldingSxAndThePrincipalPoint) {
   Synth("in/plane.json", PlaneArgs());
-  const auto r = Run(kTool, {"in/plane.json", "-o", "out/camera.json"});
-  EXPECT_TRUE(FailsWith(r, kTool, kDegenerate,
-                        "in/plane.json: ", {"the points lie on one plane", "use --no-refine", "\"planar-views\""}));
+  const Json camera = Calibrate("in/plane.json");
+  const Json truth = ReadJson("in/plane.truth.json");
+  EXPECT_EQ(camera.at("method"), "tsai+refine");
+  EXPECT_EQ(camera.at("tsai").at("variant"), "coplanar");
+  EXPECT_EQ(camera.at("K")[0][0], camera.at("K")[1][1]);
+  EXPECT_EQ(camera.at("K")[0][2], 319.5);
+  EXPECT_EQ(camera.at("K")[1][2], 239.5);
+  const Json& refinement = camera.at("refinement");
+  EXPECT_EQ(refinement.at("free_intrinsics"), Json({"fx", "fy", "k1", "k2", "p1", "p2"}));
+  std::map<std::string, Json> held;
+  for (const Json& h : refinement.at("held")) held[h.at("parameter")] = h;
+  ASSERT_TRUE(held.count("fx/fy") && held.count("cx") && held.count("cy")) << refinement.at("held").dump();
+  EXPECT_EQ(held["fx/fy"].at("value"), 1.0);
+  EXPECT_NE(held["fx/fy"].at("because").get<std::string>().find("one plane: Tsai's coplanar sx"), std::string::npos);
+  EXPECT_EQ(held["cx"].at("value"), 319.5);
+  EXPECT_NE(held["cy"].at("because").get<std::string>().find("--free-principal-point yes or auto frees it"), std::string::npos);
+  EXPECT_EQ(refinement.at("one_plane").at("principal_point"), "held");
+  EXPECT_TRUE(CovarianceIsWellFormed(camera));
+  EXPECT_FALSE(CovarianceIndex(camera, "cx").has_value());
+  const Json& m = camera.at("covariance").at("matrix");
+  EXPECT_NEAR(m[0][1].get<double>() / std::sqrt(m[0][0].get<double>() * m[1][1].get<double>()), 1.0, 1e-12);
+  EXPECT_TRUE(WithinSigmas(camera, truth, {"fx", "fy", "k1", "k2"}, 5));
+  // auto keeps it held here (k1 −0.15 over a 640×480 image leaves its σ above the limit) and says so.
+  const Json automatic = Calibrate("in/plane.json", {"--free-principal-point", "auto"});
+  const Json& decision = automatic.at("refinement").at("one_plane");
+  EXPECT_EQ(decision.at("mode"), "auto");
+  EXPECT_EQ(decision.at("limit_px"), 0.005 * 800);  // 0.5 % of the 640×480 diagonal
+  EXPECT_EQ(decision.at("principal_point") == "free", decision.at("sigma_if_free_px")[0].get<double>() <= 4.0)
+      << decision.dump();
+}
+
+TEST_F(CliCalibTsai, FreePrincipalPointAppliesToOnePlaneOnly) {
+  Synth("in/volume.json", DistortedVolumeArgs());
+  EXPECT_TRUE(FailsWith(Run(kTool, {"in/volume.json", "-o", "out/camera.json", "--free-principal-point", "yes"}), kTool,
+                        kBadInput, "--free-principal-point: ",
+                        {"applies to one plane (Tsai's coplanar variant) only", "remove it"}));
+  EXPECT_TRUE(FailsWith(Run(kTool, {"in/volume.json", "-o", "out/camera.json", "--free-principal-point", "maybe"}), kTool,
+                        kBadInput, "--free-principal-point: ", {"maybe not in {no,yes,auto}"}));
+  EXPECT_TRUE(FailsWith(Run(kTool, {"in/volume.json", "-o", "out/camera.json", "--free-principal-point", "yes", "--no-refine"}),
+                        kTool, kBadInput, "", {"--no-refine excludes --free-principal-point"}));
   EXPECT_TRUE(OutDirEmpty());
 }
 
@@ -167,10 +201,12 @@ TEST_F(CliCalibTsai, PlanarViewsByZhangWithinFiveSigma) {
   ASSERT_EQ(camera.at("views").size(), truth.at("views").size());
   EXPECT_TRUE(CovarianceIsWellFormed(camera));
   EXPECT_TRUE(WithinSigmas(camera, truth, kDefaultTerms, 5));
-  const Json& names = camera.at("covariance").at("parameters");
-  EXPECT_EQ(names.size(), 8 + 6 * truth.at("views").size());
-  EXPECT_EQ(names.at(8), "views[0].camera_from_board.rx");
-  EXPECT_EQ(names.back(), "views[" + std::to_string(truth.at("views").size() - 1) + "].camera_from_board.tz");
+  // The intrinsics are named; each view's pose is a block of its own (linear in the views).
+  EXPECT_EQ(camera.at("covariance").at("parameters"), Json(kDefaultTerms));
+  const Json& poses = camera.at("covariance").at("poses");
+  ASSERT_EQ(poses.size(), truth.at("views").size());
+  EXPECT_EQ(poses.at(0).at("pose"), "views[0].camera_from_board");
+  EXPECT_EQ(poses.back().at("pose"), "views[" + std::to_string(truth.at("views").size() - 1) + "].camera_from_board");
   for (size_t v = 0; v < truth.at("views").size(); ++v) {
     EXPECT_EQ(camera.at("views")[v].at("name"), truth.at("views")[v].at("name"));
     const std::string pose = "views[" + std::to_string(v) + "].camera_from_board.";
@@ -181,6 +217,18 @@ TEST_F(CliCalibTsai, PlanarViewsByZhangWithinFiveSigma) {
               5 * std::sqrt(3.0) * sigma_rot * 180 / M_PI)
         << "view " << v;
   }
+}
+
+// The same board in inches (30 mm = 1.181… in): calib-synth writes "length_unit": "in", calib-tsai
+// reads it, and its camera agrees with the truth and says the unit.
+TEST_F(CliCalibTsai, PlanarViewsInInches) {
+  std::vector<std::string> args = Override(Override(PlanarArgs(), "--spacing", "1.2"), "--distance", "20");
+  args.insert(args.end(), {"--length-unit", "in"});
+  EXPECT_EQ(Synth("in/inches.json", args).at("length_unit"), "in");
+  const Json camera = Calibrate("in/inches.json");
+  EXPECT_EQ(camera.at("length_unit"), "in");
+  EXPECT_TRUE(CovarianceIsWellFormed(camera));
+  EXPECT_TRUE(WithinSigmas(camera, ReadJson("in/inches.truth.json"), kDefaultTerms, 5));
 }
 
 TEST_F(CliCalibTsai, ShortPlanarViewIsSkippedWithAWarningNamingIt) {
@@ -194,14 +242,14 @@ TEST_F(CliCalibTsai, ShortPlanarViewIsSkippedWithAWarningNamingIt) {
       << last_.err;
   ASSERT_EQ(camera.at("views").size(), views - 1);
   for (const Json& v : camera.at("views")) EXPECT_NE(v.at("name"), "view-03");
-  EXPECT_EQ(camera.at("covariance").at("parameters").size(), 8 + 6 * (views - 1));
+  EXPECT_EQ(camera.at("covariance").at("poses").size(), views - 1);
   EXPECT_TRUE(WithinSigmas(camera, ReadJson("in/views.truth.json"), kDefaultTerms, 5));
 }
 
 TEST_F(CliCalibTsai, VolumeFlagsAreRefusedForPlanarViews) {
   Synth("in/views.json", PlanarArgs());
   for (const std::vector<std::string>& flag : std::vector<std::vector<std::string>>{
-           {"--variant", "coplanar"}, {"--principal-point", "320,240"}, {"--sx", "1.1"}}) {
+           {"--variant", "coplanar"}, {"--principal-point", "320,240"}, {"--sx", "1.1"}, {"--free-principal-point", "auto"}}) {
     std::vector<std::string> args = {"in/views.json", "-o", "out/camera.json"};
     args.insert(args.end(), flag.begin(), flag.end());
     EXPECT_TRUE(FailsWith(Run(kTool, args), kTool, kBadInput, flag[0] + ": ", {"applies to rig \"volume\" only"}));
@@ -228,6 +276,14 @@ TEST_F(CliCalibTsai, DistortionTermsByName) {
   const Json all = Calibrate("in/volume.json", {"--distortion", "k1,k2,p1,p2,k3"});
   EXPECT_EQ(all.at("refinement").at("free_intrinsics").back(), "k3");
   EXPECT_TRUE(WithinSigmas(all, truth, {"fx", "fy", "k1", "k2", "k3"}, 5));
+
+  // A rational term promotes the model (OpenCV's CALIB_RATIONAL_MODEL): the truth is the rational
+  // model with k4 = k5 = k6 = 0, so k4 must come out within its σ of zero.
+  const Json rational = Calibrate("in/volume.json", {"--distortion", "k1,k2,p1,p2,k4"});
+  EXPECT_EQ(rational.at("distortion").at("model"), "rational");
+  EXPECT_EQ(rational.at("refinement").at("free_intrinsics"), Json({"fx", "fy", "cx", "cy", "k1", "k2", "p1", "p2", "k4"}));
+  for (const char* held : {"k3", "k5", "k6"}) EXPECT_EQ(rational.at("distortion").at(held), 0.0) << held;
+  EXPECT_TRUE(WithinSigmas(rational, truth, {"fx", "fy", "cx", "cy", "k1", "k4"}, 5));
 
   // "none": a pinhole. The lens's distortion then shows in σ̂: more than 3 of its standard
   // deviations (1/√(2 dof) relative) above the true noise, which a right model exceeds with
@@ -341,11 +397,14 @@ TEST_F(CliCalibTsai, ProjectionUncertaintyAtPointsPixelsAndGrid) {
   EXPECT_EQ(grid.at("depth"), 1000.0);
   EXPECT_EQ(grid.at("cols"), 4);
   EXPECT_EQ(grid.at("rows"), 3);
-  EXPECT_EQ(grid.at("columns"), Json({"u", "v", "sigma_major_px", "sigma_minor_px", "angle_deg"}));
+  EXPECT_EQ(grid.at("columns"), Json({"u", "v", "with_poses.sigma_major_px", "with_poses.sigma_minor_px",
+                                       "with_poses.angle_deg", "intrinsics_only.sigma_major_px",
+                                       "intrinsics_only.sigma_minor_px", "intrinsics_only.angle_deg"}));
   ASSERT_EQ(grid.at("cells").size(), 12u);
   for (size_t k = 0; k < 12; ++k) {
     const Json& cell = grid.at("cells")[k];
-    ASSERT_EQ(cell.size(), 5u);
+    ASSERT_EQ(cell.size(), 8u);
+    EXPECT_GE(cell[5].get<double>(), cell[6].get<double>()) << k;
     EXPECT_EQ(cell[0].get<double>(), -0.5 + 640.0 * (k % 4 + 0.5) / 4) << k;
     EXPECT_EQ(cell[1].get<double>(), -0.5 + 480.0 * (k / 4 + 0.5) / 3) << k;
     EXPECT_GE(cell[2].get<double>(), cell[3].get<double>()) << k;
@@ -366,16 +425,18 @@ TEST_F(CliCalibTsai, ProjectionUncertaintyAtPointsPixelsAndGrid) {
   const Json& by_pixel = again.at("projection_uncertainty").at("pixels");
   ASSERT_EQ(by_pixel.size(), 2u);
   EXPECT_EQ(by_pixel[0].at("depth").get<double>(), p_cam.z());
-  const Json& a = u.at("world_points")[0].at("ellipse");
-  const Json& b = by_pixel[0].at("ellipse");
+  const Json& a = u.at("world_points")[0].at("with_poses");
+  const Json& b = by_pixel[0].at("with_poses");
   for (const char* key : {"sigma_major_px", "sigma_minor_px"}) {
     EXPECT_NEAR(a.at(key).get<double>(), b.at(key).get<double>(), 1e-6 * a.at(key).get<double>()) << key;
   }
   EXPECT_NEAR(a.at("angle_deg").get<double>(), b.at("angle_deg").get<double>(), 1e-4);
   // And a pixel asked for directly equals the grid cell at the same place (cell 5: (239.5, 239.5)).
   const Json& cell = grid.at("cells")[5];
-  EXPECT_EQ(by_pixel[1].at("ellipse").at("sigma_major_px"), cell[2]);
-  EXPECT_EQ(by_pixel[1].at("ellipse").at("sigma_minor_px"), cell[3]);
+  EXPECT_EQ(by_pixel[1].at("with_poses").at("sigma_major_px"), cell[2]);
+  EXPECT_EQ(by_pixel[1].at("with_poses").at("sigma_minor_px"), cell[3]);
+  EXPECT_EQ(by_pixel[1].at("intrinsics_only").at("sigma_major_px"), cell[5]);
+  EXPECT_EQ(by_pixel[1].at("intrinsics_only").at("sigma_minor_px"), cell[6]);
 }
 
 TEST_F(CliCalibTsai, TestPointErrorsAgreeWithTheirEllipses) {
@@ -388,7 +449,7 @@ TEST_F(CliCalibTsai, TestPointErrorsAgreeWithTheirEllipses) {
   ASSERT_EQ(ellipses.size(), 5u);
   for (size_t k = 0; k < 5; ++k) {
     EXPECT_EQ(ellipses[k].at("name"), fits[k].at("name"));
-    const Json& e = ellipses[k].at("ellipse");
+    const Json& e = ellipses[k].at("with_poses");
     const double major = e.at("sigma_major_px").get<double>(), minor = e.at("sigma_minor_px").get<double>();
     const double spread = std::sqrt(major * major + minor * minor + 2 * kVolumeNoisePx * kVolumeNoisePx);
     EXPECT_LT(fits[k].at("error_px").get<double>(), 5 * spread) << fits[k].at("name");
@@ -396,8 +457,8 @@ TEST_F(CliCalibTsai, TestPointErrorsAgreeWithTheirEllipses) {
   // Outside the volume the calibration extrapolates: the ellipse there is larger than inside.
   EXPECT_EQ(fits[0].at("inside_volume"), false);
   EXPECT_EQ(fits[2].at("inside_volume"), true);
-  EXPECT_GT(ellipses[0].at("ellipse").at("sigma_major_px").get<double>(),
-            5 * ellipses[2].at("ellipse").at("sigma_major_px").get<double>());
+  EXPECT_GT(ellipses[0].at("with_poses").at("sigma_major_px").get<double>(),
+            5 * ellipses[2].at("with_poses").at("sigma_major_px").get<double>());
 }
 
 TEST_F(CliCalibTsai, PlanarViewsUncertaintyAtPixels) {
@@ -405,8 +466,19 @@ TEST_F(CliCalibTsai, PlanarViewsUncertaintyAtPixels) {
   const Json camera = Calibrate("in/views.json", {"--uncertainty-pixel", "320,240,500", "--uncertainty-grid", "500"});
   const Json& u = camera.at("projection_uncertainty");
   ASSERT_EQ(u.at("pixels").size(), 1u);
-  EXPECT_GT(u.at("pixels")[0].at("ellipse").at("sigma_major_px").get<double>(), 0);
+  // Both kinds, labelled: tied to the boards (the boards' poses re-estimated with the intrinsics,
+  // averaged), and the intrinsics alone (what a user of the camera elsewhere inherits).
+  EXPECT_NE(u.at("kinds").at("with_poses").get<std::string>().find("tied to the calibration object"), std::string::npos);
+  EXPECT_NE(u.at("kinds").at("intrinsics_only").get<std::string>().find("only the intrinsics vary"), std::string::npos);
+  EXPECT_GT(u.at("pixels")[0].at("with_poses").at("sigma_major_px").get<double>(), 0);
+  EXPECT_GT(u.at("pixels")[0].at("intrinsics_only").at("sigma_major_px").get<double>(), 0);
   EXPECT_EQ(u.at("grid").at("cells").size(), 16u * 9u);  // --grid-size default 16x9
+  EXPECT_EQ(u.at("grid").at("columns").size(), 8u);
+  // The summary says both, labelled, at the image centre and at the pixel asked for.
+  EXPECT_NE(last_.err.find("with poses = tied to the calibration object, intrinsics only = what using the camera elsewhere inherits"),
+            std::string::npos)
+      << last_.err;
+  EXPECT_NE(last_.err.find("    at pixel (320.0, 240.0), depth 500 mm: "), std::string::npos) << last_.err;
 }
 
 TEST_F(CliCalibTsai, RepeatedRunsGiveByteIdenticalFiles) {
@@ -593,16 +665,15 @@ std::vector<BadFlag> BadFlagCases() {
       {"UnknownDistortionTermSuggestsTheNearest",
        {"--distortion", "k1,K2"},
        "--distortion: ",
-       {"unknown term \"K2\" for the radial-tangential model", "did you mean \"k2\"?", "(known: k1, k2, p1, p2, k3)",
-        "or none"}},
+       {"unknown term \"K2\"", "did you mean \"k2\"?", "(known: k1, k2, p1, p2, k3, k4, k5, k6)", "or none"}},
       {"UnknownDistortionTermWithoutNearName",
        {"--distortion", "kappa1"},
        "--distortion: ",
-       {"unknown term \"kappa1\"", "use one of k1, k2, p1, p2, k3, or none"}},
-      {"RationalTermForRadialTangential",
-       {"--distortion", "k1,k4"},
+       {"unknown term \"kappa1\"", "use one of k1, k2, p1, p2, k3, k4, k5, k6, or none"}},
+      {"UnknownRationalTerm",
+       {"--distortion", "k1,k7"},
        "--distortion: ",
-       {"unknown term \"k4\" for the radial-tangential model"}},
+       {"unknown term \"k7\"", "did you mean"}},
       {"EmptyDistortionTerm", {"--distortion", "k1,,k2"}, "--distortion: ", {"empty term in \"k1,,k2\"", "or none"}},
       {"DuplicateDistortionTerm",
        {"--distortion", "k1,k2,k1"},

@@ -1,6 +1,7 @@
 #include "calibration_checks.h"
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <set>
 
@@ -19,6 +20,12 @@ std::vector<std::string> DistortedVolumeArgs() {
     args = Override(args, flag, value);
   }
   return args;
+}
+
+std::vector<std::string> PlanarArgs() {
+  return {"--rig",      "planar-views", "--image-size", "640x480", "--fx",         "600",
+          "--grid",     "9x7",          "--spacing",    "30",      "--views",      "8",
+          "--distance", "500",          "--noise",      "0.5",     "--distortion", "-0.15,0.05,0,0,0"};
 }
 
 double LensParameter(const Json& camera, const std::string& name) {
@@ -41,10 +48,22 @@ std::optional<size_t> CovarianceIndex(const Json& camera, const std::string& nam
 }
 
 double Sigma(const Json& camera, const std::string& name) {
-  const auto i = CovarianceIndex(camera, name);
-  EXPECT_TRUE(i.has_value()) << "the covariance does not name " << name;
-  if (!i) return std::nan("");
-  return std::sqrt(camera.at("covariance").at("matrix").at(*i).at(*i).get<double>());
+  if (const auto i = CovarianceIndex(camera, name)) {
+    return std::sqrt(camera.at("covariance").at("matrix").at(*i).at(*i).get<double>());
+  }
+  // A pose tangent "<pose>.<axis>" of a pose block (planar views).
+  const size_t dot = name.rfind('.');
+  const std::vector<std::string> axes = {"rx", "ry", "rz", "tx", "ty", "tz"};
+  const auto axis = std::find(axes.begin(), axes.end(), name.substr(dot + 1));
+  if (dot != std::string::npos && axis != axes.end() && camera.at("covariance").contains("poses")) {
+    for (const Json& block : camera.at("covariance").at("poses")) {
+      if (block.at("pose") != name.substr(0, dot)) continue;
+      const size_t k = static_cast<size_t>(axis - axes.begin());
+      return std::sqrt(block.at("matrix").at(k).at(k).get<double>());
+    }
+  }
+  ADD_FAILURE() << "the covariance does not name " << name;
+  return std::nan("");
 }
 
 ::testing::AssertionResult CovarianceIsWellFormed(const Json& camera) {
@@ -72,6 +91,28 @@ double Sigma(const Json& camera, const std::string& name) {
       if (!(std::abs(correlation) <= 1.0 + 1e-12)) {
         return ::testing::AssertionFailure()
                << "correlation of " << names.at(r) << " and " << names.at(c) << " is " << correlation;
+      }
+    }
+  }
+  // Pose blocks (planar views): a 6×6 covariance each, and 6 rows of covariances with the named
+  // parameters, within [−1, 1] as correlations.
+  if (!camera.at("covariance").contains("poses")) return ::testing::AssertionSuccess();
+  for (const Json& block : camera.at("covariance").at("poses")) {
+    const Json& p = block.at("matrix");
+    const Json& w = block.at("with_parameters");
+    if (p.size() != 6 || w.size() != 6) return ::testing::AssertionFailure() << block.at("pose") << ": not 6 rows";
+    for (size_t r = 0; r < 6; ++r) {
+      const double vr = p.at(r).at(r).get<double>();
+      if (!(vr > 0)) return ::testing::AssertionFailure() << block.at("pose") << ": variance " << r << " is " << vr;
+      for (size_t c = 0; c < r; ++c) {
+        if (p.at(r).at(c) != p.at(c).at(r)) return ::testing::AssertionFailure() << block.at("pose") << ": not symmetric";
+      }
+      if (w.at(r).size() != n) return ::testing::AssertionFailure() << block.at("pose") << ": with_parameters row " << r;
+      for (size_t c = 0; c < n; ++c) {
+        const double correlation = w.at(r).at(c).get<double>() / std::sqrt(vr * m.at(c).at(c).get<double>());
+        if (!(std::abs(correlation) <= 1.0 + 1e-12)) {
+          return ::testing::AssertionFailure() << block.at("pose") << " and " << names.at(c) << ": correlation " << correlation;
+        }
       }
     }
   }

@@ -19,6 +19,10 @@ namespace vstcal::cli_test {
 std::vector<std::string> DistortedVolumeArgs();
 inline constexpr double kVolumeNoisePx = 0.5;
 
+// The camera of DistortedVolumeArgs() and a 9×7 board (30 mm) at 8 poses about 0.5 m away, rig
+// "planar-views".
+std::vector<std::string> PlanarArgs();
+
 // A lens parameter of a camera@1 file by its covariance name: fx, fy, cx, cy, s from K, the
 // distortion coefficients by name (0 when the file's model does not have the term).
 double LensParameter(const Json& camera, const std::string& name);

@@ -21,6 +21,7 @@
 
 #include <opencv2/calib3d.hpp>
 
+#include "support/opencv_views.h"
 #include "vstcal/calib/pipeline.h"
 #include "vstcal/io/correspondences_io.h"
 
@@ -33,19 +34,10 @@ struct Solution {
 };
 
 Solution SolveOpenCv(const Correspondences& c) {
-  std::vector<std::vector<cv::Point3f>> object;
-  std::vector<std::vector<cv::Point2f>> image;
-  for (const View& v : c.views) {
-    object.emplace_back();
-    image.emplace_back();
-    for (const Observation& o : v.observations) {
-      object.back().emplace_back(o.point.x(), o.point.y(), o.point.z());
-      image.back().emplace_back(o.pixel.x(), o.pixel.y());
-    }
-  }
+  const testing::OpenCvViews views = testing::ToOpenCvViews(c);
   cv::Mat K, d;
   std::vector<cv::Mat> rvecs, tvecs;
-  const double rms = cv::calibrateCamera(object, image, cv::Size(c.image_size.width, c.image_size.height), K, d,
+  const double rms = cv::calibrateCamera(views.object, views.image, cv::Size(c.image_size.width, c.image_size.height), K, d,
                                          rvecs, tvecs, cv::CALIB_FIX_K3);
   return {K.at<double>(0, 0), K.at<double>(1, 1), K.at<double>(0, 2), K.at<double>(1, 2), d.at<double>(0),
           d.at<double>(1),    d.at<double>(2),    d.at<double>(3),    rms};

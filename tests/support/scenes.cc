@@ -48,4 +48,24 @@ VolumeSpec NearWideVolumeSpec() {
   return spec;
 }
 
+Camera DistortedWideCamera() {
+  Eigen::Matrix3d K;
+  K << 700.2, 0, 641.3, 0, 698.4, 361.7, 0, 0, 1;
+  const double d[5] = {-0.171, 0.028, 0.0007, -0.0004, 0.0};
+  return Camera::FromK(K, ImageSize{1280, 720}, RadialTangentialModel{}, d);
+}
+
+Correspondences WithNoise(const Correspondences& clean, double sigma_px, uint64_t seed) {
+  Correspondences c = clean;
+  const CounterRng rng(seed, 0);
+  uint64_t k = 0;
+  for (View& v : c.views) {
+    for (Observation& o : v.observations) {
+      const auto e = rng.Normal2(k++, 0);
+      o.pixel += sigma_px * Eigen::Vector2d(e[0], e[1]);
+    }
+  }
+  return c;
+}
+
 }  // namespace vstcal::testing

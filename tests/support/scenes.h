@@ -31,4 +31,12 @@ std::vector<Eigen::Vector3d> PointsInFront(int n, uint64_t seed, double half_wid
 // 100 mm from 500 mm out to 1 m, tilted 8°; noise-free until the caller sets noise_px.
 VolumeSpec NearWideVolumeSpec();
 
+// A 1280×720 camera with a ZED-mini-like lens: fx 700.2, fy 698.4, principal point (641.3, 361.7),
+// k1 −0.171, k2 0.028, p1 0.0007, p2 −0.0004.
+Camera DistortedWideCamera();
+
+// `clean` with fresh Gaussian pixel noise σ on u and v, from the counter-based stream `seed`
+// (one draw per observation, in file order): a Monte Carlo trial.
+Correspondences WithNoise(const Correspondences& clean, double sigma_px, uint64_t seed);
+
 }  // namespace vstcal::testing

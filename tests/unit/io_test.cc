@@ -132,5 +132,59 @@ TEST(CorrespondencesIo, RoundTripIsExact) {
   EXPECT_EQ(io::DumpJson(io::CorrespondencesToJson(back, TestProvenance())), text);
 }
 
+// Weights are a sixth number, written only when not 1, read back exactly; inches are a unit.
+TEST(CorrespondencesIo, WeightsAndInchesRoundTrip) {
+  VolumeSpec spec;
+  spec.length_unit = LengthUnit::kInch;
+  spec.spacing = 4;
+  spec.far = 80;
+  spec.interval = 8;
+  spec.camera_distance = 80;
+  Eigen::Matrix3d K;
+  K << 1500, 0, 639.5, 0, 1500, 511.5, 0, 0, 1;
+  Correspondences c = SynthesizeVolume(Camera::FromK(K, ImageSize{1280, 1024}), spec, {}).correspondences;
+  c.views[0].observations[0].weight = 0.25;
+  c.views[1].observations[3].weight = 1.0 / 3.0;
+  const std::string text = io::DumpJson(io::CorrespondencesToJson(c, TestProvenance()));
+  EXPECT_NE(text.find("\"length_unit\": \"in\""), std::string::npos);
+  const Correspondences back = io::CorrespondencesFromJson(io::JsonDocument::Parse(text, "c.json"));
+  EXPECT_EQ(back.length_unit, LengthUnit::kInch);
+  EXPECT_EQ(back.views[0].observations[0].weight, 0.25);
+  EXPECT_EQ(back.views[1].observations[3].weight, 1.0 / 3.0);
+  EXPECT_EQ(back.views[0].observations[1].weight, 1.0);
+  EXPECT_EQ(io::DumpJson(io::CorrespondencesToJson(back, TestProvenance())), text);
+  EXPECT_EQ(MetresPer(LengthUnit::kInch), 0.0254);
+}
+
+// A planar-views camera's covariance, with one pose block per view, reads back as written.
+TEST(CameraIo, PoseBlocksRoundTrip) {
+  CalibratedCamera c = SampleCamera();
+  c.camera_from_world.reset();
+  c.views = {{"a", Rigid3d::FromRotvec(Eigen::Vector3d(0.1, 0, 0), Eigen::Vector3d(1, 2, 600)), 0.2},
+             {"b", Rigid3d::FromRotvec(Eigen::Vector3d(0, 0.2, 0), Eigen::Vector3d(-1, 2, 700)), 0.3}};
+  ParameterCovariance cov;
+  cov.parameters = {"fx", "fy"};
+  cov.matrix = (Eigen::Matrix2d() << 4.0, 1.0, 1.0, 3.0).finished();
+  for (int v = 0; v < 2; ++v) {
+    PoseCovariance p;
+    p.pose = "views[" + std::to_string(v) + "].camera_from_board";
+    p.matrix = Matrix6d::Identity() * (1e-6 * (v + 1));
+    p.with_parameters = Matrix6Xd::Constant(6, 2, 1e-5 * (v + 1));
+    cov.poses.push_back(p);
+  }
+  c.covariance = cov;
+  const std::string text = io::DumpJson(io::CameraToJson(c, TestProvenance()));
+  const CalibratedCamera back = io::CameraFromJson(io::JsonDocument::Parse(text, "mem.json"));
+  ASSERT_TRUE(back.covariance.has_value());
+  EXPECT_EQ(back.covariance->parameters, cov.parameters);
+  EXPECT_EQ(back.covariance->matrix, cov.matrix);
+  ASSERT_EQ(back.covariance->poses.size(), 2u);
+  for (int v = 0; v < 2; ++v) {
+    EXPECT_EQ(back.covariance->poses[v].pose, cov.poses[v].pose);
+    EXPECT_EQ(back.covariance->poses[v].matrix, cov.poses[v].matrix);
+    EXPECT_EQ(back.covariance->poses[v].with_parameters, cov.poses[v].with_parameters);
+  }
+}
+
 }  // namespace
 }  // namespace vstcal

@@ -13,6 +13,8 @@
 #include "support/interop_cameras.h"
 #include "support/mrcal.h"
 #include "support/scenes.h"
+#include "vstcal/calib/pipeline.h"
+#include "vstcal/capture/synthetic_views.h"
 #include "vstcal/core/error.h"
 #include "vstcal/io/mrcal_cameramodel.h"
 
@@ -114,6 +116,39 @@ TEST(MrcalCameramodel, LibmrcalReadsWhatWeWriteAndProjectsTheSame) {
     }
     EXPECT_LT(worst, 1e-9) << name;
   }
+}
+
+// A camera the refinement solved with the rational model (--distortion k1,k2,p1,p2,k4 on planar
+// views) is written as LENSMODEL_OPENCV8 and libmrcal projects through it what we project.
+TEST(MrcalCameramodel, RefinedRationalCameraProjectsTheSameThroughLibmrcal) {
+  Eigen::Matrix3d K;
+  K << 600.5, 0, 643.2, 0, 599.8, 358.1, 0, 0, 1;
+  const double d[8] = {-0.02, 0.01, 0.0006, -0.0003, 0, 0.16, 0, 0};
+  PlanarViewsSpec spec;
+  spec.num_views = 12;
+  spec.noise_px = 0.2;
+  const SyntheticViews data = SynthesizePlanarViews(Camera::FromK(K, ImageSize{1280, 720}, RationalModel{}, d), spec);
+  CalibrationOptions options;
+  options.refinement.free_distortion = {"k1", "k2", "p1", "p2", "k4"};
+  const CalibrationResult r = Calibrate(data.correspondences, options);
+  ASSERT_EQ(r.exit_code, ExitCode::kOk) << r.message;
+  ASSERT_EQ(LensModelName(r.camera.camera.model), "rational");
+  const std::string text = WriteText(r.camera);
+  EXPECT_NE(text.find("'lensmodel': 'LENSMODEL_OPENCV8'"), std::string::npos);
+  const MrcalModel m = MrcalRead(text);
+  ASSERT_NE(m, nullptr) << text;
+  std::vector<Eigen::Vector3d> points = PointsInFront(1000, 32);
+  std::vector<mrcal_point3_t> p(points.size());
+  for (size_t i = 0; i < p.size(); ++i) {
+    for (int k = 0; k < 3; ++k) p[i].xyz[k] = points[i](k);
+  }
+  std::vector<mrcal_point2_t> q(p.size());
+  ASSERT_TRUE(mrcal_project(q.data(), nullptr, nullptr, p.data(), static_cast<int>(p.size()), &m->lensmodel, m->intrinsics));
+  double worst = 0;
+  for (size_t i = 0; i < p.size(); ++i) {
+    worst = std::max(worst, (*r.camera.camera.Project(points[i]) - Eigen::Vector2d(q[i].x, q[i].y)).norm());
+  }
+  EXPECT_LT(worst, 1e-9);
 }
 
 // libmrcal's writer prints "%f": 1e-12 becomes 0. We read its file, and must read exactly what

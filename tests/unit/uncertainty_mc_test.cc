@@ -42,16 +42,7 @@ double StdDev(const std::vector<double>& v) {
 
 // Fresh noise for trial t on noise-free correspondences.
 Correspondences Noisy(const Correspondences& clean, double sigma, int trial) {
-  Correspondences c = clean;
-  const CounterRng rng(7000 + static_cast<uint64_t>(trial), 0);
-  uint64_t k = 0;
-  for (View& v : c.views) {
-    for (Observation& o : v.observations) {
-      const auto e = rng.Normal2(k++, 0);
-      o.pixel += sigma * Eigen::Vector2d(e[0], e[1]);
-    }
-  }
-  return c;
+  return testing::WithNoise(clean, sigma, 7000 + static_cast<uint64_t>(trial));
 }
 
 void ExpectSigmaClose(double empirical, double predicted, const std::string& what) {
@@ -105,7 +96,8 @@ TEST(UncertaintyMonteCarlo, VolumePredictedSigmasMatchEmpirical) {
   }
 }
 
-// Planar views (Zhang start): the projection of a point tied to the boards, as mrcal defines it.
+// Planar views (Zhang start): the projection of a point tied to the boards, as mrcal defines it,
+// and of a point fixed in the camera frame through the intrinsics alone — two kinds, both checked.
 TEST(UncertaintyMonteCarlo, PlanarViewsPredictedSigmasMatchEmpirical) {
   const double sigma = 0.3;
   const Camera truth = WideCamera();
@@ -116,12 +108,16 @@ TEST(UncertaintyMonteCarlo, PlanarViewsPredictedSigmasMatchEmpirical) {
   const double depth = 600;
   CalibrationOptions options;
   std::vector<std::vector<double>> params(5);
-  std::vector<std::vector<Eigen::Vector2d>> projections(pixels.size());
+  std::vector<std::vector<Eigen::Vector2d>> projections(pixels.size()), intrinsics_only(pixels.size());
   CalibratedCamera first;
   for (int t = 0; t < kTrials; ++t) {
     const CalibrationResult r = Calibrate(Noisy(clean.correspondences, sigma, t), options);
     ASSERT_EQ(r.exit_code, ExitCode::kOk) << r.message;
     ASSERT_EQ(r.camera.views.size(), clean.camera_from_board.size());
+    // The intrinsics alone: the point fixed in the camera frame, projected by the estimate.
+    for (size_t p = 0; p < pixels.size(); ++p) {
+      intrinsics_only[p].push_back(*r.camera.camera.Project(depth * *truth.Unproject(pixels[p])));
+    }
     if (t == 0) first = r.camera;
     for (int i = 0; i < 4; ++i) params[i].push_back(r.camera.camera.params[i]);
     params[4].push_back(r.camera.camera.params[5]);
@@ -146,6 +142,11 @@ TEST(UncertaintyMonteCarlo, PlanarViewsPredictedSigmasMatchEmpirical) {
     const Eigen::Matrix2d predicted = ProjectionUncertaintyAtPixel(first, pixels[p], depth)->covariance;
     ExpectSigmaClose(std::sqrt(empirical(0, 0)), std::sqrt(predicted(0, 0)), "u at pixel " + std::to_string(p));
     ExpectSigmaClose(std::sqrt(empirical(1, 1)), std::sqrt(predicted(1, 1)), "v at pixel " + std::to_string(p));
+    const Eigen::Matrix2d alone = Covariance2(intrinsics_only[p]);
+    const Eigen::Matrix2d predicted_alone =
+        ProjectionUncertaintyAtPixel(first, pixels[p], depth, ProjectionUncertaintyKind::kIntrinsicsOnly)->covariance;
+    ExpectSigmaClose(std::sqrt(alone(0, 0)), std::sqrt(predicted_alone(0, 0)), "intrinsics only: u at pixel " + std::to_string(p));
+    ExpectSigmaClose(std::sqrt(alone(1, 1)), std::sqrt(predicted_alone(1, 1)), "intrinsics only: v at pixel " + std::to_string(p));
   }
 }
 

@@ -70,10 +70,10 @@ int main(int argc, char** argv) {
   app.add_option("--to", to, "output format: camera (vstcal/camera@1), opencv or mrcal (default: from OUT's name)")
       ->check(CLI::IsMember({"camera", "opencv", "mrcal"}));
   app.add_option("--length-unit", unit,
-                 "mm, cm or m: the unit of a .cameramodel's translation, which mrcal does not record (reading: "
+                 "mm, cm, m or in: the unit of a .cameramodel's translation, which mrcal does not record (reading: "
                  "default the file's vstcal_length_unit, else mm; writing: default the camera's unit); for OpenCV "
                  "YAML input, the camera@1 length_unit (default mm)")
-      ->check(CLI::IsMember({"mm", "cm", "m"}));
+      ->check(vstcal::tools::kLengthUnit);
   app.add_option("--mrcal-model", mrcal_model,
                  "OPENCV4 (needs k3 = 0), OPENCV5 or OPENCV8 (default: the shortest that holds the camera exactly)")
       ->check(CLI::IsMember({"OPENCV4", "OPENCV5", "OPENCV8"}));

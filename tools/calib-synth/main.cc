@@ -15,6 +15,7 @@
 namespace {
 
 using vstcal::tools::kFinite;
+using vstcal::tools::kLengthUnit;
 using vstcal::tools::kNonEmpty;
 using vstcal::tools::kSeed;
 
@@ -75,7 +76,7 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--noise", spec.noise_px, "pixel noise sigma, px")->check(kFinite)->capture_default_str();
   app.add_option("--seed", spec.seed, "noise seed")->check(kSeed)->capture_default_str();
-  app.add_option("--length-unit", unit, "mm, cm or m")->check(CLI::IsMember({"mm", "cm", "m"}))->capture_default_str();
+  app.add_option("--length-unit", unit, "mm, cm, m or in")->check(kLengthUnit)->capture_default_str();
   app.add_option("--camera-name", spec.camera_name, "the \"camera\" field, e.g. left");
   app.add_flag("--no-test-points", no_test_points, "omit seed 000's five test points");
   const std::vector<std::string> volume_only = {"--near", "--far", "--interval", "--camera-distance", "--tilt-deg",

@@ -3,7 +3,6 @@
 #include "common/calibration_flags.h"
 #include "common/run_tool.h"
 #include "common/validators.h"
-#include "vstcal/core/limits.h"
 #include "vstcal/io/correspondences_io.h"
 
 int main(int argc, char** argv) {
@@ -16,9 +15,10 @@ int main(int argc, char** argv) {
       "vstcal/camera@1.\n"
       "Exit codes: 0 ok, 1 internal error, 2 bad usage or input (too few points or views), 3 degenerate data "
       "(coplanar data forced into the non-coplanar variant, a plane parallel to the image, parallel boards) or "
-      "no convergence.",
+      "no convergence. One plane is refined with Tsai's sx held, and the principal point held unless "
+      "--free-principal-point frees it.",
       "calib-tsai"};
-  std::string input, output, variant = "auto";
+  std::string input, output, variant = "auto", free_pp = "no";
   std::array<double, 2> principal_point{};
   bool no_refine = false;
   vstcal::CalibrationOptions options;
@@ -36,6 +36,12 @@ int main(int argc, char** argv) {
       ->check(vstcal::tools::kPositiveFinite)
       ->capture_default_str();
   CLI::Option* raw = app.add_flag("--no-refine", no_refine, "write the closed-form camera without refinement");
+  app.add_option("--free-principal-point", free_pp,
+                 "one plane, refined: no (hold it where Tsai assumed it), yes, or auto (free it when the scaled "
+                 "information determines it to 0.5% of the image diagonal)")
+      ->check(CLI::IsMember({"no", "yes", "auto"}))
+      ->capture_default_str()
+      ->excludes(raw);
   for (CLI::Option* o : flags.AddRefinement(app)) o->excludes(raw);
   for (CLI::Option* o : flags.AddUncertainty(app)) o->excludes(raw);
   flags.AddOutput(app);
@@ -51,14 +57,12 @@ int main(int argc, char** argv) {
     if (app.count("--principal-point") > 0) {
       options.tsai.principal_point = Eigen::Vector2d(principal_point[0], principal_point[1]);
     }
+    options.plane_principal_point = free_pp == "yes"    ? CalibrationOptions::PlanePrincipalPoint::kFree
+                                    : free_pp == "auto" ? CalibrationOptions::PlanePrincipalPoint::kAuto
+                                                        : CalibrationOptions::PlanePrincipalPoint::kHold;
     Correspondences corners = io::ReadCorrespondences(input);
-    if (corners.rig == Rig::kPlanarViews && options.refine && corners.views.size() > limits::kMaxPlanarRefinementViews) {
-      throw InputError(input + ": views: " + std::to_string(corners.views.size()) + " views, more than the " +
-                       std::to_string(limits::kMaxPlanarRefinementViews) + " a planar-views refinement takes " +
-                       "(docs/reliability.md#limits); keep a subset of the views, or use --no-refine");
-    }
     if (corners.rig == Rig::kPlanarViews) {
-      for (const char* flag : {"--variant", "--principal-point", "--sx"}) {
+      for (const char* flag : {"--variant", "--principal-point", "--sx", "--free-principal-point"}) {
         if (app.count(flag) > 0) {
           throw InputError(std::string(flag) + ": applies to rig \"volume\" only (planar views start from Zhang's "
                            "method); remove it");

@@ -25,12 +25,43 @@ void ExpectThree(const std::vector<double>& numbers, const std::string& flag, co
                    "); give each point as its own " + flag);
 }
 
+// The two kinds of projection uncertainty, each labelled (io::kWithPosesMeaning …), at the image
+// centre at the calibration points' median depth, and at each --uncertainty-pixel.
+std::string UncertaintySummary(const CalibrationResult& result, const io::UncertaintyRequest& request) {
+  const CalibratedCamera& c = result.camera;
+  if (!c.covariance || !c.fit) return "";
+  std::vector<double> depths;
+  for (size_t v = 0; v < result.used.views.size(); ++v) {
+    const Rigid3d pose = c.camera_from_world ? *c.camera_from_world : c.views[v].camera_from_board;
+    for (const Observation& o : result.used.views[v].observations) depths.push_back((pose * o.point).z());
+  }
+  if (depths.empty()) return "";
+  std::nth_element(depths.begin(), depths.begin() + static_cast<std::ptrdiff_t>(depths.size() / 2), depths.end());
+  const ImageSize& size = c.camera.image_size;
+  std::vector<Eigen::Vector3d> at = {{0.5 * (size.width - 1), 0.5 * (size.height - 1), depths[depths.size() / 2]}};
+  at.insert(at.end(), request.pixel_depths.begin(), request.pixel_depths.end());
+  std::string text = "  projection 1-sigma (major axis), with poses = tied to the calibration object, intrinsics only = "
+                     "what using the camera elsewhere inherits:\n";
+  for (const Eigen::Vector3d& q : at) {
+    const auto tied = ProjectionUncertaintyAtPixel(c, q.head<2>(), q.z(), ProjectionUncertaintyKind::kWithPoses);
+    const auto alone = ProjectionUncertaintyAtPixel(c, q.head<2>(), q.z(), ProjectionUncertaintyKind::kIntrinsicsOnly);
+    if (!tied || !alone) continue;
+    char buf[200];
+    std::snprintf(buf, sizeof buf, "    at pixel (%.1f, %.1f), depth %.4g %s: %.4f px with poses, %.4f px intrinsics only\n",
+                  q.x(), q.y(), q.z(), std::string(LengthUnitName(c.length_unit)).c_str(), tied->sigma_major_px,
+                  alone->sigma_major_px);
+    text += buf;
+  }
+  return text;
+}
+
 }  // namespace
 
 std::vector<CLI::Option*> CalibrationFlags::AddRefinement(CLI::App& app) {
   std::vector<CLI::Option*> options = {
       app.add_option("--distortion", distortion,
-                     "distortion terms to estimate, comma-separated names (k1,k2,p1,p2,k3) or \"none\"")
+                     "distortion terms to estimate, comma-separated names (k1,k2,p1,p2,k3 radial-tangential; also "
+                     "k4,k5,k6: the rational model, OpenCV's CALIB_RATIONAL_MODEL) or \"none\"")
           ->capture_default_str(),
       app.add_flag("--skew", skew, "also estimate the skew s (K[0][1])"),
       app.add_option("--loss", loss, "robust loss: none, huber or cauchy")
@@ -156,6 +187,7 @@ int FinishCalibration(const std::string& tool, const std::string& input, const s
                     r.sigma_px, r.dof, r.outliers.size());
       std::cerr << buf;
     }
+    std::cerr << UncertaintySummary(result, request);
     std::cerr << "  wrote " << output << (flags.residuals.empty() ? "" : " and " + flags.residuals) << "\n";
   }
   return 0;

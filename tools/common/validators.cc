@@ -5,6 +5,7 @@
 #include <cstdlib>
 
 #include "vstcal/core/error.h"
+#include "vstcal/core/units.h"
 
 namespace vstcal::tools {
 namespace {
@@ -20,6 +21,8 @@ bool ParseNumber(const std::string& text, double* v) {
 
 const CLI::Validator kNonEmpty([](std::string& text) -> std::string { return text.empty() ? "must not be empty" : ""; },
                                "NONEMPTY");
+
+const CLI::Validator kLengthUnit = CLI::IsMember(std::vector<std::string>(kLengthUnitNames.begin(), kLengthUnitNames.end()));
 
 const CLI::Validator kFinite(
     [](std::string& text) -> std::string {

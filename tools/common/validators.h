@@ -16,6 +16,7 @@ extern const CLI::Validator kFinite;         // a number (or each item of a list
 extern const CLI::Validator kPositiveFinite;  // a number flag > 0, finite
 extern const CLI::Validator kSeed;           // a whole number in [0, 2^64)
 extern const CLI::Validator kPositiveCount;  // a whole number ≥ 1 (sample counts)
+extern const CLI::Validator kLengthUnit;     // one of vstcal::kLengthUnitNames (mm, cm, m, in)
 
 // "i/N" with 0 ≤ i < N → {i, N}; throws InputError naming `flag` otherwise.
 std::pair<uint64_t, uint64_t> ParseShard(const std::string& text, const std::string& flag);

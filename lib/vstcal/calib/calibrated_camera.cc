@@ -4,13 +4,6 @@
 
 namespace vstcal {
 
-std::optional<size_t> ParameterCovariance::Find(std::string_view name) const {
-  for (size_t i = 0; i < parameters.size(); ++i) {
-    if (parameters[i] == name) return i;
-  }
-  return std::nullopt;
-}
-
 Matrix34d ProjectionMatrix(const Eigen::Matrix3d& K, const Rigid3d& camera_from_world) {
   return NormalizeProjectionScale(K * camera_from_world.matrix3x4());
 }

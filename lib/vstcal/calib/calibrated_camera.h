@@ -9,6 +9,7 @@
 #include <Eigen/Core>
 
 #include "vstcal/calib/fit.h"
+#include "vstcal/calib/parameter_covariance.h"
 #include "vstcal/camera/camera.h"
 #include "vstcal/core/units.h"
 #include "vstcal/geometry/rigid3.h"
@@ -16,18 +17,6 @@
 namespace vstcal {
 
 using Matrix34d = Eigen::Matrix<double, 3, 4>;
-
-// Covariance of estimated parameters, named in order (docs/conventions.md#poses-in-optimisation):
-// intrinsics by their lens-model names ("fx", "k1", …); a pose's tangent as
-// "<pose>.rx", ".ry", ".rz" (left-perturbation rotation ω, radians) and ".tx", ".ty", ".tz" (ρ,
-// length unit), e.g. "camera_from_world.rx" or "views[3].camera_from_board.tz".
-struct ParameterCovariance {
-  std::vector<std::string> parameters;
-  Eigen::MatrixXd matrix;
-
-  // Index of a parameter by name, or nullopt.
-  std::optional<size_t> Find(std::string_view name) const;
-};
 
 // One view of a planar-views calibration: the board's pose and how well it fits.
 struct ViewPose {

@@ -19,10 +19,13 @@ enum class Rig {
 };
 
 // One measured point: `point` in the rig's frame (world for a volume, board for planar views,
-// in the file's length unit) and the pixel where it was detected.
+// in the file's length unit), the pixel where it was detected, and its weight: the point's pixel
+// noise is σ/√weight, σ that of a weight-1 point, so it counts in a fit as `weight` points of
+// weight 1 (docs/formats.md#weights; mrcal's decimation level ℓ is weight 1/4^ℓ).
 struct Observation {
   Eigen::Vector3d point;
   Eigen::Vector2d pixel;
+  double weight = 1.0;  // > 0
 };
 
 struct View {

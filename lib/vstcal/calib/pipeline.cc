@@ -1,9 +1,12 @@
 #include "vstcal/calib/pipeline.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 #include <Eigen/Geometry>
+
+#include "vstcal/calib/information.h"
 
 namespace vstcal {
 namespace {
@@ -50,7 +53,7 @@ void ApplyRefinement(CalibrationResult* r, Refinement refinement) {
       cam.views.push_back({c.views[v].name, refinement.poses[v], refinement.fit.views[v].stats.rms_px});
     }
   }
-  if (!refinement.covariance.parameters.empty()) cam.covariance = refinement.covariance;
+  if (!refinement.covariance.empty()) cam.covariance = refinement.covariance;
   r->refinement = std::move(refinement);
 }
 
@@ -134,6 +137,71 @@ void StartPlanar(CalibrationResult* r) {
   for (size_t v = 0; v < c.views.size(); ++v) cam.views[v].rms_px = cam.fit->views[v].stats.rms_px;
 }
 
+
+// One plane (Tsai's coplanar variant): its homography fixes 8 numbers, the pose takes 6, and a
+// pinhole's f, cx, cy would need 3 more (Zhang 2000, §3.1), so the refinement keeps Tsai's own
+// assumptions: fx/fy = sx, and the principal point where Tsai assumed it, unless freed
+// (docs/math/uncertainty.md#one-plane).
+void HoldWhatOnePlaneCannotDetermine(const TsaiResult& tsai, const CalibrationOptions& options, RefineOptions* refinement) {
+  refinement->focal_aspect = tsai.sx;
+  refinement->focal_aspect_held_because =
+      "one plane: Tsai's coplanar sx (--sx), as one plane cannot tell the aspect from f and the principal point";
+  if (options.plane_principal_point != CalibrationOptions::PlanePrincipalPoint::kFree) {
+    refinement->free_principal_point = false;
+    refinement->principal_point_held_because =
+        options.plane_principal_point == CalibrationOptions::PlanePrincipalPoint::kHold
+            ? "one plane: held where Tsai's stages assumed it (the image centre or --principal-point); "
+              "--free-principal-point yes or auto frees it"
+            : "one plane: held where Tsai's stages assumed it; --free-principal-point auto left it held (see "
+              "refinement.one_plane)";
+  }
+}
+
+// kAuto: at the held optimum, would the principal point be determined, and how well? Frees it
+// (refining again from the held optimum) when the scaled information is regular with cx, cy free
+// and both σ's are within the limit. Leaves `refined` as it is otherwise.
+PlanePrincipalPointDecision DecidePlanePrincipalPoint(const Correspondences& c, const CalibrationOptions& options,
+                                                      RefineOptions* refinement, Refinement* refined) {
+  PlanePrincipalPointDecision d;
+  d.mode = options.plane_principal_point;
+  d.freed = d.mode == CalibrationOptions::PlanePrincipalPoint::kFree;
+  const ImageSize& size = c.image_size;
+  d.limit_px = options.plane_principal_point_max_sigma * std::hypot(size.width, size.height);
+  if (d.mode == CalibrationOptions::PlanePrincipalPoint::kHold) {
+    d.because = "held (--free-principal-point no)";
+    return d;
+  }
+  if (d.mode == CalibrationOptions::PlanePrincipalPoint::kFree) {
+    d.because = "freed (--free-principal-point yes)";
+    return d;
+  }
+  if (refined->status != RefineStatus::kConverged) {
+    d.because = "held: the refinement with it held did not converge";
+    return d;
+  }
+  RefineOptions freed = *refinement;
+  freed.free_principal_point = true;
+  const CalibrationCovariance cov = CovarianceAt(c, refined->camera, refined->poses, freed, refined->sigma_px);
+  if (!cov.observable) {
+    d.because = "held: with it free, " + cov.weakest;
+    return d;
+  }
+  d.sigma_if_free_px = Eigen::Vector2d(std::sqrt(cov.covariance.matrix(*cov.covariance.Find("cx"), *cov.covariance.Find("cx"))),
+                                       std::sqrt(cov.covariance.matrix(*cov.covariance.Find("cy"), *cov.covariance.Find("cy"))));
+  char buf[200];
+  std::snprintf(buf, sizeof buf, "its sigma with it free would be (%.3g, %.3g) px, limit %.3g px", d.sigma_if_free_px->x(),
+                d.sigma_if_free_px->y(), d.limit_px);
+  if (d.sigma_if_free_px->maxCoeff() > d.limit_px) {
+    d.because = std::string("held: ") + buf;
+    return d;
+  }
+  d.freed = true;
+  d.because = std::string("freed: ") + buf;
+  *refinement = freed;
+  *refined = Refine(c, refined->camera, refined->poses, freed);
+  return d;
+}
+
 }  // namespace
 
 CalibrationResult Calibrate(Correspondences correspondences, const CalibrationOptions& options) {
@@ -147,23 +215,21 @@ CalibrationResult Calibrate(Correspondences correspondences, const CalibrationOp
     StartPlanar(&r);
   }
   if (r.exit_code != ExitCode::kOk || !options.refine) return r;
-  if (r.tsai && r.tsai->variant == TsaiOptions::Variant::kCoplanar) {
-    // One plane constrains only two of fx, fy, cx, cy (Zhang 2000, §3.1); Tsai's coplanar variant
-    // solves it by fixing the principal point and sx, which the refinement would set free.
-    r.exit_code = ExitCode::kDegenerate;
-    r.message = "the points lie on one plane, which cannot determine the focal lengths and the principal point the "
-                "refinement estimates; use --no-refine for Tsai's coplanar result (principal point and sx fixed), or "
-                "show the board at several orientations (rig \"planar-views\")";
-    return r;
+  RefineOptions refinement = options.refinement;
+  const bool one_plane = r.tsai && r.tsai->variant == TsaiOptions::Variant::kCoplanar;
+  if (!one_plane && options.plane_principal_point != CalibrationOptions::PlanePrincipalPoint::kHold) {
+    throw InputError("--free-principal-point: applies to one plane (Tsai's coplanar variant) only; a volume's or planar "
+                     "views' principal point is always estimated; remove it");
   }
+  if (one_plane) HoldWhatOnePlaneCannotDetermine(*r.tsai, options, &refinement);
 
   // A parameter not estimated is zero, not frozen at its start: a DLT start's small skew and a
   // Tsai start's k1, k2, k3 (converted from κ₁) would otherwise stay in the refined model
   // unestimated, outside the covariance, and bias the parameters that are estimated.
   Camera start = r.camera.camera;
-  if (!options.refinement.free_skew) start.params[4] = 0;
+  if (!refinement.free_skew) start.params[4] = 0;
   const auto names = LensModelParamNames(start.model);
-  const std::vector<std::string>& free = options.refinement.free_distortion;
+  const std::vector<std::string>& free = refinement.free_distortion;
   for (size_t i = kNumIntrinsicParams; i < names.size(); ++i) {
     if (std::find(free.begin(), free.end(), names[i]) == free.end()) start.params[i] = 0;
   }
@@ -174,7 +240,11 @@ CalibrationResult Calibrate(Correspondences correspondences, const CalibrationOp
   } else {
     for (const ViewPose& v : r.camera.views) poses.push_back(v.camera_from_board);
   }
-  ApplyRefinement(&r, Refine(r.used, start, poses, options.refinement));
+  Refinement refined = Refine(r.used, start, poses, refinement);
+  if (one_plane) {
+    r.plane_principal_point = DecidePlanePrincipalPoint(r.used, options, &refinement, &refined);
+  }
+  ApplyRefinement(&r, std::move(refined));
   return r;
 }
 

@@ -25,6 +25,26 @@ struct CalibrationOptions {
   TsaiOptions tsai;
   bool refine = true;
   RefineOptions refinement;
+
+  // One plane (Tsai's coplanar variant) refined: fx/fy stays at Tsai's sx, and the principal point
+  // at the start's (the image centre or TsaiOptions::principal_point) unless freed: always
+  // (kFree), or (kAuto) when, at the held optimum, the scaled information determines it and its
+  // predicted σ with it free is at most plane_principal_point_max_sigma × the image diagonal in
+  // both coordinates (docs/math/uncertainty.md#one-plane).
+  enum class PlanePrincipalPoint { kHold, kFree, kAuto };
+  PlanePrincipalPoint plane_principal_point = PlanePrincipalPoint::kHold;
+  double plane_principal_point_max_sigma = 0.005;
+};
+
+// How a refined one-plane calibration treated the principal point (CalibrationOptions).
+struct PlanePrincipalPointDecision {
+  CalibrationOptions::PlanePrincipalPoint mode = CalibrationOptions::PlanePrincipalPoint::kHold;
+  bool freed = false;
+  // kAuto: the predicted σ of (cx, cy) with it free at the held optimum, when observable, and the
+  // limit it was compared with.
+  std::optional<Eigen::Vector2d> sigma_if_free_px;
+  double limit_px = 0;
+  std::string because;
 };
 
 struct CalibrationResult {
@@ -39,10 +59,12 @@ struct CalibrationResult {
   std::optional<Eq13Decomposition> eq13;
   std::optional<TsaiResult> tsai;
   std::optional<Refinement> refinement;
+  std::optional<PlanePrincipalPointDecision> plane_principal_point;  // one plane, refined
 };
 
 // Never throws on bad geometry: exit_code and message say what went wrong. Throws InputError for
-// options that cannot apply (e.g. an unknown distortion term).
+// options that cannot apply (an unknown distortion term; a plane_principal_point other than kHold
+// for points that are not one plane).
 CalibrationResult Calibrate(Correspondences correspondences, const CalibrationOptions& options);
 
 }  // namespace vstcal

@@ -2,13 +2,13 @@
 
 #include <ceres/ceres.h>
 
-#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 
+#include "vstcal/calib/information.h"
 #include "vstcal/calib/reprojection_cost.h"
+#include "vstcal/calib/robust_loss.h"
 #include "vstcal/core/error.h"
-#include "vstcal/core/suggest.h"
 
 namespace vstcal {
 namespace {
@@ -19,38 +19,44 @@ constexpr double kRoundingResidualPx = 1e-9;
 // χ²₂ quantile: P(χ²₂ > x) = e^{−x/2}.
 double ChiSquare2Quantile(double tail_probability) { return -2.0 * std::log(tail_probability); }
 
-// The model to refine: promoted to radial-tangential when distortion terms are asked for.
-AnyLensModel RefinedModel(const AnyLensModel& initial, const RefineOptions& options) {
-  if (!options.free_distortion.empty() && LensModelNumParams(initial) == kNumIntrinsicParams) {
-    return RadialTangentialModel{};
+// θ ⊞ β = θ + B β over the free intrinsics' basis B (calib/free_intrinsics.h): what a
+// ceres::SubsetManifold does when B only selects, and also a tie (one coordinate moving fx and fy).
+class LinearManifold final : public ceres::Manifold {
+ public:
+  explicit LinearManifold(const Eigen::MatrixXd& basis)
+      : B_(basis), B_pseudo_inverse_(basis.completeOrthogonalDecomposition().pseudoInverse()) {}
+  int AmbientSize() const override { return static_cast<int>(B_.rows()); }
+  int TangentSize() const override { return static_cast<int>(B_.cols()); }
+  bool Plus(const double* x, const double* delta, double* x_plus_delta) const override {
+    Eigen::Map<Eigen::VectorXd>(x_plus_delta, B_.rows()) =
+        Eigen::Map<const Eigen::VectorXd>(x, B_.rows()) + B_ * Eigen::Map<const Eigen::VectorXd>(delta, B_.cols());
+    return true;
   }
-  return initial;
-}
-
-std::vector<double> PromoteParams(const Camera& initial, const AnyLensModel& model) {
-  std::vector<double> params(LensModelNumParams(model), 0.0);
-  std::copy(initial.params.begin(), initial.params.end(), params.begin());
-  return params;
-}
-
-std::string PoseName(const Correspondences& c, size_t pose) {
-  return c.rig == Rig::kVolume ? "camera_from_world" : "views[" + std::to_string(pose) + "].camera_from_board";
-}
-
-std::unique_ptr<ceres::LossFunction> MakeLoss(const RefineOptions& options) {
-  switch (options.loss) {
-    case RefineOptions::Loss::kHuber: return std::make_unique<ceres::HuberLoss>(options.loss_scale_px);
-    case RefineOptions::Loss::kCauchy: return std::make_unique<ceres::CauchyLoss>(options.loss_scale_px);
-    default: return nullptr;
+  bool PlusJacobian(const double* /*x*/, double* jacobian) const override {
+    Eigen::Map<RowMajor>(jacobian, B_.rows(), B_.cols()) = B_;
+    return true;
   }
-}
+  bool Minus(const double* y, const double* x, double* y_minus_x) const override {
+    Eigen::Map<Eigen::VectorXd>(y_minus_x, B_.cols()) =
+        B_pseudo_inverse_ * (Eigen::Map<const Eigen::VectorXd>(y, B_.rows()) - Eigen::Map<const Eigen::VectorXd>(x, B_.rows()));
+    return true;
+  }
+  bool MinusJacobian(const double* /*x*/, double* jacobian) const override {
+    Eigen::Map<RowMajor>(jacobian, B_.cols(), B_.rows()) = B_pseudo_inverse_;
+    return true;
+  }
+
+ private:
+  using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+  Eigen::MatrixXd B_, B_pseudo_inverse_;
+};
 
 // Everything the templated solve needs, independent of the model type.
 struct Problem {
   const Correspondences* c;
-  std::vector<double> intrinsics;
-  std::vector<int> free_intrinsics;  // indices into intrinsics
-  std::vector<Rigid3d> reference;    // pose per rig (volume: 1) or per view
+  std::vector<double> intrinsics;  // θ, the model's whole layout
+  FreeIntrinsics free;
+  std::vector<Rigid3d> reference;  // pose per rig (volume: 1) or per view
   std::vector<std::array<double, 6>> delta;
 };
 
@@ -81,83 +87,24 @@ void Recentre(Problem* p) {
   }
 }
 
-// Builds the Ceres problem for the current reference poses (ownership of cost functions and
-// manifolds stays with the problem).
+// The Ceres problem for the current reference poses (ownership of cost functions and manifolds
+// stays with the problem) and its Schur ordering: every pose in the first elimination group, the
+// intrinsics last, so the reduced system is the intrinsics' alone, whatever the number of views.
 template <typename Model>
-std::unique_ptr<ceres::Problem> BuildProblem(Problem* p, const RefineOptions& options) {
+std::unique_ptr<ceres::Problem> BuildProblem(Problem* p, const RefineOptions& options, ceres::Solver::Options* solver) {
   auto problem = std::make_unique<ceres::Problem>();
   AddResiduals<Model>(problem.get(), p, options);
-  std::vector<int> fixed;
-  for (int i = 0; i < Model::kNumParams; ++i) {
-    if (std::find(p->free_intrinsics.begin(), p->free_intrinsics.end(), i) == p->free_intrinsics.end()) fixed.push_back(i);
-  }
-  if (fixed.size() == static_cast<size_t>(Model::kNumParams)) {
+  if (p->free.size() == 0) {
     problem->SetParameterBlockConstant(p->intrinsics.data());
-  } else if (!fixed.empty()) {
-    problem->SetManifold(p->intrinsics.data(), new ceres::SubsetManifold(Model::kNumParams, fixed));
+  } else {
+    problem->SetManifold(p->intrinsics.data(), new LinearManifold(p->free.basis));
   }
+  auto ordering = std::make_shared<ceres::ParameterBlockOrdering>();
+  for (auto& delta : p->delta) ordering->AddElementToGroup(delta.data(), 0);
+  ordering->AddElementToGroup(p->intrinsics.data(), 1);
+  solver->linear_solver_type = ceres::DENSE_SCHUR;
+  solver->linear_solver_ordering = ordering;
   return problem;
-}
-
-// σ̂² (JᵀJ)⁻¹ over the free parameters at δ = 0 (the poses recentred on the optimum), or an
-// empty matrix when JᵀJ is singular. Columns: the free intrinsics, then 6 per pose. With a robust
-// loss each point's rows are weighted by ρ′(‖r‖²) (the IRLS information).
-template <typename Model>
-Eigen::MatrixXd Covariance(const Problem& p, const RefineOptions& options, double sigma2, std::string* message) {
-  const int free = static_cast<int>(p.free_intrinsics.size());
-  const int n = free + 6 * static_cast<int>(p.reference.size());
-  Eigen::MatrixXd information = Eigen::MatrixXd::Zero(n, n);
-  const std::unique_ptr<ceres::LossFunction> loss = MakeLoss(options);
-  const double zero[6] = {};
-  const bool volume = p.c->rig == Rig::kVolume;
-  for (size_t v = 0; v < p.c->views.size(); ++v) {
-    const size_t pose = volume ? 0 : v;
-    const std::vector<Observation>& obs = p.c->views[v].observations;
-    const ReprojectionCost<Model> cost(obs, p.reference[pose]);
-    std::vector<double> r(2 * obs.size()), Ji(2 * obs.size() * Model::kNumParams), Jp(2 * obs.size() * 6);
-    const double* params[2] = {p.intrinsics.data(), zero};
-    double* jacobians[2] = {Ji.data(), Jp.data()};
-    if (!cost.Evaluate(params, r.data(), jacobians)) continue;  // cannot happen at a converged optimum
-    // Each point's rows touch the free intrinsics and one pose: accumulate their small Gram
-    // matrix and scatter it, instead of multiplying full-width rows.
-    const int m = free + 6;
-    Eigen::Matrix<double, 2, Eigen::Dynamic, Eigen::RowMajor, 2, 6 + Model::kNumParams> J(2, m);
-    Eigen::MatrixXd gram = Eigen::MatrixXd::Zero(m, m);
-    for (size_t k = 0; k < obs.size(); ++k) {
-      for (int row = 0; row < 2; ++row) {
-        for (int f = 0; f < free; ++f) J(row, f) = Ji[(2 * k + row) * Model::kNumParams + p.free_intrinsics[f]];
-        for (int c = 0; c < 6; ++c) J(row, free + c) = Jp[(2 * k + row) * 6 + c];
-      }
-      double weight = 1.0;
-      if (loss) {
-        double rho[3];
-        loss->Evaluate(r[2 * k] * r[2 * k] + r[2 * k + 1] * r[2 * k + 1], rho);
-        weight = rho[1];
-      }
-      for (int a = 0; a < m; ++a) {
-        const double wa0 = weight * J(0, a), wa1 = weight * J(1, a);
-        for (int b = a; b < m; ++b) gram(a, b) += wa0 * J(0, b) + wa1 * J(1, b);
-      }
-    }
-    gram = gram.selfadjointView<Eigen::Upper>();
-    const int pose_column = free + 6 * static_cast<int>(pose);
-    information.topLeftCorner(free, free) += gram.topLeftCorner(free, free);
-    information.block(0, pose_column, free, 6) += gram.topRightCorner(free, 6);
-    information.block(pose_column, 0, 6, free) += gram.bottomLeftCorner(6, free);
-    information.block(pose_column, pose_column, 6, 6) += gram.bottomRightCorner(6, 6);
-  }
-  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(information);
-  const double largest = eig.eigenvalues().maxCoeff();
-  if (!(eig.eigenvalues().minCoeff() > 1e-13 * largest)) {
-    *message = "the information matrix is singular: some free parameter is not observable from these points "
-               "(e.g. skew or a distortion term without coverage); estimate fewer terms (--distortion, --skew) or "
-               "add views";
-    return {};
-  }
-  const Eigen::VectorXd inverse = eig.eigenvalues().cwiseInverse();
-  const Eigen::MatrixXd covariance = sigma2 * eig.eigenvectors() * inverse.asDiagonal() * eig.eigenvectors().transpose();
-  // V D Vᵀ is symmetric only to rounding; the file promises a symmetric matrix, bit for bit.
-  return 0.5 * (covariance + covariance.transpose());
 }
 
 template <typename Model>
@@ -165,20 +112,21 @@ Refinement RefineWith(const Correspondences& c, Problem* p, const RefineOptions&
   Refinement out;
   out.camera.image_size = c.image_size;
   out.camera.model = Model{};
+  out.free = p->free;
+  out.held = HeldIntrinsics(Model{}, p->intrinsics, options);
 
   const size_t n = NumObservations(c);
-  const size_t free = p->free_intrinsics.size() + 6 * p->reference.size();
+  const size_t free = static_cast<size_t>(p->free.size()) + 6 * p->reference.size();
   if (2 * n <= free) {
     out.status = RefineStatus::kTooFewPoints;
     out.message = "the refinement needs more residuals than free parameters, but " + std::to_string(n) + " points give " +
-                  std::to_string(2 * n) + " for " + std::to_string(free) + " (" + std::to_string(p->free_intrinsics.size()) +
+                  std::to_string(2 * n) + " for " + std::to_string(free) + " (" + std::to_string(p->free.size()) +
                   " intrinsics, 6 per pose); add points or estimate fewer terms (--distortion)";
     return out;
   }
 
-  std::unique_ptr<ceres::Problem> problem = BuildProblem<Model>(p, options);
   ceres::Solver::Options solver;
-  solver.linear_solver_type = c.rig == Rig::kVolume ? ceres::DENSE_NORMAL_CHOLESKY : ceres::DENSE_SCHUR;
+  std::unique_ptr<ceres::Problem> problem = BuildProblem<Model>(p, options, &solver);
   solver.max_num_iterations = options.max_iterations;
   // Stop when a step changes the cost by less than 1e-10 of itself: parameter changes are then a
   // few 1e-6 of their standard deviations, far below anything a covariance or a test can see.
@@ -205,27 +153,26 @@ Refinement RefineWith(const Correspondences& c, Problem* p, const RefineOptions&
   Recentre(p);
   out.camera.params = p->intrinsics;
   out.poses = p->reference;
-  const std::vector<Rigid3d> per_view =
-      c.rig == Rig::kVolume ? std::vector<Rigid3d>(c.views.size(), p->reference[0]) : p->reference;
   out.fit = c.rig == Rig::kVolume ? ComputeVolumeFit(out.camera, p->reference[0], c)
-                                  : ComputeViewsFit(out.camera, per_view, c);
+                                  : ComputeViewsFit(out.camera, p->reference, c);
 
   // Outliers by the robust σ, then the noise estimate and its degrees of freedom
-  // (docs/math/uncertainty.md#sigma).
+  // (docs/math/uncertainty.md#sigma), on weighted residuals √w r: a weight-1 point's scale.
+  auto weighted = [&](size_t v, size_t k) { return std::sqrt(c.views[v].observations[k].weight) * out.fit.views[v].residuals_px[k]; };
   std::vector<double> norms;
-  for (const ViewFit& v : out.fit.views) {
-    for (const Eigen::Vector2d& r : v.residuals_px) {
-      if (r.allFinite()) norms.push_back(r.norm());
+  for (size_t v = 0; v < out.fit.views.size(); ++v) {
+    for (size_t k = 0; k < out.fit.views[v].residuals_px.size(); ++k) {
+      if (out.fit.views[v].residuals_px[k].allFinite()) norms.push_back(weighted(v, k).norm());
     }
   }
-  if (2 * static_cast<int>(norms.size()) <= static_cast<int>(free)) {
+  if (2 * norms.size() <= free) {
     out.status = RefineStatus::kFailed;
     out.message = "only " + std::to_string(norms.size()) + " points project in front of the refined "
                   "camera, too few for " + std::to_string(free) + " free parameters; check the correspondences";
     return out;
   }
   std::vector<double> sorted = norms;
-  std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
+  std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2), sorted.end());
   out.robust_sigma_px = sorted[sorted.size() / 2] / std::sqrt(2 * std::log(2.0));
   const double threshold = ChiSquare2Quantile(options.outlier_false_alarm / static_cast<double>(norms.size()));
   // Noise-free data fit exactly (a median residual of 0): residuals of rounding size are no
@@ -234,7 +181,7 @@ Refinement RefineWith(const Correspondences& c, Problem* p, const RefineOptions&
   for (size_t v = 0; v < out.fit.views.size(); ++v) {
     const auto& residuals = out.fit.views[v].residuals_px;
     for (size_t k = 0; k < residuals.size(); ++k) {
-      const double z2 = residuals[k].squaredNorm() / (sigma_for_outliers * sigma_for_outliers);
+      const double z2 = weighted(v, k).squaredNorm() / (sigma_for_outliers * sigma_for_outliers);
       if (residuals[k].allFinite() && z2 > threshold) out.outliers.push_back({v, k, residuals[k], std::sqrt(z2)});
     }
   }
@@ -250,7 +197,7 @@ Refinement RefineWith(const Correspondences& c, Problem* p, const RefineOptions&
       const bool outlier = next < out.outliers.size() && out.outliers[next].view == v && out.outliers[next].point == k;
       next += outlier;
       if (!residuals[k].allFinite() || (outlier && out.sigma_inliers_only)) continue;
-      rss += residuals[k].squaredNorm();
+      rss += weighted(v, k).squaredNorm();
       ++n_sigma;
     }
   }
@@ -264,67 +211,36 @@ Refinement RefineWith(const Correspondences& c, Problem* p, const RefineOptions&
   out.sigma_px = std::sqrt(rss / out.dof);
 
   // Covariance at the optimum, linearized at δ = 0 around the refined poses.
-  std::string singular;
-  out.covariance.matrix = Covariance<Model>(*p, options, out.sigma_px * out.sigma_px, &singular);
+  CalibrationCovariance covariance = CovarianceAt(c, out.camera, out.poses, options, out.sigma_px);
+  out.smallest_scaled_eigenvalue = covariance.smallest_scaled_eigenvalue;
   if (out.status == RefineStatus::kNotConverged) {
     // An unobservable parameter is the likely reason for wandering: say that rather than "iterate more".
+    // A parameter the points barely determine is the likely reason for wandering: say which.
     out.message = "the refinement did not converge in " + std::to_string(options.max_iterations) + " iterations" +
-                  (singular.empty() ? "; raise --max-iterations or start from a better camera" : ": " + singular);
-    out.covariance.matrix.resize(0, 0);
+                  (!covariance.observable         ? ": " + covariance.message
+                   : !covariance.weakest.empty() ? ": " + covariance.weakest
+                                                  : "; raise --max-iterations or start from a better camera");
     return out;
   }
-  if (out.covariance.matrix.size() == 0) {
-    out.message = singular;
+  if (covariance.observable) {
+    out.covariance = std::move(covariance.covariance);
   } else {
-    const auto names = LensModelParamNames(out.camera.model);
-    for (int i : p->free_intrinsics) out.covariance.parameters.emplace_back(names[i]);
-    for (size_t i = 0; i < p->reference.size(); ++i) {
-      for (const char* axis : {"rx", "ry", "rz", "tx", "ty", "tz"}) {
-        out.covariance.parameters.push_back(PoseName(c, i) + "." + axis);
-      }
-    }
+    out.message = covariance.message;
   }
   return out;
 }
 
 }  // namespace
 
-std::vector<std::string> FreeIntrinsicNames(const AnyLensModel& model, const RefineOptions& options) {
-  const auto names = LensModelParamNames(model);
-  std::vector<std::string> free;
-  auto add = [&](std::string_view name) { free.emplace_back(name); };
-  if (options.free_focal) add("fx"), add("fy");
-  if (options.free_principal_point) add("cx"), add("cy");
-  if (options.free_skew) add("s");
-  for (size_t i = kNumIntrinsicParams; i < names.size(); ++i) {
-    if (std::find(options.free_distortion.begin(), options.free_distortion.end(), names[i]) !=
-        options.free_distortion.end()) {
-      add(names[i]);
-    }
-  }
-  return free;
-}
-
 Refinement Refine(const Correspondences& c, const Camera& initial, const std::vector<Rigid3d>& initial_poses,
                   const RefineOptions& options) {
   const size_t expected_poses = c.rig == Rig::kVolume ? 1 : c.views.size();
   VSTCAL_CHECK(initial_poses.size() == expected_poses, "one initial pose per rig (volume) or per view");
   const AnyLensModel model = RefinedModel(initial.model, options);
-  const auto names = LensModelParamNames(model);
-  for (const std::string& term : options.free_distortion) {
-    const auto it = std::find(names.begin() + kNumIntrinsicParams, names.end(), term);
-    if (it == names.end()) {
-      const std::vector<std::string_view> terms(names.begin() + kNumIntrinsicParams, names.end());
-      throw InputError("--distortion: unknown term \"" + term + "\" for the " + std::string(LensModelName(model)) +
-                       " model; " + SuggestKey(term, terms) + ", or none for no distortion");
-    }
-  }
   Problem p;
   p.c = &c;
-  p.intrinsics = PromoteParams(initial, model);
-  for (const std::string& name : FreeIntrinsicNames(model, options)) {
-    p.free_intrinsics.push_back(static_cast<int>(std::find(names.begin(), names.end(), name) - names.begin()));
-  }
+  p.intrinsics = PromotedParams(initial, model);
+  p.free = MakeFreeIntrinsics(model, options);
   p.reference = initial_poses;
   p.delta.assign(initial_poses.size(), std::array<double, 6>{});
   return std::visit([&](auto m) { return RefineWith<decltype(m)>(c, &p, options); }, model);

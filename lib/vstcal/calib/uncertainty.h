@@ -1,6 +1,6 @@
 // Projection uncertainty of a calibrated camera from its parameter covariance: the 1-σ ellipse of
 // where a point lands in the image when the calibration is redone with fresh pixel noise.
-// Linear propagation Σ_q = J Σ_θ Jᵀ through the one projection (docs/math/uncertainty.md).
+// Linear propagation Σ_q = J Σ_θ Jᵀ through the one projection (docs/math/uncertainty.md#projection).
 #pragma once
 
 #include <optional>
@@ -21,16 +21,30 @@ struct Ellipse {
 
 Ellipse EllipseFromCovariance(const Eigen::Matrix2d& covariance);
 
+// Which uncertainty an ellipse describes. Two different questions, not to be read for each other:
+enum class ProjectionUncertaintyKind {
+  // The point tied to the calibration object, mrcal's definition: through camera_from_world
+  // (volume rigs), or carried through every board's camera_from_board and averaged (planar
+  // views). The intrinsics and the poses vary, with their correlations. What reprojecting the
+  // calibration scene itself is uncertain by.
+  kWithPoses,
+  // The point fixed in the camera frame, only the intrinsics vary (their marginal covariance):
+  // what a user who moves the camera elsewhere, and poses it anew, inherits from this calibration.
+  kIntrinsicsOnly,
+};
+
 // At a world point, through the intrinsics and camera_from_world (volume rigs). nullopt when the
 // camera has no covariance or no camera_from_world, or the point is behind the camera.
-std::optional<Ellipse> ProjectionUncertaintyAtWorldPoint(const CalibratedCamera& camera, const Eigen::Vector3d& point_in_world);
+std::optional<Ellipse> ProjectionUncertaintyAtWorldPoint(
+    const CalibratedCamera& camera, const Eigen::Vector3d& point_in_world,
+    ProjectionUncertaintyKind kind = ProjectionUncertaintyKind::kWithPoses);
 
 // At a pixel and a depth (length unit, along the optical axis): the point depth·Unproject(pixel)
-// in the camera frame, tied to the calibration object as mrcal does — through camera_from_world
-// for a volume rig, or as the mean of its positions carried through every view's
-// camera_from_board for planar views. nullopt without covariance or outside the model's domain.
+// in the camera frame, tied to the calibration object as `kind` says. nullopt without covariance
+// or outside the model's domain.
 std::optional<Ellipse> ProjectionUncertaintyAtPixel(const CalibratedCamera& camera, const Eigen::Vector2d& pixel,
-                                                    double depth);
+                                                    double depth,
+                                                    ProjectionUncertaintyKind kind = ProjectionUncertaintyKind::kWithPoses);
 
 struct UncertaintyCell {
   Eigen::Vector2d pixel;
@@ -39,6 +53,7 @@ struct UncertaintyCell {
 
 // A cols × rows grid of pixel-cell centres over the image at one depth (cells where the model
 // has no ray are left out).
-std::vector<UncertaintyCell> ProjectionUncertaintyGrid(const CalibratedCamera& camera, double depth, int cols, int rows);
+std::vector<UncertaintyCell> ProjectionUncertaintyGrid(const CalibratedCamera& camera, double depth, int cols, int rows,
+                                                       ProjectionUncertaintyKind kind = ProjectionUncertaintyKind::kWithPoses);
 
 }  // namespace vstcal

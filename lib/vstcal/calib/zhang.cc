@@ -63,7 +63,10 @@ ZhangResult ZhangInitialization(const Correspondences& c) {
   const Eigen::Matrix3d S_inv = Eigen::Vector3d(1 / s, 1 / s, 1).asDiagonal();
   Eigen::MatrixXd A(2 * homographies.size() + 1, 6);
   for (size_t k = 0; k < balanced.size(); ++k) {
-    const Eigen::Matrix3d H = S_inv * balanced[k];
+    // Each view's constraints are homogeneous in its H: at unit norm they weigh like the zero-skew
+    // row below, whatever the length unit (in 1e-6 m a view's rows would otherwise be 1e-9 of it).
+    Eigen::Matrix3d H = S_inv * balanced[k];
+    H /= H.norm();
     A.row(2 * k) = V(H, 0, 1).transpose();
     A.row(2 * k + 1) = (V(H, 0, 0) - V(H, 1, 1)).transpose();
   }

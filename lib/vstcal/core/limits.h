@@ -34,11 +34,6 @@ inline constexpr int kMaxImageSide = 1'000'000;
 // Calibration points in one correspondences file (all views), and views in one file or run.
 inline constexpr size_t kMaxPoints = 1'000'000;
 inline constexpr size_t kMaxViews = 10'000;
-// Views of a planar-views refinement: its system is dense today, holding every board pose, so time
-// grows as the cube and memory as the square of the views (400 views: 80 s, 0.5 GB). Raise it when
-// the poses are eliminated (Schur complement, issue 10).
-inline constexpr size_t kMaxPlanarRefinementViews = 500;
-
 // Cells of a projection-uncertainty grid (--grid-size COLSxROWS): each costs one Jacobian
 // and one 2×2 eigen decomposition, and 80 bytes of output.
 inline constexpr size_t kMaxGridCells = 1'000'000;

@@ -17,6 +17,14 @@ std::string_view VariantName(TsaiOptions::Variant v) {
   }
 }
 
+std::string_view PlanePrincipalPointModeName(CalibrationOptions::PlanePrincipalPoint mode) {
+  switch (mode) {
+    case CalibrationOptions::PlanePrincipalPoint::kFree: return "yes";
+    case CalibrationOptions::PlanePrincipalPoint::kAuto: return "auto";
+    default: return "no";
+  }
+}
+
 std::string_view LossName(RefineOptions::Loss loss) {
   switch (loss) {
     case RefineOptions::Loss::kHuber: return "huber";
@@ -52,10 +60,14 @@ OrderedJson CalibrationBlocksToJson(const CalibrationResult& r, const Calibratio
       outliers.push_back({{"view", r.used.views[o.view].name}, {"view_index", o.view}, {"point_index", o.point},
                           {"residual_px", MatrixToJson(o.residual_px)}, {"sigmas", o.normalized}});
     }
+    OrderedJson held = OrderedJson::array();
+    for (const HeldIntrinsic& h : f.held) held.push_back({{"parameter", h.parameter}, {"value", h.value}, {"because", h.because}});
     j["refinement"] = {{"status", f.status == RefineStatus::kConverged ? "converged" : "not converged"},
                        {"iterations", f.iterations},
                        {"initial_rms_px", f.initial_rms_px},
-                       {"free_intrinsics", FreeIntrinsicNames(f.camera.model, options.refinement)},
+                       {"free_intrinsics", f.free.MovedParams(f.camera.model)},
+                       {"held", std::move(held)},
+                       {"smallest_scaled_eigenvalue", f.smallest_scaled_eigenvalue},
                        {"loss", LossName(options.refinement.loss)},
                        {"loss_scale_px", options.refinement.loss_scale_px},
                        {"sigma_px", f.sigma_px},
@@ -64,46 +76,65 @@ OrderedJson CalibrationBlocksToJson(const CalibrationResult& r, const Calibratio
                        {"dof", f.dof},
                        {"outlier_false_alarm", options.refinement.outlier_false_alarm},
                        {"outliers", std::move(outliers)}};
+    if (r.plane_principal_point) {
+      const PlanePrincipalPointDecision& d = *r.plane_principal_point;
+      j["refinement"]["one_plane"] = {{"principal_point", d.freed ? "free" : "held"},
+                                      {"mode", PlanePrincipalPointModeName(d.mode)},
+                                      {"sigma_if_free_px", d.sigma_if_free_px ? MatrixToJson(*d.sigma_if_free_px) : OrderedJson(nullptr)},
+                                      {"limit_px", d.limit_px},
+                                      {"because", d.because}};
+    }
   }
   return j;
 }
 
 OrderedJson UncertaintyToJson(const CalibratedCamera& c, const UncertaintyRequest& request) {
   if (!c.covariance) return nullptr;
+  using Kind = ProjectionUncertaintyKind;
+  // Both kinds at one place, under their own names, so that neither is read for the other.
+  auto both = [](OrderedJson j, const auto& ellipse_of) {
+    for (const auto& [key, kind] : {std::pair{"with_poses", Kind::kWithPoses}, std::pair{"intrinsics_only", Kind::kIntrinsicsOnly}}) {
+      const auto e = ellipse_of(kind);
+      j[key] = e ? EllipseToJson(*e) : OrderedJson(nullptr);
+    }
+    return j;
+  };
   OrderedJson j;
+  j["kinds"] = {{"with_poses", kWithPosesMeaning}, {"intrinsics_only", kIntrinsicsOnlyMeaning}};
   OrderedJson tests = OrderedJson::array();
   if (c.fit && c.camera_from_world) {
     for (const TestPointFit& t : c.fit->test_points) {
-      const auto e = ProjectionUncertaintyAtWorldPoint(c, t.point_in_world);
-      tests.push_back({{"name", t.name}, {"ellipse", e ? EllipseToJson(*e) : OrderedJson(nullptr)}});
+      tests.push_back(both({{"name", t.name}}, [&](Kind k) { return ProjectionUncertaintyAtWorldPoint(c, t.point_in_world, k); }));
     }
   }
   j["test_points"] = std::move(tests);
   OrderedJson points = OrderedJson::array();
   for (const Eigen::Vector3d& p : request.world_points) {
-    const auto e = ProjectionUncertaintyAtWorldPoint(c, p);
-    points.push_back({{"world", MatrixToJson(p)}, {"ellipse", e ? EllipseToJson(*e) : OrderedJson(nullptr)}});
+    points.push_back(both({{"world", MatrixToJson(p)}}, [&](Kind k) { return ProjectionUncertaintyAtWorldPoint(c, p, k); }));
   }
   j["world_points"] = std::move(points);
   OrderedJson pixels = OrderedJson::array();
   for (const Eigen::Vector3d& q : request.pixel_depths) {
-    const auto e = ProjectionUncertaintyAtPixel(c, q.head<2>(), q.z());
-    pixels.push_back({{"pixel", MatrixToJson(Eigen::Vector2d(q.head<2>()))},
-                      {"depth", q.z()},
-                      {"ellipse", e ? EllipseToJson(*e) : OrderedJson(nullptr)}});
+    pixels.push_back(both({{"pixel", MatrixToJson(Eigen::Vector2d(q.head<2>()))}, {"depth", q.z()}},
+                          [&](Kind k) { return ProjectionUncertaintyAtPixel(c, q.head<2>(), q.z(), k); }));
   }
   j["pixels"] = std::move(pixels);
   if (request.grid_depth) {
+    const auto with_poses = ProjectionUncertaintyGrid(c, *request.grid_depth, request.grid_cols, request.grid_rows, Kind::kWithPoses);
+    const auto intrinsics = ProjectionUncertaintyGrid(c, *request.grid_depth, request.grid_cols, request.grid_rows, Kind::kIntrinsicsOnly);
     OrderedJson cells = OrderedJson::array();
-    for (const UncertaintyCell& cell :
-         ProjectionUncertaintyGrid(c, *request.grid_depth, request.grid_cols, request.grid_rows)) {
-      cells.push_back({cell.pixel.x(), cell.pixel.y(), cell.ellipse.sigma_major_px, cell.ellipse.sigma_minor_px,
-                       cell.ellipse.angle_deg});
+    for (size_t i = 0; i < with_poses.size() && i < intrinsics.size(); ++i) {
+      const Ellipse& a = with_poses[i].ellipse;
+      const Ellipse& b = intrinsics[i].ellipse;
+      cells.push_back({with_poses[i].pixel.x(), with_poses[i].pixel.y(), a.sigma_major_px, a.sigma_minor_px, a.angle_deg,
+                       b.sigma_major_px, b.sigma_minor_px, b.angle_deg});
     }
     j["grid"] = {{"depth", *request.grid_depth},
                  {"cols", request.grid_cols},
                  {"rows", request.grid_rows},
-                 {"columns", {"u", "v", "sigma_major_px", "sigma_minor_px", "angle_deg"}},
+                 {"columns", {"u", "v", "with_poses.sigma_major_px", "with_poses.sigma_minor_px", "with_poses.angle_deg",
+                              "intrinsics_only.sigma_major_px", "intrinsics_only.sigma_minor_px",
+                              "intrinsics_only.angle_deg"}},
                  {"cells", std::move(cells)}};
   }
   return j;

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <optional>
+#include <string_view>
 #include <vector>
 
 #include "vstcal/calib/pipeline.h"
@@ -23,8 +24,17 @@ struct UncertaintyRequest {
   int grid_rows = 9;
 };
 
-// "projection_uncertainty": ellipses at the test points (volume rigs), the requested points and
-// pixels, and the grid; null when the camera has no covariance.
+// What the two kinds of projection uncertainty mean (ProjectionUncertaintyKind), as the camera
+// file and the tools' summaries label them.
+inline constexpr std::string_view kWithPosesMeaning =
+    "the point tied to the calibration object (through camera_from_world, or averaged over every board's pose): "
+    "intrinsics and poses vary";
+inline constexpr std::string_view kIntrinsicsOnlyMeaning =
+    "the point fixed in the camera frame, only the intrinsics vary: what using this camera elsewhere, posed anew, "
+    "inherits";
+
+// "projection_uncertainty": both kinds of ellipse at the test points (volume rigs), the requested
+// points and pixels, and the grid; null when the camera has no covariance.
 OrderedJson UncertaintyToJson(const CalibratedCamera& camera, const UncertaintyRequest& request);
 
 }  // namespace vstcal::io

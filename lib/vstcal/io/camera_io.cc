@@ -63,33 +63,32 @@ std::vector<double> ReadDistortion(const JsonNode& node, AnyLensModel* model) {
 
 constexpr std::string_view kTangentAxes[] = {"rx", "ry", "rz", "tx", "ty", "tz"};
 
-// The pose a pose-tangent name refers to (calibrated_camera.h): "camera_from_world.<axis>" or
-// "views[<i>].camera_from_board.<axis>"; nullopt for any other name.
+// The pose a pose name refers to (parameter_covariance.h): "camera_from_world" or
+// "views[<i>].camera_from_board"; nullopt for any other name.
 struct TangentPose {
   std::optional<size_t> view;  // nullopt: camera_from_world
 };
 
-std::optional<TangentPose> PoseOfTangentName(std::string_view name) {
-  std::string_view rest;
-  TangentPose pose;
-  if (name.starts_with("camera_from_world.")) {
-    rest = name.substr(std::string_view("camera_from_world.").size());
-  } else if (name.starts_with("views[")) {
-    const size_t close = name.find(']');
-    const std::string_view index = name.substr(6, close == std::string_view::npos ? 0 : close - 6);
-    // More than 9 digits is no view index a file can have (and a long one would overflow stoul).
-    if (index.empty() || index.size() > 9 || !std::all_of(index.begin(), index.end(), [](char c) { return c >= '0' && c <= '9'; })) {
-      return std::nullopt;
-    }
-    pose.view = std::stoul(std::string(index));
-    rest = name.substr(close + 1);
-    if (!rest.starts_with(".camera_from_board.")) return std::nullopt;
-    rest = rest.substr(std::string_view(".camera_from_board.").size());
-  } else {
+std::optional<TangentPose> PoseOfName(std::string_view name) {
+  if (name == "camera_from_world") return TangentPose{};
+  if (!name.starts_with("views[")) return std::nullopt;
+  const size_t close = name.find(']');
+  const std::string_view index = name.substr(6, close == std::string_view::npos ? 0 : close - 6);
+  // More than 9 digits is no view index a file can have (and a long one would overflow stoul).
+  if (index.empty() || index.size() > 9 || !std::all_of(index.begin(), index.end(), [](char c) { return c >= '0' && c <= '9'; })) {
     return std::nullopt;
   }
-  if (std::find(std::begin(kTangentAxes), std::end(kTangentAxes), rest) == std::end(kTangentAxes)) return std::nullopt;
-  return pose;
+  if (name.substr(close + 1) != ".camera_from_board") return std::nullopt;
+  return TangentPose{std::stoul(std::string(index))};
+}
+
+// The pose a pose-tangent name "<pose>.<axis>" refers to; nullopt for any other name.
+std::optional<TangentPose> PoseOfTangentName(std::string_view name) {
+  const size_t dot = name.rfind('.');
+  if (dot == std::string_view::npos) return std::nullopt;
+  const std::string_view axis = name.substr(dot + 1);
+  if (std::find(std::begin(kTangentAxes), std::end(kTangentAxes), axis) == std::end(kTangentAxes)) return std::nullopt;
+  return PoseOfName(name.substr(0, dot));
 }
 
 // A pose tangent must name a pose the file has.
@@ -107,6 +106,83 @@ void CheckTangentPoseExists(const JsonNode& name_node, const std::string& name, 
   const std::string fix = poses.num_views == 0 ? "add the views or drop the parameter"
                                                : "use views[0] … views[" + std::to_string(poses.num_views - 1) + "] or drop the parameter";
   name_node.Fail("\"" + name + "\" names view " + std::to_string(*pose.view) + ", but " + has, fix);
+}
+
+// A covariance read from `node` (rows as written): no negative variance (`names` name the rows),
+// symmetric to 1e-9 of its largest entry.
+void CheckCovarianceMatrix(const JsonNode& node, const Eigen::MatrixXd& matrix, const std::vector<std::string>& names) {
+  const Eigen::Index n = matrix.rows();
+  const double tolerance = 1e-9 * std::max(matrix.cwiseAbs().maxCoeff(), 1e-300);
+  for (Eigen::Index r = 0; r < n; ++r) {
+    if (matrix(r, r) < 0) {
+      node.at(static_cast<size_t>(r)).at(static_cast<size_t>(r)).Fail("the variance of \"" + names[r] + "\" is negative", "fix the matrix");
+    }
+    for (Eigen::Index k = 0; k < r; ++k) {
+      if (std::abs(matrix(r, k) - matrix(k, r)) > tolerance) {
+        node.at(static_cast<size_t>(r)).at(static_cast<size_t>(k)).Fail(
+            "differs from matrix[" + std::to_string(k) + "][" + std::to_string(r) + "]: not symmetric",
+            "write a symmetric covariance matrix");
+      }
+    }
+  }
+}
+
+// Positive semi-definite to −1e-9 of the largest |eigenvalue| (the lower triangle is read).
+void CheckPositiveSemiDefinite(const JsonNode& node, const Eigen::MatrixXd& matrix, const std::string& what) {
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(matrix, Eigen::EigenvaluesOnly);
+  const double smallest = eig.eigenvalues().minCoeff();
+  const double largest = eig.eigenvalues().cwiseAbs().maxCoeff();
+  if (smallest < -1e-9 * largest) {
+    char buf[200];
+    std::snprintf(buf, sizeof buf, "%snot positive semi-definite: eigenvalue %.6g < -1e-9 × largest |eigenvalue| %.6g",
+                  what.c_str(), smallest, largest);
+    node.Fail(buf, "write a covariance matrix (correlations within [-1, 1], no negative eigenvalue)");
+  }
+}
+
+// "poses": [{"pose", "matrix" (6×6), "with_parameters" (6 × parameters)}, …]: one pose block each
+// (parameter_covariance.h). Each names a pose the file has (when `poses` is known), once, and
+// not also by tangents in "parameters"; its matrix is a covariance; and the joint covariance of
+// the parameters and the pose is positive semi-definite — which, poses being correlated only
+// through the parameters, makes the whole matrix so.
+void ReadPoseBlocks(const JsonNode& node, const std::optional<CovariancePoses>& poses, ParameterCovariance* cov) {
+  const size_t count = node.ArraySize();
+  const Eigen::Index n = static_cast<Eigen::Index>(cov->parameters.size());
+  for (size_t i = 0; i < count; ++i) {
+    const JsonNode b = node.at(i);
+    PoseCovariance block;
+    block.pose = b.at("pose").String();
+    const auto pose = PoseOfName(block.pose);
+    if (!pose) {
+      b.at("pose").Fail("unknown pose \"" + block.pose + "\"", "name camera_from_world or views[i].camera_from_board");
+    }
+    if (poses) CheckTangentPoseExists(b.at("pose"), block.pose, *pose, *poses);
+    if (cov->FindPose(block.pose)) b.at("pose").Fail("duplicate pose \"" + block.pose + "\"", "give each pose one block");
+    for (const std::string_view axis : kTangentAxes) {
+      if (cov->Find(block.pose + "." + std::string(axis))) {
+        b.at("pose").Fail("\"" + block.pose + "\" also has tangents in \"parameters\"",
+                          "give a pose either tangents in parameters or a block here, not both");
+      }
+    }
+    const JsonNode m = b.at("matrix");
+    block.matrix = m.Matrix<6, 6>();
+    std::vector<std::string> names;
+    for (const std::string_view axis : kTangentAxes) names.push_back(block.pose + "." + std::string(axis));
+    CheckCovarianceMatrix(m, block.matrix, names);
+    CheckPositiveSemiDefinite(m, block.matrix, "");
+    const JsonNode w = b.at("with_parameters");
+    w.ArraySize(6);
+    block.with_parameters.resize(6, n);
+    for (size_t r = 0; r < 6; ++r) {
+      const JsonNode row = w.at(r);
+      row.ArraySize(static_cast<size_t>(n));
+      for (Eigen::Index k = 0; k < n; ++k) block.with_parameters(static_cast<Eigen::Index>(r), k) = row.at(static_cast<size_t>(k)).Number();
+    }
+    Eigen::MatrixXd joint(n + 6, n + 6);
+    joint << cov->matrix, block.with_parameters.transpose(), block.with_parameters, block.matrix;
+    CheckPositiveSemiDefinite(b, joint, "with the parameters, ");
+    cov->poses.push_back(std::move(block));
+  }
 }
 
 }  // namespace
@@ -152,28 +228,10 @@ ParameterCovariance ReadCovarianceMatrix(const JsonNode& node, std::vector<std::
     row.ArraySize(n);
     for (size_t k = 0; k < n; ++k) cov.matrix(r, k) = row.at(k).Number();
   }
-  const double tolerance = 1e-9 * std::max(cov.matrix.cwiseAbs().maxCoeff(), 1e-300);
-  for (size_t r = 0; r < n; ++r) {
-    if (cov.matrix(r, r) < 0) {
-      m.at(r).at(r).Fail("the variance of \"" + cov.parameters[r] + "\" is negative", "fix the matrix");
-    }
-    for (size_t k = 0; k < r; ++k) {
-      if (std::abs(cov.matrix(r, k) - cov.matrix(k, r)) > tolerance) {
-        m.at(r).at(k).Fail("differs from matrix[" + std::to_string(k) + "][" + std::to_string(r) + "]: not symmetric",
-                           "write a symmetric covariance matrix");
-      }
-    }
-  }
-  // Symmetric to the tolerance above, so the lower triangle the solver reads is the matrix.
-  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(cov.matrix, Eigen::EigenvaluesOnly);
-  const double smallest = eig.eigenvalues().minCoeff();
-  const double largest = eig.eigenvalues().cwiseAbs().maxCoeff();
-  if (smallest < -1e-9 * largest) {
-    char buf[160];
-    std::snprintf(buf, sizeof buf, "not positive semi-definite: eigenvalue %.6g < -1e-9 × largest |eigenvalue| %.6g", smallest,
-                  largest);
-    m.Fail(buf, "write a covariance matrix (correlations within [-1, 1], no negative eigenvalue)");
-  }
+  CheckCovarianceMatrix(m, cov.matrix, cov.parameters);
+  // Symmetric to that tolerance, so the lower triangle the solvers read is the matrix.
+  CheckPositiveSemiDefinite(m, cov.matrix, "");
+  if (const auto blocks = node.find("poses")) ReadPoseBlocks(*blocks, poses, &cov);
   return cov;
 }
 
@@ -336,6 +394,13 @@ OrderedJson CameraToJson(const CalibratedCamera& c, const Provenance& provenance
   if (c.fit) j["fit"] = FitToJson(*c.fit);
   if (c.covariance) {
     j["covariance"] = {{"parameters", c.covariance->parameters}, {"matrix", MatrixToJson(c.covariance->matrix)}};
+    if (!c.covariance->poses.empty()) {
+      OrderedJson poses = OrderedJson::array();
+      for (const PoseCovariance& p : c.covariance->poses) {
+        poses.push_back({{"pose", p.pose}, {"matrix", MatrixToJson(p.matrix)}, {"with_parameters", MatrixToJson(p.with_parameters)}});
+      }
+      j["covariance"]["poses"] = std::move(poses);
+    }
   }
   for (const auto& [key, value] : extra.items()) j[key] = value;
   j["provenance"] = ProvenanceToJson(provenance);

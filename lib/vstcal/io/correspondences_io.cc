@@ -23,14 +23,22 @@ void CheckInImage(const JsonNode& node, const Eigen::Vector2d& px, const ImageSi
 }
 
 Observation ReadPoint(const JsonNode& node, const Correspondences& c) {
-  if (!node.json().is_array()) node.Fail("expected [X, Y, Z, u, v], got a non-array", "write each point as [X, Y, Z, u, v]");
-  if (node.json().size() != 5) {
-    node.Fail("expected 5 numbers [X, Y, Z, u, v], got " + std::to_string(node.json().size()),
-              "write each point as [X, Y, Z, u, v]");
+  constexpr std::string_view kForm = "write each point as [X, Y, Z, u, v], or [X, Y, Z, u, v, weight]";
+  if (!node.json().is_array()) node.Fail("expected [X, Y, Z, u, v], got a non-array", kForm);
+  if (node.json().size() != 5 && node.json().size() != 6) {
+    node.Fail("expected 5 numbers [X, Y, Z, u, v] or 6 with a weight, got " + std::to_string(node.json().size()), kForm);
   }
   Observation o;
   for (int i = 0; i < 3; ++i) o.point(i) = node.at(i).Number();
   for (int i = 0; i < 2; ++i) o.pixel(i) = node.at(3 + i).Number();
+  if (node.json().size() == 6) {
+    const JsonNode w = node.at(5);
+    o.weight = w.Number();
+    if (!(o.weight > 0)) {
+      w.Fail("the weight must be positive, got " + w.json().dump(),
+             "give a weight > 0 (the point's noise is sigma/sqrt(weight)), or remove the point");
+    }
+  }
   CheckInImage(node, o.pixel, c.image_size, "check image_size and that the columns are X, Y, Z, u, v");
   if (c.rig == Rig::kPlanarViews && o.point.z() != 0.0) {
     node.at(2).Fail("planar-views points lie on their board (Z = 0), got Z = " + node.at(2).json().dump(),
@@ -121,7 +129,9 @@ OrderedJson CorrespondencesToJson(const Correspondences& c, const Provenance& pr
     if (v.plane_offset) jv["plane_offset"] = *v.plane_offset;
     OrderedJson points = OrderedJson::array();
     for (const Observation& o : v.observations) {
-      points.push_back({o.point.x(), o.point.y(), o.point.z(), o.pixel.x(), o.pixel.y()});
+      OrderedJson p = {o.point.x(), o.point.y(), o.point.z(), o.pixel.x(), o.pixel.y()};
+      if (o.weight != 1.0) p.push_back(o.weight);  // a weight of 1 is the default: not written
+      points.push_back(std::move(p));
     }
     jv["points"] = std::move(points);
     views.push_back(std::move(jv));

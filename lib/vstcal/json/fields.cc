@@ -25,7 +25,7 @@ ImageSize ReadImageSize(const JsonNode& node) {
   return ImageSize{side(0, "width"), side(1, "height")};
 }
 
-LengthUnit ReadLengthUnit(const JsonNode& node) { return *LengthUnitFromName(node.OneOf({"mm", "cm", "m"})); }
+LengthUnit ReadLengthUnit(const JsonNode& node) { return *LengthUnitFromName(node.OneOf(kLengthUnitNames)); }
 
 Rigid3d ReadRigid(const JsonNode& node) {
   Rigid3d pose;

@@ -17,7 +17,7 @@ namespace vstcal::io {
 // image_size [width, height]: two positive integers (px).
 ImageSize ReadImageSize(const JsonNode& node);
 
-// length_unit: "mm", "cm" or "m".
+// length_unit: one of kLengthUnitNames ("mm", "cm", "m", "in").
 LengthUnit ReadLengthUnit(const JsonNode& node);
 
 // A transform {"R": 3×3, "t": [3]}: R must be a rotation to 1e-6; one that is not a rotation to

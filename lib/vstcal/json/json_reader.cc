@@ -336,6 +336,10 @@ std::string JsonNode::String() const {
 }
 
 std::string JsonNode::OneOf(std::initializer_list<std::string_view> allowed) const {
+  return OneOf(std::span<const std::string_view>(allowed.begin(), allowed.size()));
+}
+
+std::string JsonNode::OneOf(std::span<const std::string_view> allowed) const {
   const std::string s = String();
   std::string list;
   for (std::string_view a : allowed) {

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <initializer_list>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 
@@ -57,6 +58,7 @@ class JsonNode {
   std::string String() const;
   // A string that must be one of `allowed`; the message lists them.
   std::string OneOf(std::initializer_list<std::string_view> allowed) const;
+  std::string OneOf(std::span<const std::string_view> allowed) const;
 
   // Fixed-length numeric arrays and matrices given as arrays of rows.
   template <int N>
