@@ -213,7 +213,9 @@ ParameterCovariance ReadCovariance(const JsonNode& node, const Camera& camera, c
     if (cov.Find(name)) names.at(i).Fail("duplicate parameter \"" + name + "\"", "list each parameter once");
     cov.parameters.push_back(name);
   }
-  return ReadCovarianceMatrix(node, std::move(cov.parameters));
+  ParameterCovariance read = ReadCovarianceMatrix(node, std::move(cov.parameters));
+  if (const auto blocks = node.find("poses")) ReadPoseBlocks(*blocks, poses, &read);
+  return read;
 }
 
 ParameterCovariance ReadCovarianceMatrix(const JsonNode& node, std::vector<std::string> names) {
@@ -231,7 +233,6 @@ ParameterCovariance ReadCovarianceMatrix(const JsonNode& node, std::vector<std::
   CheckCovarianceMatrix(m, cov.matrix, cov.parameters);
   // Symmetric to that tolerance, so the lower triangle the solvers read is the matrix.
   CheckPositiveSemiDefinite(m, cov.matrix, "");
-  if (const auto blocks = node.find("poses")) ReadPoseBlocks(*blocks, poses, &cov);
   return cov;
 }
 
