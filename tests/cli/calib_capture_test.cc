@@ -371,7 +371,7 @@ TEST_P(CliCalibCaptureBad, FailsCleanly) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Cases, CliCalibCaptureBad, ::testing::ValuesIn(BadCases()),
-                         [](const ::testing::TestParamInfo<BadCase>& info) { return info.param.name; });
+                         [](const ::testing::TestParamInfo<BadCase>& case_info) { return case_info.param.name; });
 
 }  // namespace
 }  // namespace vstcal::cli_test

@@ -35,7 +35,9 @@ class CliExtremeInputs : public CliTest {
     }
     for (const std::string& o : outputs) {
       EXPECT_TRUE(fs::exists(Path(o))) << scenario << ": " << command << " wrote no " << o;
-      if (o.ends_with(".json") && fs::exists(Path(o))) EXPECT_NO_THROW(ReadJson(o)) << o;
+      if (o.ends_with(".json") && fs::exists(Path(o))) {
+        EXPECT_NO_THROW(ReadJson(o)) << o;
+      }
     }
     return true;
   }
