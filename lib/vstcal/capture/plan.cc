@@ -265,6 +265,8 @@ CapturePlan PlanCapture(const PlanRequest& request) {
   }
   const bool one_plane = request.rig == Rig::kVolume && c.views.size() == 1;
   plan.prediction = CovarianceAt(c, request.camera, poses, SolveOptions(request, one_plane), request.pixel_sigma);
+  plan.corners = c;
+  plan.poses = poses;
   if (!plan.prediction.observable) {
     plan.warnings.push_back("the plan cannot determine the calibration: " + plan.prediction.message);
     return plan;

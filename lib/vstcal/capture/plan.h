@@ -86,6 +86,10 @@ struct CapturePlan {
   std::vector<PositionPlan> positions;
   Rigid3d camera_from_world;  // volume
   int used_corners = 0;
+  // The noise-free corners the prediction is the information of (the positions `used`), and the
+  // poses it is taken at: camera_from_world (volume) or each used view's camera_from_board.
+  Correspondences corners;
+  std::vector<Rigid3d> poses;
   CalibrationCovariance prediction;
   std::vector<ParameterSigma> sigmas;      // empty when not observable
   std::vector<PointUncertainty> points;    // empty when not observable
