@@ -201,10 +201,12 @@ CapturePlan PlanCapture(const PlanRequest& request) {
     VolumeSpec spec = request.volume;
     spec.length_unit = request.target.length_unit;
     spec.noise_px = 0;
-    // The same checks as calib-synth's volumes (the grid stands in for the target's extent).
-    spec.grid_cols = 2;
-    spec.grid_rows = 2;
-    spec.spacing = std::max(extent.width(), extent.height());
+    // The same checks of the volume as calib-synth's, on a 3 × 3 grid spanning the target: its
+    // centre corner is seen whenever the camera looks at the template; whether the target's own
+    // corners are is this plan's to report, position by position.
+    spec.grid_cols = 3;
+    spec.grid_rows = 3;
+    spec.spacing = 0.5 * std::max(extent.width(), extent.height());
     (void)SynthesizeVolume(request.camera, spec, {});
     plan.camera_from_world = VolumeCameraPose(spec);
     const double planes = std::floor((spec.far - spec.near) / spec.interval + 1e-9) + 1;
