@@ -80,5 +80,35 @@ TEST_F(CliCapturePlan, BadInputIsOneLineNothingWritten) {
   EXPECT_TRUE(OutDirEmpty());
 }
 
+TEST_F(CliCapturePlan, CompareTwoPlans) {
+  ASSERT_EQ(Run(kTool, Override(Args(), "-o", "in/a.json")).exit_code, kOk);
+  ASSERT_EQ(Run(kTool, Override(Override(Args(), "-o", "in/b.json"), "--tilt-deg", "30")).exit_code, kOk);
+  const CommandResult r = Run(kTool, {"plan", "--compare", "in/a.json", "in/b.json", "-o", "out/cmp.json"});
+  ASSERT_EQ(r.exit_code, kOk) << r.err;
+  const Json a = ReadJson("in/a.json"), b = ReadJson("in/b.json"), cmp = ReadJson("out/cmp.json");
+  EXPECT_EQ(cmp["format"], "vstcal/capture-plan-comparison@1");
+  ASSERT_EQ(cmp["parameters"].size(), a["prediction"]["parameters"].size());
+  for (size_t i = 0; i < cmp["parameters"].size(); ++i) {
+    const double sa = a["prediction"]["parameters"][i]["sigma"], sb = b["prediction"]["parameters"][i]["sigma"];
+    EXPECT_EQ(cmp["parameters"][i]["ratio"].get<double>(), sb / sa);
+    EXPECT_EQ(cmp["parameters"][i]["better"], sb < sa ? "B" : "A");
+  }
+  ASSERT_EQ(cmp["test_points_with_poses_px"].size(), 5u);
+
+  // Plans at different pixel noise, a broken plan, a plan flag beside --compare.
+  ASSERT_EQ(Run(kTool, Override(Override(Args(), "-o", "in/c.json"), "--pixel-sigma", "0.5")).exit_code, kOk);
+  EXPECT_TRUE(FailsWith(Run(kTool, {"plan", "--compare", "in/a.json", "in/c.json", "-o", "out/x.json"}), kTool, kBadInput,
+                        "in/c.json: prediction.pixel_sigma: ", {"same --pixel-sigma"}));
+  WriteText("in/broken.json", "{\"format\": \"vstcal/capture-plan@1\", \"prediction\": {}}");
+  EXPECT_TRUE(FailsWith(Run(kTool, {"plan", "--compare", "in/a.json", "in/broken.json", "-o", "out/x.json"}), kTool, kBadInput,
+                        "in/broken.json: ", {}));
+  EXPECT_TRUE(FailsWith(Run(kTool, {"plan", "--compare", "in/a.json", "in/b.json", "--fx", "3", "-o", "out/x.json"}), kTool,
+                        kBadInput, "--fx: ", {"remove --fx"}));
+  EXPECT_TRUE(FailsWith(Run(kTool, {"plan", "--compare", "in/a.json", "in/b.json", "-o", "in/a.json"}), kTool, kBadInput,
+                        "in/a.json: ", {"never overwrites its inputs"}));
+  EXPECT_EQ(ReadJson("in/a.json"), a);
+  EXPECT_EQ(List("out"), std::vector<std::string>{"cmp.json"});  // no x.json from the failures
+}
+
 }  // namespace
 }  // namespace vstcal::cli_test

@@ -136,7 +136,11 @@ capture::RenderCommand RenderFlags::Finish(CLI::App* app) {
 void PlanFlags::Add(CLI::App* app) {
   capture::PlanCommand& c = command;
   capture::PlanRequest& r = c.request;
-  app->add_option("TARGET", c.target_file, "the board's vstcal/target@1 file")->required()->check(kNonEmpty);
+  CLI::Option* target = app->add_option("TARGET", c.target_file, "the board's vstcal/target@1 file")->check(kNonEmpty);
+  app->add_option("--compare", c.compare, "PLAN_A PLAN_B: put two vstcal/capture-plan@1 files side by side instead of planning")
+      ->expected(2)
+      ->check(kNonEmpty)
+      ->excludes(target);
   CLI::Option* camera = app->add_option("--camera", c.camera_file, "vstcal/camera@1 file: image size, K, distortion")->check(kNonEmpty);
   for (CLI::Option* o : {app->add_option("--image-size", image_size, "nominal camera: WxH in px, e.g. 1280x720")->check(kNonEmpty),
                          app->add_option("--fx", c.nominal.fx, "nominal camera: focal length, px")->check(kFinite),
@@ -198,6 +202,17 @@ std::vector<double> Expect(const std::vector<std::vector<double>>& lists, size_t
 
 capture::PlanCommand PlanFlags::Finish(CLI::App* app) {
   capture::PlanRequest& r = command.request;
+  command.text = format == "text";
+  if (!command.compare.empty()) {
+    for (const CLI::Option* o : app->get_options()) {
+      const std::string name = o->get_name();
+      if (o->count() > 0 && name != "--compare" && name != "--format" && name != "--output" && name != "--help") {
+        throw InputError(name + ": --compare reads its two plans as they are; remove " + name);
+      }
+    }
+    return command;
+  }
+  if (command.target_file.empty()) throw InputError("TARGET: give the board's vstcal/target@1 file (or --compare PLAN_A PLAN_B)");
   r.rig = rig == "volume" ? Rig::kVolume : Rig::kPlanarViews;
   const bool planar = r.rig == Rig::kPlanarViews;
   const std::vector<std::string> volume_only = {"--near", "--far", "--interval", "--camera-distance", "--tilt-deg", "--tilt-direction-deg",
@@ -227,7 +242,6 @@ capture::PlanCommand PlanFlags::Finish(CLI::App* app) {
     r.sharp_near = d[0];
     r.sharp_far = d[1];
   }
-  command.text = format == "text";
   return command;
 }
 

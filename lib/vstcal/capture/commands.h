@@ -75,6 +75,9 @@ struct PlanCommand {
   bool default_test_points = true;
   std::string output;
   bool text = false;
+  // Two vstcal/capture-plan@1 files to put side by side instead of planning
+  // (vstcal/capture-plan-comparison@1, or text).
+  std::vector<std::string> compare;
 };
 OutputFiles RunPlan(PlanCommand command, const io::Provenance& provenance);
 

@@ -2,6 +2,7 @@
 #include <cmath>
 
 #include "vstcal/capture/commands.h"
+#include "vstcal/capture/plan_compare.h"
 #include "vstcal/capture/plan_io.h"
 #include "vstcal/capture/target_io.h"
 #include "vstcal/core/error.h"
@@ -34,6 +35,14 @@ Camera PlanCamera(PlanCommand& command) {
 }  // namespace
 
 OutputFiles RunPlan(PlanCommand command, const io::Provenance& provenance) {
+  OutputFiles out;
+  if (!command.compare.empty()) {
+    const PlanPrediction a = ReadPlanPrediction(command.compare.at(0)), b = ReadPlanPrediction(command.compare.at(1));
+    const std::string text = ComparePlansText(a, b);
+    out.files.emplace_back(command.output, command.text ? text : io::DumpJson(ComparePlansToJson(a, b, provenance)));
+    out.summary = "calib-capture plan --compare: " + text + "wrote " + command.output;
+    return out;
+  }
   PlanRequest& r = command.request;
   r.target = ReadTarget(command.target_file);
   r.camera = PlanCamera(command);
@@ -55,7 +64,6 @@ OutputFiles RunPlan(PlanCommand command, const io::Provenance& provenance) {
     r.test_points = std::move(points);
   }
   CapturePlan plan = PlanCapture(r);
-  OutputFiles out;
   const std::string text = CapturePlanText(plan);
   out.files.emplace_back(command.output, command.text ? text : io::DumpJson(CapturePlanToJson(plan, provenance)));
   out.summary = "calib-capture plan: " + text + "wrote " + command.output;
