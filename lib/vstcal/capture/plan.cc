@@ -262,7 +262,7 @@ CapturePlan PlanCapture(const PlanRequest& request) {
     c.views.push_back(std::move(view));
   }
   if (c.views.empty()) {
-    throw Error(ExitCode::kDegenerate, "no planned position shows the target usably (see the positions' warnings); "
+    throw DegenerateError("no planned position shows the target usably (see the positions' warnings); "
                                        "move the camera back or change the volume");
   }
   const bool one_plane = request.rig == Rig::kVolume && c.views.size() == 1;

@@ -38,7 +38,7 @@ std::vector<Row> Pair(const PlanPrediction& a, const PlanPrediction& b, bool poi
 void Check(const PlanPrediction& a, const PlanPrediction& b) {
   for (const PlanPrediction* p : {&a, &b}) {
     if (!p->observable) {
-      throw Error(ExitCode::kDegenerate, p->file + ": prediction: the plan does not determine the calibration (observable "
+      throw DegenerateError(p->file + ": prediction: the plan does not determine the calibration (observable "
                                                    "false); fix that plan before comparing it");
     }
   }

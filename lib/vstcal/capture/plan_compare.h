@@ -29,7 +29,7 @@ PlanPrediction PlanPredictionFromJson(const io::JsonDocument& doc);
 PlanPrediction ReadPlanPrediction(const std::filesystem::path& path);
 
 // Throws InputError when the plans assume different pixel noise (their σ's would not compare) or
-// name no parameter in common; Error(kDegenerate) when a plan is not observable.
+// name no parameter in common; DegenerateError when a plan is not observable.
 io::OrderedJson ComparePlansToJson(const PlanPrediction& a, const PlanPrediction& b, const io::Provenance& provenance);
 std::string ComparePlansText(const PlanPrediction& a, const PlanPrediction& b);
 
