@@ -6,6 +6,37 @@
 
 namespace vstcal::tools {
 
+namespace {
+
+// The poses of render and plan: a volume's template positions or planar views' board poses.
+void AddPoseFlags(CLI::App* app, VolumeSpec* v, PlanarViewsSpec* p) {
+  app->add_option("--near", v->near, "volume: first template offset")->check(kFinite)->capture_default_str();
+  app->add_option("--far", v->far, "volume: last template offset")->check(kFinite)->capture_default_str();
+  app->add_option("--interval", v->interval, "volume: step between template positions")->check(kFinite)->capture_default_str();
+  app->add_option("--camera-distance", v->camera_distance, "volume: camera to the near plane")->check(kFinite)->capture_default_str();
+  app->add_option("--tilt-deg", v->tilt_deg, "volume: optical axis vs template normal")->check(kFinite)->capture_default_str();
+  app->add_option("--tilt-direction-deg", v->tilt_direction_deg, "volume: 0 = camera moves towards +X")->check(kFinite);
+  app->add_option("--roll-deg", v->roll_deg, "volume: camera roll about its optical axis")->check(kFinite);
+  app->add_option("--views", p->num_views, "planar views: number of board poses")->capture_default_str();
+  app->add_option("--distance", p->distance, "planar views: typical board depth")->check(kFinite)->capture_default_str();
+  app->add_option("--max-tilt-deg", p->max_tilt_deg, "planar views: largest board tilt")->check(kFinite)->capture_default_str();
+}
+
+// Refuses a flag of the other rig: AddPoseFlags' own and a subcommand's `extra` ones (first: a
+// volume-only flag, second: a planar-views-only flag; "" for none).
+void RefuseOtherRigFlags(CLI::App* app, bool planar, const std::pair<std::string, std::string>& extra) {
+  std::vector<std::string> volume_only = {"--near", "--far", "--interval", "--camera-distance", "--tilt-deg", "--tilt-direction-deg",
+                                          "--roll-deg"};
+  std::vector<std::string> planar_only = {"--views", "--distance", "--max-tilt-deg"};
+  if (!extra.first.empty()) volume_only.push_back(extra.first);
+  if (!extra.second.empty()) planar_only.push_back(extra.second);
+  for (const std::string& flag : planar ? volume_only : planar_only) {
+    if (app->count(flag) > 0) throw InputError(flag + ": applies to --rig " + (planar ? "volume" : "planar-views") + " only; remove it or change --rig");
+  }
+}
+
+}  // namespace
+
 void TargetFlags::Add(CLI::App* app) {
   capture::Target& t = request.target;
   t.dictionary = "DICT_5X5_1000";
@@ -99,16 +130,7 @@ void RenderFlags::Add(CLI::App* app) {
   app->add_option("--rig", rig, "volume (the template moved along its normal) or planar-views (the board held at poses)")
       ->check(CLI::IsMember({"volume", "planar-views"}))
       ->capture_default_str();
-  app->add_option("--near", s.volume.near, "volume: first template offset")->check(kFinite)->capture_default_str();
-  app->add_option("--far", s.volume.far, "volume: last template offset")->check(kFinite)->capture_default_str();
-  app->add_option("--interval", s.volume.interval, "volume: step between template positions")->check(kFinite)->capture_default_str();
-  app->add_option("--camera-distance", s.volume.camera_distance, "volume: camera to the near plane")->check(kFinite)->capture_default_str();
-  app->add_option("--tilt-deg", s.volume.tilt_deg, "volume: optical axis vs template normal")->check(kFinite)->capture_default_str();
-  app->add_option("--tilt-direction-deg", s.volume.tilt_direction_deg, "volume: 0 = camera moves towards +X")->check(kFinite);
-  app->add_option("--roll-deg", s.volume.roll_deg, "volume: camera roll about its optical axis")->check(kFinite);
-  app->add_option("--views", s.views.num_views, "planar views: number of board poses")->capture_default_str();
-  app->add_option("--distance", s.views.distance, "planar views: typical board depth")->check(kFinite)->capture_default_str();
-  app->add_option("--max-tilt-deg", s.views.max_tilt_deg, "planar views: largest board tilt")->check(kFinite)->capture_default_str();
+  AddPoseFlags(app, &s.volume, &s.views);
   app->add_option("--blur-px", s.render.blur_px, "Gaussian blur σ, px")->check(kFinite)->capture_default_str();
   app->add_option("--noise", s.render.noise, "Gaussian noise σ, grey levels")->check(kFinite)->capture_default_str();
   app->add_option("--lighting", s.render.lighting, "uneven lighting: the far side is (1 − L) as bright, 0 ≤ L < 1")->check(kFinite);
@@ -120,12 +142,7 @@ capture::RenderCommand RenderFlags::Finish(CLI::App* app) {
   capture::SceneSpec& s = command.scene;
   s.rig = rig == "volume" ? Rig::kVolume : Rig::kPlanarViews;
   const bool planar = s.rig == Rig::kPlanarViews;
-  const std::vector<std::string> volume_only = {"--near", "--far", "--interval", "--camera-distance", "--tilt-deg", "--tilt-direction-deg",
-                                                "--roll-deg"};
-  const std::vector<std::string> planar_only = {"--views", "--distance", "--max-tilt-deg"};
-  for (const std::string& flag : planar ? volume_only : planar_only) {
-    if (app->count(flag) > 0) throw InputError(flag + ": applies to --rig " + (planar ? "volume" : "planar-views") + " only; remove it or change --rig");
-  }
+  RefuseOtherRigFlags(app, planar, {});
   s.views.seed = s.render.seed;
   if (!(s.render.blur_px >= 0 && s.render.blur_px <= 50)) throw InputError("--blur-px: must lie in [0, 50] px");
   if (!(s.render.noise >= 0 && s.render.noise <= 255)) throw InputError("--noise: must lie in [0, 255] grey levels");
@@ -152,16 +169,7 @@ void PlanFlags::Add(CLI::App* app) {
   app->add_option("--rig", rig, "volume (the template moved along its normal) or planar-views (the board held at poses)")
       ->check(CLI::IsMember({"volume", "planar-views"}))
       ->capture_default_str();
-  app->add_option("--near", r.volume.near, "volume: first template offset")->check(kFinite)->capture_default_str();
-  app->add_option("--far", r.volume.far, "volume: last template offset")->check(kFinite)->capture_default_str();
-  app->add_option("--interval", r.volume.interval, "volume: step between template positions")->check(kFinite)->capture_default_str();
-  app->add_option("--camera-distance", r.volume.camera_distance, "volume: camera to the near plane")->check(kFinite)->capture_default_str();
-  app->add_option("--tilt-deg", r.volume.tilt_deg, "volume: optical axis vs template normal")->check(kFinite)->capture_default_str();
-  app->add_option("--tilt-direction-deg", r.volume.tilt_direction_deg, "volume: 0 = camera moves towards +X")->check(kFinite);
-  app->add_option("--roll-deg", r.volume.roll_deg, "volume: camera roll about its optical axis")->check(kFinite);
-  app->add_option("--views", r.views.num_views, "planar views: number of board poses")->capture_default_str();
-  app->add_option("--distance", r.views.distance, "planar views: typical board depth")->check(kFinite)->capture_default_str();
-  app->add_option("--max-tilt-deg", r.views.max_tilt_deg, "planar views: largest board tilt")->check(kFinite)->capture_default_str();
+  AddPoseFlags(app, &r.volume, &r.views);
   app->add_option("--seed", r.views.seed, "planar views: pose pattern seed")->check(kSeed)->capture_default_str();
   app->add_option("--pixel-sigma", r.pixel_sigma, "corner noise σ the prediction assumes, px")->check(kPositiveFinite)->capture_default_str();
   app->add_option("--method", r.method, "the solve to predict: dlt or tsai (one plane: tsai holds fx/fy and the principal point)")
@@ -215,12 +223,7 @@ capture::PlanCommand PlanFlags::Finish(CLI::App* app) {
   if (command.target_file.empty()) throw InputError("TARGET: give the board's vstcal/target@1 file (or --compare PLAN_A PLAN_B)");
   r.rig = rig == "volume" ? Rig::kVolume : Rig::kPlanarViews;
   const bool planar = r.rig == Rig::kPlanarViews;
-  const std::vector<std::string> volume_only = {"--near", "--far", "--interval", "--camera-distance", "--tilt-deg", "--tilt-direction-deg",
-                                                "--roll-deg", "--test-point"};
-  const std::vector<std::string> planar_only = {"--views", "--distance", "--max-tilt-deg", "--seed"};
-  for (const std::string& flag : planar ? volume_only : planar_only) {
-    if (app->count(flag) > 0) throw InputError(flag + ": applies to --rig " + (planar ? "volume" : "planar-views") + " only; remove it or change --rig");
-  }
+  RefuseOtherRigFlags(app, planar, {"--test-point", "--seed"});
   if (command.camera_file.empty()) {
     if (image_size.empty()) throw InputError("--image-size: required without --camera (e.g. --image-size 1280x720)");
     const auto [w, h] = ParseSize(image_size, "--image-size", "WxH (e.g. 1280x720)", limits::kMaxImageSide);
