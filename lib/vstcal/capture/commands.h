@@ -64,8 +64,8 @@ OutputFiles RunRender(const RenderCommand& command, const io::Provenance& proven
 
 // calib-capture plan: OUTPUT, a vstcal/capture-plan@1 file (or its text form). The camera comes
 // from camera_file, or else from `nominal` (image size and fx or hfov_deg, or focal_mm with
-// pixel_pitch_um: fx = fy = focal_mm / pixel pitch). Test points default to seed 000's five
-// (volume) and to the image centre at the median planned depth.
+// pixel_pitch_um: fx = fy = 1000 · focal_mm / pitch_µm px). A volume's test points default to
+// seed 000's five (default_test_points); pixels are predicted only where request.pixel_points asks.
 struct PlanCommand {
   std::string target_file;
   std::string camera_file;
