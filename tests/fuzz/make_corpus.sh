@@ -110,3 +110,15 @@ PY
 cp shard0.json "$corpus/shard/shard0.json"
 cp shard1-compact.json "$corpus/shard/shard1.json"
 du -sh "$corpus"/* >&2
+
+# calib-capture: a chessboard and an AprilTag grid target, and two small capture plans (a volume
+# with seed 000's test points, planar views at a pixel).
+mkdir -p "$corpus"/{target,capture_plan}
+"$tools/calib-capture" target --rows 3 --cols 4 --square-size 40 --dpi 0 -o board 2>/dev/null
+"$tools/calib-capture" target --type apriltag-grid --rows 2 --cols 2 --tag-size 30 --dpi 0 -o tags 2>/dev/null
+"$tools/calib-capture" plan board.target.json --image-size 320x240 --fx 300 --near 0 --far 200 --interval 200 \
+  --camera-distance 600 --tilt-deg 20 --distortion k1 -o volume.plan.json 2>/dev/null
+"$tools/calib-capture" plan board.target.json --rig planar-views --image-size 320x240 --fx 300 --views 4 --distance 400 \
+  --distortion none --uncertainty-pixel 100,100,400 -o views.plan.json 2>/dev/null
+cp board.target.json tags.target.json "$corpus/target/"
+cp volume.plan.json views.plan.json "$corpus/capture_plan/"

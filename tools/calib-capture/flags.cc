@@ -2,8 +2,40 @@
 
 #include "common/validators.h"
 #include "vstcal/core/error.h"
+#include "vstcal/core/limits.h"
 
 namespace vstcal::tools {
+
+namespace {
+
+// The poses of render and plan: a volume's template positions or planar views' board poses.
+void AddPoseFlags(CLI::App* app, VolumeSpec* v, PlanarViewsSpec* p) {
+  app->add_option("--near", v->near, "volume: first template offset")->check(kFinite)->capture_default_str();
+  app->add_option("--far", v->far, "volume: last template offset")->check(kFinite)->capture_default_str();
+  app->add_option("--interval", v->interval, "volume: step between template positions")->check(kFinite)->capture_default_str();
+  app->add_option("--camera-distance", v->camera_distance, "volume: camera to the near plane")->check(kFinite)->capture_default_str();
+  app->add_option("--tilt-deg", v->tilt_deg, "volume: optical axis vs template normal")->check(kFinite)->capture_default_str();
+  app->add_option("--tilt-direction-deg", v->tilt_direction_deg, "volume: 0 = camera moves towards +X")->check(kFinite);
+  app->add_option("--roll-deg", v->roll_deg, "volume: camera roll about its optical axis")->check(kFinite);
+  app->add_option("--views", p->num_views, "planar views: number of board poses")->capture_default_str();
+  app->add_option("--distance", p->distance, "planar views: typical board depth")->check(kFinite)->capture_default_str();
+  app->add_option("--max-tilt-deg", p->max_tilt_deg, "planar views: largest board tilt")->check(kFinite)->capture_default_str();
+}
+
+// Refuses a flag of the other rig: AddPoseFlags' own and a subcommand's `extra` ones (first: a
+// volume-only flag, second: a planar-views-only flag; "" for none).
+void RefuseOtherRigFlags(CLI::App* app, bool planar, const std::pair<std::string, std::string>& extra) {
+  std::vector<std::string> volume_only = {"--near", "--far", "--interval", "--camera-distance", "--tilt-deg", "--tilt-direction-deg",
+                                          "--roll-deg"};
+  std::vector<std::string> planar_only = {"--views", "--distance", "--max-tilt-deg"};
+  if (!extra.first.empty()) volume_only.push_back(extra.first);
+  if (!extra.second.empty()) planar_only.push_back(extra.second);
+  for (const std::string& flag : planar ? volume_only : planar_only) {
+    if (app->count(flag) > 0) throw InputError(flag + ": applies to --rig " + (planar ? "volume" : "planar-views") + " only; remove it or change --rig");
+  }
+}
+
+}  // namespace
 
 void TargetFlags::Add(CLI::App* app) {
   capture::Target& t = request.target;
@@ -98,16 +130,7 @@ void RenderFlags::Add(CLI::App* app) {
   app->add_option("--rig", rig, "volume (the template moved along its normal) or planar-views (the board held at poses)")
       ->check(CLI::IsMember({"volume", "planar-views"}))
       ->capture_default_str();
-  app->add_option("--near", s.volume.near, "volume: first template offset")->check(kFinite)->capture_default_str();
-  app->add_option("--far", s.volume.far, "volume: last template offset")->check(kFinite)->capture_default_str();
-  app->add_option("--interval", s.volume.interval, "volume: step between template positions")->check(kFinite)->capture_default_str();
-  app->add_option("--camera-distance", s.volume.camera_distance, "volume: camera to the near plane")->check(kFinite)->capture_default_str();
-  app->add_option("--tilt-deg", s.volume.tilt_deg, "volume: optical axis vs template normal")->check(kFinite)->capture_default_str();
-  app->add_option("--tilt-direction-deg", s.volume.tilt_direction_deg, "volume: 0 = camera moves towards +X")->check(kFinite);
-  app->add_option("--roll-deg", s.volume.roll_deg, "volume: camera roll about its optical axis")->check(kFinite);
-  app->add_option("--views", s.views.num_views, "planar views: number of board poses")->capture_default_str();
-  app->add_option("--distance", s.views.distance, "planar views: typical board depth")->check(kFinite)->capture_default_str();
-  app->add_option("--max-tilt-deg", s.views.max_tilt_deg, "planar views: largest board tilt")->check(kFinite)->capture_default_str();
+  AddPoseFlags(app, &s.volume, &s.views);
   app->add_option("--blur-px", s.render.blur_px, "Gaussian blur σ, px")->check(kFinite)->capture_default_str();
   app->add_option("--noise", s.render.noise, "Gaussian noise σ, grey levels")->check(kFinite)->capture_default_str();
   app->add_option("--lighting", s.render.lighting, "uneven lighting: the far side is (1 − L) as bright, 0 ≤ L < 1")->check(kFinite);
@@ -119,16 +142,109 @@ capture::RenderCommand RenderFlags::Finish(CLI::App* app) {
   capture::SceneSpec& s = command.scene;
   s.rig = rig == "volume" ? Rig::kVolume : Rig::kPlanarViews;
   const bool planar = s.rig == Rig::kPlanarViews;
-  const std::vector<std::string> volume_only = {"--near", "--far", "--interval", "--camera-distance", "--tilt-deg", "--tilt-direction-deg",
-                                                "--roll-deg"};
-  const std::vector<std::string> planar_only = {"--views", "--distance", "--max-tilt-deg"};
-  for (const std::string& flag : planar ? volume_only : planar_only) {
-    if (app->count(flag) > 0) throw InputError(flag + ": applies to --rig " + (planar ? "volume" : "planar-views") + " only; remove it or change --rig");
-  }
+  RefuseOtherRigFlags(app, planar, {});
   s.views.seed = s.render.seed;
   if (!(s.render.blur_px >= 0 && s.render.blur_px <= 50)) throw InputError("--blur-px: must lie in [0, 50] px");
   if (!(s.render.noise >= 0 && s.render.noise <= 255)) throw InputError("--noise: must lie in [0, 255] grey levels");
   if (!(s.render.lighting >= 0 && s.render.lighting < 1)) throw InputError("--lighting: must lie in [0, 1)");
+  return command;
+}
+
+void PlanFlags::Add(CLI::App* app) {
+  capture::PlanCommand& c = command;
+  capture::PlanRequest& r = c.request;
+  CLI::Option* target = app->add_option("TARGET", c.target_file, "the board's vstcal/target@1 file")->check(kNonEmpty);
+  app->add_option("--compare", c.compare, "PLAN_A PLAN_B: put two vstcal/capture-plan@1 files side by side instead of planning")
+      ->expected(2)
+      ->check(kNonEmpty)
+      ->excludes(target);
+  CLI::Option* camera = app->add_option("--camera", c.camera_file, "vstcal/camera@1 file: image size, K, distortion")->check(kNonEmpty);
+  for (CLI::Option* o : {app->add_option("--image-size", image_size, "nominal camera: WxH in px, e.g. 1280x720")->check(kNonEmpty),
+                         app->add_option("--fx", c.nominal.fx, "nominal camera: focal length, px")->check(kFinite),
+                         app->add_option("--hfov-deg", c.nominal.hfov_deg, "nominal camera: horizontal field of view")->check(kFinite),
+                         app->add_option("--focal-mm", c.focal_mm, "nominal camera: focal length, mm (with --pixel-pitch-um)")->check(kFinite),
+                         app->add_option("--pixel-pitch-um", c.pixel_pitch_um, "nominal camera: pixel size, µm")->check(kFinite)}) {
+    o->excludes(camera);
+  }
+  app->add_option("--rig", rig, "volume (the template moved along its normal) or planar-views (the board held at poses)")
+      ->check(CLI::IsMember({"volume", "planar-views"}))
+      ->capture_default_str();
+  AddPoseFlags(app, &r.volume, &r.views);
+  app->add_option("--seed", r.views.seed, "planar views: pose pattern seed")->check(kSeed)->capture_default_str();
+  app->add_option("--pixel-sigma", r.pixel_sigma, "corner noise σ the prediction assumes, px")->check(kPositiveFinite)->capture_default_str();
+  app->add_option("--method", r.method, "the solve to predict: dlt or tsai (one plane: tsai holds fx/fy and the principal point)")
+      ->check(CLI::IsMember({"dlt", "tsai"}))
+      ->capture_default_str();
+  app->add_option("--distortion", calibration.distortion, "distortion terms the solve estimates (k1,k2,p1,p2,k3,k4,k5,k6) or none")
+      ->capture_default_str();
+  app->add_flag("--skew", calibration.skew, "the solve also estimates the skew s");
+  app->add_option("--test-point", test_points, "volume: world point X,Y,Z to predict the projection uncertainty at (repeatable; "
+                                                "default seed 000's five)")
+      ->delimiter(',')
+      ->check(kFinite)
+      ->type_name("X,Y,Z");
+  app->add_option("--uncertainty-pixel", pixel_points, "pixel U,V at depth D to predict the uncertainty at (repeatable)")
+      ->delimiter(',')
+      ->check(kFinite)
+      ->type_name("U,V,DEPTH");
+  app->add_option("--depth-of-field", depth_of_field, "NEAR,FAR: depths (along the optical axis) in focus; warns outside")
+      ->delimiter(',')
+      ->check(kFinite)
+      ->type_name("NEAR,FAR");
+  app->add_option("--format", format, "json (vstcal/capture-plan@1) or text")->check(CLI::IsMember({"json", "text"}))->capture_default_str();
+  app->add_option("-o,--output", c.output, "file to write")->required()->check(kNonEmpty);
+}
+
+namespace {
+
+std::vector<double> Expect(const std::vector<std::vector<double>>& lists, size_t i, size_t n, const std::string& flag,
+                           const std::string& form) {
+  if (lists[i].size() != n) {
+    throw InputError(flag + ": expected " + std::to_string(n) + " numbers " + form + ", got " + std::to_string(lists[i].size()) +
+                     "; give each as its own " + flag);
+  }
+  return lists[i];
+}
+
+}  // namespace
+
+capture::PlanCommand PlanFlags::Finish(CLI::App* app) {
+  capture::PlanRequest& r = command.request;
+  command.text = format == "text";
+  if (!command.compare.empty()) {
+    for (const CLI::Option* o : app->get_options()) {
+      const std::string name = o->get_name();
+      if (o->count() > 0 && name != "--compare" && name != "--format" && name != "--output" && name != "--help") {
+        throw InputError(name + ": --compare reads its two plans as they are; remove " + name);
+      }
+    }
+    return command;
+  }
+  if (command.target_file.empty()) throw InputError("TARGET: give the board's vstcal/target@1 file (or --compare PLAN_A PLAN_B)");
+  r.rig = rig == "volume" ? Rig::kVolume : Rig::kPlanarViews;
+  const bool planar = r.rig == Rig::kPlanarViews;
+  RefuseOtherRigFlags(app, planar, {"--test-point", "--seed"});
+  if (command.camera_file.empty()) {
+    if (image_size.empty()) throw InputError("--image-size: required without --camera (e.g. --image-size 1280x720)");
+    const auto [w, h] = ParseSize(image_size, "--image-size", "WxH (e.g. 1280x720)", limits::kMaxImageSide);
+    command.nominal.image_size = ImageSize{w, h};
+  }
+  r.options = calibration.Refinement();
+  command.default_test_points = test_points.empty();
+  for (size_t i = 0; i < test_points.size(); ++i) {
+    const std::vector<double> p = Expect(test_points, i, 3, "--test-point", "X,Y,Z");
+    r.test_points.push_back({"point " + std::to_string(i), Eigen::Vector3d(p[0], p[1], p[2]), std::nullopt});
+  }
+  for (size_t i = 0; i < pixel_points.size(); ++i) {
+    const std::vector<double> p = Expect(pixel_points, i, 3, "--uncertainty-pixel", "U,V,DEPTH");
+    r.pixel_points.emplace_back(p[0], p[1], p[2]);
+  }
+  if (!depth_of_field.empty()) {
+    if (depth_of_field.size() > 1) throw InputError("--depth-of-field: give it once, as NEAR,FAR");
+    const std::vector<double> d = Expect(depth_of_field, 0, 2, "--depth-of-field", "NEAR,FAR");
+    r.sharp_near = d[0];
+    r.sharp_far = d[1];
+  }
   return command;
 }
 

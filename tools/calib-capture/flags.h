@@ -4,6 +4,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "common/calibration_flags.h"
 #include "vstcal/capture/commands.h"
 
 namespace vstcal::tools {
@@ -29,6 +30,15 @@ struct RenderFlags {
   std::string rig = "volume";
   void Add(CLI::App* app);
   capture::RenderCommand Finish(CLI::App* app);  // refuses flags of the other rig
+};
+
+struct PlanFlags {
+  capture::PlanCommand command;
+  CalibrationFlags calibration;  // --distortion, --skew parsed as calib-dlt and calib-tsai parse them
+  std::string rig = "volume", image_size, format = "json";
+  std::vector<std::vector<double>> test_points, pixel_points, depth_of_field;
+  void Add(CLI::App* app);
+  capture::PlanCommand Finish(CLI::App* app);  // refuses flags of the other rig
 };
 
 }  // namespace vstcal::tools

@@ -10,6 +10,7 @@ int main(int argc, char** argv) {
   CLI::App app{"From a printed calibration target to vstcal/correspondences@1.\n"
                "  target  write a printable board (SVG at exact size, PNG at a DPI) and its vstcal/target@1 description\n"
                "  detect  find the board's corners in images, a video or a camera; account for every image\n"
+               "  plan    predict each planned position's coverage and the calibration's σ's before capturing\n"
                "  render  draw the board through a camera@1 model at the poses of a volume or of planar views, with the truth\n"
                "Exit codes: 0 ok, 1 internal error, 2 bad usage or input, 3 too few usable images (degenerate data).",
                "calib-capture"};
@@ -22,6 +23,9 @@ int main(int argc, char** argv) {
   vstcal::tools::RenderFlags render;
   CLI::App* render_app = app.add_subcommand("render", "render a target through a camera model, with the true corners");
   render.Add(render_app);
+  vstcal::tools::PlanFlags plan;
+  CLI::App* plan_app = app.add_subcommand("plan", "predict a capture's image coverage and the calibration it will give");
+  plan.Add(plan_app);
 
   return vstcal::tools::RunTool(app, argc, argv, [&] {
     using namespace vstcal;
@@ -35,6 +39,8 @@ int main(int argc, char** argv) {
       quiet = detect.quiet;
       tools::ProgressBar bar("calib-capture detect", !quiet);
       outputs = capture::RunDetect(detect.Finish(), provenance, [&](double f) { bar.Update(f); });
+    } else if (used == plan_app) {
+      outputs = capture::RunPlan(plan.Finish(plan_app), provenance);
     } else if (used == render_app) {
       outputs = capture::RunRender(render.Finish(render_app), provenance);
     } else {

@@ -8,7 +8,9 @@
 #include <utility>
 #include <vector>
 
+#include "vstcal/capture/synthetic_camera.h"
 #include "vstcal/capture/detect_run.h"
+#include "vstcal/capture/plan.h"
 #include "vstcal/capture/render_scene.h"
 #include "vstcal/capture/target.h"
 #include "vstcal/json/provenance.h"
@@ -59,5 +61,24 @@ struct RenderCommand {
   SceneSpec scene;
 };
 OutputFiles RunRender(const RenderCommand& command, const io::Provenance& provenance);
+
+// calib-capture plan: OUTPUT, a vstcal/capture-plan@1 file (or its text form). The camera comes
+// from camera_file, or else from `nominal` (image size and fx or hfov_deg, or focal_mm with
+// pixel_pitch_um: fx = fy = 1000 · focal_mm / pitch_µm px). A volume's test points default to
+// seed 000's five (default_test_points); pixels are predicted only where request.pixel_points asks.
+struct PlanCommand {
+  std::string target_file;
+  std::string camera_file;
+  SyntheticCameraSpec nominal;
+  std::optional<double> focal_mm, pixel_pitch_um;
+  PlanRequest request;  // camera and target are read into it here
+  bool default_test_points = true;
+  std::string output;
+  bool text = false;
+  // Two vstcal/capture-plan@1 files to put side by side instead of planning
+  // (vstcal/capture-plan-comparison@1, or text).
+  std::vector<std::string> compare;
+};
+OutputFiles RunPlan(PlanCommand command, const io::Provenance& provenance);
 
 }  // namespace vstcal::capture
