@@ -6,6 +6,7 @@
 #include <cmath>
 #include <map>
 #include <numeric>
+#include <regex>
 #include <set>
 #include <tuple>
 
@@ -62,12 +63,35 @@ std::optional<Solo> CalibrateAlone(const Correspondences& c, const StereoSolveOp
   return solo;
 }
 
+// Renames each view to its key: the first group of `pattern`'s match in its name.
+void KeyViews(const std::string& pattern, const std::string& file, Correspondences* c) {
+  std::regex re;
+  try {
+    re = std::regex(pattern);
+  } catch (const std::regex_error& e) {
+    throw InputError("--match-views: \"" + pattern + "\" is not a regular expression (" + e.what() + "); e.g. '([0-9]+)$'");
+  }
+  if (re.mark_count() < 1) throw InputError("--match-views: \"" + pattern + "\" has no group; put the key in parentheses, e.g. '([0-9]+)$'");
+  for (View& v : c->views) {
+    std::smatch m;
+    if (!std::regex_search(v.name, m, re) || !m[1].matched) {
+      throw InputError(file + ": views: the name \"" + v.name + "\" does not match --match-views \"" + pattern +
+                       "\"; change the pattern or the view's name");
+    }
+    v.name = m[1].str();
+  }
+}
+
 void CheckInputs(const Correspondences& left, const Correspondences& right, const StereoSolveOptions& options,
                  const std::string& left_file, const std::string& right_file) {
   if (left.length_unit != right.length_unit) {
     throw InputError(left_file + " and " + right_file + ": length_unit differs (" + std::string(LengthUnitName(left.length_unit)) +
                      " vs " + std::string(LengthUnitName(right.length_unit)) +
                      "); both cameras must see the same target in one unit: convert one file");
+  }
+  if (options.calibration.refinement.loss != RefineOptions::Loss::kNone) {
+    throw InputError("--loss: the joint stereo solve is least squares; drop --loss (outliers are listed by calib-tsai on each "
+                     "camera's file)");
   }
   if (left.rig != right.rig) {
     throw InputError(left_file + " and " + right_file + ": rig differs (one planar-views, one volume); both files must "
@@ -284,8 +308,12 @@ std::string List(const std::vector<std::string>& names) {
 
 }  // namespace
 
-StereoSolveResult SolveStereo(const Correspondences& left, const Correspondences& right, const StereoSolveOptions& options,
+StereoSolveResult SolveStereo(Correspondences left, Correspondences right, const StereoSolveOptions& options,
                               const std::string& left_file, const std::string& right_file) {
+  if (!options.view_key_pattern.empty()) {
+    KeyViews(options.view_key_pattern, left_file, &left);
+    KeyViews(options.view_key_pattern, right_file, &right);
+  }
   CheckInputs(left, right, options, left_file, right_file);
   StereoSolveResult out;
   std::optional<Solo> solo_left = CalibrateAlone(left, options, left_file, &out);
@@ -371,7 +399,7 @@ StereoSolveResult SolveStereo(const Correspondences& left, const Correspondences
   for (double* global : {sl.params.data(), sr.params.data(), x.delta_rl.data()}) ordering->AddElementToGroup(global, 1);
   solver.linear_solver_type = ceres::DENSE_SCHUR;
   solver.linear_solver_ordering = ordering;
-  solver.max_num_iterations = options.max_iterations;
+  solver.max_num_iterations = refinement.max_iterations;
   // The tolerances and strategy of the single-camera refinement (calib/refine.cc says why).
   solver.function_tolerance = 1e-10;
   solver.parameter_tolerance = 1e-10;
@@ -385,7 +413,7 @@ StereoSolveResult SolveStereo(const Correspondences& left, const Correspondences
   if (summary.termination_type != ceres::CONVERGENCE) {
     out.exit_code = ExitCode::kDegenerate;
     out.message = left_file + " and " + right_file + ": the joint refinement " +
-                  (summary.termination_type == ceres::NO_CONVERGENCE ? "did not converge in " + std::to_string(options.max_iterations) +
+                  (summary.termination_type == ceres::NO_CONVERGENCE ? "did not converge in " + std::to_string(refinement.max_iterations) +
                                                                           " iterations"
                                                                     : "failed: " + summary.message) +
                   "; check that both files hold the same target poses under the same view names";

@@ -23,13 +23,18 @@
 namespace vstcal {
 
 struct StereoSolveOptions {
-  CalibrationOptions calibration;  // each camera's own start and the lens terms estimated
+  // Each camera's own start, the lens terms estimated and the iteration limit of every solve. The
+  // joint problem is least squares: a robust loss is refused (InputError).
+  CalibrationOptions calibration;
   // Intrinsics of an earlier calibration: the start of that camera (its own calibration is
   // skipped) and, when held, its value throughout.
   std::optional<Camera> left_camera, right_camera;
   bool hold_left = false, hold_right = false;  // intrinsics held fixed (at the given camera, else at its own calibration)
-  size_t min_common_views = 3;  // planar views seen by both cameras; fewer: DegenerateError (exit code 3)
-  int max_iterations = 200;
+  // Views match when their keys are equal: the name itself, or, given this regular expression
+  // (ECMAScript), the first group of its match in the name — "([0-9]+)$" pairs left01.jpg's view
+  // "left01" with "right01". A name it does not match is bad input.
+  std::string view_key_pattern;
+  size_t min_common_views = 3;  // planar views seen by both cameras; fewer: exit code 3
 };
 
 struct StereoSolveResult {
@@ -46,10 +51,11 @@ struct StereoSolveResult {
 };
 
 // `left_file`, `right_file` name the inputs in messages. Throws InputError for inputs that cannot
-// be solved together (differing length units or rigs, a view name twice in one file, a given
-// camera whose image size differs from its correspondences'); geometric failures come back in
+// be solved together (differing length units or rigs, a view key twice in one file, a name the
+// view key pattern does not match, a given
+// camera whose image size differs from its correspondences', a robust loss); geometric failures come back in
 // exit_code (kDegenerate) and message, nothing else filled.
-StereoSolveResult SolveStereo(const Correspondences& left, const Correspondences& right, const StereoSolveOptions& options,
+StereoSolveResult SolveStereo(Correspondences left, Correspondences right, const StereoSolveOptions& options,
                               const std::string& left_file = "LEFT", const std::string& right_file = "RIGHT");
 
 }  // namespace vstcal
