@@ -101,8 +101,8 @@ void CheckInputs(const Correspondences& left, const Correspondences& right, cons
     std::set<std::string> names;
     for (const View& v : c->views) {
       if (c->rig == Rig::kPlanarViews && !names.insert(v.name).second) {
-        throw InputError(*file + ": views: the name \"" + v.name + "\" appears twice; views are matched between the cameras by "
-                         "name, so each must be unique");
+        throw InputError(*file + ": views: two views have the key \"" + v.name + "\"; views are matched between the cameras by "
+                         "name (or by their --match-views key), so each must be unique");
       }
     }
   }
