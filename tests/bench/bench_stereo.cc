@@ -1,5 +1,6 @@
 // Binocular registration (issue 11 target: ≥ 20,000 binocular registrations/s on one core) beside
-// OpenCV's solvePnP on the same frames, and PnP's cost against the number of points.
+// OpenCV's solvePnP on the same frames, and PnP's cost against the number of points; the stereo
+// solve (calib-stereo solve) beside cv::calibrateCamera ×2 + cv::stereoCalibrate on the same views.
 //
 // A "binocular registration" is one frame of `calib-stereo register`: the left pose from the
 // tracked pixels, the right pose by composition (or its own PnP, or the joint solve), and the 8
@@ -7,11 +8,15 @@
 // solvePnP on the left pixels, composition with the rig, cv::projectPoints into both images.
 #include <benchmark/benchmark.h>
 
+#include <map>
+
 #include <Eigen/Core>  // before opencv2/core/eigen.hpp, which needs it
 #include <opencv2/calib3d.hpp>
 #include <opencv2/core.hpp>
 #include <opencv2/core/eigen.hpp>
 
+#include "support/opencv_views.h"
+#include "support/scenes.h"
 #include "support/stereo_rigs.h"
 #include "vstcal/camera/opencv_distortion.h"
 #include "vstcal/random/philox.h"
@@ -19,6 +24,7 @@
 #include "vstcal/stereo/pose_refine.h"
 #include "vstcal/stereo/registration.h"
 #include "vstcal/stereo/registration_accuracy.h"
+#include "vstcal/stereo/stereo_solve.h"
 #include "vstcal/stereo/synthetic_tracks.h"
 
 namespace {
@@ -175,8 +181,60 @@ void BM_OpenCvPnpPoints(benchmark::State& state) {
   state.SetItemsProcessed(static_cast<int64_t>(state.iterations()));
 }
 
+// N views (the argument) of the 9×6 board by the ZED-like rig with k3 = 0, 0.3 px noise.
+const testing::StereoViews& StereoViewsOf(int n) {
+  static std::map<int, testing::StereoViews> cache;
+  auto it = cache.find(n);
+  if (it == cache.end()) {
+    StereoRig rig = testing::ZedLikeRig();
+    rig.left.camera.params.back() = rig.right.camera.params.back() = 0;
+    testing::StereoViews v = testing::SyntheticStereoViews(rig, n, 21);
+    v.left = testing::WithNoise(v.left, 0.3, 1);
+    v.right = testing::WithNoise(v.right, 0.3, 2);
+    it = cache.emplace(n, std::move(v)).first;
+  }
+  return it->second;
+}
+
+// The whole solve: both cameras calibrated alone, the rotation average, the joint refinement and
+// the covariance.
+void BM_StereoSolve(benchmark::State& state) {
+  const testing::StereoViews& v = StereoViewsOf(static_cast<int>(state.range(0)));
+  for (auto _ : state) {
+    const StereoSolveResult r = SolveStereo(v.left, v.right, StereoSolveOptions{});
+    if (r.exit_code != ExitCode::kOk) state.SkipWithError(r.message.c_str());
+    benchmark::DoNotOptimize(r.rig.right_from_left.t.data());
+  }
+}
+
+// OpenCV's equivalent: each camera calibrated (k1, k2, p1, p2), then stereoCalibrate from those
+// intrinsics refining everything together (its covariance is not computed: OpenCV has none).
+void BM_OpenCvStereoCalibrate(benchmark::State& state) {
+  const testing::StereoViews& v = StereoViewsOf(static_cast<int>(state.range(0)));
+  // OpenCV needs the same object points in both cameras: every corner of these views is in both images.
+  const testing::OpenCvViews l = testing::ToOpenCvViews(v.left), r = testing::ToOpenCvViews(v.right);
+  for (size_t k = 0; k < l.object.size(); ++k) {
+    if (l.object[k] != r.object[k]) state.SkipWithError("a corner is outside one camera's image");
+  }
+  const cv::Size size(v.left.image_size.width, v.left.image_size.height);
+  const cv::TermCriteria criteria(cv::TermCriteria::COUNT + cv::TermCriteria::EPS, 100, 1e-10);
+  for (auto _ : state) {
+    cv::Mat K1, D1, K2, D2, R, T, E, F;
+    std::vector<cv::Mat> rvecs, tvecs;
+    cv::calibrateCamera(l.object, l.image, size, K1, D1, rvecs, tvecs, cv::CALIB_FIX_K3, criteria);
+    cv::calibrateCamera(r.object, r.image, size, K2, D2, rvecs, tvecs, cv::CALIB_FIX_K3, criteria);
+    cv::stereoCalibrate(l.object, l.image, r.image, K1, D1, K2, D2, size, R, T, E, F,
+                        cv::CALIB_USE_INTRINSIC_GUESS | cv::CALIB_FIX_K3, criteria);
+    benchmark::DoNotOptimize(T.data);
+  }
+}
+
 }  // namespace
 
+BENCHMARK(BM_StereoSolve)->Arg(13)->Arg(100)->Arg(500)->Unit(benchmark::kMillisecond);
+// OpenCV solves the views densely (6 unknowns a view in one Levenberg–Marquardt system): 100 views
+// take 20 s, 500 would take most of an hour, so 500 is not run.
+BENCHMARK(BM_OpenCvStereoCalibrate)->Arg(13)->Arg(100)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_RegisterLeft)->Arg(0)->Arg(1);
 BENCHMARK(BM_RegisterLeftWarm)->Arg(0)->Arg(1);
 BENCHMARK(BM_RegisterPerEye)->Arg(0)->Arg(1);

@@ -1,9 +1,11 @@
-// CLI tests of calib-stereo: rigs assembled from two cameras and exported to OpenCV and mrcal,
+// CLI tests of calib-stereo: rigs solved from both cameras' views, rigs assembled from two cameras and exported to OpenCV and mrcal,
 // binocular registration of tracked sequences, display planning; every bad input gives its
 // documented exit code, one line naming the file, the field and the fix, and no output file.
 #include "cli_fixture.h"
+#include "support/scenes.h"
 #include "support/stereo_rigs.h"
 #include "vstcal/io/camera_io.h"
+#include "vstcal/io/correspondences_io.h"
 #include "vstcal/io/stereo_io.h"
 
 namespace vstcal::cli_test {
@@ -45,6 +47,16 @@ class CliCalibStereo : public CliTest {
     if (!result) return result;
     if (List("out") != before) return ::testing::AssertionFailure() << "the failing run left a file in out/";
     return ::testing::AssertionSuccess();
+  }
+
+  // Both cameras' views (in/l.json and in/r.json unless named) with 0.2 px of noise.
+  void WriteStereoViews(testing::StereoViews views, const std::string& left = "in/l.json",
+                        const std::string& right = "in/r.json") {
+    const io::Provenance p{"test", {}, std::nullopt};
+    views.left = testing::WithNoise(views.left, 0.2, 1);
+    views.right = testing::WithNoise(views.right, 0.2, 2);
+    WriteText(left, io::DumpJson(io::CorrespondencesToJson(views.left, p)));
+    WriteText(right, io::DumpJson(io::CorrespondencesToJson(views.right, p)));
   }
 };
 
@@ -274,6 +286,99 @@ TEST_F(CliCalibStereo, PlanRefusesBadFlags) {
   EXPECT_TRUE(Fails(with({"--baseline", "63", "--focal-px", "700", "--ipd", "63"}), kBadInput, "--ipd: applies with --viewer", {}));
   EXPECT_TRUE(Fails(with({"--baseline", "-63", "--focal-px", "700"}), kBadInput, "--baseline", {"positive"}));
   EXPECT_TRUE(Fails(with({"--rig", "in/rig.json", "--baseline", "63"}), kBadInput, "--rig: the rig gives the baseline", {}));
+}
+
+StereoRig SolvableRig() {
+  StereoRig rig = testing::ZedLikeRig();
+  rig.left.camera.params.back() = rig.right.camera.params.back() = 0;  // k3: solve estimates k1, k2, p1, p2
+  return rig;
+}
+
+TEST_F(CliCalibStereo, SolveWritesTheRigWithItsCovarianceAndFit) {
+  const StereoRig truth = SolvableRig();
+  WriteStereoViews(testing::SyntheticStereoViews(truth, 8, 11));
+  const CommandResult r = Ok({"solve", "in/l.json", "in/r.json", "--rectify", "-o", "out/rig.json"});
+  EXPECT_NE(r.err.find("8 views seen by both cameras"), std::string::npos) << r.err;
+  const StereoRig rig = io::ReadStereoRig(Path("out/rig.json"));
+  EXPECT_EQ(rig.method, "stereo-solve");
+  ASSERT_TRUE(rig.covariance);
+  ASSERT_TRUE(rig.fit);
+  EXPECT_EQ(rig.fit->views.size(), 8u);
+  EXPECT_TRUE(rig.rectification);
+  const double sigma = *BaselineSigma(rig);
+  EXPECT_GT(sigma, 0);
+  EXPECT_LT(std::abs(rig.baseline() - truth.baseline()), 5 * sigma) << "σ " << sigma;
+  // The solved rig exports like any other.
+  Ok({"export", "out/rig.json", "--opencv", "out/rig.yaml"});
+}
+
+TEST_F(CliCalibStereo, SolveUsesViewsOfOneCameraAndMatchesByPattern) {
+  testing::StereoViews views = testing::SyntheticStereoViews(SolvableRig(), 7, 12);
+  views.left.views.pop_back();  // view6: right camera only
+  for (View& v : views.left.views) v.name = "left-" + v.name;
+  for (View& v : views.right.views) v.name = "right-" + v.name;
+  WriteStereoViews(views);
+  EXPECT_TRUE(Fails({"solve", "in/l.json", "in/r.json", "-o", "out/rig.json"}, kDegenerate,
+                    "in/l.json and in/r.json: 0 usable views are seen by both cameras", {"name the views alike"}));
+  const CommandResult r = Ok({"solve", "in/l.json", "in/r.json", "--match-views", "(view[0-9]+)$", "-o", "out/rig.json"});
+  EXPECT_NE(r.err.find("1 views seen by the right camera only (view6): used for its intrinsics"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("6 views seen by both cameras"), std::string::npos) << r.err;
+}
+
+TEST_F(CliCalibStereo, SolveHoldsACameraReadFromAnEarlierCalibration) {
+  const StereoRig truth = SolvableRig();
+  WriteStereoViews(testing::SyntheticStereoViews(truth, 8, 13));
+  WriteText("in/left-cam.json", io::DumpJson(io::CameraToJson(truth.left, {"test", {}, std::nullopt})));
+  Ok({"solve", "in/l.json", "in/r.json", "--left-camera", "in/left-cam.json", "--hold-left", "-o", "out/rig.json"});
+  const StereoRig rig = io::ReadStereoRig(Path("out/rig.json"));
+  for (size_t i = 0; i < truth.left.camera.params.size(); ++i) EXPECT_DOUBLE_EQ(rig.left.camera.params[i], truth.left.camera.params[i]);
+  EXPECT_FALSE(rig.left.covariance);
+  EXPECT_TRUE(rig.right.covariance);
+}
+
+TEST_F(CliCalibStereo, SolveRefusesBadInput) {
+  const StereoRig truth = SolvableRig();
+  testing::StereoViews views = testing::SyntheticStereoViews(truth, 6, 14);
+  WriteStereoViews(views);
+  const auto solve = [](const std::string& l, const std::string& r, std::vector<std::string> extra = {}) {
+    std::vector<std::string> args = {"solve", l, r, "-o", "out/rig.json"};
+    args.insert(args.end(), extra.begin(), extra.end());
+    return args;
+  };
+  // Differing units.
+  testing::StereoViews metres = views;
+  metres.right.length_unit = LengthUnit::kMetre;
+  WriteStereoViews(metres, "in/l.json", "in/r-m.json");
+  EXPECT_TRUE(Fails(solve("in/l.json", "in/r-m.json"), kBadInput, "in/l.json and in/r-m.json: length_unit differs (mm vs m)",
+                    {"convert one file"}));
+  // Too few common views.
+  testing::StereoViews few = views;
+  for (size_t k = 0; k < 4; ++k) few.right.views[k].name += "x";
+  WriteStereoViews(few, "in/l.json", "in/r-few.json");
+  EXPECT_TRUE(Fails(solve("in/l.json", "in/r-few.json"), kDegenerate, "2 usable views are seen by both cameras", {"at least 3"}));
+  // A view name twice.
+  testing::StereoViews twice = views;
+  twice.left.views[1].name = twice.left.views[0].name;
+  WriteStereoViews(twice, "in/l-twice.json", "in/r.json");
+  EXPECT_TRUE(Fails(solve("in/l-twice.json", "in/r.json"), kBadInput, "in/l-twice.json: views[1].name: duplicate view name", {}));
+  EXPECT_TRUE(Fails(solve("in/l.json", "in/r.json", {"--match-views", "(view)"}), kBadInput,
+                    "in/l.json: views: two views have the key \"view\"", {"unique"}));
+  // A held camera of another resolution.
+  CalibratedCamera hd = truth.left;
+  hd.camera.image_size = {1920, 1080};
+  WriteText("in/hd.json", io::DumpJson(io::CameraToJson(hd, {"test", {}, std::nullopt})));
+  EXPECT_TRUE(Fails(solve("in/l.json", "in/r.json", {"--left-camera", "in/hd.json", "--hold-left"}), kBadInput,
+                    "in/l.json: image_size 1280x720 differs from the given camera's 1920x1080", {}));
+  // Two image sizes cannot be rectified together.
+  testing::StereoViews sizes = views;
+  sizes.right.image_size = {1920, 1080};
+  WriteStereoViews(sizes, "in/l.json", "in/r-hd.json");
+  EXPECT_TRUE(Fails(solve("in/l.json", "in/r-hd.json", {"--rectify"}), kBadInput, "right.image_size", {"one image size"}));
+  // Patterns.
+  EXPECT_TRUE(Fails(solve("in/l.json", "in/r.json", {"--match-views", "view[0-9]"}), kBadInput, "--match-views", {"has no group"}));
+  EXPECT_TRUE(Fails(solve("in/l.json", "in/r.json", {"--match-views", "(x[0-9])"}), kBadInput,
+                    "in/l.json: views: the name \"view0\" does not match --match-views", {}));
+  EXPECT_TRUE(Fails(solve("in/l.json", "in/r.json", {"--loss", "huber"}), kBadInput, "--loss", {}));
 }
 
 }  // namespace

@@ -1,5 +1,11 @@
 #include "support/stereo_rigs.h"
 
+#include <cmath>
+#include <tuple>
+
+#include "vstcal/geometry/rotation.h"
+#include "vstcal/random/philox.h"
+
 namespace vstcal::testing {
 
 StereoRig ZedLikeRig(bool distorted) {
@@ -32,6 +38,40 @@ ParameterCovariance SampleRelativePoseCovariance() {
   c.parameters.assign(names.begin(), names.end());
   c.matrix = A * A.transpose();
   return c;
+}
+
+StereoViews SyntheticStereoViews(const StereoRig& rig, int views, uint64_t seed) {
+  StereoViews out;
+  for (auto [c, camera] : {std::pair{&out.left, &rig.left}, std::pair{&out.right, &rig.right}}) {
+    c->camera = camera->name;
+    c->image_size = camera->camera.image_size;
+    c->length_unit = rig.length_unit;
+    c->rig = Rig::kPlanarViews;
+  }
+  const CounterRng rng(seed, 0x57E2u);
+  const Eigen::Vector3d centre(4 * 30.0, 2.5 * 30.0, 0);
+  for (int k = 0; k < views; ++k) {
+    const auto a = rng.Uniform2(static_cast<uint64_t>(k), 0), b = rng.Uniform2(static_cast<uint64_t>(k), 1);
+    const double tilt = DegToRad(30.0) * a[0], axis = 2 * kPi * a[1], roll = DegToRad(40.0 * (b[0] - 0.5));
+    const Eigen::Matrix3d R = RotationFromRotvec(Eigen::Vector3d(tilt * std::cos(axis), tilt * std::sin(axis), 0)) *
+                              RotationFromRotvec(Eigen::Vector3d(0, 0, roll));
+    const Rigid3d left_from_board{R, Eigen::Vector3d(30.0, 0, 450.0 + 300.0 * b[1]) - R * centre};
+    out.left_from_board.push_back(left_from_board);
+    for (auto [c, camera, from_board] : {std::tuple{&out.left, &rig.left, left_from_board},
+                                         std::tuple{&out.right, &rig.right, rig.right_from_left * left_from_board}}) {
+      View view;
+      view.name = "view" + std::to_string(k);
+      for (int row = 0; row < 6; ++row) {
+        for (int col = 0; col < 9; ++col) {
+          const Eigen::Vector3d X(30.0 * col, 30.0 * row, 0);
+          const auto px = camera->camera.Project(from_board * X);
+          if (px && camera->camera.InImage(*px)) view.observations.push_back({X, *px, 1.0});
+        }
+      }
+      c->views.push_back(std::move(view));
+    }
+  }
+  return out;
 }
 
 }  // namespace vstcal::testing

@@ -1,4 +1,4 @@
-// calib-stereo: stereo rigs — assemble, export to OpenCV and mrcal, binocular registration and
+// calib-stereo: stereo rigs — solve, assemble, export to OpenCV and mrcal, binocular registration and
 // stereo display planning (docs/tools/calib-stereo.md).
 #include <iostream>
 
@@ -8,13 +8,14 @@
 
 int main(int argc, char** argv) {
   CLI::App app{
-      "Stereo rigs (vstcal/stereo@1: two cameras and right_from_left): assemble one from two calibrated cameras, "
+      "Stereo rigs (vstcal/stereo@1: two cameras and right_from_left): solve one from both cameras' views of a target, "
+      "assemble one from two calibrated cameras, "
       "export it to OpenCV's stereo YAML (R, T, E, F, rectification) and to two mrcal .cameramodel files, register "
       "a tracked sequence binocularly (seed 000 §4.3), and plan a stereo display (seed 000 Eq. 3-6, seed 001 §4.6).\n"
       "Exit codes: 0 ok, 1 internal error, 2 bad usage or input, 3 degenerate data.",
       "calib-stereo"};
   app.require_subcommand(1);
-  const vstcal::tools::Subcommand subcommands[] = {vstcal::tools::AddAssemble(app), vstcal::tools::AddExport(app),
+  const vstcal::tools::Subcommand subcommands[] = {vstcal::tools::AddSolve(app), vstcal::tools::AddAssemble(app), vstcal::tools::AddExport(app),
                                                    vstcal::tools::AddSimulate(app), vstcal::tools::AddRegister(app),
                                                    vstcal::tools::AddPlan(app)};
   return vstcal::tools::RunTool(app, argc, argv, [&] {

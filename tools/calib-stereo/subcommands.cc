@@ -2,6 +2,7 @@
 
 #include <memory>
 
+#include "common/calibration_flags.h"
 #include "common/validators.h"
 #include "vstcal/core/error.h"
 
@@ -31,6 +32,46 @@ std::optional<LengthUnit> Unit(const std::string& name) {
 }
 
 }  // namespace
+
+Subcommand AddSolve(CLI::App& parent) {
+  struct Flags {
+    stereo::SolveRequest request;
+    CalibrationFlags calibration;
+    RectifyFlags rectify;
+  };
+  auto f = std::make_shared<Flags>();
+  CLI::App* app = parent.add_subcommand(
+      "solve",
+      "a rig from two correspondences@1 files of the same target poses (views matched by name; a view in one file only "
+      "serves that camera): each camera calibrated alone, right_from_left from the rotation average of the views, then "
+      "both lenses, right_from_left and the board poses refined together, with right_from_left's covariance");
+  app->add_option("LEFT", f->request.left, "left camera's correspondences (vstcal/correspondences@1)")->required()->check(kNonEmpty);
+  app->add_option("RIGHT", f->request.right, "right camera's correspondences (vstcal/correspondences@1)")->required()->check(kNonEmpty);
+  app->add_option("-o,--output", f->request.output, "rig to write (vstcal/stereo@1)")->required()->check(kNonEmpty);
+  app->add_option("--left-camera", f->request.left_camera, "a calibrated left camera (.json, .yaml/.yml, .cameramodel): its intrinsics start the left lens")
+      ->check(kNonEmpty);
+  app->add_option("--right-camera", f->request.right_camera, "a calibrated right camera: its intrinsics start the right lens")->check(kNonEmpty);
+  app->add_flag("--hold-left", f->request.options.hold_left, "hold the left intrinsics fixed (at --left-camera, else at its own calibration)");
+  app->add_flag("--hold-right", f->request.options.hold_right, "hold the right intrinsics fixed (at --right-camera, else at its own calibration)");
+  app->add_option("--match-views", f->request.options.view_key_pattern,
+                  "match views by the first group of this regular expression in their names, e.g. '([0-9]+)$' pairs left01 "
+                  "with right01 (default: by the whole name)")
+      ->check(kNonEmpty);
+  app->add_option("--min-common-views", f->request.options.min_common_views, "planar views both cameras must share (default 3)")
+      ->check(CLI::Range(1, 1000000));
+  // The joint problem is least squares: no --loss, --loss-scale.
+  for (CLI::Option* option : f->calibration.AddRefinement(*app)) {
+    if (option->check_lname("loss") || option->check_lname("loss-scale")) app->remove_option(option);
+  }
+  f->calibration.loss_scale_option = nullptr;
+  f->rectify.Add(app);
+  return {app, [f, app](const io::Provenance& provenance) {
+            stereo::SolveRequest r = f->request;
+            r.options.calibration.refinement = f->calibration.Refinement();
+            r.rectify = f->rectify.Get(app);
+            return stereo::Solve(r, provenance);
+          }};
+}
 
 Subcommand AddAssemble(CLI::App& parent) {
   struct Flags {

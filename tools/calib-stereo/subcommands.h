@@ -16,6 +16,7 @@ struct Subcommand {
   std::function<stereo::Outcome(const io::Provenance&)> run;
 };
 
+Subcommand AddSolve(CLI::App& parent);
 Subcommand AddAssemble(CLI::App& parent);
 Subcommand AddExport(CLI::App& parent);
 Subcommand AddSimulate(CLI::App& parent);

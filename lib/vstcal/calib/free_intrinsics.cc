@@ -59,6 +59,16 @@ std::vector<std::string> FreeIntrinsics::MovedParams(const AnyLensModel& model) 
   return moved;
 }
 
+Eigen::MatrixXd FreeIntrinsics::MovedBasis() const {
+  std::vector<Eigen::Index> moved;
+  for (Eigen::Index i = 0; i < basis.rows(); ++i) {
+    if (!basis.row(i).isZero(0)) moved.push_back(i);
+  }
+  Eigen::MatrixXd B(static_cast<Eigen::Index>(moved.size()), basis.cols());
+  for (size_t k = 0; k < moved.size(); ++k) B.row(static_cast<Eigen::Index>(k)) = basis.row(moved[k]);
+  return B;
+}
+
 FreeIntrinsics MakeFreeIntrinsics(const AnyLensModel& model, const RefineOptions& options) {
   VSTCAL_CHECK(!options.focal_aspect || (options.free_focal && *options.focal_aspect > 0),
                "a held aspect ties two free focal lengths by a positive ratio");

@@ -35,6 +35,9 @@ struct FreeIntrinsics {
   int size() const { return static_cast<int>(names.size()); }
   // The lens parameters β moves (rows of B not all zero), in layout order.
   std::vector<std::string> MovedParams(const AnyLensModel& model) const;
+  // B's rows that are not zero (those of MovedParams, in order): the lens parameters' covariance
+  // from β's is B_m Σ_β B_mᵀ.
+  Eigen::MatrixXd MovedBasis() const;
 };
 
 // β for `model` (already promoted, RefinedModel) and `options`: fx, fy (or f when tied), cx, cy,

@@ -154,16 +154,10 @@ CalibrationCovariance CovarianceAt(const Correspondences& c, const Camera& camer
 
   // Over the lens parameters β moves: Σ_θ = B Σ_β Bᵀ and Cov(δ_v, θ) = Cov(δ_v, β) Bᵀ, rows of B
   // that are not zero.
-  const auto all = LensModelParamNames(out.model);
-  std::vector<Eigen::Index> moved;
-  for (Eigen::Index i = 0; i < out.free.basis.rows(); ++i) {
-    if (!out.free.basis.row(i).isZero(0)) moved.push_back(i);
-  }
-  Eigen::MatrixXd B(static_cast<Eigen::Index>(moved.size()), m);
-  for (size_t k = 0; k < moved.size(); ++k) B.row(static_cast<Eigen::Index>(k)) = out.free.basis.row(moved[k]);
+  const Eigen::MatrixXd B = out.free.MovedBasis();
   const Eigen::Index n = B.rows();
   ParameterCovariance& cov = out.covariance;
-  for (const Eigen::Index i : moved) cov.parameters.emplace_back(all[i]);
+  for (std::string& name : out.free.MovedParams(out.model)) cov.parameters.push_back(std::move(name));
   const Eigen::MatrixXd intrinsics = B * out.free_covariance * B.transpose();
   if (c.rig == Rig::kVolume) {
     // One pose: its tangents are named parameters beside the intrinsics (the full matrix is small).

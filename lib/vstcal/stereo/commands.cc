@@ -8,6 +8,7 @@
 
 #include "vstcal/core/error.h"
 #include "vstcal/io/camera_convert.h"
+#include "vstcal/io/correspondences_io.h"
 #include "vstcal/io/display_plan_io.h"
 #include "vstcal/io/registration_io.h"
 #include "vstcal/io/stereo_io.h"
@@ -62,6 +63,33 @@ Outcome Assemble(const AssembleRequest& request, const io::Provenance& provenanc
   out.files.emplace_back(request.output, io::DumpJson(io::StereoRigToJson(rig, provenance)));
   for (const auto& note : left.notes) out.text += "note: " + note + "\n";
   for (const auto& note : right.notes) out.text += "note: " + note + "\n";
+  out.text += RigSummary(rig);
+  return out;
+}
+
+Outcome Solve(const SolveRequest& request, const io::Provenance& provenance) {
+  const Correspondences left = io::ReadCorrespondences(request.left), right = io::ReadCorrespondences(request.right);
+  StereoSolveOptions options = request.options;
+  Outcome out;
+  for (auto [file, camera] : {std::pair{&request.left_camera, &options.left_camera}, std::pair{&request.right_camera, &options.right_camera}}) {
+    if (file->empty()) continue;
+    io::ImportedCamera in = ReadAnyCamera(*file, left.length_unit);
+    *camera = in.camera.camera;
+    for (const auto& note : in.notes) out.text += "note: " + note + "\n";
+  }
+  if ((options.hold_left && !options.left_camera) || (options.hold_right && !options.right_camera)) {
+    out.text += "note: a held camera without --left-camera/--right-camera is held at its own calibration from its file\n";
+  }
+  StereoSolveResult solved = SolveStereo(left, right, options, request.left, request.right);
+  if (solved.exit_code != ExitCode::kOk) throw Error(solved.exit_code, solved.message);
+  StereoRig& rig = solved.rig;
+  if (request.rectify) rig.rectification = Rectify(rig, *request.rectify, request.output);
+  out.files.emplace_back(request.output, io::DumpJson(io::StereoRigToJson(rig, provenance)));
+  for (const auto& note : solved.notes) out.text += "note: " + note + "\n";
+  out.text += Format("%zu views seen by both cameras; reprojection RMS %.3g px (left), %.3g px (right); sigma %.3g px; "
+                     "epipolar RMS %.3g px; %d iterations\n",
+                     solved.common_views.size(), solved.rms_left_px, solved.rms_right_px, solved.sigma_px,
+                     rig.fit ? rig.fit->epipolar.rms_px : 0.0, solved.iterations);
   out.text += RigSummary(rig);
   return out;
 }

@@ -15,6 +15,7 @@
 #include "vstcal/stereo/display_plan.h"
 #include "vstcal/stereo/rectify.h"
 #include "vstcal/stereo/registration.h"
+#include "vstcal/stereo/stereo_solve.h"
 #include "vstcal/stereo/synthetic_tracks.h"
 
 namespace vstcal::stereo {
@@ -34,6 +35,16 @@ struct AssembleRequest {
   std::optional<RectifyOptions> rectify;
 };
 Outcome Assemble(const AssembleRequest& request, const io::Provenance& provenance);
+
+// solve: a rig from two correspondences@1 files of the same target poses (vstcal/stereo/stereo_solve.h).
+// A camera file (any format assemble reads) gives a camera's start and, held, its intrinsics.
+struct SolveRequest {
+  std::string left, right, output;
+  std::string left_camera, right_camera;  // empty: none
+  StereoSolveOptions options;
+  std::optional<RectifyOptions> rectify;
+};
+Outcome Solve(const SolveRequest& request, const io::Provenance& provenance);
 
 // export: the rig as OpenCV stereo YAML and/or two mrcal .cameramodel files (at least one).
 struct ExportRequest {
