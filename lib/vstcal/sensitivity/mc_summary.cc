@@ -13,12 +13,16 @@ namespace {
 constexpr size_t kLanes = BlockAccumulator::kLanes;
 constexpr uint32_t kNoBin = std::numeric_limits<uint32_t>::max();
 
-// The lanes of a 4-bit mask as a SimdMask.
-SimdMask LaneMask(unsigned bits) {
-  SimdMask m;
-  for (int l = 0; l < 4; ++l) m.bits[l] = (bits >> l) & 1 ? -1 : 0;
-  return m;
+// The lanes of a 4-bit mask as a SimdMask, for every mask: constant-initialized, so that no
+// clone of AccumulateGroup builds a 32-byte vector at run time (a function-local static built by
+// a helper faulted under ASan in the baseline clone: an aligned store to a 16-byte-aligned slot).
+constexpr SimdMask::Bits MaskBits(unsigned b) {
+  return SimdMask::Bits{b & 1 ? -1 : 0, b & 2 ? -1 : 0, b & 4 ? -1 : 0, b & 8 ? -1 : 0};
 }
+alignas(32) constexpr SimdMask kLaneMasks[16] = {
+    {MaskBits(0)},  {MaskBits(1)},  {MaskBits(2)},  {MaskBits(3)},  {MaskBits(4)},  {MaskBits(5)},
+    {MaskBits(6)},  {MaskBits(7)},  {MaskBits(8)},  {MaskBits(9)},  {MaskBits(10)}, {MaskBits(11)},
+    {MaskBits(12)}, {MaskBits(13)}, {MaskBits(14)}, {MaskBits(15)}};
 
 // First block and one-past-last block a node covers.
 std::pair<uint64_t, uint64_t> Span(const MonteCarloSummary::NodeKey& node) {
@@ -91,9 +95,6 @@ struct GroupState {
 
 [[gnu::target_clones("avx2", "default")]] void AccumulateGroup(const GroupState& a, const double* y, const uint8_t* defined,
                                                                unsigned lanes) {
-  static const SimdMask kMasks[16] = {LaneMask(0),  LaneMask(1),  LaneMask(2),  LaneMask(3), LaneMask(4),  LaneMask(5),
-                                      LaneMask(6),  LaneMask(7),  LaneMask(8),  LaneMask(9), LaneMask(10), LaneMask(11),
-                                      LaneMask(12), LaneMask(13), LaneMask(14), LaneMask(15)};
   // Locals the stores below cannot alias, so that the loop keeps them in registers.
   double* __restrict shift = a.shift;
   uint8_t* __restrict has_shift = a.has_shift;
@@ -111,7 +112,7 @@ struct GroupState {
       shift[k] = y[kLanes * k + std::countr_zero(bits)];
       has_shift[k] = 1;
     }
-    const SimdMask m = kMasks[bits];
+    const SimdMask m = kLaneMasks[bits];
     const SimdDouble v = SimdDouble::Load(y + kLanes * k);
     const SimdDouble d = Select(m, v - shift[k], zero);
     const SimdDouble d2 = d * d;
