@@ -16,13 +16,14 @@ constexpr uint32_t kNoBin = std::numeric_limits<uint32_t>::max();
 // The lanes of a 4-bit mask as a SimdMask, for every mask: constant-initialized, so that no
 // clone of AccumulateGroup builds a 32-byte vector at run time (a function-local static built by
 // a helper faulted under ASan in the baseline clone: an aligned store to a 16-byte-aligned slot).
-constexpr SimdMask::Bits MaskBits(unsigned b) {
-  return SimdMask::Bits{b & 1 ? -1 : 0, b & 2 ? -1 : 0, b & 4 ? -1 : 0, b & 8 ? -1 : 0};
-}
+// (A macro, not a function: a function returning a 32-byte vector changes the ABI without AVX.)
+#define VSTCAL_LANE_MASK(b) SimdMask{SimdMask::Bits{(b) & 1 ? -1 : 0, (b) & 2 ? -1 : 0, (b) & 4 ? -1 : 0, (b) & 8 ? -1 : 0}}
 alignas(32) constexpr SimdMask kLaneMasks[16] = {
-    {MaskBits(0)},  {MaskBits(1)},  {MaskBits(2)},  {MaskBits(3)},  {MaskBits(4)},  {MaskBits(5)},
-    {MaskBits(6)},  {MaskBits(7)},  {MaskBits(8)},  {MaskBits(9)},  {MaskBits(10)}, {MaskBits(11)},
-    {MaskBits(12)}, {MaskBits(13)}, {MaskBits(14)}, {MaskBits(15)}};
+    VSTCAL_LANE_MASK(0),  VSTCAL_LANE_MASK(1),  VSTCAL_LANE_MASK(2),  VSTCAL_LANE_MASK(3),
+    VSTCAL_LANE_MASK(4),  VSTCAL_LANE_MASK(5),  VSTCAL_LANE_MASK(6),  VSTCAL_LANE_MASK(7),
+    VSTCAL_LANE_MASK(8),  VSTCAL_LANE_MASK(9),  VSTCAL_LANE_MASK(10), VSTCAL_LANE_MASK(11),
+    VSTCAL_LANE_MASK(12), VSTCAL_LANE_MASK(13), VSTCAL_LANE_MASK(14), VSTCAL_LANE_MASK(15)};
+#undef VSTCAL_LANE_MASK
 
 // First block and one-past-last block a node covers.
 std::pair<uint64_t, uint64_t> Span(const MonteCarloSummary::NodeKey& node) {
