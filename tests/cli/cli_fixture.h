@@ -50,7 +50,9 @@ struct Pinhole {
   Json Observe(const Eigen::Vector3d& point_in_world) const;
 };
 
-// 1-based "line L, column C" of a byte offset in a text, as the tools report it.
+// 1-based "line L, column C" of a byte offset in a text, as the tools report it. Written here
+// again on purpose, not taken from json/reader_common: the expected message must not come from
+// the code under test.
 std::string LineColumn(const std::string& text, size_t offset);
 
 class CliTest : public ::testing::Test {

@@ -10,7 +10,7 @@ corpus=$root/tests/fuzz/corpus
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 cd "$work"
-mkdir -p "$corpus"/{correspondences,camera,chain,opencv_yaml,cameramodel,shard}
+mkdir -p "$corpus"/{correspondences,camera,chain,opencv_yaml,cameramodel,shard,stereo,tracks}
 
 # Correspondences and cameras: a tiny volume, tiny planar views, a rational lens; a refined camera
 # with covariance and outliers; the shipped seed-000 truth.
@@ -109,6 +109,15 @@ PY
   shard1.json shard1-compact.json
 cp shard0.json "$corpus/shard/shard0.json"
 cp shard1-compact.json "$corpus/shard/shard1.json"
+
+# A stereo rig assembled from the ZED mini camera, with and without the rectification, and three
+# frames of tracks simulated through it.
+zed=$root/datasets/zedmini/clean.truth.json
+"$tools/calib-stereo" assemble "$zed" "$zed" --translation=-63,0.2,-0.4 --rotvec-deg 0.5,-0.3,0.1 -o rig.json 2>/dev/null
+"$tools/calib-stereo" assemble "$zed" "$zed" --translation=-63,0.2,-0.4 --rectify -o rig-rectified.json 2>/dev/null
+"$tools/calib-stereo" simulate rig.json -o tracks.json --frames 3 --seed 1 2>/dev/null
+cp rig.json rig-rectified.json "$corpus/stereo/"
+cp tracks.json "$corpus/tracks/"
 du -sh "$corpus"/* >&2
 
 # calib-capture: a chessboard and an AprilTag grid target, and two small capture plans (a volume

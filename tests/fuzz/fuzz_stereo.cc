@@ -1,0 +1,25 @@
+// vstcal/stereo@1: the reader (both cameras, right_from_left, covariance, rectification checked
+// against the rig), the writer's fixed point, and the baseline σ from what was read
+// (docs/formats.md#stereo).
+#include <cmath>
+
+#include "harness.h"
+#include "vstcal/core/error.h"
+#include "vstcal/io/stereo_io.h"
+#include "vstcal/stereo/stereo_rig.h"
+
+namespace {
+
+std::string Pass(const std::string& text) {
+  using namespace vstcal;
+  return io::DumpJson(io::StereoRigToJson(io::StereoRigFromJson(io::JsonDocument::Parse(text, "fuzz.json")), fuzz::kProvenance));
+}
+
+}  // namespace
+
+VSTCAL_FUZZ_TARGET(text) {
+  using namespace vstcal;
+  const StereoRig rig = io::StereoRigFromJson(io::JsonDocument::Parse(text, "fuzz.json"));
+  fuzz::RequireFixedPoint(text, Pass);
+  if (const auto sigma = BaselineSigma(rig)) VSTCAL_CHECK(std::isfinite(*sigma), "a non-finite baseline sigma");
+}
