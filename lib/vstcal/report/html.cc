@@ -109,7 +109,7 @@ std::string CameraSection(const ReprojReport& r, size_t k) {
               (!t.inside_volume ? "—" : *t.inside_volume ? "inside" : "outside") + "</td>";
       rows += t.error.excluded == Exclusion::kNone
                   ? Cell(tk + "/error_px", t.error.error_px) + Cell(tk + "/lateral", t.error.lateral) +
-                        Cell(tk + "/angular_deg", t.error.angular_rad * 180 / M_PI)
+                        Cell(tk + "/angular_deg", t.error.angular_deg())
                   : "<td colspan=\"3\">" + std::string(ExclusionName(t.error.excluded)) + "</td>";
       rows += "</tr>\n";
     }

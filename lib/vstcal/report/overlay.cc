@@ -92,7 +92,7 @@ OverlayPicture DrawResidualOverlay(const ReprojReport& report, size_t camera, co
       const cv::Scalar colour(0, 200 * (1 - t), 255 * t);  // BGR: green to red
       const Eigen::Vector2d tip = e.measured + scale * (*e.predicted - e.measured);
       cv::line(canvas, at(e.measured), at(tip), colour, thickness, cv::LINE_AA, kShift);
-      cv::circle(canvas, at(e.measured), 2 * thickness * 16, cv::Scalar(90, 60, 20), cv::FILLED, cv::LINE_AA, kShift);
+      cv::circle(canvas, at(e.measured), thickness * 16, cv::Scalar(90, 60, 20), cv::FILLED, cv::LINE_AA, kShift);
       ++drawn;
     }
   }

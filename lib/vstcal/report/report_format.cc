@@ -1,14 +1,11 @@
 #include "vstcal/report/report_format.h"
 
 #include <cstdio>
-#include <numbers>
 
 #include "vstcal/io/camera_io.h"
 
 namespace vstcal::io {
 namespace {
-
-constexpr double kDegPerRad = 180.0 / std::numbers::pi;
 
 OrderedJson StatsJson(const std::optional<ErrorStats>& s) {
   if (!s) return nullptr;
@@ -29,7 +26,7 @@ OrderedJson PointJson(const PointError& e) {
     return p;
   }
   const Eigen::Vector2d r = *e.predicted - e.measured;
-  for (const double x : {r.x(), r.y(), e.lateral, e.angular_rad * kDegPerRad}) p.push_back(x);
+  for (const double x : {r.x(), r.y(), e.lateral, e.angular_deg()}) p.push_back(x);
   p.push_back(Optional(e.normalized));
   return p;
 }
@@ -53,7 +50,7 @@ OrderedJson TestPointJson(const TestPointReport& t) {
   j["predicted"] = measured ? MatrixToJson(*e.predicted) : OrderedJson(nullptr);
   j["error_px"] = measured ? OrderedJson(e.error_px) : OrderedJson(nullptr);
   j["lateral"] = measured ? OrderedJson(e.lateral) : OrderedJson(nullptr);
-  j["angular_deg"] = measured ? OrderedJson(e.angular_rad * kDegPerRad) : OrderedJson(nullptr);
+  j["angular_deg"] = measured ? OrderedJson(e.angular_deg()) : OrderedJson(nullptr);
   j["normalized"] = Optional(e.normalized);
   j["excluded"] = measured ? OrderedJson(nullptr) : OrderedJson(ExclusionName(e.excluded));
   return j;

@@ -79,7 +79,7 @@ struct Collected {
     if (e.excluded != Exclusion::kNone) return;
     error_px.push_back(e.error_px);
     lateral.push_back(e.lateral);
-    angular_deg.push_back(e.angular_rad * kDegPerRad);
+    angular_deg.push_back(e.angular_deg());
     pixels.push_back(e.measured);
     if (e.normalized) normalized.push_back(*e.normalized);
   }
@@ -212,6 +212,8 @@ CameraDifference Compare(const ReprojReport& report, size_t k) {
 }
 
 }  // namespace
+
+double PointError::angular_deg() const { return angular_rad * kDegPerRad; }
 
 std::string_view ExclusionName(Exclusion e) {
   switch (e) {

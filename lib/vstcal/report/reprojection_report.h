@@ -56,6 +56,8 @@ struct PointError {
   double lateral = 0;   // length unit
   double angular_rad = 0;
   std::optional<double> normalized;  // z, when the camera has a covariance and σ̂ and Σ_r > 0
+
+  double angular_deg() const;  // as files and pages show it (one conversion for all of them)
 };
 
 struct ViewReport {
