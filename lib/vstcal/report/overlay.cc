@@ -72,7 +72,7 @@ OverlayPicture DrawResidualOverlay(const ReprojReport& report, size_t camera, co
   const double p95 = cam.overall.error_px ? std::max(cam.overall.error_px->p95, 1e-12) : 1.0;
   const double diagonal = std::hypot(size.width, size.height);
   const double scale = RoundScale(0.02 * diagonal / p95);
-  const int thickness = std::max(1, static_cast<int>(std::lround(std::max(canvas.cols, canvas.rows) / 600.0)));
+  const int thickness = std::max(2, static_cast<int>(std::lround(std::max(canvas.cols, canvas.rows) / 600.0)));
   // Pixel centres are at integers with (0, 0) the top-left pixel's centre: OpenCV's drawing
   // convention too, so coordinates go in as they are (times the shrink, in 1/16 px).
   constexpr int kShift = 4;
