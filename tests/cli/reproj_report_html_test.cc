@@ -16,7 +16,6 @@ class CliReprojReportHtml : public CliTest {
   void SetUp() override {
     CliTest::SetUp();
     Synth("in/volume.json", Override(Remove(DefaultSynthArgs(), "--no-test-points", false), "--noise", "0.5"));
-    ASSERT_EQ(Run("calib-dlt", {"in/volume.json", "--refine", "-o", "in/cam.json", "-q"}).exit_code, kOk);
   }
 
   // Chromium's DOM of a page after its load event, and its log on stderr.
@@ -53,6 +52,7 @@ class CliReprojReportHtml : public CliTest {
 
 TEST_F(CliReprojReportHtml, RendersOfflineWithEveryImageAndTheJsonsNumbers) {
   ASSERT_TRUE(fs::exists(kChromium)) << "scripts/setup installs chromium";
+  ASSERT_EQ(Run("calib-dlt", {"in/volume.json", "--refine", "-o", "in/cam.json", "-q"}).exit_code, kOk);
   const CommandResult r = Run("reproj-report", {"in/cam.json", "in/volume.truth.json", "in/volume.json", "-o",
                                                 "out/report.json", "--html", "out/report.html"});
   ASSERT_EQ(r.exit_code, kOk) << r.err;
@@ -124,7 +124,7 @@ TEST_F(CliReprojReportHtml, OverlayOnTheNamedImage) {
   WriteJson("in/named.json", corr);
   fs::create_directories(Path("in/views"));
   ASSERT_TRUE(cv::imwrite(Path("in/views/plane-01.png").string(), cv::Mat(480, 640, CV_8UC1, cv::Scalar(90))));
-  const CommandResult r = Run("reproj-report", {"in/cam.json", "in/named.json", "-o", "out/r.json", "--html", "out/r.html"});
+  const CommandResult r = Run("reproj-report", {"in/volume.truth.json", "in/named.json", "-o", "out/r.json", "--html", "out/r.html"});
   ASSERT_EQ(r.exit_code, kOk) << r.err;
   EXPECT_NE(ReadText("out/r.html").find("view plane-01 on its image views/plane-01.png; 20 residuals"), std::string::npos);
   EXPECT_EQ(ReadJson("out/r.json")["correspondences"]["images"][1], "views/plane-01.png");
@@ -134,14 +134,14 @@ TEST_F(CliReprojReportHtml, NamedImageMissingOrOfAnotherSize) {
   Json corr = ReadJson("in/volume.json");
   corr["views"][0]["image"] = "views/missing.png";
   WriteJson("in/missing.json", corr);
-  EXPECT_TRUE(FailsWith(Run("reproj-report", {"in/cam.json", "in/missing.json", "-o", "out/r.json", "--html", "out/r.html"}),
+  EXPECT_TRUE(FailsWith(Run("reproj-report", {"in/volume.truth.json", "in/missing.json", "-o", "out/r.json", "--html", "out/r.html"}),
                         "reproj-report", kBadInput, "in/missing.json: views[0].image: ", {"not found", "blank canvas"}));
   EXPECT_TRUE(OutDirEmpty());  // not even the JSON report
   fs::create_directories(Path("in/views"));
   ASSERT_TRUE(cv::imwrite(Path("in/views/small.png").string(), cv::Mat(240, 320, CV_8UC1, cv::Scalar(90))));
   corr["views"][0]["image"] = "views/small.png";
   WriteJson("in/small.json", corr);
-  EXPECT_TRUE(FailsWith(Run("reproj-report", {"in/cam.json", "in/small.json", "-o", "out/r.json", "--html", "out/r.html"}),
+  EXPECT_TRUE(FailsWith(Run("reproj-report", {"in/volume.truth.json", "in/small.json", "-o", "out/r.json", "--html", "out/r.html"}),
                         "reproj-report", kBadInput, "in/small.json: views[0].image: ", {"is 320x240 px but image_size is 640x480"}));
   EXPECT_TRUE(OutDirEmpty());
 }
