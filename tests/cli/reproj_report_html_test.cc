@@ -68,7 +68,9 @@ TEST_F(CliReprojReportHtml, RendersOfflineWithEveryImageAndTheJsonsNumbers) {
     EXPECT_TRUE(start.rfind("data:image/svg+xml;base64,", 0) == 0 || start.rfind("data:image/png;base64,", 0) == 0)
         << start.substr(0, 60);
   }
-  EXPECT_EQ(sources.size(), 4u + 2 * 2);  // histogram, per view, depth, test points; a heat map and an overlay per camera
+  // Histogram, per view, depth, test points; a heat map and an overlay per camera; the refined
+  // camera's projection uncertainty.
+  EXPECT_EQ(sources.size(), 4u + 2 * 2 + 1);
 
   // 2. Every number shown is the JSON's: the exact value it carries, and the text shown rounds it.
   const std::string marker = " data-key=\"";
@@ -101,7 +103,7 @@ TEST_F(CliReprojReportHtml, RendersOfflineWithEveryImageAndTheJsonsNumbers) {
                "document.images.length + ' loaded, ' + bad + ' broken'); });</script></body>");
   WriteText("check.html", page);
   const CommandResult checked = Render("check.html", {"--dump-dom"});
-  EXPECT_NE(checked.out.find("data-images=\"8 loaded, 0 broken\""), std::string::npos) << checked.out.substr(0, 400);
+  EXPECT_NE(checked.out.find("data-images=\"9 loaded, 0 broken\""), std::string::npos) << checked.out.substr(0, 400);
   EXPECT_TRUE(ConsoleLines(checked.err).empty()) << ConsoleLines(checked.err).front();
 
   // 4. A screenshot, kept in the build tree for a person to look at.

@@ -53,6 +53,8 @@ TEST_F(CliReprojReport, CamerasSideBySideAndATable) {
   ASSERT_EQ(report["cameras"].size(), 2u);
   EXPECT_EQ(report["cameras"][1]["method"], "synthetic");
   EXPECT_FALSE(report["cameras"][1]["normalized"]["chi2_per_dof"].is_number());  // the truth has no covariance
+  EXPECT_TRUE(report["cameras"][1]["projection_uncertainty"].is_null());
+  EXPECT_EQ(report["cameras"][0]["projection_uncertainty"]["sigma_major_px"].size(), 12u);
   ASSERT_EQ(report["differences"].size(), 1u);
   EXPECT_EQ(report["differences"][0]["camera"], 1);
   EXPECT_EQ(report["cameras"][0]["grid"].size(), 12u);

@@ -7,6 +7,7 @@
 
 #include "support/scenes.h"
 #include "vstcal/calib/pipeline.h"
+#include "vstcal/calib/uncertainty.h"
 #include "vstcal/core/error.h"
 #include "vstcal/geometry/rotation.h"
 #include "vstcal/report/reprojection_report.h"
@@ -188,6 +189,23 @@ TEST(ReprojReport, NormalizedResidualsOfARefinedCameraMatchItsCovariance) {
   ASSERT_TRUE(cam.chi2_per_dof) << cam.normalization;
   EXPECT_NEAR(*cam.chi2_per_dof, 1.0, 0.05);
   EXPECT_EQ(cam.normalized->n, 120u);
+  // The projection-uncertainty map: at every cell's centre, at the points' median z (sorted here).
+  std::vector<double> z;
+  for (const Observation& o : scene.observations) z.push_back((*result.camera.camera_from_world * o.point).z());
+  std::sort(z.begin(), z.end());
+  const double median_z = (z[59] + z[60]) / 2;
+  EXPECT_NEAR(cam.uncertainty_depth, median_z, 1e-9 * median_z);
+  ASSERT_EQ(cam.uncertainty_px.size(), 48u);
+  const ImageGrid grid{c.image_size, 8, 6};
+  for (int row = 0; row < 6; ++row) {
+    for (int col = 0; col < 8; ++col) {
+      const Eigen::Vector2d px(-0.5 + 1280 * (col + 0.5) / 8, -0.5 + 1024 * (row + 0.5) / 6);
+      EXPECT_EQ(grid.CellCentre(col, row), px);
+      const auto e = ProjectionUncertaintyAtPixel(result.camera, px, cam.uncertainty_depth);
+      ASSERT_TRUE(e && cam.uncertainty_px[row * 8 + col]);
+      EXPECT_EQ(*cam.uncertainty_px[row * 8 + col], e->sigma_major_px);
+    }
+  }
   rc.sigma_px = 2 * *rc.sigma_px;
   const CameraReport doubled = BuildReprojReport({&rc, 1}, c, "corr.json").cameras.at(0);
   EXPECT_NEAR(*doubled.chi2_per_dof, 0.25, 0.03);
@@ -196,6 +214,7 @@ TEST(ReprojReport, NormalizedResidualsOfARefinedCameraMatchItsCovariance) {
   const CameraReport none = BuildReprojReport({&rc, 1}, c, "corr.json").cameras.at(0);
   EXPECT_FALSE(none.chi2_per_dof);
   EXPECT_NE(none.normalization.find("no covariance"), std::string::npos);
+  EXPECT_TRUE(none.uncertainty_px.empty());
 }
 
 }  // namespace

@@ -106,8 +106,7 @@ std::string DepthScript(const ReprojReport& r) {
   return s + "unset multiplot\n";
 }
 
-std::string HeatMapScript(const ReprojReport& r, size_t camera) {
-  const ImageGrid& g = r.grid;
+std::string HeatMapScript(const ImageGrid& g, const std::vector<std::optional<double>>& cells, const std::string& label) {
   const ImageSize& size = g.image_size;
   const int width = 700, height = std::clamp(static_cast<int>(700.0 * size.height / size.width) + 60, 200, 900);
   std::string s = Header(width, height);
@@ -115,15 +114,15 @@ std::string HeatMapScript(const ReprojReport& r, size_t camera) {
   s += "$g << EOD\n";
   for (int row = 0; row < g.rows; ++row) {
     for (int col = 0; col < g.cols; ++col) {
-      const auto& cell = r.cameras[camera].grid[static_cast<size_t>(row) * g.cols + col];
-      s += Number(-0.5 + (col + 0.5) * size.width / g.cols) + " " + Number(-0.5 + (row + 0.5) * size.height / g.rows) +
-           " " + (cell ? Number(cell->mean) : "NaN") + "\n";
+      const std::optional<double>& cell = cells[static_cast<size_t>(row) * g.cols + col];
+      const Eigen::Vector2d centre = g.CellCentre(col, row);
+      s += Number(centre.x()) + " " + Number(centre.y()) + " " + (cell ? Number(*cell) : "NaN") + "\n";
     }
     s += "\n";
   }
   s += "EOD\nset xrange [-0.5:" + Number(size.width - 0.5) + "]\nset yrange [" + Number(size.height - 0.5) +
        ":-0.5]\nset size ratio -1\nset xlabel \"u (px)\"\nset ylabel \"v (px)\"\n"
-       "set cblabel \"mean |residual| (px)\"\nset palette defined (0 \"#ffffcc\", 1 \"#fd8d3c\", 2 \"#800026\")\n"
+       "set cblabel " + GnuplotQuoted(label) + "\nset palette defined (0 \"#ffffcc\", 1 \"#fd8d3c\", 2 \"#800026\")\n"
        "unset grid\nset cbrange [0:*]\n";
   s += "plot $g using 1:2:3 with image pixels notitle\n";
   return s;

@@ -15,8 +15,9 @@ std::string PerViewScript(const ReprojReport& report);
 // |r| (px) and lateral error (length unit) against the point's distance from the camera, every
 // camera; at most kMaxScatterPoints points per camera (an even stride through the points).
 std::string DepthScript(const ReprojReport& report);
-// Mean |r| per image cell of one camera, as a heat map over the image (empty cells blank).
-std::string HeatMapScript(const ReprojReport& report, size_t camera);
+// A value per grid cell (row-major; nullopt drawn blank) as a heat map over the image, the colour
+// bar labelled `label`: a camera's mean |r| per cell, its projection uncertainty.
+std::string HeatMapScript(const ImageGrid& grid, const std::vector<std::optional<double>>& cells, const std::string& label);
 // Each test point's |r| and lateral error, inside vs outside the measured volume, every camera.
 // Empty when there are no measured test points.
 std::string TestPointsScript(const ReprojReport& report);

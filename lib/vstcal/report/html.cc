@@ -172,9 +172,22 @@ std::string ReprojReportHtml(const ReprojReport& r, const std::filesystem::path&
     s += Chart(script, "test points inside and outside the volume", "Test points inside vs outside the calibration points' convex hull.");
   }
   for (size_t k = 0; k < std::min(r.cameras.size(), kMaxPictureCameras); ++k) {
-    s += Chart(HeatMapScript(r, k), "heat map camera " + std::to_string(k),
+    const CameraReport& cam = r.cameras[k];
+    std::vector<std::optional<double>> means;
+    for (const auto& cell : cam.grid) means.push_back(cell ? std::optional<double>(cell->mean) : std::nullopt);
+    s += Chart(HeatMapScript(r.grid, means, "mean |residual| (px)"), "heat map camera " + std::to_string(k),
                "Camera " + std::to_string(k) + ": mean |residual| per image cell (" + std::to_string(r.grid.cols) + "×" +
                    std::to_string(r.grid.rows) + "; blank: no point).");
+    if (!cam.uncertainty_px.empty()) {
+      char depth[32];
+      std::snprintf(depth, sizeof depth, "%.6g", cam.uncertainty_depth);
+      s += Chart(HeatMapScript(r.grid, cam.uncertainty_px, "1-sigma projection uncertainty (px)"),
+                 "projection uncertainty camera " + std::to_string(k),
+                 "Camera " + std::to_string(k) + ": projection uncertainty from its covariance, the major semi-axis of the " +
+                     "1-sigma ellipse at each cell's centre and depth " + depth + " " +
+                     std::string(LengthUnitName(r.correspondences.length_unit)) +
+                     " (the points' median), tied to the calibration object (as mrcal's show-projection-uncertainty).");
+    }
     const OverlayPicture overlay = DrawResidualOverlay(r, k, dir);
     s += Figure("image/png", Base64(overlay.png.data(), overlay.png.size()), "residual vectors camera " + std::to_string(k),
                 "Camera " + std::to_string(k) + ": residual vectors, " + overlay.caption + ".");

@@ -81,6 +81,13 @@ OrderedJson CameraJson(const CameraReport& c, const ImageGrid& grid) {
     cells.push_back({{"col", i % cols}, {"row", i / cols}, {"error_px", StatsJson(c.grid[i])}});
   }
   j["grid"] = std::move(cells);
+  if (c.uncertainty_px.empty()) {
+    j["projection_uncertainty"] = nullptr;
+  } else {
+    OrderedJson sigma = OrderedJson::array();
+    for (const auto& v : c.uncertainty_px) sigma.push_back(Optional(v));
+    j["projection_uncertainty"] = {{"kind", "with_poses"}, {"depth", c.uncertainty_depth}, {"sigma_major_px", std::move(sigma)}};
+  }
   OrderedJson tests = OrderedJson::array();
   for (const TestPointReport& t : c.test_points) tests.push_back(TestPointJson(t));
   j["test_points"] = {{"inside", MeasureJson(c.test_inside)}, {"outside", MeasureJson(c.test_outside)},

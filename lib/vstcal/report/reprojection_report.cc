@@ -46,6 +46,7 @@ PointError MeasurePoint(const ReportCamera& rc, const Normalization& norm, const
   }
   const auto ray = rc.camera.camera.Unproject(measured);
   e.depth = point_cam.norm();
+  e.z = point_cam.z();
   const Eigen::Vector3d sight = point_cam / e.depth;
   const double along = ray ? ray->normalized().dot(sight) : 0.0;
   if (!ray || !(along > 0)) {  // the measured pixel has no ray, or one 90° or more away
@@ -73,13 +74,14 @@ PointError MeasurePoint(const ReportCamera& rc, const Normalization& norm, const
 }
 
 struct Collected {
-  std::vector<double> error_px, lateral, angular_deg, normalized;
+  std::vector<double> error_px, lateral, angular_deg, normalized, z;
   std::vector<Eigen::Vector2d> pixels;
   void Add(const PointError& e) {
     if (e.excluded != Exclusion::kNone) return;
     error_px.push_back(e.error_px);
     lateral.push_back(e.lateral);
     angular_deg.push_back(e.angular_deg());
+    z.push_back(e.z);
     pixels.push_back(e.measured);
     if (e.normalized) normalized.push_back(*e.normalized);
   }
@@ -154,6 +156,15 @@ CameraReport ReportOne(const ReportCamera& rc, const Correspondences& c, const I
     out.views.push_back(std::move(vr));
   }
   out.overall = all.Stats();
+  if (rc.camera.covariance && !rc.camera.covariance->empty() && !all.z.empty()) {
+    out.uncertainty_depth = ComputeErrorStats(all.z)->median;
+    for (int row = 0; row < grid.rows; ++row) {
+      for (int col = 0; col < grid.cols; ++col) {
+        const auto e = ProjectionUncertaintyAtPixel(rc.camera, grid.CellCentre(col, row), out.uncertainty_depth);
+        out.uncertainty_px.push_back(e ? std::optional<double>(e->sigma_major_px) : std::nullopt);
+      }
+    }
+  }
   out.grid = ComputeGridStats(grid, all.pixels, all.error_px);
   if (norm.enabled) {
     out.normalized = ComputeErrorStats(all.normalized);

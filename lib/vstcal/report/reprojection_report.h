@@ -52,6 +52,7 @@ struct PointError {
   std::optional<Eigen::Vector2d> predicted;            // px, when in front of the camera and posed
   Exclusion excluded = Exclusion::kNone;
   double depth = 0;    // |X_c|, length unit (when posed)
+  double z = 0;        // X_c's depth along the optical axis, length unit (when posed)
   double error_px = 0;  // |r|
   double lateral = 0;   // length unit
   double angular_rad = 0;
@@ -90,6 +91,12 @@ struct CameraReport {
   MeasureStats test_inside, test_outside;
   std::optional<ErrorStats> test_normalized;
   size_t n_behind_camera = 0, n_no_pose = 0, n_no_ray = 0;  // calibration points excluded, by reason
+  // mrcal's show-projection-uncertainty: the 1-σ major semi-axis (px) of the projection of the
+  // point at each grid cell's centre and the calibration points' median z, tied to the
+  // calibration object (ProjectionUncertaintyKind::kWithPoses), row-major; nullopt for a cell
+  // without a ray. Empty when the camera has no covariance.
+  std::vector<std::optional<double>> uncertainty_px;
+  double uncertainty_depth = 0;  // length unit
 };
 
 // Camera `camera` against the first camera: how far their predictions of the same points lie

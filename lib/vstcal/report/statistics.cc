@@ -39,6 +39,10 @@ std::optional<size_t> ImageGrid::CellOf(const Eigen::Vector2d& pixel) const {
   return static_cast<size_t>(cv) * static_cast<size_t>(cols) + static_cast<size_t>(cu);
 }
 
+Eigen::Vector2d ImageGrid::CellCentre(int col, int row) const {
+  return {-0.5 + image_size.width * (col + 0.5) / cols, -0.5 + image_size.height * (row + 0.5) / rows};
+}
+
 std::vector<std::optional<ErrorStats>> ComputeGridStats(const ImageGrid& grid, std::span<const Eigen::Vector2d> pixels,
                                                         std::span<const double> values) {
   VSTCAL_CHECK(pixels.size() == values.size(), "one value per pixel");

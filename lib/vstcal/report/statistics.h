@@ -39,6 +39,8 @@ struct ImageGrid {
   // Row-major cell index r·cols + c, or nullopt outside the image.
   std::optional<size_t> CellOf(const Eigen::Vector2d& pixel) const;
   size_t num_cells() const { return static_cast<size_t>(cols) * static_cast<size_t>(rows); }
+  // The centre of cell (col, row), px.
+  Eigen::Vector2d CellCentre(int col, int row) const;
 };
 
 // The statistics of `values[i]` per grid cell of `pixels[i]` (same length): one entry per cell,
