@@ -132,7 +132,7 @@ TEST_F(CliReprojReportHtml, OverlayOnTheNamedImage) {
   EXPECT_EQ(ReadJson("out/r.json")["correspondences"]["images"][1], "views/plane-01.png");
 }
 
-TEST_F(CliReprojReportHtml, NamedImageMissingOrOfAnotherSize) {
+TEST_F(CliReprojReportHtml, NamedImageMissingNotAnImageOrOfAnotherSize) {
   Json corr = ReadJson("in/volume.json");
   corr["views"][0]["image"] = "views/missing.png";
   WriteJson("in/missing.json", corr);
@@ -145,6 +145,12 @@ TEST_F(CliReprojReportHtml, NamedImageMissingOrOfAnotherSize) {
   WriteJson("in/small.json", corr);
   EXPECT_TRUE(FailsWith(Run("reproj-report", {"in/volume.truth.json", "in/small.json", "-o", "out/r.json", "--html", "out/r.html"}),
                         "reproj-report", kBadInput, "in/small.json: views[0].image: ", {"is 320x240 px but image_size is 640x480"}));
+  EXPECT_TRUE(OutDirEmpty());
+  WriteText("in/views/text.png", "not a picture\n");
+  corr["views"][0]["image"] = "views/text.png";
+  WriteJson("in/text.json", corr);
+  EXPECT_TRUE(FailsWith(Run("reproj-report", {"in/volume.truth.json", "in/text.json", "-o", "out/r.json", "--html", "out/r.html"}),
+                        "reproj-report", kBadInput, "in/text.json: views[0].image: ", {"not an image", "give a PNG or JPEG"}));
   EXPECT_TRUE(OutDirEmpty());
 }
 

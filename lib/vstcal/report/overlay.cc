@@ -7,8 +7,8 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "vstcal/capture/image_io.h"
 #include "vstcal/core/error.h"
-#include "vstcal/json/input_protection.h"
 
 namespace vstcal {
 namespace {
@@ -24,6 +24,8 @@ double RoundScale(double x) {
   return decade;
 }
 
+// The view's image, in grey (capture::LoadImageFile: its header is checked before anything is
+// decoded, so no file can make the report allocate more than a 100-megapixel image).
 cv::Mat LoadBackground(const ReprojReport& report, size_t view, const std::filesystem::path& dir) {
   const std::string& named = report.correspondences.views[view].image;
   std::filesystem::path path = named;
@@ -33,16 +35,18 @@ cv::Mat LoadBackground(const ReprojReport& report, size_t view, const std::files
     throw InputError(field + "\"" + named + "\" not found (as given or beside the correspondences); run from the folder " +
                      "the path is relative to, or remove the field to draw on a blank canvas");
   }
-  io::NoteInputFile(path);
-  cv::Mat image = cv::imread(path.string(), cv::IMREAD_COLOR);
-  if (image.empty()) throw InputError(field + path.string() + " is not an image OpenCV can read; give a PNG or JPEG");
+  const capture::LoadedImage loaded = capture::LoadImageFile(path);
+  if (!loaded.problem.empty()) throw InputError(field + path.string() + ": " + loaded.problem + "; give a PNG or JPEG");
   const ImageSize& size = report.correspondences.image_size;
-  if (image.cols != size.width || image.rows != size.height) {
-    throw InputError(field + path.string() + " is " + std::to_string(image.cols) + "x" + std::to_string(image.rows) +
-                     " px but image_size is " + std::to_string(size.width) + "x" + std::to_string(size.height) +
-                     "; give the image the corners were detected in");
+  if (loaded.image.width != size.width || loaded.image.height != size.height) {
+    throw InputError(field + path.string() + " is " + std::to_string(loaded.image.width) + "x" +
+                     std::to_string(loaded.image.height) + " px but image_size is " + std::to_string(size.width) + "x" +
+                     std::to_string(size.height) + "; give the image the corners were detected in");
   }
-  return image;
+  const cv::Mat gray(loaded.image.height, loaded.image.width, CV_8UC1, const_cast<uint8_t*>(loaded.image.pixels.data()));
+  cv::Mat colour;
+  cv::cvtColor(gray, colour, cv::COLOR_GRAY2BGR);
+  return colour;
 }
 
 }  // namespace

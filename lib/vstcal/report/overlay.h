@@ -17,7 +17,8 @@ struct OverlayPicture {
   std::string caption;             // what is drawn, on what, and the vectors' scale
 };
 
-// Camera `camera` of `report`: on the image of the first view that names one (its points only),
+// Camera `camera` of `report`: on the image of the first view that names one (its points only, the
+// image in grey),
 // resolved as given or else relative to `correspondences_dir`; without images, all views on a
 // blank canvas. Vectors are drawn ×scale with scale = 2 % of the image diagonal over the p95 |r|
 // (rounded to 1, 2 or 5 × 10ᵏ), coloured green (|r| = 0) to red (|r| ≥ p95). Throws InputError
