@@ -80,6 +80,39 @@ TEST_F(CliReprojReport, PointsBehindTheCameraAreMarkedNotCounted) {
   EXPECT_TRUE(view["points"][20][2].is_null());
 }
 
+TEST_F(CliReprojReport, PlanarViewsAndAViewTheCameraHasNoPoseFor) {
+  Synth("in/views.json", {"--image-size", "640x480", "--fx", "600", "--rig", "planar-views", "--views", "4", "--grid",
+                          "8x6", "--spacing", "30", "--noise", "0.2"});
+  Json corr = ReadJson("in/views.json");
+  corr["views"][2]["name"] = "renamed";  // the truth camera has poses for view-00 … view-03 only
+  WriteJson("in/renamed.json", corr);
+  const CommandResult r = Run("reproj-report", {"in/views.truth.json", "in/renamed.json", "-o", "out/report.json"});
+  ASSERT_EQ(r.exit_code, kOk) << r.err;
+  const Json report = ReadJson("out/report.json");
+  EXPECT_EQ(report["volume"]["hull"], "planar views: the boards share no world frame");
+  const Json& c = report["cameras"][0];
+  EXPECT_EQ(c["excluded"]["no_pose"], 48);
+  EXPECT_EQ(c["overall"]["error_px"]["n"], 3 * 48);
+  EXPECT_TRUE(c["views"][2]["error_px"].is_null());
+  EXPECT_EQ(c["views"][2]["excluded"].size(), 48u);
+  EXPECT_EQ(c["views"][2]["excluded"][0]["reason"], "no-pose");
+  EXPECT_EQ(c["views"][1]["error_px"]["n"], 48);
+}
+
+TEST_F(CliReprojReport, OnePlaneSpansNoVolume) {
+  // One plane of points: no hull, so no test point is called inside or outside.
+  Synth("in/plane.json", Override(Override(Remove(DefaultSynthArgs(), "--no-test-points", false), "--far", "0"),
+                                  "--noise", "0.2"));
+  const CommandResult r = Run("reproj-report", {"in/plane.truth.json", "in/plane.json", "-o", "out/report.json"});
+  ASSERT_EQ(r.exit_code, kOk) << r.err;
+  const Json report = ReadJson("out/report.json");
+  EXPECT_EQ(report["volume"]["hull"], "the calibration points lie on one plane: they span no volume");
+  const Json& tests = report["cameras"][0]["test_points"];
+  EXPECT_TRUE(tests["inside"]["error_px"].is_null());
+  EXPECT_TRUE(tests["outside"]["error_px"].is_null());
+  for (const Json& t : tests["points"]) EXPECT_TRUE(t["inside_volume"].is_null());
+}
+
 TEST_F(CliReprojReport, DifferentImageSize) {
   SolveNoisyVolume();
   Synth("in/other.json", Override(DefaultSynthArgs(), "--image-size", "800x600"));
