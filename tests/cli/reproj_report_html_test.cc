@@ -119,6 +119,19 @@ TEST_F(CliReprojReportHtml, RendersOfflineWithEveryImageAndTheJsonsNumbers) {
   EXPECT_LT(lo, 60);  // text and charts drawn, not a blank page
 }
 
+TEST_F(CliReprojReportHtml, SameInputsGiveTheSameBytes) {
+  // Report and page twice from the same inputs and arguments: bit-identical (no time stamp, Qhull
+  // without random perturbation, gnuplot and PNG output deterministic).
+  const std::vector<std::string> args = {"in/volume.truth.json", "in/volume.json", "-o", "out/r.json", "--html", "out/r.html"};
+  ASSERT_EQ(Run("reproj-report", args).exit_code, kOk);
+  const std::string json = ReadText("out/r.json"), html = ReadText("out/r.html");
+  fs::remove(Path("out/r.json"));
+  fs::remove(Path("out/r.html"));
+  ASSERT_EQ(Run("reproj-report", args).exit_code, kOk);
+  EXPECT_TRUE(ReadText("out/r.json") == json);
+  EXPECT_TRUE(ReadText("out/r.html") == html);
+}
+
 TEST_F(CliReprojReportHtml, OverlayOnTheNamedImage) {
   // A view that names its image: the overlay is drawn on it (a grey 640×480 picture here).
   Json corr = ReadJson("in/volume.json");
