@@ -1,0 +1,204 @@
+#include "vstcal/report/report_format.h"
+
+#include <cstdio>
+
+#include "vstcal/io/camera_io.h"
+
+namespace vstcal::io {
+namespace {
+
+OrderedJson StatsJson(const std::optional<ErrorStats>& s) {
+  if (!s) return nullptr;
+  return {{"n", s->n}, {"mean", s->mean}, {"rms", s->rms}, {"median", s->median}, {"p95", s->p95}, {"max", s->max}};
+}
+
+OrderedJson MeasureJson(const MeasureStats& m) {
+  return {{"error_px", StatsJson(m.error_px)}, {"lateral", StatsJson(m.lateral)}, {"angular_deg", StatsJson(m.angular_deg)}};
+}
+
+OrderedJson Optional(const std::optional<double>& v) { return v ? OrderedJson(*v) : OrderedJson(nullptr); }
+
+// [u, v, du, dv, lateral, angular_deg, z]: the measured pixel, then null from du on when excluded.
+OrderedJson PointJson(const PointError& e) {
+  OrderedJson p = {e.measured.x(), e.measured.y()};
+  if (e.excluded != Exclusion::kNone) {
+    for (int i = 0; i < 5; ++i) p.push_back(nullptr);
+    return p;
+  }
+  const Eigen::Vector2d r = *e.predicted - e.measured;
+  for (const double x : {r.x(), r.y(), e.lateral, e.angular_deg()}) p.push_back(x);
+  p.push_back(Optional(e.normalized));
+  return p;
+}
+
+OrderedJson ExclusionsJson(const std::vector<PointError>& points) {
+  OrderedJson out = OrderedJson::array();
+  for (size_t i = 0; i < points.size(); ++i) {
+    if (points[i].excluded != Exclusion::kNone) out.push_back({{"index", i}, {"reason", ExclusionName(points[i].excluded)}});
+  }
+  return out;
+}
+
+OrderedJson TestPointJson(const TestPointReport& t) {
+  const PointError& e = t.error;
+  const bool measured = e.excluded == Exclusion::kNone;
+  OrderedJson j;
+  j["name"] = t.name;
+  j["world"] = MatrixToJson(t.point_in_world);
+  j["inside_volume"] = t.inside_volume ? OrderedJson(*t.inside_volume) : OrderedJson(nullptr);
+  j["measured"] = e.excluded == Exclusion::kNotMeasured ? OrderedJson(nullptr) : MatrixToJson(e.measured);
+  j["predicted"] = measured ? MatrixToJson(*e.predicted) : OrderedJson(nullptr);
+  j["error_px"] = measured ? OrderedJson(e.error_px) : OrderedJson(nullptr);
+  j["lateral"] = measured ? OrderedJson(e.lateral) : OrderedJson(nullptr);
+  j["angular_deg"] = measured ? OrderedJson(e.angular_deg()) : OrderedJson(nullptr);
+  j["normalized"] = Optional(e.normalized);
+  j["excluded"] = measured ? OrderedJson(nullptr) : OrderedJson(ExclusionName(e.excluded));
+  return j;
+}
+
+OrderedJson CameraJson(const CameraReport& c, const ImageGrid& grid) {
+  OrderedJson j;
+  j["file"] = c.file;
+  j["name"] = c.name;
+  j["method"] = c.method;
+  j["overall"] = MeasureJson(c.overall);
+  j["excluded"] = {{"behind_camera", c.n_behind_camera}, {"no_pose", c.n_no_pose}, {"no_ray", c.n_no_ray}};
+  j["normalized"] = {{"how", c.normalization},
+                     {"calibration_points", StatsJson(c.normalized)},
+                     {"chi2_per_dof", Optional(c.chi2_per_dof)},
+                     {"test_points", StatsJson(c.test_normalized)}};
+  OrderedJson views = OrderedJson::array();
+  for (const ViewReport& v : c.views) {
+    OrderedJson points = OrderedJson::array();
+    for (const PointError& e : v.points) points.push_back(PointJson(e));
+    views.push_back({{"name", v.name}, {"error_px", StatsJson(v.error_px)}, {"excluded", ExclusionsJson(v.points)},
+                     {"points", std::move(points)}});
+  }
+  j["views"] = std::move(views);
+  OrderedJson cells = OrderedJson::array();
+  for (size_t i = 0; i < c.grid.size(); ++i) {
+    const size_t cols = static_cast<size_t>(grid.cols);
+    cells.push_back({{"col", i % cols}, {"row", i / cols}, {"error_px", StatsJson(c.grid[i])}});
+  }
+  j["grid"] = std::move(cells);
+  if (c.uncertainty_px.empty()) {
+    j["projection_uncertainty"] = nullptr;
+  } else {
+    OrderedJson sigma = OrderedJson::array();
+    for (const auto& v : c.uncertainty_px) sigma.push_back(Optional(v));
+    j["projection_uncertainty"] = {{"kind", "with_poses"}, {"depth", c.uncertainty_depth}, {"sigma_major_px", std::move(sigma)}};
+  }
+  OrderedJson tests = OrderedJson::array();
+  for (const TestPointReport& t : c.test_points) tests.push_back(TestPointJson(t));
+  j["test_points"] = {{"inside", MeasureJson(c.test_inside)}, {"outside", MeasureJson(c.test_outside)},
+                      {"points", std::move(tests)}};
+  return j;
+}
+
+void Append(std::string* out, const char* fmt, auto... args) {
+  char buf[512];
+  std::snprintf(buf, sizeof buf, fmt, args...);
+  *out += buf;
+}
+
+void AppendStatsRow(std::string* out, const std::string& label, const std::optional<ErrorStats>& s) {
+  if (!s) {
+    Append(out, "  %-24s %6s  (no measured point)\n", label.c_str(), "0");
+    return;
+  }
+  Append(out, "  %-24s %6zu %10.4f %10.4f %10.4f %10.4f %10.4f\n", label.c_str(), s->n, s->mean, s->rms, s->median,
+         s->p95, s->max);
+}
+
+}  // namespace
+
+ReportCamera ReadReportCamera(const std::filesystem::path& path) {
+  const JsonDocument doc = JsonDocument::Load(path);
+  ReportCamera rc{path.string(), CameraFromJson(doc), std::nullopt};
+  if (const auto refinement = doc.root().find("refinement")) {
+    if (const auto sigma = refinement->find("sigma_px")) {
+      const double s = sigma->NonNegativeNumber();
+      if (s > 0) rc.sigma_px = s;
+    }
+  }
+  return rc;
+}
+
+OrderedJson ReprojReportToJson(const ReprojReport& r, const Provenance& provenance) {
+  const Correspondences& c = r.correspondences;
+  OrderedJson j;
+  j["format"] = "vstcal/reproj-report@1";
+  j["correspondences"] = {{"file", r.correspondences_file},
+                          {"camera", c.camera},
+                          {"image_size", {c.image_size.width, c.image_size.height}},
+                          {"length_unit", LengthUnitName(c.length_unit)},
+                          {"rig", c.rig == Rig::kVolume ? "volume" : "planar-views"},
+                          {"n_views", c.views.size()},
+                          {"n_points", NumObservations(c)},
+                          {"n_test_points", c.test_points.size()}};
+  OrderedJson images = OrderedJson::array();
+  for (const View& v : c.views) images.push_back(v.image.empty() ? OrderedJson(nullptr) : OrderedJson(v.image));
+  j["correspondences"]["images"] = std::move(images);
+  j["grid"] = {{"cols", r.grid.cols}, {"rows", r.grid.rows}};
+  j["volume"] = {{"hull", r.hull_status}, {"vertices", r.hull_vertices}, {"facets", r.hull_facets}};
+  OrderedJson cameras = OrderedJson::array();
+  for (const CameraReport& cam : r.cameras) cameras.push_back(CameraJson(cam, r.grid));
+  j["cameras"] = std::move(cameras);
+  OrderedJson differences = OrderedJson::array();
+  for (const CameraDifference& d : r.differences) {
+    differences.push_back({{"camera", d.camera},
+                           {"reference", d.reference},
+                           {"prediction_shift_px", StatsJson(d.prediction_shift_px)},
+                           {"rms_change_px", Optional(d.rms_change_px)},
+                           {"median_change_px", Optional(d.median_change_px)},
+                           {"p95_change_px", Optional(d.p95_change_px)}});
+  }
+  j["differences"] = std::move(differences);
+  j["provenance"] = ProvenanceToJson(provenance);
+  return j;
+}
+
+std::string ReprojReportText(const ReprojReport& r) {
+  std::string out;
+  const std::string unit(LengthUnitName(r.correspondences.length_unit));
+  Append(&out, "%s: %zu points in %zu views, %zu test points; volume: %s\n", r.correspondences_file.c_str(),
+         NumObservations(r.correspondences), r.correspondences.views.size(), r.correspondences.test_points.size(),
+         r.hull_status.c_str());
+  for (size_t k = 0; k < r.cameras.size(); ++k) {
+    const CameraReport& c = r.cameras[k];
+    Append(&out, "\ncamera %zu: %s (%s)\n", k, c.file.c_str(), c.method.empty() ? "?" : c.method.c_str());
+    Append(&out, "  %-24s %6s %10s %10s %10s %10s %10s\n", "", "n", "mean", "rms", "median", "p95", "max");
+    AppendStatsRow(&out, "residual px", c.overall.error_px);
+    AppendStatsRow(&out, "lateral " + unit, c.overall.lateral);
+    AppendStatsRow(&out, "angular deg", c.overall.angular_deg);
+    for (const ViewReport& v : c.views) AppendStatsRow(&out, "view " + v.name + " px", v.error_px);
+    if (!c.test_points.empty()) {
+      AppendStatsRow(&out, "test inside px", c.test_inside.error_px);
+      AppendStatsRow(&out, "test outside px", c.test_outside.error_px);
+      AppendStatsRow(&out, "test inside " + unit, c.test_inside.lateral);
+      AppendStatsRow(&out, "test outside " + unit, c.test_outside.lateral);
+    }
+    if (c.chi2_per_dof) {
+      Append(&out, "  normalized residuals: chi2 per dof %.3f (1 = consistent with the covariance)\n", *c.chi2_per_dof);
+    } else {
+      Append(&out, "  normalized residuals: %s\n", c.normalization.c_str());
+    }
+    const size_t excluded = c.n_behind_camera + c.n_no_pose + c.n_no_ray;
+    if (excluded > 0) {
+      Append(&out, "  excluded: %zu behind the camera, %zu without a pose, %zu without a ray\n", c.n_behind_camera,
+             c.n_no_pose, c.n_no_ray);
+    }
+  }
+  for (const CameraDifference& d : r.differences) {
+    Append(&out, "\ncamera %zu vs camera %zu:", d.camera, d.reference);
+    if (d.rms_change_px) Append(&out, " rms %+.4f px, median %+.4f px, p95 %+.4f px;", *d.rms_change_px, *d.median_change_px, *d.p95_change_px);
+    if (d.prediction_shift_px) {
+      Append(&out, " predictions apart by %.4f px mean, %.4f px max\n", d.prediction_shift_px->mean, d.prediction_shift_px->max);
+    } else {
+      out += " no point predicted by both\n";
+    }
+  }
+  return out;
+}
+
+}  // namespace vstcal::io

@@ -1,0 +1,128 @@
+// lib/vstcal/report: statistics, image grid and the measured volume's hull, on cases computed by
+// hand (docs/math/report-statistics.md).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "vstcal/core/error.h"
+#include "vstcal/report/convex_hull.h"
+#include "vstcal/report/statistics.h"
+
+namespace vstcal {
+namespace {
+
+TEST(ErrorStats, FourValuesByHand) {
+  const std::vector<double> x = {4, 1, 3, 2};  // unsorted on purpose
+  const auto s = ComputeErrorStats(x);
+  ASSERT_TRUE(s);
+  EXPECT_EQ(s->n, 4u);
+  EXPECT_DOUBLE_EQ(s->mean, 2.5);
+  EXPECT_DOUBLE_EQ(s->rms, std::sqrt(30.0 / 4));  // (16 + 1 + 9 + 4) / 4
+  EXPECT_DOUBLE_EQ(s->median, 2.5);               // h = 1.5: between 2 and 3
+  EXPECT_DOUBLE_EQ(s->p95, 3.85);                 // h = 0.95·3 = 2.85: 3 + 0.85·(4 − 3)
+  EXPECT_DOUBLE_EQ(s->max, 4);
+}
+
+TEST(ErrorStats, OddCountMedianIsTheMiddleValue) {
+  const std::vector<double> x = {10, 0, 7, 1, 2};
+  const auto s = ComputeErrorStats(x);
+  ASSERT_TRUE(s);
+  EXPECT_DOUBLE_EQ(s->median, 2);
+  EXPECT_DOUBLE_EQ(s->p95, 7 + 0.8 * 3);  // h = 3.8 → 7 + 0.8·(10 − 7)
+  EXPECT_DOUBLE_EQ(s->mean, 4);
+}
+
+TEST(ErrorStats, OneValueAndNone) {
+  const std::vector<double> one = {0.25};
+  const auto s = ComputeErrorStats(one);
+  ASSERT_TRUE(s);
+  EXPECT_EQ(s->median, 0.25);
+  EXPECT_EQ(s->p95, 0.25);
+  EXPECT_EQ(s->rms, 0.25);
+  EXPECT_FALSE(ComputeErrorStats(std::vector<double>{}));
+}
+
+TEST(ErrorStats, NonFiniteIsABug) {
+  const std::vector<double> x = {1, NAN};
+  EXPECT_THROW(ComputeErrorStats(x), InternalError);
+}
+
+TEST(ImageGrid, CellEdgesAreHalfAPixelOutsideTheCentres) {
+  const ImageGrid g{{640, 480}, 2, 2};
+  EXPECT_EQ(g.CellOf({-0.5, -0.5}), 0u);
+  EXPECT_EQ(g.CellOf({319.49, 0}), 0u);
+  EXPECT_EQ(g.CellOf({319.5, 0}), 1u);  // u + 0.5 = 320: the second column starts here
+  EXPECT_EQ(g.CellOf({0, 239.5}), 2u);
+  EXPECT_EQ(g.CellOf({639.4, 479.4}), 3u);
+  EXPECT_FALSE(g.CellOf({639.5, 0}));  // the image's right edge belongs to no cell
+  EXPECT_FALSE(g.CellOf({-0.51, 0}));
+  EXPECT_FALSE(g.CellOf({NAN, 0}));
+}
+
+TEST(ImageGrid, StatisticsPerCell) {
+  const ImageGrid g{{100, 100}, 2, 1};
+  const std::vector<Eigen::Vector2d> px = {{10, 10}, {20, 90}, {80, 50}, {200, 50}};
+  const std::vector<double> e = {1, 3, 5, 100};  // the last one is outside the image: no cell
+  const auto cells = ComputeGridStats(g, px, e);
+  ASSERT_EQ(cells.size(), 2u);
+  ASSERT_TRUE(cells[0] && cells[1]);
+  EXPECT_EQ(cells[0]->n, 2u);
+  EXPECT_DOUBLE_EQ(cells[0]->mean, 2);
+  EXPECT_EQ(cells[1]->n, 1u);
+  EXPECT_DOUBLE_EQ(cells[1]->max, 5);
+}
+
+// The unit tetrahedron's hull is x, y, z ≥ 0 and x + y + z ≤ 1: its bounding box is the unit cube,
+// so points of the cube beyond the slanted face tell a hull from a box.
+std::vector<Eigen::Vector3d> Tetrahedron() {
+  std::vector<Eigen::Vector3d> p = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  p.push_back({0.1, 0.1, 0.1});  // inner points do not change the hull
+  p.push_back({0.5, 0.25, 0.25});  // on the slanted face
+  return p;
+}
+
+TEST(ConvexHull, TetrahedronAgainstItsHalfSpaces) {
+  const auto outcome = ConvexHull3::Of(Tetrahedron());
+  ASSERT_TRUE(outcome.hull) << outcome.why;
+  const ConvexHull3& hull = *outcome.hull;
+  EXPECT_EQ(hull.num_vertices(), 4u);
+  EXPECT_EQ(hull.num_facets(), 4u);
+  EXPECT_TRUE(hull.Contains({0.2, 0.2, 0.2}));
+  EXPECT_TRUE(hull.Contains({1.0 / 3, 1.0 / 3, 1.0 / 3}));  // on the slanted face: bounds included
+  EXPECT_TRUE(hull.Contains({0, 0, 0}));                    // a vertex
+  EXPECT_TRUE(hull.Contains({0.5, 0, 0}));                  // an edge
+  EXPECT_FALSE(hull.Contains({0.4, 0.4, 0.4}));             // inside the bounding box, outside the hull
+  EXPECT_NEAR(hull.SignedDistance({0.4, 0.4, 0.4}), 0.2 / std::sqrt(3.0), 1e-12);  // (x + y + z − 1)/√3
+  EXPECT_NEAR(hull.SignedDistance({-0.5, 0.2, 0.2}), 0.5, 1e-12);                  // beyond x = 0
+  EXPECT_NEAR(hull.SignedDistance({0.1, 0.2, 0.3}), -0.1, 1e-12);  // nearest face x = 0
+}
+
+TEST(ConvexHull, CubeGridWithCoplanarFacesIsTheCube) {
+  // A 3×3×3 grid, as a calibration volume of three planes gives: many coplanar points per face.
+  std::vector<Eigen::Vector3d> p;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      for (int k = 0; k < 3; ++k) p.push_back({100.0 * i, 100.0 * j, 200.0 * k});
+  const auto outcome = ConvexHull3::Of(p);
+  ASSERT_TRUE(outcome.hull) << outcome.why;
+  EXPECT_EQ(outcome.hull->num_vertices(), 8u);
+  EXPECT_TRUE(outcome.hull->Contains({200, 200, 400}));  // a corner
+  EXPECT_TRUE(outcome.hull->Contains({100, 0, 250}));    // on a face
+  EXPECT_FALSE(outcome.hull->Contains({100, 100, 400.001}));
+  EXPECT_NEAR(outcome.hull->SignedDistance({100, 100, 450}), 50, 1e-9);
+}
+
+TEST(ConvexHull, NoVolumeIsAStatusNotAnError) {
+  const std::vector<Eigen::Vector3d> plane = {{0, 0, 5}, {1, 0, 5}, {0, 1, 5}, {1, 1, 5}, {0.5, 0.2, 5}};
+  const auto flat = ConvexHull3::Of(plane);
+  EXPECT_FALSE(flat.hull);
+  EXPECT_NE(flat.why.find("one plane"), std::string::npos) << flat.why;
+  const std::vector<Eigen::Vector3d> three = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  EXPECT_NE(ConvexHull3::Of(three).why.find("fewer than 4"), std::string::npos);
+  const std::vector<Eigen::Vector3d> line = {{0, 0, 0}, {1, 1, 1}, {2, 2, 2}, {3, 3, 3}};
+  EXPECT_NE(ConvexHull3::Of(line).why.find("one line"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace vstcal
