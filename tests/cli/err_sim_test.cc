@@ -513,6 +513,11 @@ TEST_F(CliErrSim, RigGivesTheCamerasAndTheRightCamerasError) {
   EXPECT_EQ(a["sources"]["camera_extrinsic"]["right"]["covariance"], "rig");
   ASSERT_EQ(Run("err-sim", {"normalize", "out/a.json", "-o", "out/b.json", "-q"}).exit_code, kOk);
   EXPECT_EQ(ReadText("out/a.json"), ReadText("out/b.json"));
+  // The rig is an input of the run: never overwritten.
+  const std::string rig_text = ReadText("in/rig.json");
+  EXPECT_TRUE(FailsWith(Run("err-sim", {"normalize", "in/chain.json", "-o", "in/rig.json"}), "err-sim", kBadInput, "in/rig.json: ",
+                        {"never overwrites its inputs"}));
+  EXPECT_EQ(ReadText("in/rig.json"), rig_text);
 }
 
 TEST_F(CliErrSim, RigConflictsAndBadReferencesAreNamed) {
