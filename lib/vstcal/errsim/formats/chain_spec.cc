@@ -7,9 +7,9 @@
 
 #include "vstcal/core/error.h"
 #include "vstcal/errsim/chain.h"
-#include "vstcal/stereo/stereo_rig.h"
 #include "vstcal/json/json_writer.h"
 #include "vstcal/json/reader_common.h"
+#include "vstcal/stereo/stereo_rig.h"
 
 namespace vstcal::errsim {
 namespace {

@@ -1,6 +1,6 @@
 // A vstcal/vst-chain@1 file as read (docs/formats.md#vst-chain): every value as the file gives it,
-// in file units, transforms in their written form, referenced camera files by their path (with
-// what they hold), defaults made explicit. The reader (chain_reader.h) checks every field and
+// in file units, transforms in their written form, referenced camera and rig files by their path
+// (with what they hold), defaults made explicit. The reader (chain_reader.h) checks every field and
 // fills it; the writer (chain_writer.h) writes it back in one canonical layout, so that reading a
 // written chain gives the same ChainSpec and writing it again the same bytes; BuildChainModel
 // turns it into the model the simulation runs.
