@@ -5,6 +5,8 @@
 //   BM_DrawTheta          θ for one sample (ThetaSampler::FillLanes): the random numbers alone
 //   BM_ChainSample        θ + the chain (both eyes, 5 points) + every error measure: one chain
 //                         sample, four at a time as err-sim run evaluates them (SampleMeasurer)
+//   BM_ChainSample/rig_covariance  the same with the right camera's pose error mixed from a rig's
+//                         6 × 6 covariance (camera_extrinsic.right.covariance): the mixing's cost
 //   BM_ChainSampleScalar  the same one sample at a time throughout (θ by Fill, the chain with
 //                         double): what drawing and evaluating four together gains
 //   BM_EngineSample       the whole Monte Carlo loop of `err-sim run` per sample, with the mergeable
@@ -48,16 +50,35 @@ void BM_DrawTheta(benchmark::State& state) {
 }
 BENCHMARK(BM_DrawTheta)->Unit(benchmark::kMicrosecond);
 
-// What a chain sample needs, on seed 001.
+// Seed 001 with the right camera's pose error from a rig covariance: its six slots standard
+// normals mixed by a dense 6 × 6 (σ ≈ 0.05° and 0.2 mm, correlated), as BuildChainModel makes it.
+const ChainModel& Seed001OnARig() {
+  static const ChainModel model = [] {
+    ChainModel m = Seed001();
+    for (const Term term : {Term::kCameraRotation, Term::kCameraTranslation}) {
+      for (int i = 0; i < m.layout.Size(term, 1); ++i) {
+        m.parameters[m.layout.Offset(term, 1) + i].distribution = Distribution::MakeNormal(0, 1);
+      }
+    }
+    for (int r = 0; r < 6; ++r) {
+      for (int c = 0; c <= r; ++c) m.extrinsic_mixing[1](r, c) = (r < 3 ? 9e-4 : 0.2) * (r == c ? 1.0 : 0.3);
+    }
+    return m;
+  }();
+  return model;
+}
+
+// What a chain sample needs, on seed 001 (or another model).
 struct ChainSampleSetup {
-  const ThetaSampler sampler{Seed001(), 1};
-  const ChainEvaluator chain{Seed001()};
-  const ErrorOutputs outputs{Seed001()};
+  explicit ChainSampleSetup(const ChainModel& model = Seed001()) : sampler(model, 1), chain(model), outputs(model) {}
+  const ThetaSampler sampler;
+  const ChainEvaluator chain;
+  const ErrorOutputs outputs;
   SampleMeasurer measurer{chain, outputs};
 };
 
-void BM_ChainSample(benchmark::State& state) {
-  ChainSampleSetup setup;
+void BM_ChainSample(benchmark::State& state, const ChainModel& (*model)()) {
+  ChainSampleSetup setup(model());
   constexpr size_t kLanes = SampleMeasurer::kLanes;
   const size_t n = setup.sampler.size();
   std::vector<SimdDouble> theta(kBatch / kLanes * n);
@@ -94,7 +115,8 @@ void BM_ChainSampleScalar(benchmark::State& state) {
   }
   state.SetItemsProcessed(state.iterations() * kBatch);
 }
-BENCHMARK(BM_ChainSample)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_ChainSample, seed001, &Seed001)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_ChainSample, rig_covariance, &Seed001OnARig)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_ChainSampleScalar)->Unit(benchmark::kMicrosecond);
 
 void EngineSample(benchmark::State& state, OutputSet outputs) {

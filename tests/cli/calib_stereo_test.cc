@@ -1,11 +1,15 @@
-// CLI tests of calib-stereo: rigs solved from both cameras' views, rigs assembled from two cameras and exported to OpenCV and mrcal,
-// binocular registration of tracked sequences, display planning; every bad input gives its
-// documented exit code, one line naming the file, the field and the fix, and no output file.
+// CLI tests of calib-stereo: rigs solved from both cameras' views (planar views and a volume), rigs
+// assembled from two cameras and exported to OpenCV and mrcal, binocular registration of tracked
+// sequences, display planning; every bad input gives its documented exit code, one line naming the
+// file, the field and the fix, and no output file.
+#include <Eigen/Cholesky>
+
 #include "cli_fixture.h"
 #include "support/scenes.h"
 #include "support/stereo_rigs.h"
 #include "vstcal/io/camera_io.h"
 #include "vstcal/io/correspondences_io.h"
+#include "vstcal/geometry/rotation.h"
 #include "vstcal/io/stereo_io.h"
 
 namespace vstcal::cli_test {
@@ -334,6 +338,50 @@ TEST_F(CliCalibStereo, SolveHoldsACameraReadFromAnEarlierCalibration) {
   for (size_t i = 0; i < truth.left.camera.params.size(); ++i) EXPECT_DOUBLE_EQ(rig.left.camera.params[i], truth.left.camera.params[i]);
   EXPECT_FALSE(rig.left.covariance);
   EXPECT_TRUE(rig.right.covariance);
+}
+
+// A volume rig: calib-synth's 9 × 7 grid (80 mm) on five planes 100 mm apart, seen by two 1280×720
+// cameras (fx 700, k1 −0.1, k2 0.02) 1.2 m away, each looking at the volume's centre from 1.5° either
+// side (a convergent rig, baseline ≈ 73 mm), one world frame for both. Noise-free, the solve gives
+// right_from_left = right_from_world · world_from_left of the truth files exactly; with independent
+// 0.3 px noise per camera, the error δ = (ω, ρ) of right_from_left (a left perturbation, as the
+// covariance's) is consistent with the predicted covariance Σ: each component within 3 σ, δᵀ Σ⁻¹ δ
+// between the 0.1 % and 99.9 % points of χ²₆ (0.381 and 22.46: a Σ too small fails the upper, one
+// too large the lower), the baseline within 3 of its σ. Fixed seeds: the run is deterministic.
+TEST_F(CliCalibStereo, SolveRecoversAVolumeRigWithinItsSigma) {
+  const auto synth = [&](const std::string& eye, const std::string& tilt_direction, const std::string& noise, const std::string& seed) {
+    Synth("in/" + eye + ".json", {"--image-size", "1280x720", "--fx", "700", "--distortion", "-0.1,0.02,0,0,0", "--grid", "9x7",
+                                  "--spacing", "80", "--near", "0", "--far", "400", "--interval", "100", "--camera-distance", "1200",
+                                  "--tilt-deg", "1.5", "--tilt-direction-deg", tilt_direction, "--noise", noise, "--seed", seed,
+                                  "--camera-name", eye, "--no-test-points", "--truth", "in/" + eye + ".truth.json"});
+  };
+  const auto truth_pose = [&](const std::string& eye) {
+    return *io::CameraFromJson(io::JsonDocument::Load(Path("in/" + eye + ".truth.json"))).camera_from_world;
+  };
+  synth("l", "180", "0", "1");
+  synth("r", "0", "0", "2");
+  const Rigid3d truth = truth_pose("r") * truth_pose("l").inverse();
+  const CommandResult exact = Ok({"solve", "in/l.json", "in/r.json", "-o", "out/exact.json"});
+  EXPECT_NE(exact.err.find("1 views seen by both cameras"), std::string::npos) << exact.err;
+  const StereoRig solved = io::ReadStereoRig(Path("out/exact.json"));
+  EXPECT_LT((solved.right_from_left.R - truth.R).norm(), 1e-9);
+  EXPECT_LT((solved.right_from_left.t - truth.t).norm(), 1e-6 * truth.t.norm());
+
+  synth("l", "180", "0.3", "1");
+  synth("r", "0", "0.3", "2");
+  Ok({"solve", "in/l.json", "in/r.json", "-o", "out/rig.json"});
+  const StereoRig rig = io::ReadStereoRig(Path("out/rig.json"));
+  ASSERT_TRUE(rig.covariance);
+  ASSERT_EQ(rig.covariance->parameters, std::vector<std::string>(RelativePoseTangentNames().begin(), RelativePoseTangentNames().end()));
+  const Eigen::Matrix3d E = rig.right_from_left.R * truth.R.transpose();
+  Eigen::Matrix<double, 6, 1> delta;
+  delta << RotvecFromRotation(E), rig.right_from_left.t - E * truth.t;
+  const Eigen::Matrix<double, 6, 6> sigma = rig.covariance->matrix;
+  for (int i = 0; i < 6; ++i) EXPECT_LT(std::abs(delta(i)), 3 * std::sqrt(sigma(i, i))) << rig.covariance->parameters[i];
+  const double d2 = delta.dot(sigma.ldlt().solve(delta));
+  EXPECT_GT(d2, 0.381);
+  EXPECT_LT(d2, 22.46);
+  EXPECT_LT(std::abs(rig.baseline() - truth.t.norm()), 3 * *BaselineSigma(rig));
 }
 
 TEST_F(CliCalibStereo, SolveRefusesBadInput) {

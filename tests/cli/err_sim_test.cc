@@ -3,6 +3,8 @@
 // documented maximum and conflicting flags are refused; a chain whose every sample of a test point
 // is undefined exits 3; any lens model runs; good runs are reproducible for any thread count and
 // shard split; a normalised chain is a fixed point.
+#include <cmath>
+
 #include "cli_fixture.h"
 
 namespace vstcal::cli_test {
@@ -455,6 +457,132 @@ TEST_F(CliErrSim, ShardAutoFromTheScheduler) {
 
 // vst-chain@1 read → write → read → write: the second pass gives the same bytes (issue 8), for a
 // chain written by hand and for the shipped ones (whose camera references are rebased).
+// A stereo@1 rig of SmallChain's two cameras, 63 mm apart, with a right_from_left covariance
+// (σ 0.05° per rotation axis, 0.2 mm per translation axis, ty and tz correlated).
+Json SmallRig() {
+  Json camera = SmallChain()["cameras"]["left"];
+  camera["format"] = "vstcal/camera@1";
+  camera["length_unit"] = "mm";
+  camera["method"] = "synthetic";
+  const double w = std::pow(0.05 * 3.141592653589793 / 180, 2);
+  return {{"format", "vstcal/stereo@1"},
+          {"length_unit", "mm"},
+          {"method", "stereo-solve"},
+          {"left", camera},
+          {"right", camera},
+          {"right_from_left", {{"R", {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}}, {"t", {-63.0, 0.0, 0.0}}}},
+          {"baseline", 63.0},
+          {"covariance",
+           {{"parameters", {"right_from_left.rx", "right_from_left.ry", "right_from_left.rz", "right_from_left.tx",
+                            "right_from_left.ty", "right_from_left.tz"}},
+            {"matrix", {{w, 0, 0, 0, 0, 0}, {0, w, 0, 0, 0, 0}, {0, 0, w, 0, 0, 0}, {0, 0, 0, 0.04, 0, 0},
+                        {0, 0, 0, 0, 0.04, 0.02}, {0, 0, 0, 0, 0.02, 0.04}}}}}};
+}
+
+// SmallChain with its cameras and right camera pose from in/rig.json, and the rig's covariance as
+// the right camera's extrinsic error.
+Json ChainWithRig() {
+  Json c = SmallChain();
+  c.erase("cameras");
+  c["frames"]["camera_from_hmd"].erase("right");
+  c["rig"] = {{"file", "rig.json"}};
+  c["sources"]["camera_extrinsic"]["right"] = {{"covariance", "rig"}};
+  return c;
+}
+
+TEST_F(CliErrSim, RigGivesTheCamerasAndTheRightCamerasError) {
+  WriteJson("in/rig.json", SmallRig());
+  WriteJson("in/chain.json", ChainWithRig());
+  const CommandResult r = Run("err-sim", {"run", "in/chain.json", "-o", "out/r.json", "--only", "camera_extrinsic", "--no-budget", "-q"});
+  ASSERT_EQ(r.exit_code, kOk) << r.err;
+  EXPECT_GT(ReadJson("out/r.json")["totals"]["image_rms_px"].get<double>(), 0.0);
+  // Written by hand (SmallChain's cameras and frames, the covariance inline): the same run.
+  Json by_hand = SmallChain();
+  by_hand["sources"]["camera_extrinsic"]["right"] = {{"covariance", SmallRig()["covariance"]}};
+  WriteJson("in/by_hand.json", by_hand);
+  ASSERT_EQ(Run("err-sim", {"run", "in/by_hand.json", "-o", "out/h.json", "--only", "camera_extrinsic", "--no-budget", "-q"}).exit_code, kOk);
+  EXPECT_EQ(ReadJson("out/r.json")["chain_digest"], ReadJson("out/h.json")["chain_digest"]);
+  EXPECT_EQ(ReadJson("out/r.json")["totals"], ReadJson("out/h.json")["totals"]);
+
+  // normalize keeps the reference (rebased onto the output's folder) and is a fixed point.
+  ASSERT_EQ(Run("err-sim", {"normalize", "in/chain.json", "-o", "out/a.json", "-q"}).exit_code, kOk);
+  const Json a = ReadJson("out/a.json");
+  EXPECT_EQ(a["rig"], Json({{"file", "../in/rig.json"}}));
+  EXPECT_FALSE(a.contains("cameras"));
+  EXPECT_FALSE(a["frames"]["camera_from_hmd"].contains("right"));
+  EXPECT_EQ(a["sources"]["camera_extrinsic"]["right"]["covariance"], "rig");
+  ASSERT_EQ(Run("err-sim", {"normalize", "out/a.json", "-o", "out/b.json", "-q"}).exit_code, kOk);
+  EXPECT_EQ(ReadText("out/a.json"), ReadText("out/b.json"));
+  // The rig is an input of the run: never overwritten.
+  const std::string rig_text = ReadText("in/rig.json");
+  EXPECT_TRUE(FailsWith(Run("err-sim", {"normalize", "in/chain.json", "-o", "in/rig.json"}), "err-sim", kBadInput, "in/rig.json: ",
+                        {"never overwrites its inputs"}));
+  EXPECT_EQ(ReadText("in/rig.json"), rig_text);
+}
+
+TEST_F(CliErrSim, RigConflictsAndBadReferencesAreNamed) {
+  Json rig = SmallRig();
+  WriteJson("in/rig.json", rig);
+  rig.erase("covariance");
+  WriteJson("in/nocov.rig.json", rig);
+  rig["length_unit"] = "m";
+  rig["left"]["length_unit"] = "m";
+  rig["right"]["length_unit"] = "m";
+  rig["right_from_left"]["t"] = {-0.063, 0.0, 0.0};
+  rig["baseline"] = 0.063;
+  WriteJson("in/metres.rig.json", rig);
+  const auto fails = [&](const Json& chain, const std::string& location, const std::vector<std::string>& phrases) {
+    WriteJson("in/chain.json", chain);
+    return FailsWith(Run("err-sim", {"run", "in/chain.json", "-o", "out/r.json"}), "err-sim", kBadInput, location, phrases);
+  };
+  Json c = ChainWithRig();
+  c["cameras"] = SmallChain()["cameras"];
+  EXPECT_TRUE(fails(c, "in/chain.json: cameras: ", {"given with \"rig\", which holds both cameras", "delete \"cameras\""}));
+  c = ChainWithRig();
+  c["frames"]["camera_from_hmd"]["right"] = SmallChain()["frames"]["camera_from_hmd"]["right"];
+  EXPECT_TRUE(fails(c, "in/chain.json: frames.camera_from_hmd.right: ", {"right_from_left · camera_from_hmd.left", "delete frames.camera_from_hmd.right"}));
+  c = ChainWithRig();
+  c["rig"]["file"] = "nope.json";
+  EXPECT_TRUE(fails(c, "in/chain.json: rig.file: ", {"names in/nope.json, which does not exist", "give the stereo@1 file's path"}));
+  c["rig"] = {{"path", "rig.json"}};
+  EXPECT_TRUE(fails(c, "in/chain.json: rig.path: ", {"unknown field of a stereo@1 reference"}));
+  c["rig"] = {{"file", "metres.rig.json"}};
+  EXPECT_TRUE(fails(c, "in/chain.json: rig.file: ", {"names a rig in \"m\", but the chain is in \"mm\"", "write the chain in the rig's length unit"}));
+  c["rig"] = {{"file", "nocov.rig.json"}};
+  EXPECT_TRUE(fails(c, "in/chain.json: sources.camera_extrinsic.right.covariance: ", {"the rig nocov.rig.json has no covariance"}));
+  c = SmallChain();
+  c["sources"]["camera_extrinsic"]["right"] = {{"covariance", "rig"}};
+  EXPECT_TRUE(fails(c, "in/chain.json: sources.camera_extrinsic.right.covariance: ", {"the chain references no rig", "add \"rig\""}));
+  c = ChainWithRig();
+  c["sources"]["camera_extrinsic"]["right"]["covariance"] = "camera";
+  EXPECT_TRUE(fails(c, "in/chain.json: sources.camera_extrinsic.right.covariance: ", {"unknown value \"camera\"", "write \"rig\""}));
+  c = ChainWithRig();
+  c["sources"]["camera_extrinsic"]["right"]["rotation_deg"] = Normal(0.1);
+  EXPECT_TRUE(fails(c, "in/chain.json: sources.camera_extrinsic.right.rotation_deg: ", {"rotation_deg and translation do not mix with it"}));
+  c = ChainWithRig();
+  c["sources"]["camera_extrinsic"].erase("right");
+  c["sources"]["camera_extrinsic"]["left"] = {{"covariance", "rig"}};
+  EXPECT_TRUE(fails(c, "in/chain.json: sources.camera_extrinsic.left.covariance: ", {"an error of the right camera", "move it to sources.camera_extrinsic.right"}));
+  c = ChainWithRig();
+  c["sources"]["camera_extrinsic"]["right"]["covariance"] = {{"parameters", {"fx"}}, {"matrix", {{1.0}}}};
+  EXPECT_TRUE(fails(c, "in/chain.json: sources.camera_extrinsic.right.covariance.parameters: ", {"expected 6 items, got 1"}));
+  c = ChainWithRig();
+  c["sources"]["camera_extrinsic"]["right"]["covariance"] = SmallRig()["covariance"];
+  c["sources"]["camera_extrinsic"]["right"]["covariance"]["matrix"][3][3] = -0.04;
+  EXPECT_TRUE(fails(c, "in/chain.json: sources.camera_extrinsic.right.covariance.matrix[3][3]: ",
+                    {"the variance of \"right_from_left.tx\" is negative"}));
+  c["sources"]["camera_extrinsic"]["right"]["covariance"]["matrix"][3][3] = 0.04;
+  c["sources"]["camera_extrinsic"]["right"]["covariance"]["matrix"][4][5] = 0.1;  // |ρ| > σσ: not a covariance
+  c["sources"]["camera_extrinsic"]["right"]["covariance"]["matrix"][5][4] = 0.1;
+  EXPECT_TRUE(fails(c, "in/chain.json: sources.camera_extrinsic.right.covariance", {"positive semi-definite"}));
+  // The rig file's own problems name the rig file.
+  Json broken = SmallRig();
+  broken["baseline"] = 60.0;
+  WriteJson("in/rig.json", broken);
+  EXPECT_TRUE(fails(ChainWithRig(), "in/rig.json: baseline: ", {"disagrees with |right_from_left.t|"}));
+  EXPECT_TRUE(OutDirEmpty());
+}
+
 TEST_F(CliErrSim, NormalizedChainIsAFixedPoint) {
   WriteJson("in/chain.json", SmallChain());
   std::vector<std::string> chains = {"in/chain.json"};

@@ -1,6 +1,8 @@
-// vstcal/vst-chain@1 with the camera@1 file it references (docs/formats.md#vst-chain). The input
-// is the chain's text, then a line "%%", then the camera file's text, which the harness writes to
-// camera.json beside the chain (a chain names it {"file": "camera.json"}). The canonical writer's
+// vstcal/vst-chain@1 with the file it references (docs/formats.md#vst-chain): a camera@1 file, or
+// the stereo@1 rig that gives both cameras and the right camera's pose and covariance. The input
+// is the chain's text, then a line "%%", then the referenced file's text, which the harness writes
+// to camera.json beside the chain (a chain names it {"file": "camera.json"} under cameras or
+// under "rig"; the corpus has both). The canonical writer's
 // output must be a fixed point (`err-sim normalize`), and what is read goes through a tiny Monte
 // Carlo run (8 samples, one thread) whose report must hold only finite numbers.
 #include <stdlib.h>

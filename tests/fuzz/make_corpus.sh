@@ -117,6 +117,25 @@ zed=$root/datasets/zedmini/clean.truth.json
 "$tools/calib-stereo" assemble "$zed" "$zed" --translation=-63,0.2,-0.4 --rectify -o rig-rectified.json 2>/dev/null
 "$tools/calib-stereo" simulate rig.json -o tracks.json --frames 3 --seed 1 2>/dev/null
 cp rig.json rig-rectified.json "$corpus/stereo/"
+# Seed 001's chain with its cameras and right camera pose from that rig, given a covariance: the
+# rig is the file after "%%" (fuzz_chain.cc), its covariance the right camera's extrinsic error.
+/usr/bin/python3 - "$root/datasets/vst/seed001.json" rig.json "$corpus/chain/rig.chain" <<'PY'
+import json, math, sys
+chain, rig = json.load(open(sys.argv[1])), json.load(open(sys.argv[2]))
+w = (0.05 * math.pi / 180) ** 2
+rig["covariance"] = {"parameters": ["right_from_left." + a for a in ("rx", "ry", "rz", "tx", "ty", "tz")],
+                     "matrix": [[w if i == j and i < 3 else 0.04 if i == j else 0.01 if {i, j} == {4, 5} else 0.0
+                                 for j in range(6)] for i in range(6)]}
+del chain["cameras"]
+del chain["frames"]["camera_from_hmd"]["right"]
+chain["rig"] = {"file": "camera.json"}
+chain["display"].pop("camera_baseline", None)  # the rig's is 63.0016 mm
+extrinsic = chain["sources"]["camera_extrinsic"]
+extrinsic["left"] = extrinsic.pop("both")
+extrinsic["right"] = {"covariance": "rig"}
+with open(sys.argv[3], "w") as out:
+    out.write(json.dumps(chain, indent=1) + "\n%%\n" + json.dumps(rig, indent=1) + "\n")
+PY
 cp tracks.json "$corpus/tracks/"
 du -sh "$corpus"/* >&2
 

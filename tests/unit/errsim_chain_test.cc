@@ -174,6 +174,8 @@ TEST(ChainJet, DerivativesMatchCentralDifferences) {
   g.head_linear_velocity = Eigen::Vector3d(50, -20, 10);
   ChainModel model = ChainModel::WithZeroErrors(g, kFiducials);
   model.intrinsic_mixing[1](1, 0) = 0.3;  // a correlated (covariance-form) right camera
+  model.extrinsic_mixing[1](4, 0) = 30.0;  // a rig covariance's correlated right camera pose
+  model.extrinsic_mixing[1](2, 3) = 0.01;
   model.geometry.display.inverse_image_distance = 1 / 1500.0;
   model.geometry.display.eye_centre_in_hmd = Eigen::Vector3d(0, 20, -80);  // the camera–eye offset
   const ChainEvaluator chain(model);

@@ -174,6 +174,9 @@ TEST(SampleMeasurer, LanesThatTakeDifferentBranchesAreRedoneOneAtATime) {
   ChainModel model = ChainModel::WithZeroErrors(
       g, {{-120, -80, 0}, {150, -60, 20}, {130, 90, -30}, {-100, 110, 10}});
   model.intrinsic_mixing[0](0, 2) = 0.4;
+  // A rig covariance's correlated right camera pose (camera_extrinsic.right.covariance).
+  model.extrinsic_mixing[1](3, 1) = 0.8;
+  model.extrinsic_mixing[1](0, 5) = 0.002;
   for (ChainParameter& p : model.parameters) {
     const bool angle = p.slot.file_unit == "deg";
     const bool length = p.slot.file_unit == "mm";
@@ -183,6 +186,7 @@ TEST(SampleMeasurer, LanesThatTakeDifferentBranchesAreRedoneOneAtATime) {
     if (name.find("camera_intrinsic") == 0) {
       p.distribution = Distribution::MakeNormal(0, p.slot.file_unit == "px" ? 3.0 : 1e-3);
     }
+    if (name.find("camera_extrinsic.right") == 0) p.distribution = Distribution::MakeNormal(0, angle ? 0.002 : 0.5);
     if (name.find("rendering.disparity") == 0) p.distribution = Distribution::MakeUniform(-2.0, 2.0);
     if (name.find("display.") == 0 && length) p.distribution = Distribution::MakeNormal(0, 1.0);
   }

@@ -120,6 +120,18 @@ class ChainEvaluator {
   }
   template <typename T>
   Rigid3<T> VirtualFromObject(const T* theta) const;
+  // (ω, ρ) ← M·(ω, ρ) with M = model().extrinsic_mixing[eye]: standard normals to a rig's
+  // correlated camera-pose error. Summed in j order, so every scalar type gives the same bits.
+  template <typename T>
+  void MixExtrinsic(int eye, Vec3<T>* omega, Vec3<T>* rho) const {
+    const ChainModel::Matrix6d& m = model_.extrinsic_mixing[eye];
+    const std::array<T, 6> z = {(*omega)(0), (*omega)(1), (*omega)(2), (*rho)(0), (*rho)(1), (*rho)(2)};
+    for (int i = 0; i < 6; ++i) {
+      T sum = m(i, 0) * z[0];
+      for (int j = 1; j < 6; ++j) sum += m(i, j) * z[j];
+      (i < 3 ? (*omega)(i) : (*rho)(i - 3)) = sum;
+    }
+  }
   template <typename T>
   Vec3<T> DisplayedDirection(int eye, const Vec2<T>& centred, const T* shift, const T& scale, const T& lens_k1) const;
 
@@ -130,7 +142,7 @@ class ChainEvaluator {
   std::array<Rigid3d, kNumEyes> camera_from_hmd_;
   std::array<Eigen::Vector3d, kNumEyes> baseline_step_;  // ρ per unit of baseline error, camera frame
   std::array<Eigen::Vector3d, kNumEyes> design_eyepoint_;
-  std::array<bool, kNumEyes> mixing_is_identity_;
+  std::array<bool, kNumEyes> mixing_is_identity_, extrinsic_mixing_is_identity_;
   std::vector<Eigen::Vector3d> point_in_object_, point_in_hmd_;
   std::array<std::vector<Eigen::Vector2d>, kNumEyes> real_pixel_, real_centred_;  // q, and q − principal point
   std::array<std::vector<double>, kNumEyes> real_depth_, surface_disparity_;
@@ -210,8 +222,10 @@ void ChainEvaluator::Evaluate(const T* theta, ChainSample<T>* out) const {
 
   const T baseline = At(theta, Term::kBaseline)[0];
   auto camera_from_object_of = [&](int e) {
-    const Vec3<T> rho = Vec(At(theta, Term::kCameraTranslation, e)) + baseline_step_[e].cast<T>() * baseline;
-    return fo::Compose(fo::PerturbLeft(camera_from_hmd_[e], Vec(At(theta, Term::kCameraRotation, e)), rho), hmd_from_object);
+    Vec3<T> omega = Vec(At(theta, Term::kCameraRotation, e)), rho = Vec(At(theta, Term::kCameraTranslation, e));
+    if (!extrinsic_mixing_is_identity_[e]) MixExtrinsic(e, &omega, &rho);
+    rho += baseline_step_[e].cast<T>() * baseline;
+    return fo::Compose(fo::PerturbLeft(camera_from_hmd_[e], omega, rho), hmd_from_object);
   };
   // Built in place: a default Rigid3 would first be written as the identity.
   const std::array<Rigid3<T>, kNumEyes> camera_from_object = {camera_from_object_of(0), camera_from_object_of(1)};

@@ -97,6 +97,11 @@ struct ChainModel {
   // renderer's parameter count). Identity when σ's are given per parameter; V Λ^½ of a
   // calibration's covariance when θ holds standard normals.
   std::array<Eigen::MatrixXd, kNumEyes> intrinsic_mixing;
+  // Camera-pose error (ω, ρ) of eye e = extrinsic_mixing[e] · (θ's kCameraRotation, kCameraTranslation
+  // blocks of e). Identity for σ's per component; V Λ^½ of a rig's right_from_left covariance
+  // (camera_extrinsic.right.covariance) when those six slots hold standard normals.
+  using Matrix6d = Eigen::Matrix<double, 6, 6>;
+  std::array<Matrix6d, kNumEyes> extrinsic_mixing = {Matrix6d::Identity(), Matrix6d::Identity()};
   ParameterLayout layout;
   std::vector<ChainParameter> parameters;  // size layout.size(), in θ order
   uint64_t samples = 0;

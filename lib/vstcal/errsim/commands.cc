@@ -322,17 +322,19 @@ Outcome LinearErrSim(const ChainRequest& request, const io::Provenance& given) {
 Outcome NormalizeErrSim(const std::string& chain, const std::string& output, const io::Provenance& provenance) {
   ChainSpec spec = ReadChainSpec(chain);
   const ChainModel model = BuildChainModel(spec);
-  // Camera files stay where they are: their references are made relative to the output's folder.
+  // Camera and rig files stay where they are: their references are made relative to the output's folder.
   namespace fs = std::filesystem;
   const fs::path from = fs::path(chain).parent_path(), to = fs::path(output).parent_path();
-  for (CameraSpec& camera : spec.cameras) {
-    if (camera.file.empty()) continue;
+  auto rebase = [&](std::string& file) {
+    if (file.empty()) return;
     std::error_code ec;
-    const fs::path target = fs::weakly_canonical(fs::absolute(from / camera.file), ec);
+    const fs::path target = fs::weakly_canonical(fs::absolute(from / file), ec);
     const fs::path base = fs::weakly_canonical(fs::absolute(to.empty() ? fs::path(".") : to), ec);
     const fs::path rebased = ec ? fs::path() : target.lexically_relative(base);
-    if (!rebased.empty()) camera.file = rebased.generic_string();
-  }
+    if (!rebased.empty()) file = rebased.generic_string();
+  };
+  for (CameraSpec& camera : spec.cameras) rebase(camera.file);
+  if (spec.rig) rebase(spec.rig->file);
   int random = 0;
   for (const ChainParameter& p : model.parameters) random += !p.distribution.IsConstant();
   std::string text = "err-sim normalize: " + chain + ": " + std::to_string(model.parameters.size()) + " parameters, " +

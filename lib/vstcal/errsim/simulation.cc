@@ -92,6 +92,10 @@ std::string ChainDigest(const ChainModel& model) {
   }
   for (const auto& f : model.fiducials_in_object) h.Add(f);
   for (const auto& m : model.intrinsic_mixing) h.Add(m);
+  // Only when used: a chain without a rig covariance keeps the digest it always had.
+  for (const auto& m : model.extrinsic_mixing) {
+    if (!m.isIdentity(0.0)) h.Add(m);
+  }
   for (const ChainParameter& p : model.parameters) {
     h.Add(p.name());
     h.Add(p.distribution.Describe());

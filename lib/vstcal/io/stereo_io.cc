@@ -56,24 +56,6 @@ StereoFit ReadFit(const JsonNode& node) {
   return fit;
 }
 
-ParameterCovariance ReadRelativePoseCovariance(const JsonNode& node) {
-  const JsonNode names = node.at("parameters");
-  const auto& expected = RelativePoseTangentNames();
-  names.ArraySize(expected.size());
-  std::vector<std::string> read;
-  for (size_t i = 0; i < expected.size(); ++i) {
-    const std::string name = names.at(i).String();
-    if (std::find(expected.begin(), expected.end(), name) == expected.end()) {
-      names.at(i).Fail("unknown parameter \"" + name + "\"",
-                       "a rig's covariance is over right_from_left.rx, .ry, .rz, .tx, .ty, .tz");
-    }
-    if (std::find(read.begin(), read.end(), name) != read.end()) {
-      names.at(i).Fail("duplicate parameter \"" + name + "\"", "list each parameter once");
-    }
-    read.push_back(name);
-  }
-  return ReadCovarianceMatrix(node, std::move(read));
-}
 
 std::array<int, 4> ReadRoi(const JsonNode& node, const ImageSize& size) {
   node.ArraySize(4);
@@ -169,6 +151,25 @@ OrderedJson RigCameraToJson(const CalibratedCamera& camera, const Provenance& pr
 }
 
 }  // namespace
+
+ParameterCovariance ReadRelativePoseCovariance(const JsonNode& node) {
+  const JsonNode names = node.at("parameters");
+  const auto& expected = RelativePoseTangentNames();
+  names.ArraySize(expected.size());
+  std::vector<std::string> read;
+  for (size_t i = 0; i < expected.size(); ++i) {
+    const std::string name = names.at(i).String();
+    if (std::find(expected.begin(), expected.end(), name) == expected.end()) {
+      names.at(i).Fail("unknown parameter \"" + name + "\"",
+                       "a rig's covariance is over right_from_left.rx, .ry, .rz, .tx, .ty, .tz");
+    }
+    if (std::find(read.begin(), read.end(), name) != read.end()) {
+      names.at(i).Fail("duplicate parameter \"" + name + "\"", "list each parameter once");
+    }
+    read.push_back(name);
+  }
+  return ReadCovarianceMatrix(node, std::move(read));
+}
 
 StereoRig StereoRigFromJson(const JsonDocument& doc) {
   const JsonNode root = doc.root();

@@ -19,6 +19,11 @@ namespace vstcal::io {
 StereoRig ReadStereoRig(const std::filesystem::path& path);
 StereoRig StereoRigFromJson(const JsonDocument& doc);
 
+// A covariance {"parameters", "matrix"} over exactly the six tangents of right_from_left
+// (RelativePoseTangentNames, any order; ω radians, ρ length unit), checked as a camera's: the
+// stereo@1 field, and a vst-chain's camera_extrinsic.right.covariance.
+ParameterCovariance ReadRelativePoseCovariance(const JsonNode& node);
+
 // The stereo@1 object: a file written, read and written again is the same bytes.
 OrderedJson StereoRigToJson(const StereoRig& rig, const Provenance& provenance);
 

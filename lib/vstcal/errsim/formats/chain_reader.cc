@@ -9,6 +9,7 @@
 #include "vstcal/core/suggest.h"
 #include "vstcal/errsim/point_registration.h"
 #include "vstcal/io/camera_io.h"
+#include "vstcal/io/stereo_io.h"
 #include "vstcal/json/fields.h"
 #include "vstcal/json/format_check.h"
 #include "vstcal/json/json_writer.h"
@@ -52,21 +53,31 @@ uint64_t ReadCount(const JsonNode& node, double lo, double hi, const std::string
   return static_cast<uint64_t>(v);
 }
 
+// A {"file": "<path>"} reference: the path as written and the document it names, relative to the
+// chain's folder. Checked here, where the chain's field can be named; the referenced file's own
+// problems name that file.
+std::pair<std::string, io::JsonDocument> ReadReference(const JsonNode& node, const std::filesystem::path& directory,
+                                                       std::string_view format) {
+  ExpectKeys(node, {"file"}, "field of a " + std::string(format) + " reference");
+  const JsonNode file = node.at("file");
+  std::string written = file.String();
+  const std::string fix = "give the " + std::string(format) + " file's path, relative to the chain's folder";
+  if (written.empty()) file.Fail("is empty", fix);
+  const std::filesystem::path path = directory / written;
+  std::error_code error;
+  if (!std::filesystem::exists(path, error)) file.Fail("names " + path.string() + ", which does not exist", fix);
+  if (std::filesystem::is_directory(path, error)) file.Fail("names " + path.string() + ", a directory", fix);
+  return {std::move(written), io::JsonDocument::Load(path)};
+}
+
 // {"file": "<camera@1 path>"} or an inline {image_size, K, distortion[, covariance]}.
 CameraSpec ReadCameraSpec(const JsonNode& node, const std::filesystem::path& directory) {
   node.ExpectObject();
   CameraSpec out;
-  if (const auto file = node.find("file")) {
-    ExpectKeys(node, {"file"}, "field of a camera reference");
-    out.file = file->String();
-    const std::string fix = "give the camera@1 file's path, relative to the chain's folder";
-    if (out.file.empty()) file->Fail("is empty", fix);
-    // Here, where the chain's field can be named; the camera file's own problems name that file.
-    const std::filesystem::path path = directory / out.file;
-    std::error_code error;
-    if (!std::filesystem::exists(path, error)) file->Fail("names " + path.string() + ", which does not exist", fix);
-    if (std::filesystem::is_directory(path, error)) file->Fail("names " + path.string() + ", a directory", fix);
-    CalibratedCamera calibrated = io::CameraFromJson(io::JsonDocument::Load(path));
+  if (node.find("file")) {
+    auto [file, document] = ReadReference(node, directory, "camera@1");
+    out.file = std::move(file);
+    CalibratedCamera calibrated = io::CameraFromJson(document);
     out.camera = std::move(calibrated.camera);
     out.covariance = std::move(calibrated.covariance);
     return out;
@@ -75,6 +86,23 @@ CameraSpec ReadCameraSpec(const JsonNode& node, const std::filesystem::path& dir
   out.camera = io::ReadCameraIntrinsics(node);
   if (const auto cov = node.find("covariance")) out.covariance = io::ReadCovariance(*cov, out.camera, std::nullopt);  // inline: no poses
   return out;
+}
+
+// {"file": "<stereo@1 path>"}: the rig's cameras go into `cameras`, right_from_left and its
+// covariance into the returned spec. The rig's length unit must be the chain's.
+RigSpec ReadRigSpec(const JsonNode& node, const std::filesystem::path& directory, LengthUnit chain_unit,
+                    std::array<CameraSpec, kNumEyes>* cameras) {
+  node.ExpectObject();
+  auto [file, document] = ReadReference(node, directory, "stereo@1");
+  StereoRig rig = io::StereoRigFromJson(document);
+  if (rig.length_unit != chain_unit) {
+    node.at("file").Fail("names a rig in \"" + std::string(LengthUnitName(rig.length_unit)) + "\", but the chain is in \"" +
+                             std::string(LengthUnitName(chain_unit)) + "\"",
+                         "write the chain in the rig's length unit");
+  }
+  (*cameras)[0] = {"", std::move(rig.left.camera), std::move(rig.left.covariance)};
+  (*cameras)[1] = {"", std::move(rig.right.camera), std::move(rig.right.covariance)};
+  return {std::move(file), rig.right_from_left, std::move(rig.covariance)};
 }
 
 // A number, or one number per component.
@@ -246,9 +274,37 @@ class SourcesReader {
     std::vector<std::string_view> keys;
     for (const TermDecl* d : per_eye) keys.push_back(d->file_key);
     PerEye(node, [&](const JsonNode& eye, const std::string& key) {
+      if (source == Source::kCameraExtrinsic && eye.find("covariance")) return ReadExtrinsicCovariance(eye, key);
       ExpectKeys(eye, keys, what + " (per eye)");
       ReadTerms(eye, per_eye, key);
     });
+  }
+
+  // camera_extrinsic.right.covariance: "rig" or inline over right_from_left's six tangents.
+  void ReadExtrinsicCovariance(const JsonNode& eye, const std::string& key) {
+    const JsonNode cov = eye.at("covariance");
+    if (key != "right") {
+      cov.Fail("a camera_extrinsic covariance is that of a rig's right_from_left, an error of the right camera",
+               "move it to sources.camera_extrinsic.right (the left camera is the rig's reference)");
+    }
+    ExpectKeys(eye, {"covariance"}, "term of camera_extrinsic.right with a covariance (rotation_deg and translation do not mix with it)");
+    ExtrinsicCovarianceSpec c;
+    if (cov.json().is_string()) {
+      if (cov.String() != "rig") {
+        cov.Fail("unknown value " + Quoted(cov.String()),
+                 "write \"rig\" (the rig file's covariance) or an object {\"parameters\", \"matrix\"} over right_from_left.rx … .tz");
+      }
+      if (!spec_->rig) cov.Fail("the chain references no rig", "add \"rig\": {\"file\": \"<stereo@1 file>\"}, or give the covariance inline");
+      if (!spec_->rig->covariance) {
+        cov.Fail("the rig " + spec_->rig->file + " has no covariance",
+                 "reference a rig solved by calib-stereo solve (it writes one), or give σ's per component");
+      }
+      c.from_rig = true;
+      c.covariance = *spec_->rig->covariance;
+    } else {
+      c.covariance = io::ReadRelativePoseCovariance(cov);
+    }
+    spec_->extrinsic_covariance = std::move(c);
   }
 
   // σ's per lens parameter, or a calibration covariance (the camera file's or inline).
@@ -319,7 +375,7 @@ ChainSpec ChainSpecFromJson(const io::JsonDocument& doc, const std::filesystem::
   const JsonNode root = doc.root();
   root.ExpectObject();
   io::CheckFormat(root, kChainFormat);
-  ExpectKeys(root, {"format", "name", "length_unit", "samples", "seed", "frames", "cameras", "display", "head_motion",
+  ExpectKeys(root, {"format", "name", "length_unit", "samples", "seed", "frames", "rig", "cameras", "display", "head_motion",
                     "test_points", "sources", "provenance"},
              "field of a chain");
   ChainSpec spec;
@@ -336,16 +392,36 @@ ChainSpec ChainSpecFromJson(const io::JsonDocument& doc, const std::filesystem::
   spec.hmd_from_tracker = ReadTransform(frames.at("hmd_from_tracker"));
   const JsonNode camera_from_hmd = frames.at("camera_from_hmd");
   ExpectKeys(camera_from_hmd, {"left", "right"}, "eye");
-  for (int e = 0; e < kNumEyes; ++e) spec.camera_from_hmd[e] = ReadTransform(camera_from_hmd.at(kEyeNames[e]));
+  if (const auto rig = root.find("rig")) {
+    // The rig holds the cameras and their relative pose: the chain giving them too would be two
+    // answers to one question.
+    if (const auto cameras = root.find("cameras")) {
+      cameras->Fail("given with \"rig\", which holds both cameras", "delete \"cameras\" (or \"rig\", to give the cameras here)");
+    }
+    if (const auto right = camera_from_hmd.find("right")) {
+      right->Fail("given with \"rig\", which sets it to right_from_left · camera_from_hmd.left",
+                  "delete frames.camera_from_hmd.right (or \"rig\")");
+    }
+    spec.rig = ReadRigSpec(*rig, directory, spec.length_unit, &spec.cameras);
+    spec.camera_from_hmd[0] = ReadTransform(camera_from_hmd.at("left"));
+    const Rigid3d right = spec.rig->right_from_left * spec.camera_from_hmd[0].value;
+    spec.camera_from_hmd[1].R = right.R;
+    spec.camera_from_hmd[1].t = right.t;
+    spec.camera_from_hmd[1].value = right;
+  } else {
+    for (int e = 0; e < kNumEyes; ++e) spec.camera_from_hmd[e] = ReadTransform(camera_from_hmd.at(kEyeNames[e]));
+  }
   if (const auto v = frames.find("world_from_virtual")) spec.world_from_virtual = ReadTransform(*v);
   spec.world_from_object = ReadTransform(frames.at("world_from_object"));
   const Eigen::Vector3d left = spec.camera_from_hmd[0].value.inverse().t, right = spec.camera_from_hmd[1].value.inverse().t;
   const double baseline = (right - left).norm();
   if (!(baseline > 0)) camera_from_hmd.Fail("the two cameras are at the same place", "give each eye's camera its own position");
 
-  const JsonNode cameras = root.at("cameras");
-  ExpectKeys(cameras, {"left", "right"}, "eye");
-  for (int e = 0; e < kNumEyes; ++e) spec.cameras[e] = ReadCameraSpec(cameras.at(kEyeNames[e]), directory);
+  if (!spec.rig) {
+    const JsonNode cameras = root.at("cameras");
+    ExpectKeys(cameras, {"left", "right"}, "eye");
+    for (int e = 0; e < kNumEyes; ++e) spec.cameras[e] = ReadCameraSpec(cameras.at(kEyeNames[e]), directory);
+  }
 
   const JsonNode display = root.at("display");
   ExpectKeys(display, {"ipd", "eye_centre", "camera_baseline", "virtual_image_distance"}, "field of display");

@@ -5,9 +5,11 @@
 
 #include <Eigen/Eigenvalues>
 
+#include "vstcal/core/error.h"
 #include "vstcal/errsim/chain.h"
 #include "vstcal/json/json_writer.h"
 #include "vstcal/json/reader_common.h"
+#include "vstcal/stereo/stereo_rig.h"
 
 namespace vstcal::errsim {
 namespace {
@@ -65,6 +67,48 @@ std::vector<int> EyesOf(const std::string& eye_key) {
   return {0};
 }
 
+// V Λ^½ of Σ = V Λ Vᵀ: column j the j-th principal direction scaled by its σ, so that V Λ^½ z
+// has covariance Σ for standard normals z. InputError at `field` unless Σ is positive semi-definite.
+Eigen::MatrixXd PrincipalRoots(const Eigen::MatrixXd& covariance, const ChainSpec& spec, const std::string& field,
+                               const std::string& what) {
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(covariance);
+  const double largest = std::max(0.0, eig.eigenvalues().maxCoeff());
+  if (eig.eigenvalues().minCoeff() < -1e-9 * largest) {
+    io::FailField(spec.file, field, what + " is not positive semi-definite", "give a valid covariance matrix");
+  }
+  Eigen::MatrixXd roots = eig.eigenvectors();
+  for (int j = 0; j < roots.cols(); ++j) roots.col(j) *= std::sqrt(std::max(0.0, eig.eigenvalues()(j)));
+  return roots;
+}
+
+// The right eye's camera_extrinsic from a rig covariance over right_from_left's tangent (ω, ρ):
+// θ's right rotation and translation slots hold six standard normals, mixed by V Λ^½.
+void ApplyExtrinsicCovariance(const ChainSpec& spec, const ParameterCovariance& cov, ChainModel* model) {
+  const auto& names = RelativePoseTangentNames();
+  Eigen::MatrixXd ordered(6, 6);
+  std::array<int, 6> index{};
+  for (int i = 0; i < 6; ++i) {
+    const auto it = std::find(cov.parameters.begin(), cov.parameters.end(), names[i]);
+    VSTCAL_CHECK(it != cov.parameters.end(), "a rig covariance without " + names[i]);  // the reader requires all six
+    index[i] = static_cast<int>(it - cov.parameters.begin());
+  }
+  for (int a = 0; a < 6; ++a)
+    for (int b = 0; b < 6; ++b) ordered(a, b) = cov.matrix(index[a], index[b]);
+  constexpr int kRight = 1;
+  model->extrinsic_mixing[kRight] = PrincipalRoots(ordered, spec, "sources.camera_extrinsic.right.covariance", "the covariance");
+  int j = 0;
+  for (const Term term : {Term::kCameraRotation, Term::kCameraTranslation}) {
+    const int offset = model->layout.Offset(term, kRight);
+    for (int i = 0; i < model->layout.Size(term, kRight); ++i, ++j) {
+      ChainParameter& p = model->parameters[offset + i];
+      p.slot.name = "camera_extrinsic.right.mode[" + std::to_string(j) + "]";
+      p.slot.file_unit = FileUnit(TermUnit::kRelative, LengthUnit::kMillimetre, 0);  // "1"
+      p.slot.file_per_internal = 1;
+      p.distribution = Distribution::MakeNormal(0, 1);
+    }
+  }
+}
+
 // The covariance's lens block as a mixing matrix over standard normals: δ = V Λ^½ z with
 // Σ = V Λ Vᵀ over the lens parameters it names, placed in the renderer's rows.
 void ApplyCovariance(const ChainSpec& spec, const ParameterCovariance& cov, int eye, ChainModel* model) {
@@ -78,17 +122,12 @@ void ApplyCovariance(const ChainSpec& spec, const ParameterCovariance& cov, int 
   Eigen::MatrixXd sub(m, m);
   for (int a = 0; a < m; ++a)
     for (int b = 0; b < m; ++b) sub(a, b) = cov.matrix(used[a], used[b]);
-  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(sub);
-  const double largest = std::max(0.0, eig.eigenvalues().maxCoeff());
-  if (eig.eigenvalues().minCoeff() < -1e-9 * largest) {
-    io::FailField(spec.file, "sources.camera_intrinsic", "the " + std::string(kEyeNames[eye]) + " covariance's lens block is not positive semi-definite",
-                  "give a valid covariance matrix");
-  }
+  const Eigen::MatrixXd roots = PrincipalRoots(sub, spec, "sources.camera_intrinsic",
+                                               "the " + std::string(kEyeNames[eye]) + " covariance's lens block");
   Eigen::MatrixXd& mixing = model->intrinsic_mixing[eye];
   mixing.setZero();
   for (int j = 0; j < m; ++j) {
-    const double root = std::sqrt(std::max(0.0, eig.eigenvalues()(j)));
-    for (int a = 0; a < m; ++a) mixing(rows[a], j) = eig.eigenvectors()(a, j) * root;
+    for (int a = 0; a < m; ++a) mixing(rows[a], j) = roots(a, j);
   }
   // θ's lens slots of this eye now hold the standard normals z_j of the principal directions.
   const int offset = model->layout.Offset(Term::kLens, eye);
@@ -172,6 +211,7 @@ ChainModel BuildChainModel(const ChainSpec& spec) {
       ApplyCovariance(spec, c.from_camera ? *spec.cameras[e].covariance : c.covariance, e, &model);
     }
   }
+  if (spec.extrinsic_covariance) ApplyExtrinsicCovariance(spec, spec.extrinsic_covariance->covariance, &model);
   const ChainEvaluator chain(model);
   for (size_t k = 0; k < chain.num_points(); ++k) {
     if (chain.nominal_undefined(k) != Undefined::kNone) {

@@ -1,6 +1,6 @@
 // A vstcal/vst-chain@1 file as read (docs/formats.md#vst-chain): every value as the file gives it,
-// in file units, transforms in their written form, referenced camera files by their path (with
-// what they hold), defaults made explicit. The reader (chain_reader.h) checks every field and
+// in file units, transforms in their written form, referenced camera and rig files by their path
+// (with what they hold), defaults made explicit. The reader (chain_reader.h) checks every field and
 // fills it; the writer (chain_writer.h) writes it back in one canonical layout, so that reading a
 // written chain gives the same ChainSpec and writing it again the same bytes; BuildChainModel
 // turns it into the model the simulation runs.
@@ -57,6 +57,24 @@ struct TermSpec {
   DistributionSpec distribution;
 };
 
+// "rig": {"file": "<stereo@1 path>"}: a calib-stereo rig gives both cameras (their intrinsics and
+// covariances) and camera_from_hmd's relative part: camera_from_hmd.right = right_from_left ·
+// camera_from_hmd.left (docs/formats.md#vst-chain-rig).
+struct RigSpec {
+  std::string file;  // as written, relative to the chain's folder
+  Rigid3d right_from_left;
+  std::optional<ParameterCovariance> covariance;  // over RelativePoseTangentNames(): ω rad, ρ length unit
+};
+
+// camera_extrinsic.right.covariance: "rig" (the rig file's) or an inline covariance over
+// right_from_left.rx … .tz. A left perturbation of right_from_left in the right camera's frame is
+// one of camera_from_hmd.right (the left camera held), so it is the right eye's camera_extrinsic
+// rotation and translation, correlated.
+struct ExtrinsicCovarianceSpec {
+  bool from_rig = false;
+  ParameterCovariance covariance;  // the inline one (from_rig: the rig's)
+};
+
 // camera_intrinsic.<eye_key>.covariance: "camera" (the camera file's) or an inline covariance.
 struct IntrinsicCovarianceSpec {
   std::string eye_key;
@@ -72,7 +90,8 @@ struct ChainSpec {
   uint64_t seed = 0;
   TransformSpec tracker_from_world, hmd_from_tracker, world_from_virtual, world_from_object;
   std::array<TransformSpec, kNumEyes> camera_from_hmd;
-  std::array<CameraSpec, kNumEyes> cameras;
+  std::array<CameraSpec, kNumEyes> cameras;  // with a rig: its cameras (file empty)
+  std::optional<RigSpec> rig;                 // with it, camera_from_hmd[1] is derived, not written
   double ipd = 0;
   Eigen::Vector3d eye_centre = Eigen::Vector3d::Zero();  // hmd frame (default: the cameras' midpoint)
   std::optional<double> camera_baseline;                  // documents the baseline when given
@@ -82,6 +101,7 @@ struct ChainSpec {
   std::vector<TestPoint> test_points;
   std::vector<TermSpec> terms;  // in kTerms order, then eye key and key
   std::vector<IntrinsicCovarianceSpec> intrinsic_covariances;
+  std::optional<ExtrinsicCovarianceSpec> extrinsic_covariance;  // the right eye's
   std::vector<Eigen::Vector3d> fiducials;  // the fiducial form of virtual_object_alignment (empty: pose form)
   double fle_rms = 0;
   // The file's own provenance, kept as written: a normalised chain says the same as its input.

@@ -66,6 +66,9 @@ OrderedJson SourcesToJson(const ChainSpec& spec) {
   for (const IntrinsicCovarianceSpec& c : spec.intrinsic_covariances) {
     sources["camera_intrinsic"][c.eye_key]["covariance"] = c.from_camera ? OrderedJson("camera") : CovarianceToJson(c.covariance);
   }
+  if (const auto& c = spec.extrinsic_covariance) {
+    sources["camera_extrinsic"]["right"]["covariance"] = c->from_rig ? OrderedJson("rig") : CovarianceToJson(c->covariance);
+  }
   if (!spec.fiducials.empty()) {
     OrderedJson layout = OrderedJson::array();
     for (const auto& f : spec.fiducials) layout.push_back(io::MatrixToJson(f));
@@ -104,11 +107,16 @@ OrderedJson ChainSpecToJson(const ChainSpec& spec, const io::Provenance& provena
   OrderedJson frames;
   frames["tracker_from_world"] = TransformToJson(spec.tracker_from_world);
   frames["hmd_from_tracker"] = TransformToJson(spec.hmd_from_tracker);
-  frames["camera_from_hmd"] = {{"left", TransformToJson(spec.camera_from_hmd[0])}, {"right", TransformToJson(spec.camera_from_hmd[1])}};
+  frames["camera_from_hmd"]["left"] = TransformToJson(spec.camera_from_hmd[0]);
+  if (!spec.rig) frames["camera_from_hmd"]["right"] = TransformToJson(spec.camera_from_hmd[1]);  // else the rig's
   frames["world_from_virtual"] = TransformToJson(spec.world_from_virtual);
   frames["world_from_object"] = TransformToJson(spec.world_from_object);
   j["frames"] = std::move(frames);
-  j["cameras"] = {{"left", CameraToJson(spec.cameras[0])}, {"right", CameraToJson(spec.cameras[1])}};
+  if (spec.rig) {
+    j["rig"] = {{"file", spec.rig->file}};
+  } else {
+    j["cameras"] = {{"left", CameraToJson(spec.cameras[0])}, {"right", CameraToJson(spec.cameras[1])}};
+  }
   OrderedJson display;
   display["ipd"] = spec.ipd;
   display["eye_centre"] = io::MatrixToJson(spec.eye_centre);
