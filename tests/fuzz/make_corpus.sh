@@ -150,3 +150,18 @@ mkdir -p "$corpus"/{target,capture_plan}
   --distortion none --uncertainty-pixel 100,100,400 -o views.plan.json 2>/dev/null
 cp board.target.json tags.target.json "$corpus/target/"
 cp volume.plan.json views.plan.json "$corpus/capture_plan/"
+
+# A volume manifest as calib-capture render writes it (three planes; the harness creates the three
+# images it names), and the same in inches, compact.
+mkdir -p "$corpus/volume_manifest"
+"$tools/calib-capture" render board.target.json --camera "$zed" -o volume --near 0 --far 200 --interval 100 \
+  --camera-distance 700 --tilt-deg 15 2>/dev/null
+cp volume/manifest.json "$corpus/volume_manifest/manifest.json"
+/usr/bin/python3 - volume/manifest.json "$corpus/volume_manifest/inches.json" <<'PY'
+import json, sys
+m = json.load(open(sys.argv[1]))
+m["length_unit"] = "in"
+for image in m["images"]:
+    image["plane_offset"] /= 25.4
+json.dump(m, open(sys.argv[2], "w"), separators=(",", ":"))
+PY

@@ -13,6 +13,7 @@ extern "C" {
 }
 
 #include "support/capture_scenes.h"
+#include "support/sanitizers.h"
 #include "vstcal/capture/chessboard_orientation.h"
 #include "vstcal/capture/detect.h"
 #include "vstcal/capture/target_pattern.h"
@@ -66,6 +67,7 @@ DetectorOptions With(CornerRefiner refiner, ChessboardFinder finder = Chessboard
 // than OpenCV's classic detector refined by cornerSubPix on the same images (the best OpenCV peer;
 // scripts/compare-detectors adds findChessboardCornersSB and mrgingham).
 TEST(DetectChessboard, SubPixelAccuracyBeatsCornerSubPix) {
+  VSTCAL_STATISTICAL_TEST_RELEASE_ONLY();
   const Camera camera = testing::DistortedCamera(640, 480, 600);
   const Target t = Chessboard9x6();
   struct Condition {

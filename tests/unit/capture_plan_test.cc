@@ -8,6 +8,7 @@
 
 #include <Eigen/Eigenvalues>
 
+#include "support/sanitizers.h"
 #include "vstcal/calib/refine.h"
 #include "vstcal/capture/plan.h"
 #include "vstcal/core/error.h"
@@ -185,6 +186,7 @@ size_t ExpectLensSigmasMatch(const CapturePlan& plan, const Spread& mc) {
 }
 
 TEST(CapturePlan, VolumePredictionMatchesTheMonteCarloSpreadOfRefinements) {
+  VSTCAL_STATISTICAL_TEST_RELEASE_ONLY();
   PlanRequest r = VolumeRequest();
   r.pixel_sigma = 0.3;
   r.test_points = {{"Left", Eigen::Vector3d(-1040, 0, 1000), std::nullopt}};
@@ -197,6 +199,7 @@ TEST(CapturePlan, VolumePredictionMatchesTheMonteCarloSpreadOfRefinements) {
 }
 
 TEST(CapturePlan, PlanarViewsPredictionMatchesTheMonteCarloSpreadOfRefinements) {
+  VSTCAL_STATISTICAL_TEST_RELEASE_ONLY();
   PlanRequest r = VolumeRequest();
   r.rig = Rig::kPlanarViews;
   r.target = Chessboard(10, 7, 30);

@@ -11,6 +11,7 @@
 
 #include "support/capture_scenes.h"
 #include "support/opencv_views.h"
+#include "support/sanitizers.h"
 #include "support/scenes.h"
 #include "support/stereo_rigs.h"
 #include "vstcal/capture/detect_run.h"
@@ -115,6 +116,7 @@ TEST(StereoSolve, DifferingUnitsAreBadInput) {
 // so predicted and empirical agree within 10 % unless the covariance is wrong by more than a few
 // percent. The prediction averaged over the trials (each scales by its own σ̂).
 TEST(StereoSolve, BaselineSigmaMatchesMonteCarlo) {
+  VSTCAL_STATISTICAL_TEST_RELEASE_ONLY();
   const StereoRig truth = SolvableRig();
   const testing::StereoViews clean = testing::SyntheticStereoViews(truth, 13, 5);
   constexpr int kTrials = 150;
