@@ -5,20 +5,21 @@
 #include "vstcal/core/error.h"
 #include "vstcal/report/gnuplot.h"
 #include "vstcal/report/html.h"
+#include "vstcal/report/html_page.h"
 
 namespace vstcal {
 namespace {
 
 TEST(Base64, Rfc4648TestVectors) {  // RFC 4648 §10
-  EXPECT_EQ(Base64(""), "");
-  EXPECT_EQ(Base64("f"), "Zg==");
-  EXPECT_EQ(Base64("fo"), "Zm8=");
-  EXPECT_EQ(Base64("foo"), "Zm9v");
-  EXPECT_EQ(Base64("foob"), "Zm9vYg==");
-  EXPECT_EQ(Base64("fooba"), "Zm9vYmE=");
-  EXPECT_EQ(Base64("foobar"), "Zm9vYmFy");
+  EXPECT_EQ(html::Base64(""), "");
+  EXPECT_EQ(html::Base64("f"), "Zg==");
+  EXPECT_EQ(html::Base64("fo"), "Zm8=");
+  EXPECT_EQ(html::Base64("foo"), "Zm9v");
+  EXPECT_EQ(html::Base64("foob"), "Zm9vYg==");
+  EXPECT_EQ(html::Base64("fooba"), "Zm9vYmE=");
+  EXPECT_EQ(html::Base64("foobar"), "Zm9vYmFy");
   const unsigned char high[] = {0xfb, 0xff, 0xfe};
-  EXPECT_EQ(Base64(high, 3), "+//+");
+  EXPECT_EQ(html::Base64(high, 3), "+//+");
 }
 
 TEST(GnuplotQuoted, NamesCannotEndTheStringOrTheLine) {
