@@ -1,0 +1,18 @@
+// The err-sim run page (html_page.h: self-contained, opens offline): the error distributions per
+// test point and eye as quantile bars, the error budget as ranked bars with the halved-source
+// column, and the tables behind them. It is drawn from the report as written
+// (vstcal/err-sim-report@2, errsim/formats/report_format.h), never recomputed: each number shown
+// carries the JSON pointer it comes from, e.g. data-key="/test_points/0/image/left/pixel_px/p95".
+#pragma once
+
+#include <string>
+
+#include "vstcal/json/json_writer.h"
+
+namespace vstcal {
+
+// `report` is a complete err-sim run report (err-sim run or merge); the charts are drawn by gnuplot.
+// Throws what RunGnuplot throws.
+std::string ErrSimReportHtml(const io::OrderedJson& report);
+
+}  // namespace vstcal
