@@ -76,7 +76,7 @@ std::string Distributions(const OrderedJson& r) {
   std::string s = "<section><h2>Error distributions</h2>\n";
   s += html::Chart(QuantileBarsScript(image, "image misregistration |overlay - video| (px)"), "image misregistration per test point and eye",
                    "Image misregistration of each test point in each eye (px): box from the median to p95, whisker to p99, "
-                   "mean and maximum marked.");
+                   "mean and maximum marked; left eye blue, right eye red.");
   s += html::Chart(QuantileBarsScript(misregistration, "3-D misregistration, linear (" + unit + ")"),
                    "3-D misregistration per test point",
                    "3-D misregistration (Holloway's linear error, " + unit + ") of each test point, the same quantiles.");
