@@ -1,7 +1,10 @@
 // err-sim run --html as a person sees it (browser_fixture.h): the page of a short run of the shipped
-// seed 001 chain renders offline with no console message, every image decodes, every number shown
+// seed 001 chain (and of a sweep) renders offline with no console message, every image decodes, every number shown
 // is the JSON report's at the pointer it names; the same seed gives the same bytes; a page that
 // cannot be written leaves nothing behind.
+#include <algorithm>
+#include <cmath>
+
 #include "browser_fixture.h"
 
 namespace vstcal::cli_test {
@@ -47,6 +50,32 @@ TEST_F(CliErrSimHtml, RendersOfflineWithEveryImageAndTheJsonsNumbers) {
 
   EXPECT_EQ(ImagesLoaded("out/run.html"), "5 loaded, 0 broken");
   ExpectScreenshot("out/run.html", "err-sim.png", 1000, 2400);
+}
+
+TEST_F(CliErrSimHtml, SweepPageShowsTheCurvesAndTheSteepestSlopes) {
+  ASSERT_TRUE(fs::exists(kChromium)) << "scripts/setup installs chromium";
+  const CommandResult r = Run("err-sim", {"sweep", kChain, "-o", "out/sweep.json", "--html", "out/sweep.html", "--parameter",
+                                          "tracking.latency,camera_intrinsic.left.cx,camera_intrinsic.right.cx", "--points", "5", "-q"});
+  ASSERT_EQ(r.exit_code, kOk) << r.err;
+  const Json sweep = ReadJson("out/sweep.json");
+  ASSERT_EQ(sweep["parameters"].size(), 3u);
+  const CommandResult dom = Render("out/sweep.html", {"--dump-dom"});
+  ASSERT_EQ(dom.exit_code, 0) << dom.err;
+  EXPECT_TRUE(ConsoleLines(dom.err).empty()) << ConsoleLines(dom.err).front();
+  EXPECT_EQ(ExpectInlinePictures(dom.out), 2u * 2);  // two sources, image and 3-D curves each
+  // Range, both measures at both ends and the steepest slope of each parameter: the JSON's.
+  EXPECT_EQ(ExpectNumbersOf(sweep, dom.out), 3u * 7);
+  size_t slopes = 0;
+  for (const std::string& key : Attributes(dom.out, "data-key")) {
+    if (key.find("/slope_per_unit/") == std::string::npos) continue;
+    ++slopes;
+    const Json& all = sweep.at(Json::json_pointer(key.substr(0, key.rfind('/'))));
+    double steepest = 0;
+    for (const Json& v : all) steepest = std::max(steepest, std::abs(v.get<double>()));
+    EXPECT_EQ(std::abs(sweep.at(Json::json_pointer(key)).get<double>()), steepest) << key;
+  }
+  EXPECT_EQ(slopes, 3u);
+  EXPECT_EQ(ImagesLoaded("out/sweep.html"), "4 loaded, 0 broken");
 }
 
 TEST_F(CliErrSimHtml, SameSeedGivesTheSameBytes) {

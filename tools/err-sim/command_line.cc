@@ -48,6 +48,7 @@ ErrSimCommandLine::ErrSimCommandLine(CLI::App& app) {
   sweep_->add_option("--parameter", sweep_request_.parameters, "parameter names (default: every random one)")->delimiter(',');
   sweep_->add_option("--lo", sweep_request_.lo, "lower end of the range, in the parameter's unit (one --parameter; default: mean − 3σ or the support)")->check(kFinite);
   sweep_->add_option("--hi", sweep_request_.hi, "upper end of the range (one --parameter; default: mean + 3σ or the support)")->check(kFinite);
+  sweep_->add_option("--html", html_, html_help)->check(kNonEmpty);
   sweep_->add_option("--points", sweep_request_.points, "points per sweep (2 … 1001)")->capture_default_str();
 
   sobol_ = AddCommon(app.add_subcommand("sobol", "first-order and total Sobol indices per source"), true, true);

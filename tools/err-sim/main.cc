@@ -20,7 +20,7 @@ int main(int argc, char** argv) {
     vstcal::io::DeclareOutputs({command_line.output(), command_line.html()});
     const vstcal::errsim::Outcome outcome = command_line.Run(argc, argv);
     std::vector<std::pair<std::filesystem::path, std::string>> files = {{command_line.output(), outcome.Text()}};
-    if (!command_line.html().empty()) files.emplace_back(command_line.html(), vstcal::ErrSimReportHtml(outcome.json));
+    if (!command_line.html().empty()) files.emplace_back(command_line.html(), vstcal::ErrSimHtml(outcome.json));
     vstcal::io::WriteFilesAtomically(files);
     if (!command_line.quiet()) std::cerr << outcome.text << "  wrote " << command_line.output() << (command_line.html().empty() ? "" : " and " + command_line.html()) << "\n";
     return 0;

@@ -1,6 +1,10 @@
 #include "vstcal/report/errsim_html.h"
 
+#include <algorithm>
 #include <array>
+#include <cmath>
+
+#include "vstcal/core/error.h"
 
 #include "vstcal/report/errsim_charts.h"
 #include "vstcal/report/html_page.h"
@@ -18,7 +22,7 @@ std::string ValueCell(const OrderedJson& report, const std::string& pointer) {
   const OrderedJson::json_pointer at(pointer);
   if (!report.contains(at)) return html::EmptyCells(1);
   const OrderedJson& v = report.at(at);
-  if (v.is_number_unsigned()) return html::Cell(pointer, v.get<size_t>());
+  if (v.is_number_integer() && v.get<int64_t>() >= 0) return html::Cell(pointer, v.get<size_t>());  // counts
   return v.is_number() ? html::Cell(pointer, v.get<double>()) : html::EmptyCells(1);
 }
 
@@ -29,6 +33,11 @@ std::string StatsCells(const OrderedJson& report, const std::string& pointer) {
   return s;
 }
 constexpr const char* kStatsHeads = "<th>mean</th><th>rms</th><th>p50</th><th>p95</th><th>p99</th><th>max</th>";
+
+// A chart, or a line saying why there is none (a script of nothing to draw is empty).
+std::string ChartOrNote(const std::string& script, const std::string& alt, const std::string& caption) {
+  return script.empty() ? "<p class=\"none\">" + Escape(alt) + ": no defined value to draw.</p>\n" : html::Chart(script, alt, caption);
+}
 
 std::string Table(const std::string& caption, const std::string& heads, const std::string& rows) {
   return "<table><caption>" + Escape(caption) + "</caption><tr>" + heads + "</tr>\n" + rows + "</table>\n";
@@ -74,13 +83,13 @@ std::string Distributions(const OrderedJson& r) {
                           StatsCells(r, key + "/misperception/linear") + "</tr>\n";
   }
   std::string s = "<section><h2>Error distributions</h2>\n";
-  s += html::Chart(QuantileBarsScript(image, "image misregistration |overlay - video| (px)"), "image misregistration per test point and eye",
+  s += ChartOrNote(QuantileBarsScript(image, "image misregistration |overlay - video| (px)"), "image misregistration per test point and eye",
                    "Image misregistration of each test point in each eye (px): box from the median to p95, whisker to p99, "
                    "mean and maximum marked; left eye blue, right eye red.");
-  s += html::Chart(QuantileBarsScript(misregistration, "3-D misregistration, linear (" + unit + ")"),
+  s += ChartOrNote(QuantileBarsScript(misregistration, "3-D misregistration, linear (" + unit + ")"),
                    "3-D misregistration per test point",
                    "3-D misregistration (Holloway's linear error, " + unit + ") of each test point, the same quantiles.");
-  s += html::Chart(QuantileBarsScript(misperception, "misperception, linear (" + unit + ")"), "misperception per test point",
+  s += ChartOrNote(QuantileBarsScript(misperception, "misperception, linear (" + unit + ")"), "misperception per test point",
                    "Misperception (linear, relative to the error-free chain's systematic one, " + unit +
                        ") of each test point, the same quantiles.");
   s += Table("image misregistration (px)", std::string("<th>test point</th><th>eye</th>") + kStatsHeads, image_rows);
@@ -100,7 +109,7 @@ std::string Budget(const OrderedJson& r) {
                   " samples a scenario, common random numbers); ranked by its share of the mean square "
                   "(docs/math/vst-chain.md#budget).</p>\n";
   for (const std::string measure : {"misregistration", "misperception"}) {
-    s += html::Chart(BudgetScript(r, measure), "error budget, " + measure,
+    s += ChartOrNote(BudgetScript(r, measure), "error budget, " + measure,
                      "Error budget of the " + measure + " (" + unit + "), sources ranked largest share first.");
     std::string rows;
     size_t rank = 0;
@@ -131,6 +140,63 @@ std::string ErrSimReportHtml(const OrderedJson& r) {
   s += "<h1>err-sim run: " + Escape(r.at("chain").get<std::string>()) + "</h1>\n";
   s += Summary(r) + Distributions(r) + Budget(r);
   return s + html::kPageEnd;
+}
+
+std::string ErrSimSweepHtml(const OrderedJson& r) {
+  const std::string unit = r.at("length_unit").get<std::string>();
+  std::string s = html::PageStart("err-sim sweep: " + r.at("chain").get<std::string>());
+  s += "<h1>err-sim sweep: " + Escape(r.at("chain").get<std::string>()) + "</h1>\n<p>Each parameter swept on its own, "
+       "every other at its mean; the slope is d(output)/d(parameter) at the middle of the range, by automatic "
+       "differentiation (docs/tools/err-sim.md).</p>\n";
+  const OrderedJson& parameters = r.at("parameters");
+  std::vector<std::string> sources;
+  for (const auto& p : parameters) {
+    const std::string source = p.at("source").get<std::string>();
+    if (std::find(sources.begin(), sources.end(), source) == sources.end()) sources.push_back(source);
+  }
+  for (const std::string& source : sources) {
+    s += "<section><h2>" + Escape(source) + "</h2>\n";
+    s += ChartOrNote(SweepCurvesScript(r, source, "image_rms_px", "image misregistration RMS (px)"),
+                     "image misregistration along the sweeps of " + source,
+                     "Image misregistration RMS over the test points and eyes along each parameter's sweep.");
+    s += ChartOrNote(SweepCurvesScript(r, source, "misregistration_rms", "3-D misregistration RMS (" + unit + ")"),
+                     "3-D misregistration along the sweeps of " + source,
+                     "3-D misregistration RMS over the test points along each parameter's sweep.");
+    std::string rows;
+    for (size_t i = 0; i < parameters.size(); ++i) {
+      const OrderedJson& p = parameters[i];
+      if (p.at("source") != source) continue;
+      const std::string key = "/parameters/" + std::to_string(i), last = std::to_string(p.at("values").size() - 1);
+      const OrderedJson& slopes = p.at("slope_per_unit");
+      size_t steepest = 0;
+      for (size_t j = 1; j < slopes.size(); ++j) {
+        if (slopes[j].is_number() && (!slopes[steepest].is_number() ||
+                                      std::abs(slopes[j].get<double>()) > std::abs(slopes[steepest].get<double>()))) {
+          steepest = j;
+        }
+      }
+      rows += "<tr><th>" + Escape(p.at("name").get<std::string>()) + "</th><td>" + Escape(p.at("unit").get<std::string>()) +
+              "</td>" + ValueCell(r, key + "/values/0") + ValueCell(r, key + "/values/" + last) +
+              ValueCell(r, key + "/image_rms_px/0") + ValueCell(r, key + "/image_rms_px/" + last) +
+              ValueCell(r, key + "/misregistration_rms/0") + ValueCell(r, key + "/misregistration_rms/" + last) +
+              (slopes.empty() ? html::EmptyCells(1) : ValueCell(r, key + "/slope_per_unit/" + std::to_string(steepest))) +
+              "<td style=\"text-align:left\">" + (slopes.empty() ? "" : Escape(r.at("outputs").at(steepest).get<std::string>())) +
+              "</td></tr>\n";
+    }
+    s += Table("the sweeps of " + source,
+               "<th>parameter</th><th>unit</th><th>lo</th><th>hi</th><th>image RMS at lo (px)</th><th>at hi</th>"
+               "<th>3-D RMS at lo (" + unit + ")</th><th>at hi</th><th>largest slope (output unit per unit)</th><th>of output</th>",
+               rows);
+    s += "</section>\n";
+  }
+  return s + html::kPageEnd;
+}
+
+std::string ErrSimHtml(const OrderedJson& output) {
+  const std::string format = output.value("format", "");
+  if (format == "vstcal/err-sim-sweep@2") return ErrSimSweepHtml(output);
+  VSTCAL_CHECK(format == "vstcal/err-sim-report@2", "--html is offered for run, merge and sweep only");
+  return ErrSimReportHtml(output);
 }
 
 }  // namespace vstcal
