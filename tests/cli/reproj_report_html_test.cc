@@ -4,49 +4,16 @@
 // read back from the rendered DOM and compared with the JSON report written by the same run.
 #include <opencv2/imgcodecs.hpp>
 
-#include "cli_fixture.h"
+#include "browser_fixture.h"
 
 namespace vstcal::cli_test {
 namespace {
 
-constexpr const char* kChromium = "/usr/bin/chromium";
-
-class CliReprojReportHtml : public CliTest {
+class CliReprojReportHtml : public BrowserTest {
  protected:
   void SetUp() override {
-    CliTest::SetUp();
+    BrowserTest::SetUp();
     Synth("in/volume.json", Override(Remove(DefaultSynthArgs(), "--no-test-points", false), "--noise", "0.5"));
-  }
-
-  // Chromium's DOM of a page after its load event, and its log on stderr.
-  CommandResult Render(const std::string& page, const std::vector<std::string>& extra = {}) const {
-    std::vector<std::string> argv = {kChromium, "--headless", "--disable-gpu", "--no-sandbox", "--no-first-run",
-                                     "--user-data-dir=" + Path("chromium-profile").string(), "--enable-logging=stderr",
-                                     "--v=0", "--virtual-time-budget=3000"};
-    argv.insert(argv.end(), extra.begin(), extra.end());
-    argv.push_back("file://" + fs::absolute(Path(page)).string());
-    return RunCommand(argv, dir());
-  }
-
-  // The value of attribute `name` of every element that has one, in document order (std::regex
-  // recurses once per character and overflows the stack on megabytes of base64).
-  static std::vector<std::string> Attributes(const std::string& html, const std::string& name) {
-    std::vector<std::string> values;
-    const std::string open = " " + name + "=\"";
-    for (size_t at = html.find(open); at != std::string::npos; at = html.find(open, at + 1)) {
-      const size_t begin = at + open.size();
-      values.push_back(html.substr(begin, html.find('"', begin) - begin));
-    }
-    return values;
-  }
-
-  static std::vector<std::string> ConsoleLines(const std::string& log) {
-    std::vector<std::string> lines;
-    std::istringstream in(log);
-    for (std::string line; std::getline(in, line);) {
-      if (line.find(":CONSOLE") != std::string::npos) lines.push_back(line);
-    }
-    return lines;
   }
 };
 
@@ -62,61 +29,18 @@ TEST_F(CliReprojReportHtml, RendersOfflineWithEveryImageAndTheJsonsNumbers) {
   const CommandResult dom = Render("out/report.html", {"--dump-dom"});
   ASSERT_EQ(dom.exit_code, 0) << dom.err;
   EXPECT_TRUE(ConsoleLines(dom.err).empty()) << ConsoleLines(dom.err).front();
-  // Every picture is inline: a fetch would need a src that is not a data: URI.
-  const std::vector<std::string> sources = Attributes(dom.out, "src");
-  for (const std::string& start : sources) {
-    EXPECT_TRUE(start.rfind("data:image/svg+xml;base64,", 0) == 0 || start.rfind("data:image/png;base64,", 0) == 0)
-        << start.substr(0, 60);
-  }
   // Histogram, per view, depth, test points; a heat map and an overlay per camera; the refined
   // camera's projection uncertainty.
-  EXPECT_EQ(sources.size(), 4u + 2 * 2 + 1);
+  EXPECT_EQ(ExpectInlinePictures(dom.out), 4u + 2 * 2 + 1);
 
   // 2. Every number shown is the JSON's: the exact value it carries, and the text shown rounds it.
-  const std::string marker = " data-key=\"";
-  size_t numbers = 0;
-  for (size_t at = dom.out.find(marker); at != std::string::npos; at = dom.out.find(marker, at + 1), ++numbers) {
-    const size_t key_begin = at + marker.size(), key_end = dom.out.find('"', key_begin);
-    const std::string key = dom.out.substr(key_begin, key_end - key_begin);
-    const std::string value_open = "\" data-value=\"";
-    ASSERT_EQ(dom.out.compare(key_end, value_open.size(), value_open), 0) << key;
-    const size_t value_begin = key_end + value_open.size(), value_end = dom.out.find('"', value_begin);
-    const std::string value = dom.out.substr(value_begin, value_end - value_begin);
-    ASSERT_EQ(dom.out[value_end + 1], '>') << key;
-    const std::string shown = dom.out.substr(value_end + 2, dom.out.find('<', value_end) - value_end - 2);
-    const Json& expected = report.at(Json::json_pointer(key));
-    ASSERT_TRUE(expected.is_number()) << key;
-    EXPECT_EQ(std::stod(value), expected.get<double>()) << key;
-    EXPECT_NEAR(std::stod(shown), expected.get<double>(), 5.001e-4) << key << " shown as " << shown;
-  }
-  EXPECT_GT(numbers, 150u);  // overall, views, test points, differences of two cameras
+  EXPECT_GT(ExpectNumbersOf(report, dom.out), 150u);  // overall, views, test points, differences of two cameras
 
-  // 3. The browser decodes every image: the same page with a check appended (the copy's policy
-  // allows that one inline script and still no fetch), reporting into the DOM.
-  std::string page = ReadText("out/report.html");
-  const std::string policy = "default-src 'none';";
-  ASSERT_NE(page.find(policy), std::string::npos);
-  page.replace(page.find(policy), policy.size(), "default-src 'none'; script-src 'unsafe-inline';");
-  page.replace(page.rfind("</body>"), 7,
-               "<script>window.addEventListener('load', () => { const bad = [...document.images].filter(i => "
-               "!i.complete || i.naturalWidth === 0).length; document.body.setAttribute('data-images', "
-               "document.images.length + ' loaded, ' + bad + ' broken'); });</script></body>");
-  WriteText("check.html", page);
-  const CommandResult checked = Render("check.html", {"--dump-dom"});
-  EXPECT_NE(checked.out.find("data-images=\"9 loaded, 0 broken\""), std::string::npos) << checked.out.substr(0, 400);
-  EXPECT_TRUE(ConsoleLines(checked.err).empty()) << ConsoleLines(checked.err).front();
+  // 3. The browser decodes every image.
+  EXPECT_EQ(ImagesLoaded("out/report.html"), "9 loaded, 0 broken");
 
   // 4. A screenshot, kept in the build tree for a person to look at.
-  const fs::path shot = fs::path(VSTCAL_TOOLS_DIR).parent_path() / "test-artifacts" / "reproj-report.png";
-  fs::create_directories(shot.parent_path());
-  const CommandResult screenshot = Render("out/report.html", {"--window-size=1000,2400", "--screenshot=" + shot.string()});
-  ASSERT_EQ(screenshot.exit_code, 0) << screenshot.err;
-  const cv::Mat png = cv::imread(shot.string(), cv::IMREAD_GRAYSCALE);
-  ASSERT_FALSE(png.empty());
-  EXPECT_EQ(png.cols, 1000);
-  double lo = 0, hi = 0;
-  cv::minMaxLoc(png, &lo, &hi);
-  EXPECT_LT(lo, 60);  // text and charts drawn, not a blank page
+  ExpectScreenshot("out/report.html", "reproj-report.png", 1000, 2400);
 }
 
 TEST_F(CliReprojReportHtml, SameInputsGiveTheSameBytes) {

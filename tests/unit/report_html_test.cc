@@ -1,24 +1,26 @@
 // The report page's building blocks: base64 against RFC 4648's test vectors, gnuplot string
-// quoting that no name can break out of.
+// quoting that no name can break out of; err-sim's page of undefined statistics.
 #include <gtest/gtest.h>
 
 #include "vstcal/core/error.h"
+#include "vstcal/report/errsim_html.h"
 #include "vstcal/report/gnuplot.h"
 #include "vstcal/report/html.h"
+#include "vstcal/report/html_page.h"
 
 namespace vstcal {
 namespace {
 
 TEST(Base64, Rfc4648TestVectors) {  // RFC 4648 §10
-  EXPECT_EQ(Base64(""), "");
-  EXPECT_EQ(Base64("f"), "Zg==");
-  EXPECT_EQ(Base64("fo"), "Zm8=");
-  EXPECT_EQ(Base64("foo"), "Zm9v");
-  EXPECT_EQ(Base64("foob"), "Zm9vYg==");
-  EXPECT_EQ(Base64("fooba"), "Zm9vYmE=");
-  EXPECT_EQ(Base64("foobar"), "Zm9vYmFy");
+  EXPECT_EQ(html::Base64(""), "");
+  EXPECT_EQ(html::Base64("f"), "Zg==");
+  EXPECT_EQ(html::Base64("fo"), "Zm8=");
+  EXPECT_EQ(html::Base64("foo"), "Zm9v");
+  EXPECT_EQ(html::Base64("foob"), "Zm9vYg==");
+  EXPECT_EQ(html::Base64("fooba"), "Zm9vYmE=");
+  EXPECT_EQ(html::Base64("foobar"), "Zm9vYmFy");
   const unsigned char high[] = {0xfb, 0xff, 0xfe};
-  EXPECT_EQ(Base64(high, 3), "+//+");
+  EXPECT_EQ(html::Base64(high, 3), "+//+");
 }
 
 TEST(GnuplotQuoted, NamesCannotEndTheStringOrTheLine) {
@@ -38,6 +40,37 @@ TEST(RunGnuplot, DrawsAnSvgAndReportsItsErrors) {
   } catch (const InternalError& e) {
     EXPECT_NE(std::string(e.what()).find("gnuplot failed: "), std::string::npos) << e.what();
   }
+}
+
+TEST(ErrSimReportHtml, UndefinedStatisticsAndNoBudgetAreDashesNotNumbers) {
+  // A report as err-sim writes it for a test point whose right eye has no defined sample, without
+  // a budget (--no-budget): nulls are shown as dashes, never as a number, and no chart fails.
+  const io::OrderedJson stats = {{"mean", 2.0}, {"rms", 2.5}, {"standard_deviation", 1.5}, {"mean_standard_error", 0.1},
+                                 {"max", 9.0},  {"p50", 1.75}, {"p95", 5.0}, {"p99", 8.0}};
+  io::OrderedJson point = {{"name", "a<b"}, {"undefined", {{"samples", 10}, {"rate", 0.5}}}};
+  point["image"] = {{"left", {{"pixel_px", stats}}}, {"right", {{"pixel_px", nullptr}}}};
+  point["misregistration"] = {{"linear", stats}};
+  point["misperception"] = {{"systematic", {{"linear", 3.0}}}, {"linear", nullptr}};
+  const io::OrderedJson report = {
+      {"format", "vstcal/err-sim-report@2"}, {"chain", "c.json"}, {"length_unit", "mm"}, {"samples", 20}, {"seed", 1},
+      {"sources", {{"active", {"tracking"}}}}, {"undefined_samples", 10},
+      {"test_points", {point}},
+      {"totals", {{"image_rms_px", 2.5}, {"misregistration_rms", 2.5}, {"misperception_rms", nullptr},
+                  {"wrong_occlusion_rate", nullptr}, {"systematic_misperception_rms", 3.0}}},
+      {"budget", nullptr}};
+  const std::string page = ErrSimHtml(report);
+  EXPECT_NE(page.find("Not computed (--no-budget)"), std::string::npos);
+  // Two charts drawn; the misperception, of no defined value, said so instead.
+  EXPECT_NE(page.find("misperception per test point: no defined value to draw."), std::string::npos);
+  size_t charts = 0;
+  for (size_t at = page.find("data:image/svg+xml;base64,"); at != std::string::npos; at = page.find("data:image/svg", at + 1)) ++charts;
+  EXPECT_EQ(charts, 2u);
+  EXPECT_NE(page.find("a&lt;b"), std::string::npos);  // names escaped
+  EXPECT_EQ(page.find("data-key=\"/test_points/0/image/right"), std::string::npos);
+  EXPECT_EQ(page.find("data-key=\"/totals/misperception_rms"), std::string::npos);
+  EXPECT_NE(page.find("data-key=\"/test_points/0/image/left/pixel_px/p95\" data-value=\"5.0\">5.0000<"), std::string::npos);
+  EXPECT_NE(page.find("data-key=\"/undefined_samples\" data-value=\"10\">10<"), std::string::npos);
+  EXPECT_THROW(ErrSimHtml({{"format", "vstcal/err-sim-sobol@2"}}), InternalError);
 }
 
 }  // namespace

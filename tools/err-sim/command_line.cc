@@ -33,18 +33,22 @@ ErrSimCommandLine::ErrSimCommandLine(CLI::App& app) {
   run_->add_flag("--no-budget", no_budget_, "skip the per-source scenarios (contributions and budget)");
   run_->add_option("--budget-samples", budget_samples_, "samples per budget scenario (default: --samples)")->check(kPositiveCount);
   run_->add_option("--shard", shard_, "run shard i of N (i/N), or \"auto\" from a Slurm array or Kubernetes Indexed Job, and write a shard file for `err-sim merge`");
+  const char* const html_help = "also write a self-contained HTML page of the report (charts by gnuplot; opens offline)";
+  run_->add_option("--html", html_, html_help)->check(kNonEmpty);
   run_->add_option("--shard-count", shard_count_, "with --shard auto under Kubernetes: the shard count (the Job's completions)")->check(kPositiveCount);
 
   merge_ = app.add_subcommand("merge", "merge the shard files of one run into its report");
   merge_->add_option("CHAIN", chain_.chain, "the chain the shards ran")->required()->check(kNonEmpty);
   merge_->add_option("SHARDS", shards_, "shard files (vstcal/err-sim-shard@2)")->required()->check(CLI::ExistingFile);
   merge_->add_option("-o,--output", output_, "report to write")->required()->check(kNonEmpty);
+  merge_->add_option("--html", html_, html_help)->check(kNonEmpty);
   merge_->add_flag("-q,--quiet", quiet_, "print only errors (no summary)");
 
   sweep_ = AddCommon(app.add_subcommand("sweep", "one-at-a-time sweeps with the local slope (autodiff)"), true, false);
   sweep_->add_option("--parameter", sweep_request_.parameters, "parameter names (default: every random one)")->delimiter(',');
   sweep_->add_option("--lo", sweep_request_.lo, "lower end of the range, in the parameter's unit (one --parameter; default: mean − 3σ or the support)")->check(kFinite);
   sweep_->add_option("--hi", sweep_request_.hi, "upper end of the range (one --parameter; default: mean + 3σ or the support)")->check(kFinite);
+  sweep_->add_option("--html", html_, html_help)->check(kNonEmpty);
   sweep_->add_option("--points", sweep_request_.points, "points per sweep (2 … 1001)")->capture_default_str();
 
   sobol_ = AddCommon(app.add_subcommand("sobol", "first-order and total Sobol indices per source"), true, true);
@@ -69,6 +73,9 @@ errsim::Outcome ErrSimCommandLine::Run(int argc, char** argv) {
     const std::optional<uint64_t> count = run_->count("--shard-count") ? std::optional(shard_count_) : std::nullopt;
     std::tie(run.shard, run.shards) = shard_ == "auto" ? ShardFromScheduler(std::getenv, count, "--shard-count")
                                                        : ParseShard(shard_, "--shard");
+    if (run.shards > 1 && !html_.empty()) {
+      throw InputError("--html: a shard file is not a report; give --html to `err-sim merge` of the shards");
+    }
     ProgressBar bar("err-sim run", !quiet_);
     return errsim::RunErrSim(run, provenance, [&](double f) { bar.Update(f); });
   }

@@ -22,6 +22,7 @@ class ErrSimCommandLine {
   errsim::Outcome Run(int argc, char** argv);
   const std::string& output() const { return output_; }
   bool quiet() const { return quiet_; }
+  const std::string& html() const { return html_; }  // run, merge: the page to write too (empty: none)
 
  private:
   CLI::App* AddCommon(CLI::App* app, bool sources, bool sampling);
@@ -30,7 +31,7 @@ class ErrSimCommandLine {
   // Shared by every subcommand: the chain, which sources, samples, seed, threads, output.
   errsim::ChainRequest chain_;
   uint64_t samples_ = 0, seed_ = 0;
-  std::string output_;
+  std::string output_, html_;
   bool quiet_ = false;
   // run
   std::string shard_ = "0/1";

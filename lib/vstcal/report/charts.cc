@@ -9,16 +9,7 @@
 namespace vstcal {
 namespace {
 
-const char* const kColours[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b"};
-
-const char* Colour(size_t k) { return kColours[k % std::size(kColours)]; }
-
 std::string Number(double v) { return io::ShortestDecimal(v); }
-
-std::string Header(int width, int height) {
-  return "set terminal svg size " + std::to_string(width) + "," + std::to_string(height) +
-         " font \"sans,11\" background \"white\"\nset output\nset grid lc rgb \"#dddddd\"\nset key below\n";
-}
 
 std::string CameraTitle(const ReprojReport& r, size_t k) {
   const CameraReport& c = r.cameras[k];
@@ -35,7 +26,7 @@ std::string HistogramScript(const ReprojReport& r) {
   if (!(top > 0)) top = 1;
   constexpr int kBins = 40;
   const double width = top / kBins;
-  std::string s = Header(900, 360);
+  std::string s = SvgChartHeader(900, 360);
   std::string plot = "plot ";
   for (size_t k = 0; k < r.cameras.size(); ++k) {
     std::vector<size_t> counts(kBins, 0);
@@ -47,7 +38,7 @@ std::string HistogramScript(const ReprojReport& r) {
     s += "$h" + std::to_string(k) + " << EOD\n";
     for (int b = 0; b < kBins; ++b) s += Number(b * width) + " " + std::to_string(counts[b]) + "\n";
     s += Number(kBins * width) + " " + std::to_string(counts[kBins - 1]) + "\nEOD\n";
-    plot += std::string(k ? ", " : "") + "$h" + std::to_string(k) + " using 1:2 with steps lw 2 lc rgb \"" + Colour(k) +
+    plot += std::string(k ? ", " : "") + "$h" + std::to_string(k) + " using 1:2 with steps lw 2 lc rgb \"" + ChartColour(k) +
             "\" title " + CameraTitle(r, k);
   }
   s += "set xlabel \"|residual| (px)\"\nset ylabel \"points\"\nset xrange [0:" + Number(top) + "]\nset yrange [0:*]\n";
@@ -55,7 +46,7 @@ std::string HistogramScript(const ReprojReport& r) {
 }
 
 std::string PerViewScript(const ReprojReport& r) {
-  std::string s = Header(900, 360);
+  std::string s = SvgChartHeader(900, 360);
   s += "$v << EOD\n";
   const size_t n_views = r.correspondences.views.size();
   for (size_t v = 0; v < n_views; ++v) {
@@ -69,13 +60,13 @@ std::string PerViewScript(const ReprojReport& r) {
   std::string plot = "plot ";
   for (size_t k = 0; k < r.cameras.size(); ++k) {
     plot += std::string(k ? ", " : "") + "$v using " + std::to_string(k + 2) + (k ? "" : ":xtic(1)") + " lc rgb \"" +
-            Colour(k) + "\" title " + CameraTitle(r, k);
+            ChartColour(k) + "\" title " + CameraTitle(r, k);
   }
   return s + plot + "\n";
 }
 
 std::string DepthScript(const ReprojReport& r) {
-  std::string s = Header(900, 560);
+  std::string s = SvgChartHeader(900, 560);
   const std::string unit(LengthUnitName(r.correspondences.length_unit));
   for (size_t k = 0; k < r.cameras.size(); ++k) {
     std::vector<const PointError*> points;
@@ -99,7 +90,7 @@ std::string DepthScript(const ReprojReport& r) {
     std::string plot = "plot ";
     for (size_t k = 0; k < r.cameras.size(); ++k) {
       plot += std::string(k ? ", " : "") + "$d" + std::to_string(k) + " using 1:" + std::to_string(column) +
-              " with points pt 7 ps 0.35 lc rgb \"" + Colour(k) + "\" title " + CameraTitle(r, k);
+              " with points pt 7 ps 0.35 lc rgb \"" + ChartColour(k) + "\" title " + CameraTitle(r, k);
     }
     s += plot + "\n";
   }
@@ -109,7 +100,7 @@ std::string DepthScript(const ReprojReport& r) {
 std::string HeatMapScript(const ImageGrid& g, const std::vector<std::optional<double>>& cells, const std::string& label) {
   const ImageSize& size = g.image_size;
   const int width = 700, height = std::clamp(static_cast<int>(700.0 * size.height / size.width) + 60, 200, 900);
-  std::string s = Header(width, height);
+  std::string s = SvgChartHeader(width, height);
   // Cell centres in pixel coordinates; an empty cell is NaN (drawn blank).
   s += "$g << EOD\n";
   for (int row = 0; row < g.rows; ++row) {
@@ -142,7 +133,7 @@ std::string TestPointsScript(const ReprojReport& r) {
   }
   if (rows == 0) return {};
   const std::string unit(LengthUnitName(r.correspondences.length_unit));
-  std::string s = Header(900, 420);
+  std::string s = SvgChartHeader(900, 420);
   s += "$t << EOD\n" + data + "EOD\n";
   s += "set style fill solid 0.85 border -1\nset boxwidth 0.7\nset xtics rotate by -45 noenhanced\nset yrange [0:*]\n"
        "set multiplot layout 1,2\nset key off\n"

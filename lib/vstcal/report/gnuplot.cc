@@ -9,6 +9,7 @@
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
+#include <iterator>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -122,6 +123,16 @@ std::string RunGnuplot(const std::string& script) {
     throw InternalError("gnuplot failed: " + first);
   }
   return svg;
+}
+
+std::string SvgChartHeader(int width, int height) {
+  return "set terminal svg size " + std::to_string(width) + "," + std::to_string(height) +
+         " font \"sans,11\" background \"white\"\nset output\nset grid lc rgb \"#dddddd\"\nset key below\n";
+}
+
+const char* ChartColour(size_t k) {
+  static constexpr const char* kColours[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b"};
+  return kColours[k % std::size(kColours)];
 }
 
 }  // namespace vstcal

@@ -3,6 +3,7 @@
 // read back as SVG text.
 #pragma once
 
+#include <cstddef>
 #include <string>
 
 namespace vstcal {
@@ -20,5 +21,11 @@ inline constexpr size_t kMaxGnuplotOutputBytes = size_t{64} << 20;
 // A string as a gnuplot double-quoted literal: backslashes, quotes, control characters escaped,
 // so that a view or file name cannot end the string and inject commands.
 std::string GnuplotQuoted(const std::string& text);
+
+// The first lines of every vstcal chart script: an SVG of `width`×`height` px on white, a light
+// grid, the key below the plot.
+std::string SvgChartHeader(int width, int height);
+// The k-th colour of the charts' palette (cycling), as "#rrggbb".
+const char* ChartColour(size_t k);
 
 }  // namespace vstcal

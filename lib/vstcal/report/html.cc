@@ -5,7 +5,7 @@
 
 #include "vstcal/json/json_writer.h"
 #include "vstcal/report/charts.h"
-#include "vstcal/report/gnuplot.h"
+#include "vstcal/report/html_page.h"
 #include "vstcal/report/overlay.h"
 
 namespace vstcal {
@@ -13,34 +13,11 @@ namespace {
 
 constexpr size_t kMaxPictureCameras = 4;  // overlays and heat maps of the first cameras only
 
-std::string Escape(const std::string& text) {
-  std::string out;
-  for (const char c : text) {
-    switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
-    }
-  }
-  return out;
-}
-
-// A table cell showing `v` to 4 decimals, carrying its JSON pointer and exact value.
-std::string Cell(const std::string& key, double v) {
-  char shown[64];
-  std::snprintf(shown, sizeof shown, "%.4f", v);
-  return "<td data-key=\"" + Escape(key) + "\" data-value=\"" + io::ShortestDecimal(v) + "\">" + shown + "</td>";
-}
-std::string Cell(const std::string& key, size_t n) {
-  return "<td data-key=\"" + Escape(key) + "\" data-value=\"" + std::to_string(n) + "\">" + std::to_string(n) + "</td>";
-}
-std::string EmptyCells(int n) {
-  std::string s;
-  for (int i = 0; i < n; ++i) s += "<td class=\"none\">—</td>";
-  return s;
-}
+using html::Cell;
+using html::Chart;
+using html::EmptyCells;
+using html::Escape;
+using html::Figure;
 
 // One row of a statistics table: n, mean, rms, median, p95, max, or dashes for no value.
 std::string StatsRow(const std::string& label, const std::string& key, const std::optional<ErrorStats>& s) {
@@ -55,15 +32,6 @@ std::string StatsTable(const std::string& caption, const std::string& rows) {
   return "<table><caption>" + Escape(caption) +
          "</caption><tr><th></th><th>n</th><th>mean</th><th>rms</th><th>median</th><th>p95</th><th>max</th></tr>\n" + rows +
          "</table>\n";
-}
-
-std::string Figure(const std::string& mime, const std::string& base64, const std::string& alt, const std::string& caption) {
-  return "<figure><img alt=\"" + Escape(alt) + "\" src=\"data:" + mime + ";base64," + base64 + "\"><figcaption>" +
-         Escape(caption) + "</figcaption></figure>\n";
-}
-
-std::string Chart(const std::string& script, const std::string& alt, const std::string& caption) {
-  return Figure("image/svg+xml", Base64(RunGnuplot(script)), alt, caption);
 }
 
 std::string CameraSection(const ReprojReport& r, size_t k) {
@@ -121,31 +89,9 @@ std::string CameraSection(const ReprojReport& r, size_t k) {
 
 }  // namespace
 
-std::string Base64(const unsigned char* data, size_t size) {
-  static constexpr char kAlphabet[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  std::string out;
-  out.reserve((size + 2) / 3 * 4);
-  for (size_t i = 0; i < size; i += 3) {
-    const unsigned a = data[i], b = i + 1 < size ? data[i + 1] : 0, c = i + 2 < size ? data[i + 2] : 0;
-    const unsigned triple = (a << 16) | (b << 8) | c;
-    out += kAlphabet[(triple >> 18) & 63];
-    out += kAlphabet[(triple >> 12) & 63];
-    out += i + 1 < size ? kAlphabet[(triple >> 6) & 63] : '=';
-    out += i + 2 < size ? kAlphabet[triple & 63] : '=';
-  }
-  return out;
-}
-
 std::string ReprojReportHtml(const ReprojReport& r, const std::filesystem::path& dir) {
   const Correspondences& c = r.correspondences;
-  std::string s =
-      "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\n"
-      "<meta http-equiv=\"Content-Security-Policy\" content=\"default-src 'none'; img-src data:; style-src 'unsafe-inline'\">\n"
-      "<title>reproj-report: " + Escape(r.correspondences_file) + "</title>\n<style>\n"
-      "body{font-family:sans-serif;margin:1.5em;max-width:1000px;color:#222}table{border-collapse:collapse;margin:0.8em 0}"
-      "td,th{border:1px solid #ccc;padding:2px 8px;text-align:right}th{background:#f4f4f4}caption{text-align:left;"
-      "font-weight:bold;padding:4px 0}td.none{color:#999}figure{margin:1em 0}img{max-width:100%;border:1px solid #ddd}"
-      "figcaption{font-size:90%;color:#555}\n</style></head><body>\n";
+  std::string s = html::PageStart("reproj-report: " + r.correspondences_file);
   s += "<h1>Reprojection report: " + Escape(r.correspondences_file) + "</h1>\n";
   s += "<p>" + std::to_string(NumObservations(c)) + " points in " + std::to_string(c.views.size()) + " views (" +
        (c.rig == Rig::kVolume ? "volume" : "planar views") + "), " + std::to_string(c.test_points.size()) +
@@ -189,12 +135,12 @@ std::string ReprojReportHtml(const ReprojReport& r, const std::filesystem::path&
                      " (the points' median), tied to the calibration object (as mrcal's show-projection-uncertainty).");
     }
     const OverlayPicture overlay = DrawResidualOverlay(r, k, dir);
-    s += Figure("image/png", Base64(overlay.png.data(), overlay.png.size()), "residual vectors camera " + std::to_string(k),
+    s += Figure("image/png", html::Base64(overlay.png.data(), overlay.png.size()), "residual vectors camera " + std::to_string(k),
                 "Camera " + std::to_string(k) + ": residual vectors, " + overlay.caption + ".");
   }
   s += "</section>\n";
   for (size_t k = 0; k < r.cameras.size(); ++k) s += CameraSection(r, k);
-  return s + "</body></html>\n";
+  return s + html::kPageEnd;
 }
 
 }  // namespace vstcal

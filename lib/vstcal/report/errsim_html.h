@@ -1,0 +1,27 @@
+// err-sim's pages. The run page (html_page.h: self-contained, opens offline): the error distributions per
+// test point and eye as quantile bars, the error budget as ranked bars with the halved-source
+// column, and the tables behind them. It is drawn from the report as written
+// (vstcal/err-sim-report@2, errsim/formats/report_format.h), never recomputed: each number shown
+// carries the JSON pointer it comes from, e.g. data-key="/test_points/0/image/left/pixel_px/p95".
+#pragma once
+
+#include <string>
+
+#include "vstcal/json/json_writer.h"
+
+namespace vstcal {
+
+// The page of an err-sim output, by its "format": a run report (ErrSimReportHtml) or a sweep
+// (ErrSimSweepHtml). VSTCAL_CHECK for another format (the tool offers --html for these only).
+std::string ErrSimHtml(const io::OrderedJson& output);
+
+// `report` is a complete err-sim run report (err-sim run or merge); the charts are drawn by gnuplot.
+// Throws what RunGnuplot throws.
+std::string ErrSimReportHtml(const io::OrderedJson& report);
+
+// `sweep` is a vstcal/err-sim-sweep@2 output: per source, the curves of the image and the 3-D
+// misregistration along each parameter's swept range; per parameter, its range, the measures at both
+// ends and its largest slope (autodiff, at the middle) over the outputs, with that output's name.
+std::string ErrSimSweepHtml(const io::OrderedJson& sweep);
+
+}  // namespace vstcal

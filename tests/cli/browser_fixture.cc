@@ -1,0 +1,103 @@
+#include "browser_fixture.h"
+
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <sstream>
+
+namespace vstcal::cli_test {
+
+CommandResult BrowserTest::Render(const std::string& page, const std::vector<std::string>& extra) const {
+  std::vector<std::string> argv = {kChromium, "--headless", "--disable-gpu", "--no-sandbox", "--no-first-run",
+                                   "--user-data-dir=" + Path("chromium-profile").string(), "--enable-logging=stderr",
+                                   "--v=0", "--virtual-time-budget=3000"};
+  argv.insert(argv.end(), extra.begin(), extra.end());
+  argv.push_back("file://" + fs::absolute(Path(page)).string());
+  return RunCommand(argv, dir());
+}
+
+// A plain scan, not std::regex: that recurses once per character and overflows the stack on
+// megabytes of base64.
+std::vector<std::string> BrowserTest::Attributes(const std::string& html, const std::string& name) {
+  std::vector<std::string> values;
+  const std::string open = " " + name + "=\"";
+  for (size_t at = html.find(open); at != std::string::npos; at = html.find(open, at + 1)) {
+    const size_t begin = at + open.size();
+    values.push_back(html.substr(begin, html.find('"', begin) - begin));
+  }
+  return values;
+}
+
+std::vector<std::string> BrowserTest::ConsoleLines(const std::string& log) {
+  std::vector<std::string> lines;
+  std::istringstream in(log);
+  for (std::string line; std::getline(in, line);) {
+    if (line.find(":CONSOLE") != std::string::npos) lines.push_back(line);
+  }
+  return lines;
+}
+
+size_t BrowserTest::ExpectInlinePictures(const std::string& dom) {
+  const std::vector<std::string> sources = Attributes(dom, "src");
+  for (const std::string& start : sources) {
+    EXPECT_TRUE(start.rfind("data:image/svg+xml;base64,", 0) == 0 || start.rfind("data:image/png;base64,", 0) == 0)
+        << start.substr(0, 60);
+  }
+  return sources.size();
+}
+
+size_t BrowserTest::ExpectNumbersOf(const Json& report, const std::string& dom) {
+  const std::string marker = " data-key=\"", value_open = "\" data-value=\"";
+  size_t numbers = 0;
+  for (size_t at = dom.find(marker); at != std::string::npos; at = dom.find(marker, at + 1), ++numbers) {
+    const size_t key_begin = at + marker.size(), key_end = dom.find('"', key_begin);
+    const std::string key = dom.substr(key_begin, key_end - key_begin);
+    EXPECT_EQ(dom.compare(key_end, value_open.size(), value_open), 0) << key;
+    const size_t value_begin = key_end + value_open.size(), value_end = dom.find('"', value_begin);
+    const std::string value = dom.substr(value_begin, value_end - value_begin);
+    EXPECT_EQ(dom[value_end + 1], '>') << key;
+    const std::string shown = dom.substr(value_end + 2, dom.find('<', value_end) - value_end - 2);
+    const Json::json_pointer pointer(key);
+    if (!report.contains(pointer) || !report.at(pointer).is_number()) {
+      ADD_FAILURE() << key << " is not a number of the report";
+      continue;
+    }
+    const double expected = report.at(pointer).get<double>();
+    EXPECT_EQ(std::stod(value), expected) << key;
+    EXPECT_NEAR(std::stod(shown), expected, 5.001e-4) << key << " shown as " << shown;
+  }
+  return numbers;
+}
+
+std::string BrowserTest::ImagesLoaded(const std::string& page) const {
+  std::string text = ReadText(page);
+  const std::string policy = "default-src 'none';";
+  const size_t at = text.find(policy);
+  if (at == std::string::npos) return "no Content-Security-Policy";
+  text.replace(at, policy.size(), "default-src 'none'; script-src 'unsafe-inline';");
+  text.replace(text.rfind("</body>"), 7,
+               "<script>window.addEventListener('load', () => { const bad = [...document.images].filter(i => "
+               "!i.complete || i.naturalWidth === 0).length; document.body.setAttribute('data-images', "
+               "document.images.length + ' loaded, ' + bad + ' broken'); });</script></body>");
+  WriteText("check.html", text);
+  const CommandResult checked = Render("check.html", {"--dump-dom"});
+  const std::vector<std::string> console = ConsoleLines(checked.err);
+  EXPECT_TRUE(console.empty()) << console.front();
+  const std::vector<std::string> result = Attributes(checked.out, "data-images");
+  return result.size() == 1 ? result[0] : "no result: " + checked.out.substr(0, 400);
+}
+
+void BrowserTest::ExpectScreenshot(const std::string& page, const std::string& name, int width, int height) const {
+  const fs::path shot = fs::path(VSTCAL_TOOLS_DIR).parent_path() / "test-artifacts" / name;
+  fs::create_directories(shot.parent_path());
+  const CommandResult screenshot =
+      Render(page, {"--window-size=" + std::to_string(width) + "," + std::to_string(height), "--screenshot=" + shot.string()});
+  ASSERT_EQ(screenshot.exit_code, 0) << screenshot.err;
+  const cv::Mat png = cv::imread(shot.string(), cv::IMREAD_GRAYSCALE);
+  ASSERT_FALSE(png.empty());
+  EXPECT_EQ(png.cols, width);
+  double lo = 0, hi = 0;
+  cv::minMaxLoc(png, &lo, &hi);
+  EXPECT_LT(lo, 60);  // text and charts drawn, not a blank page
+}
+
+}  // namespace vstcal::cli_test
