@@ -1,0 +1,98 @@
+// CLI tests of reproj-report with a stereo rig (RIG LEFT RIGHT): a rig calib-stereo solved from
+// calib-synth's noise-free views of a volume triangulates every point where it is (zero error, all
+// 315 points of the 9 × 7 grid on five planes); a point one camera missed is left out and counted;
+// every bad input is refused with one line, exit code 2 and nothing written.
+#include <tuple>
+
+#include "cli_fixture.h"
+
+namespace vstcal::cli_test {
+namespace {
+
+class CliReprojReportStereo : public CliTest {
+ protected:
+  // in/l.json, in/r.json: the volume of calib_stereo_test's volume rig (two 1280×720 cameras 1.2 m
+  // away, converging by 1.5° each side, baseline ≈ 73 mm), and in/rig.json solved from them.
+  void SolveVolumeRig() {
+    for (const auto& [eye, direction, seed] : {std::tuple{"l", "180", "1"}, std::tuple{"r", "0", "2"}}) {
+      Synth(std::string("in/") + eye + ".json",
+            {"--image-size", "1280x720", "--fx", "700", "--distortion", "-0.1,0.02,0,0,0", "--grid", "9x7", "--spacing",
+             "80", "--near", "0", "--far", "400", "--interval", "100", "--camera-distance", "1200", "--tilt-deg", "1.5",
+             "--tilt-direction-deg", direction, "--noise", "0", "--seed", seed, "--camera-name", eye, "--no-test-points"});
+    }
+    const CommandResult r = Run("calib-stereo", {"solve", "in/l.json", "in/r.json", "-o", "in/rig.json"});
+    ASSERT_EQ(r.exit_code, kOk) << r.err;
+  }
+
+  ::testing::AssertionResult Refused(const std::vector<std::string>& args, const std::string& location,
+                                     const std::vector<std::string>& phrases) {
+    auto result = FailsWith(Run("reproj-report", args), "reproj-report", kBadInput, location, phrases);
+    if (!result) return result;
+    return OutDirEmpty();
+  }
+};
+
+TEST_F(CliReprojReportStereo, NoiseFreeRigTriangulatesEveryPointWhereItIs) {
+  SolveVolumeRig();
+  const CommandResult r =
+      Run("reproj-report", {"in/rig.json", "in/l.json", "in/r.json", "-o", "out/report.json", "--format", "text"});
+  ASSERT_EQ(r.exit_code, kOk) << r.err;
+  EXPECT_NE(r.out.find("5 views seen by both cameras"), std::string::npos) << r.out;
+  const Json report = ReadJson("out/report.json");
+  EXPECT_EQ(report["format"], "vstcal/reproj-report@1");
+  const Json& s = report["stereo"];
+  EXPECT_EQ(s["target"], "volume");
+  EXPECT_EQ(s["length_unit"], "mm");
+  EXPECT_EQ(s["overall"]["linear"]["n"], 9 * 7 * 5);
+  for (const char* measure : {"x", "y", "z", "linear", "lateral", "depth"}) {
+    EXPECT_LT(s["overall"][measure]["max"].get<double>(), 1e-6) << measure;  // mm at 1.2 m
+  }
+  ASSERT_EQ(s["views"].size(), 5u);
+  EXPECT_EQ(s["views"][0]["left_pose"], "ok");
+  EXPECT_EQ(s["views"][0]["points"][0].size(), 10u);
+  EXPECT_EQ(s["excluded"]["left_only"], 0);
+}
+
+TEST_F(CliReprojReportStereo, APointOneCameraMissedIsCountedNotMeasured) {
+  SolveVolumeRig();
+  Json right = ReadJson("in/r.json");
+  right["views"][0]["points"].erase(3);
+  WriteJson("in/r-missing.json", right);
+  const CommandResult r = Run("reproj-report", {"in/rig.json", "in/l.json", "in/r-missing.json", "-o", "out/report.json"});
+  ASSERT_EQ(r.exit_code, kOk) << r.err;
+  const Json s = ReadJson("out/report.json")["stereo"];
+  EXPECT_EQ(s["excluded"]["left_only"], 1);
+  EXPECT_EQ(s["overall"]["linear"]["n"], 9 * 7 * 5 - 1);
+  EXPECT_EQ(s["views"][0]["excluded"][0]["index"], 3);
+  EXPECT_EQ(s["views"][0]["excluded"][0]["reason"], "left-only");
+  EXPECT_TRUE(s["views"][0]["points"][3][3].is_null());
+}
+
+TEST_F(CliReprojReportStereo, BadInput) {
+  SolveVolumeRig();
+  Json right = ReadJson("in/r.json");
+  Json other = right;
+  other["image_size"] = {1920, 1080};
+  WriteJson("in/r-size.json", other);
+  EXPECT_TRUE(Refused({"in/rig.json", "in/l.json", "in/r-size.json", "-o", "out/report.json"}, "in/r-size.json: image_size: ",
+                      {"1920x1080 differs from in/rig.json's right camera (1280x720)"}));
+  other = right;
+  other["length_unit"] = "m";
+  WriteJson("in/r-m.json", other);
+  EXPECT_TRUE(Refused({"in/rig.json", "in/l.json", "in/r-m.json", "-o", "out/report.json"}, "in/r-m.json: length_unit: ",
+                      {"\"m\" differs from in/rig.json's \"mm\"", "calib-convert"}));
+  other = right;
+  for (Json& v : other["views"]) v["name"] = v["name"].get<std::string>() + "-right";
+  WriteJson("in/r-renamed.json", other);
+  EXPECT_TRUE(Refused({"in/rig.json", "in/l.json", "in/r-renamed.json", "-o", "out/report.json"},
+                      "in/l.json and in/r-renamed.json: views: ", {"no view name is in both files", "matched by name"}));
+  EXPECT_TRUE(Refused({"in/rig.json", "in/l.json", "-o", "out/report.json"}, "in/rig.json: ",
+                      {"two correspondences files after it, LEFT then RIGHT; got 1"}));
+  EXPECT_TRUE(Refused({"in/rig.json", "in/l.json", "in/r.json", "-o", "out/report.json", "--html", "out/r.html"}, "--html: ",
+                      {"no page is drawn for a stereo rig yet"}));
+  EXPECT_TRUE(Refused({"in/rig.json", "in/l.json", "in/r.json", "-o", "out/nope/report.json"}, "out/nope/report.json: ",
+                      {"does not exist"}));
+}
+
+}  // namespace
+}  // namespace vstcal::cli_test
