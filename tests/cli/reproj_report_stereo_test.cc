@@ -1,6 +1,7 @@
 // CLI tests of reproj-report with a stereo rig (RIG LEFT RIGHT): a rig calib-stereo solved from
 // calib-synth's noise-free views of a volume triangulates every point where it is (zero error, all
 // 315 points of the 9 × 7 grid on five planes); a point one camera missed is left out and counted;
+// views are matched by name or by --match-views' key;
 // every bad input is refused with one line, exit code 2 and nothing written.
 #include <tuple>
 
@@ -66,6 +67,26 @@ TEST_F(CliReprojReportStereo, APointOneCameraMissedIsCountedNotMeasured) {
   EXPECT_EQ(s["views"][0]["excluded"][0]["index"], 3);
   EXPECT_EQ(s["views"][0]["excluded"][0]["reason"], "left-only");
   EXPECT_TRUE(s["views"][0]["points"][3][3].is_null());
+}
+
+TEST_F(CliReprojReportStereo, ViewsMatchedByAKeyPattern) {
+  SolveVolumeRig();
+  Json right = ReadJson("in/r.json");
+  for (Json& v : right["views"]) v["name"] = "right-" + v["name"].get<std::string>();
+  WriteJson("in/r-named.json", right);
+  const CommandResult r = Run("reproj-report", {"in/rig.json", "in/l.json", "in/r-named.json", "-o", "out/report.json",
+                                                "--match-views", "(plane-[0-9]+)$"});
+  ASSERT_EQ(r.exit_code, kOk) << r.err;
+  const Json s = ReadJson("out/report.json")["stereo"];
+  EXPECT_EQ(s["overall"]["linear"]["n"], 9 * 7 * 5);
+  EXPECT_EQ(s["views"][0]["name"], "plane-00");
+  fs::remove(Path("out/report.json"));  // the failures below must leave out/ empty
+  EXPECT_TRUE(Refused({"in/rig.json", "in/l.json", "in/r-named.json", "-o", "out/report.json", "--match-views", "plane"},
+                      "--match-views: ", {"has no group"}));
+  EXPECT_TRUE(Refused({"in/rig.json", "in/l.json", "in/r-named.json", "-o", "out/report.json", "--match-views", "(x[0-9])"},
+                      "in/l.json: views: ", {"does not match --match-views"}));
+  EXPECT_TRUE(Refused({"in/l.json", "in/l.json", "-o", "out/report.json", "--match-views", "([0-9]+)$"},
+                      "--match-views: ", {"goes with a stereo rig"}));
 }
 
 TEST_F(CliReprojReportStereo, BadInput) {

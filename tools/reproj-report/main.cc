@@ -25,7 +25,7 @@ int main(int argc, char** argv) {
       "Exit codes: 0 ok, 1 internal error, 2 bad usage or input.",
       "reproj-report"};
   std::vector<std::string> inputs;
-  std::string output, html, format = "json", grid = "8x6";
+  std::string output, html, format = "json", grid = "8x6", match_views;
   app.add_option("CAMERA... CORRESPONDENCES", inputs, "camera@1 files, then the correspondences@1 file; or RIG LEFT RIGHT")
       ->required()
       ->expected(2, -1)
@@ -37,6 +37,8 @@ int main(int argc, char** argv) {
   app.add_option("--format", format, "also print to stdout: json (nothing) or text (a table)")
       ->check(CLI::IsMember({"json", "text"}))
       ->capture_default_str();
+  app.add_option("--match-views", match_views,
+                 "with a rig: match views by the first group of this regular expression in their names ('([0-9]+)$')");
   app.add_option("--grid", grid, "image cells COLSxROWS of the per-region statistics (1 to 64 each)")->capture_default_str();
 
   return vstcal::tools::RunTool(app, argc, argv, [&] {
@@ -52,11 +54,12 @@ int main(int argc, char** argv) {
       }
       if (!html.empty()) throw InputError("--html: no page is drawn for a stereo rig yet; leave it out (the report and --format text hold the numbers)");
       const StereoReport report = BuildStereoReport(io::StereoRigFromJson(first), io::ReadCorrespondences(inputs[1]),
-                                                    io::ReadCorrespondences(inputs[2]), inputs[0], inputs[1], inputs[2]);
+                                                    io::ReadCorrespondences(inputs[2]), inputs[0], inputs[1], inputs[2], {match_views});
       io::WriteFilesAtomically({{output, io::DumpJson(io::StereoReportToJson(report, io::MakeProvenance("reproj-report", argc, argv)))}});
       if (format == "text") std::fputs(io::StereoReportText(report).c_str(), stdout);
       return 0;
     }
+    if (!match_views.empty()) throw InputError("--match-views: goes with a stereo rig (RIG LEFT RIGHT); leave it out");
     const std::string corr_file = inputs.back();
     inputs.pop_back();
     std::vector<ReportCamera> cameras;

@@ -1,18 +1,17 @@
 #include "vstcal/report/stereo_report.h"
 
 #include <map>
-#include <numbers>
 #include <set>
 #include <tuple>
 
 #include "vstcal/core/error.h"
+#include "vstcal/geometry/rotation.h"
 #include "vstcal/report/registration_error.h"
 #include "vstcal/stereo/pose_refine.h"
+#include "vstcal/stereo/stereo_solve.h"
 
 namespace vstcal {
 namespace {
-
-constexpr double kDegPerRad = 180.0 / std::numbers::pi;
 
 std::string SizeText(const ImageSize& s) { return std::to_string(s.width) + "x" + std::to_string(s.height); }
 
@@ -32,7 +31,7 @@ void CheckInputs(const StereoRig& rig, const Correspondences& left, const Corres
     std::set<std::string> names;
     for (const View& v : c.views) {
       if (!names.insert(v.name).second) {
-        throw InputError(file + ": views: the name \"" + v.name + "\" is given twice; views are matched by name: rename one");
+        throw InputError(file + ": views: the view key \"" + v.name + "\" is given twice (views are matched by name, or by --match-views' key): rename one");
       }
     }
   };
@@ -135,7 +134,7 @@ struct Collected {
 
 }  // namespace
 
-double StereoPointError::angular_deg() const { return angular_rad * kDegPerRad; }
+double StereoPointError::angular_deg() const { return RadToDeg(angular_rad); }
 
 std::string_view StereoExclusionName(StereoExclusion e) {
   switch (e) {
@@ -149,9 +148,13 @@ std::string_view StereoExclusionName(StereoExclusion e) {
   return "none";
 }
 
-StereoReport BuildStereoReport(const StereoRig& rig, const Correspondences& left, const Correspondences& right,
+StereoReport BuildStereoReport(const StereoRig& rig, Correspondences left, Correspondences right,
                                const std::string& rig_file, const std::string& left_file,
-                               const std::string& right_file) {
+                               const std::string& right_file, const StereoReportOptions& options) {
+  if (!options.view_key_pattern.empty()) {
+    KeyViews(options.view_key_pattern, left_file, &left);
+    KeyViews(options.view_key_pattern, right_file, &right);
+  }
   CheckInputs(rig, left, right, rig_file, left_file, right_file);
   StereoReport report;
   report.rig_file = rig_file;

@@ -76,12 +76,19 @@ struct StereoReport {
   size_t n_left_only = 0, n_right_only = 0, n_no_pose = 0, n_no_ray = 0, n_behind = 0;  // points, by reason
 };
 
+struct StereoReportOptions {
+  // Views match when their keys are equal: the name, or given this pattern the first group of its
+  // match in the name (calib-stereo solve's --match-views: "([0-9]+)$" pairs left01 with right01);
+  // the report names views by their keys.
+  std::string view_key_pattern;
+};
+
 // Throws InputError naming the file and field when the inputs do not go together: a rig camera
 // and its correspondences of different image sizes, a length unit differing from the rig's, one
-// file a volume and the other planar views, a view name twice in one file, a target point twice in
-// one view, or no view seen by both cameras.
-StereoReport BuildStereoReport(const StereoRig& rig, const Correspondences& left, const Correspondences& right,
+// file a volume and the other planar views, a view key twice in one file, a target point twice in
+// one view, no view seen by both cameras, a key pattern that is bad or does not match a name.
+StereoReport BuildStereoReport(const StereoRig& rig, Correspondences left, Correspondences right,
                                const std::string& rig_file, const std::string& left_file,
-                               const std::string& right_file);
+                               const std::string& right_file, const StereoReportOptions& options = {});
 
 }  // namespace vstcal
