@@ -9,6 +9,7 @@
 #include "vstcal/io/stereo_io.h"
 #include "vstcal/report/html.h"
 #include "vstcal/report/report_format.h"
+#include "vstcal/report/stereo_html.h"
 
 int main(int argc, char** argv) {
   CLI::App app{
@@ -52,10 +53,12 @@ int main(int argc, char** argv) {
         throw InputError(inputs.front() + ": a stereo rig takes two correspondences files after it, LEFT then RIGHT; got " +
                          std::to_string(inputs.size() - 1));
       }
-      if (!html.empty()) throw InputError("--html: no page is drawn for a stereo rig yet; leave it out (the report and --format text hold the numbers)");
       const StereoReport report = BuildStereoReport(io::StereoRigFromJson(first), io::ReadCorrespondences(inputs[1]),
                                                     io::ReadCorrespondences(inputs[2]), inputs[0], inputs[1], inputs[2], {match_views});
-      io::WriteFilesAtomically({{output, io::DumpJson(io::StereoReportToJson(report, io::MakeProvenance("reproj-report", argc, argv)))}});
+      std::vector<std::pair<std::filesystem::path, std::string>> files = {
+          {output, io::DumpJson(io::StereoReportToJson(report, io::MakeProvenance("reproj-report", argc, argv)))}};
+      if (!html.empty()) files.emplace_back(html, StereoReportHtml(report));
+      io::WriteFilesAtomically(files);
       if (format == "text") std::fputs(io::StereoReportText(report).c_str(), stdout);
       return 0;
     }
