@@ -14,13 +14,16 @@ namespace {
 class CliReprojReportStereo : public BrowserTest {
  protected:
   // in/l.json, in/r.json: the volume of calib_stereo_test's volume rig (two 1280×720 cameras 1.2 m
-  // away, converging by 1.5° each side, baseline ≈ 73 mm) with `noise` px, and in/rig.json solved from them.
-  void SolveVolumeRig(const std::string& noise = "0") {
+  // away, converging by 1.5° each side, baseline ≈ 73 mm) with `noise` px (and seed 000's five test
+  // points), and in/rig.json solved from them.
+  void SolveVolumeRig(const std::string& noise = "0", bool test_points = false) {
     for (const auto& [eye, direction, seed] : {std::tuple{"l", "180", "1"}, std::tuple{"r", "0", "2"}}) {
-      Synth(std::string("in/") + eye + ".json",
-            {"--image-size", "1280x720", "--fx", "700", "--distortion", "-0.1,0.02,0,0,0", "--grid", "9x7", "--spacing",
-             "80", "--near", "0", "--far", "400", "--interval", "100", "--camera-distance", "1200", "--tilt-deg", "1.5",
-             "--tilt-direction-deg", direction, "--noise", noise, "--seed", seed, "--camera-name", eye, "--no-test-points"});
+      std::vector<std::string> args = {"--image-size", "1280x720", "--fx", "700", "--distortion", "-0.1,0.02,0,0,0",
+                                       "--grid", "9x7", "--spacing", "80", "--near", "0", "--far", "400", "--interval", "100",
+                                       "--camera-distance", "1200", "--tilt-deg", "1.5", "--tilt-direction-deg", direction,
+                                       "--noise", noise, "--seed", seed, "--camera-name", eye};
+      if (!test_points) args.push_back("--no-test-points");
+      Synth(std::string("in/") + eye + ".json", args);
     }
     const CommandResult r = Run("calib-stereo", {"solve", "in/l.json", "in/r.json", "-o", "in/rig.json"});
     ASSERT_EQ(r.exit_code, kOk) << r.err;
@@ -35,7 +38,7 @@ class CliReprojReportStereo : public BrowserTest {
 };
 
 TEST_F(CliReprojReportStereo, NoiseFreeRigTriangulatesEveryPointWhereItIs) {
-  SolveVolumeRig();
+  SolveVolumeRig("0", true);
   const CommandResult r =
       Run("reproj-report", {"in/rig.json", "in/l.json", "in/r.json", "-o", "out/report.json", "--format", "text"});
   ASSERT_EQ(r.exit_code, kOk) << r.err;
@@ -53,6 +56,21 @@ TEST_F(CliReprojReportStereo, NoiseFreeRigTriangulatesEveryPointWhereItIs) {
   EXPECT_EQ(s["views"][0]["left_pose"], "ok");
   EXPECT_EQ(s["views"][0]["points"][0].size(), 10u);
   EXPECT_EQ(s["excluded"]["left_only"], 0);
+  // The test points, never used in the solve, matched by name.
+  ASSERT_EQ(s["test_points"]["points"].size(), 5u);
+  for (const Json& t : s["test_points"]["points"]) EXPECT_TRUE(t["excluded"].is_null()) << t["name"];
+  EXPECT_EQ(s["test_points"]["stats"]["linear"]["n"], 5);
+  EXPECT_LT(s["test_points"]["stats"]["linear"]["max"].get<double>(), 1e-6);
+
+  // A test point the right camera did not measure: listed, not measured.
+  Json right = ReadJson("in/r.json");
+  right["test_points"][1].erase("pixel");
+  WriteJson("in/r-unmeasured.json", right);
+  ASSERT_EQ(Run("reproj-report", {"in/rig.json", "in/l.json", "in/r-unmeasured.json", "-o", "out/t.json"}).exit_code, kOk);
+  const Json t = ReadJson("out/t.json")["stereo"]["test_points"];
+  EXPECT_EQ(t["points"][1]["excluded"], "left-only");
+  EXPECT_TRUE(t["points"][1]["error"][0].is_null());
+  EXPECT_EQ(t["stats"]["linear"]["n"], 4);
 }
 
 TEST_F(CliReprojReportStereo, APointOneCameraMissedIsCountedNotMeasured) {

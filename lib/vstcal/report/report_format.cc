@@ -266,6 +266,17 @@ OrderedJson StereoReportToJson(const StereoReport& r, const Provenance& provenan
                  {"left_only_views", r.left_only_views},
                  {"right_only_views", r.right_only_views},
                  {"views", std::move(views)}};
+  OrderedJson tests = OrderedJson::array();
+  for (const StereoTestPoint& t : r.test_points) {
+    const bool measured = t.error.excluded == StereoExclusion::kNone;
+    OrderedJson point = StereoPointJson(t.error);
+    point.erase(point.begin(), point.begin() + 3);  // the target point is `world`
+    tests.push_back({{"name", t.name},
+                     {"world", MatrixToJson(t.point_in_world)},
+                     {"error", std::move(point)},
+                     {"excluded", measured ? OrderedJson(nullptr) : OrderedJson(StereoExclusionName(t.error.excluded))}});
+  }
+  j["stereo"]["test_points"] = {{"stats", StereoStatsJson(r.test_stats)}, {"points", std::move(tests)}};
   j["provenance"] = ProvenanceToJson(provenance);
   return j;
 }
@@ -278,6 +289,10 @@ std::string StereoReportText(const StereoReport& r) {
   Append(&out, "  %-24s %6s %10s %10s %10s %10s %10s\n", "", "n", "mean", "rms", "median", "p95", "max");
   AppendStereoRows(&out, "", unit, r.overall);
   for (const StereoViewReport& v : r.views) AppendStatsRow(&out, "view " + v.name + " linear " + unit, v.stats.linear);
+  if (!r.test_points.empty()) {
+    AppendStatsRow(&out, "test |dz| " + unit, r.test_stats.z);
+    AppendStatsRow(&out, "test linear " + unit, r.test_stats.linear);
+  }
   Append(&out, "  bias (left frame) x %+.4f, y %+.4f, z %+.4f %s; depth %+.4f %s\n", r.overall.bias.x(), r.overall.bias.y(),
          r.overall.bias.z(), unit.c_str(), r.overall.depth_bias, unit.c_str());
   const size_t excluded = r.n_left_only + r.n_right_only + r.n_no_pose + r.n_no_ray + r.n_behind;

@@ -132,6 +132,40 @@ struct Collected {
   }
 };
 
+// A volume's test points, matched by name, measured where both files give a pixel.
+void AddTestPoints(const StereoRig& rig, const PoseRefinement& pose, const Correspondences& left,
+                   const Correspondences& right, StereoReport* report) {
+  std::map<std::string, const TestPoint*> right_by_name;
+  for (const TestPoint& t : right.test_points) right_by_name.emplace(t.name, &t);
+  std::set<std::string> left_names;
+  Collected measured;
+  for (const TestPoint& t : left.test_points) {
+    left_names.insert(t.name);
+    StereoTestPoint out{t.name, t.point_in_world, {}};
+    const auto it = right_by_name.find(t.name);
+    const bool in_right = it != right_by_name.end() && it->second->pixel;
+    if (!t.pixel || !in_right) {
+      out.error.excluded = t.pixel ? StereoExclusion::kLeftOnly
+                                   : (in_right ? StereoExclusion::kRightOnly : StereoExclusion::kNotMeasured);
+    } else if (pose.status != PoseStatus::kOk) {
+      out.error.excluded = StereoExclusion::kNoPose;
+    } else {
+      out.error = Measure(rig, pose.body_from_world * t.point_in_world, *t.pixel, *it->second->pixel);
+    }
+    out.error.target = t.point_in_world;
+    measured.Add(out.error);
+    report->test_points.push_back(std::move(out));
+  }
+  for (const TestPoint& t : right.test_points) {
+    if (left_names.contains(t.name)) continue;
+    StereoTestPoint out{t.name, t.point_in_world, {}};
+    out.error.target = t.point_in_world;
+    out.error.excluded = t.pixel ? StereoExclusion::kRightOnly : StereoExclusion::kNotMeasured;
+    report->test_points.push_back(std::move(out));
+  }
+  report->test_stats = measured.Stats();
+}
+
 }  // namespace
 
 double StereoPointError::angular_deg() const { return RadToDeg(angular_rad); }
@@ -144,6 +178,7 @@ std::string_view StereoExclusionName(StereoExclusion e) {
     case StereoExclusion::kNoPose: return "no-pose";
     case StereoExclusion::kNoRay: return "no-ray";
     case StereoExclusion::kBehind: return "behind";
+    case StereoExclusion::kNotMeasured: return "not-measured";
   }
   return "none";
 }
@@ -240,6 +275,7 @@ StereoReport BuildStereoReport(const StereoRig& rig, Correspondences left, Corre
     report.views.push_back(std::move(vr));
   }
   report.overall = all.Stats();
+  if (volume_pose) AddTestPoints(rig, *volume_pose, left, right, &report);
   return report;
 }
 

@@ -37,8 +37,10 @@ enum class StereoExclusion {
   kNoPose,     // the view's left pose could not be found (too few points, collinear, …)
   kNoRay,      // a measured pixel has no ray, or the rays are parallel
   kBehind,     // the rays meet behind the left camera
+  kNotMeasured,  // a test point neither file gives a pixel for
 };
-std::string_view StereoExclusionName(StereoExclusion e);  // "left-only", "right-only", "no-pose", "no-ray", "behind"
+// "left-only", "right-only", "no-pose", "no-ray", "behind", "not-measured"
+std::string_view StereoExclusionName(StereoExclusion e);
 
 struct StereoPointError {
   Eigen::Vector3d target = Eigen::Vector3d::Zero();  // the point in the target's frame (world or board)
@@ -65,6 +67,14 @@ struct StereoViewReport {
   StereoStats stats;
 };
 
+// A test point of a volume (never used in a solve, seed 000 §4.2), matched between the files by
+// name, triangulated from the two pixels where it was measured.
+struct StereoTestPoint {
+  std::string name;
+  Eigen::Vector3d point_in_world = Eigen::Vector3d::Zero();
+  StereoPointError error;  // kLeftOnly / kRightOnly: measured in one file only
+};
+
 struct StereoReport {
   std::string rig_file, left_file, right_file;
   LengthUnit length_unit = LengthUnit::kMillimetre;
@@ -74,6 +84,10 @@ struct StereoReport {
   std::vector<std::string> left_only_views, right_only_views;
   StereoStats overall;
   size_t n_left_only = 0, n_right_only = 0, n_no_pose = 0, n_no_ray = 0, n_behind = 0;  // points, by reason
+  // Volumes only (planar views' boards share no world frame): the left file's test points in order,
+  // then the right file's that the left does not name.
+  std::vector<StereoTestPoint> test_points;
+  StereoStats test_stats;
 };
 
 struct StereoReportOptions {
