@@ -4,9 +4,12 @@
 
 #include "common/run_tool.h"
 #include "common/validators.h"
+#include "vstcal/core/error.h"
 #include "vstcal/io/correspondences_io.h"
+#include "vstcal/io/stereo_io.h"
 #include "vstcal/report/html.h"
 #include "vstcal/report/report_format.h"
+#include "vstcal/report/stereo_html.h"
 
 int main(int argc, char** argv) {
   CLI::App app{
@@ -15,13 +18,16 @@ int main(int argc, char** argv) {
       "error at each point's depth and the angular error; test points inside vs outside the convex hull of the "
       "calibration points; residuals normalized by a camera's own covariance; several cameras side by side with "
       "their differences (the first is the reference).\n"
-      "Input: vstcal/camera@1 files, then a vstcal/correspondences@1 file (the last argument). "
+      "With a stereo rig: the 3-D error of the points both cameras saw, triangulated through the rig, per axis in the "
+      "left camera's frame and as Holloway's linear, lateral, depth and angular terms.\n"
+      "Input: vstcal/camera@1 files, then a vstcal/correspondences@1 file (the last argument); or a vstcal/stereo@1 "
+      "rig, then the left and the right camera's correspondences@1 files. "
       "Output: vstcal/reproj-report@1, and with --html a page with the charts.\n"
       "Exit codes: 0 ok, 1 internal error, 2 bad usage or input.",
       "reproj-report"};
   std::vector<std::string> inputs;
-  std::string output, html, format = "json", grid = "8x6";
-  app.add_option("CAMERA... CORRESPONDENCES", inputs, "camera@1 files, then the correspondences@1 file")
+  std::string output, html, format = "json", grid = "8x6", match_views;
+  app.add_option("CAMERA... CORRESPONDENCES", inputs, "camera@1 files, then the correspondences@1 file; or RIG LEFT RIGHT")
       ->required()
       ->expected(2, -1)
       ->check(vstcal::tools::kNonEmpty);
@@ -32,6 +38,8 @@ int main(int argc, char** argv) {
   app.add_option("--format", format, "also print to stdout: json (nothing) or text (a table)")
       ->check(CLI::IsMember({"json", "text"}))
       ->capture_default_str();
+  app.add_option("--match-views", match_views,
+                 "with a rig: match views by the first group of this regular expression in their names ('([0-9]+)$')");
   app.add_option("--grid", grid, "image cells COLSxROWS of the per-region statistics (1 to 64 each)")->capture_default_str();
 
   return vstcal::tools::RunTool(app, argc, argv, [&] {
@@ -39,6 +47,22 @@ int main(int argc, char** argv) {
     io::DeclareOutputs({output, html});
     ReprojReportOptions options;
     std::tie(options.grid_cols, options.grid_rows) = tools::ParseSize(grid, "--grid", "8x6", 64);
+    const io::JsonDocument first = io::JsonDocument::Load(inputs.front());
+    if (io::IsStereoRigDocument(first)) {  // RIG LEFT RIGHT: the triangulated 3-D error
+      if (inputs.size() != 3) {
+        throw InputError(inputs.front() + ": a stereo rig takes two correspondences files after it, LEFT then RIGHT; got " +
+                         std::to_string(inputs.size() - 1));
+      }
+      const StereoReport report = BuildStereoReport(io::StereoRigFromJson(first), io::ReadCorrespondences(inputs[1]),
+                                                    io::ReadCorrespondences(inputs[2]), inputs[0], inputs[1], inputs[2], {match_views});
+      std::vector<std::pair<std::filesystem::path, std::string>> files = {
+          {output, io::DumpJson(io::StereoReportToJson(report, io::MakeProvenance("reproj-report", argc, argv)))}};
+      if (!html.empty()) files.emplace_back(html, StereoReportHtml(report));
+      io::WriteFilesAtomically(files);
+      if (format == "text") std::fputs(io::StereoReportText(report).c_str(), stdout);
+      return 0;
+    }
+    if (!match_views.empty()) throw InputError("--match-views: goes with a stereo rig (RIG LEFT RIGHT); leave it out");
     const std::string corr_file = inputs.back();
     inputs.pop_back();
     std::vector<ReportCamera> cameras;

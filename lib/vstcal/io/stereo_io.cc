@@ -5,6 +5,7 @@
 #include <string>
 
 #include "vstcal/io/camera_io.h"
+#include "vstcal/core/error.h"
 #include "vstcal/io/correspondences_io.h"
 #include "vstcal/json/format_check.h"
 
@@ -169,6 +170,15 @@ ParameterCovariance ReadRelativePoseCovariance(const JsonNode& node) {
     read.push_back(name);
   }
   return ReadCovarianceMatrix(node, std::move(read));
+}
+
+bool IsStereoRigDocument(const JsonDocument& doc) {
+  const auto format = doc.root().find("format");
+  try {
+    return format && format->String() == kFormat;
+  } catch (const InputError&) {  // not a string: not a rig (its own reader says what is wrong)
+    return false;
+  }
 }
 
 StereoRig StereoRigFromJson(const JsonDocument& doc) {

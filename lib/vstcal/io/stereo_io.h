@@ -18,6 +18,9 @@ namespace vstcal::io {
 // whose P and Q agree with them (docs/formats.md#stereo lists every rule).
 StereoRig ReadStereoRig(const std::filesystem::path& path);
 StereoRig StereoRigFromJson(const JsonDocument& doc);
+// Whether the document says it is a vstcal/stereo@1 file (its "format"), for tools that take a rig
+// or a camera in one place.
+bool IsStereoRigDocument(const JsonDocument& doc);
 
 // A covariance {"parameters", "matrix"} over exactly the six tangents of right_from_left
 // (RelativePoseTangentNames, any order; ω radians, ρ length unit), checked as a camera's: the

@@ -18,21 +18,8 @@ using html::Chart;
 using html::EmptyCells;
 using html::Escape;
 using html::Figure;
-
-// One row of a statistics table: n, mean, rms, median, p95, max, or dashes for no value.
-std::string StatsRow(const std::string& label, const std::string& key, const std::optional<ErrorStats>& s) {
-  std::string row = "<tr><th>" + Escape(label) + "</th>";
-  if (!s) return row + EmptyCells(6) + "</tr>\n";
-  row += Cell(key + "/n", s->n) + Cell(key + "/mean", s->mean) + Cell(key + "/rms", s->rms) +
-         Cell(key + "/median", s->median) + Cell(key + "/p95", s->p95) + Cell(key + "/max", s->max);
-  return row + "</tr>\n";
-}
-
-std::string StatsTable(const std::string& caption, const std::string& rows) {
-  return "<table><caption>" + Escape(caption) +
-         "</caption><tr><th></th><th>n</th><th>mean</th><th>rms</th><th>median</th><th>p95</th><th>max</th></tr>\n" + rows +
-         "</table>\n";
-}
+using html::StatsRow;
+using html::StatsTable;
 
 std::string CameraSection(const ReprojReport& r, size_t k) {
   const CameraReport& c = r.cameras[k];

@@ -69,4 +69,18 @@ std::string Base64(const unsigned char* data, size_t size) {
   return out;
 }
 
+std::string StatsRow(const std::string& label, const std::string& key, const std::optional<ErrorStats>& s) {
+  std::string row = "<tr><th>" + Escape(label) + "</th>";
+  if (!s) return row + EmptyCells(6) + "</tr>\n";
+  row += Cell(key + "/n", s->n) + Cell(key + "/mean", s->mean) + Cell(key + "/rms", s->rms) +
+         Cell(key + "/median", s->median) + Cell(key + "/p95", s->p95) + Cell(key + "/max", s->max);
+  return row + "</tr>\n";
+}
+
+std::string StatsTable(const std::string& caption, const std::string& rows) {
+  return "<table><caption>" + Escape(caption) +
+         "</caption><tr><th></th><th>n</th><th>mean</th><th>rms</th><th>median</th><th>p95</th><th>max</th></tr>\n" + rows +
+         "</table>\n";
+}
+
 }  // namespace vstcal::html

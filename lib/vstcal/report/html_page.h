@@ -9,6 +9,8 @@
 #include <optional>
 #include <string>
 
+#include "vstcal/report/statistics.h"
+
 namespace vstcal::html {
 
 // Text for element content and attribute values (& < > " escaped).
@@ -19,6 +21,11 @@ std::string Cell(const std::string& key, double v, int digits = 4);
 std::string Cell(const std::string& key, size_t n);
 // `n` cells showing a dash (no value).
 std::string EmptyCells(int n);
+
+// One row of a statistics table, `label` then n, mean, rms, median, p95, max (`key` + "/n", …), or
+// dashes for no value; and the table around such rows.
+std::string StatsRow(const std::string& label, const std::string& key, const std::optional<ErrorStats>& s);
+std::string StatsTable(const std::string& caption, const std::string& rows);
 
 // A figure with an inline picture (`base64` of a `mime` image) and its caption.
 std::string Figure(const std::string& mime, const std::string& base64, const std::string& alt, const std::string& caption);

@@ -110,6 +110,40 @@ void AppendStatsRow(std::string* out, const std::string& label, const std::optio
          s->p95, s->max);
 }
 
+OrderedJson StereoStatsJson(const StereoStats& s) {
+  return {{"x", StatsJson(s.x)},
+          {"y", StatsJson(s.y)},
+          {"z", StatsJson(s.z)},
+          {"linear", StatsJson(s.linear)},
+          {"lateral", StatsJson(s.lateral)},
+          {"depth", StatsJson(s.depth)},
+          {"angular_deg", StatsJson(s.angular_deg)},
+          {"bias", MatrixToJson(s.bias)},
+          {"depth_bias", s.depth_bias}};
+}
+
+// [X, Y, Z, dx, dy, dz, linear, lateral, depth, angular_deg]: the target point, then null from dx
+// on when excluded.
+OrderedJson StereoPointJson(const StereoPointError& e) {
+  OrderedJson p = {e.target.x(), e.target.y(), e.target.z()};
+  const bool measured = e.excluded == StereoExclusion::kNone;
+  const Eigen::Vector3d d = e.error();
+  for (const double x : {d.x(), d.y(), d.z(), e.linear, e.lateral, e.depth, e.angular_deg()}) {
+    p.push_back(measured ? OrderedJson(x) : OrderedJson(nullptr));
+  }
+  return p;
+}
+
+void AppendStereoRows(std::string* out, const std::string& prefix, const std::string& unit, const StereoStats& s) {
+  AppendStatsRow(out, prefix + "|dx| " + unit, s.x);
+  AppendStatsRow(out, prefix + "|dy| " + unit, s.y);
+  AppendStatsRow(out, prefix + "|dz| " + unit, s.z);
+  AppendStatsRow(out, prefix + "linear " + unit, s.linear);
+  AppendStatsRow(out, prefix + "lateral " + unit, s.lateral);
+  AppendStatsRow(out, prefix + "|depth| " + unit, s.depth);
+  AppendStatsRow(out, prefix + "angular deg", s.angular_deg);
+}
+
 }  // namespace
 
 ReportCamera ReadReportCamera(const std::filesystem::path& path) {
@@ -197,6 +231,77 @@ std::string ReprojReportText(const ReprojReport& r) {
     } else {
       out += " no point predicted by both\n";
     }
+  }
+  return out;
+}
+
+OrderedJson StereoReportToJson(const StereoReport& r, const Provenance& provenance) {
+  OrderedJson j;
+  j["format"] = "vstcal/reproj-report@1";
+  OrderedJson views = OrderedJson::array();
+  for (const StereoViewReport& v : r.views) {
+    OrderedJson points = OrderedJson::array(), excluded = OrderedJson::array();
+    for (size_t i = 0; i < v.points.size(); ++i) {
+      points.push_back(StereoPointJson(v.points[i]));
+      if (v.points[i].excluded != StereoExclusion::kNone) {
+        excluded.push_back({{"index", i}, {"reason", StereoExclusionName(v.points[i].excluded)}});
+      }
+    }
+    views.push_back({{"name", v.name}, {"left_pose", v.pose_status}, {"stats", StereoStatsJson(v.stats)},
+                     {"excluded", std::move(excluded)}, {"points", std::move(points)}});
+  }
+  j["stereo"] = {{"rig", r.rig_file},
+                 {"left", r.left_file},
+                 {"right", r.right_file},
+                 {"length_unit", LengthUnitName(r.length_unit)},
+                 {"target", r.rig_kind == Rig::kVolume ? "volume" : "planar-views"},
+                 {"baseline", r.baseline},
+                 {"overall", StereoStatsJson(r.overall)},
+                 {"excluded",
+                  {{"left_only", r.n_left_only},
+                   {"right_only", r.n_right_only},
+                   {"no_pose", r.n_no_pose},
+                   {"no_ray", r.n_no_ray},
+                   {"behind", r.n_behind}}},
+                 {"left_only_views", r.left_only_views},
+                 {"right_only_views", r.right_only_views},
+                 {"views", std::move(views)}};
+  OrderedJson tests = OrderedJson::array();
+  for (const StereoTestPoint& t : r.test_points) {
+    const bool measured = t.error.excluded == StereoExclusion::kNone;
+    OrderedJson point = StereoPointJson(t.error);
+    point.erase(point.begin(), point.begin() + 3);  // the target point is `world`
+    tests.push_back({{"name", t.name},
+                     {"world", MatrixToJson(t.point_in_world)},
+                     {"error", std::move(point)},
+                     {"excluded", measured ? OrderedJson(nullptr) : OrderedJson(StereoExclusionName(t.error.excluded))}});
+  }
+  j["stereo"]["test_points"] = {{"stats", StereoStatsJson(r.test_stats)}, {"points", std::move(tests)}};
+  j["provenance"] = ProvenanceToJson(provenance);
+  return j;
+}
+
+std::string StereoReportText(const StereoReport& r) {
+  std::string out;
+  const std::string unit(LengthUnitName(r.length_unit));
+  Append(&out, "rig %s (baseline %.4f %s), %s and %s: %zu views seen by both cameras\n", r.rig_file.c_str(), r.baseline,
+         unit.c_str(), r.left_file.c_str(), r.right_file.c_str(), r.views.size());
+  Append(&out, "  %-24s %6s %10s %10s %10s %10s %10s\n", "", "n", "mean", "rms", "median", "p95", "max");
+  AppendStereoRows(&out, "", unit, r.overall);
+  for (const StereoViewReport& v : r.views) AppendStatsRow(&out, "view " + v.name + " linear " + unit, v.stats.linear);
+  if (!r.test_points.empty()) {
+    AppendStatsRow(&out, "test |dz| " + unit, r.test_stats.z);
+    AppendStatsRow(&out, "test linear " + unit, r.test_stats.linear);
+  }
+  Append(&out, "  bias (left frame) x %+.4f, y %+.4f, z %+.4f %s; depth %+.4f %s\n", r.overall.bias.x(), r.overall.bias.y(),
+         r.overall.bias.z(), unit.c_str(), r.overall.depth_bias, unit.c_str());
+  const size_t excluded = r.n_left_only + r.n_right_only + r.n_no_pose + r.n_no_ray + r.n_behind;
+  if (excluded > 0) {
+    Append(&out, "  excluded: %zu seen by the left camera only, %zu by the right only, %zu without a left pose, %zu without "
+           "a ray, %zu behind\n", r.n_left_only, r.n_right_only, r.n_no_pose, r.n_no_ray, r.n_behind);
+  }
+  if (!r.left_only_views.empty() || !r.right_only_views.empty()) {
+    Append(&out, "  views seen by one camera only: %zu left, %zu right\n", r.left_only_views.size(), r.right_only_views.size());
   }
   return out;
 }

@@ -8,6 +8,7 @@
 #include "vstcal/json/json_writer.h"
 #include "vstcal/json/provenance.h"
 #include "vstcal/report/reprojection_report.h"
+#include "vstcal/report/stereo_report.h"
 
 namespace vstcal::io {
 
@@ -19,5 +20,10 @@ OrderedJson ReprojReportToJson(const ReprojReport& report, const Provenance& pro
 // The report as a table for a terminal: one block per camera (overall, per view, test points
 // inside and outside the volume, normalized residuals) and the differences between cameras.
 std::string ReprojReportText(const ReprojReport& report);
+
+// A stereo rig's report: the same format, with a "stereo" block in place of "cameras"
+// (docs/formats.md#reproj-report-stereo), and its table.
+OrderedJson StereoReportToJson(const StereoReport& report, const Provenance& provenance);
+std::string StereoReportText(const StereoReport& report);
 
 }  // namespace vstcal::io

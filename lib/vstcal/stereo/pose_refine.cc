@@ -107,4 +107,32 @@ PoseRefinement RefinePose(std::span<const PoseObservations> sets, const Rigid3d&
   return result;
 }
 
+PoseRefinement SolvePnp(const Camera& camera, std::span<const Eigen::Vector3d> points_in_world,
+                        std::span<const Eigen::Vector2d> pixels, const PoseRefineOptions& options) {
+  VSTCAL_CHECK(points_in_world.size() == pixels.size(), "one pixel per point");
+  PoseRefinement out;
+  if (points_in_world.size() < kMinPnpPoints) {
+    out.status = PoseStatus::kTooFewPoints;
+    return out;
+  }
+  if (ClassifyLayout(points_in_world) == PointLayout::kCollinear) {
+    out.status = PoseStatus::kCollinear;
+    return out;
+  }
+  const ClosedFormPose start = SolvePnpClosedForm(camera, points_in_world, pixels);
+  if (start.status != PoseStatus::kOk) {
+    out.status = start.status;
+    return out;
+  }
+  const PoseObservations set{&camera, Rigid3d::Identity(), points_in_world, pixels};
+  out = RefinePose({&set, 1}, start.camera_from_world, options);
+  if (start.mirrored) {
+    const PoseRefinement other = RefinePose({&set, 1}, *start.mirrored, options);
+    const int iterations = out.iterations + other.iterations;
+    if (other.status == PoseStatus::kOk && (out.status != PoseStatus::kOk || other.cost < out.cost)) out = other;
+    out.iterations = iterations;
+  }
+  return out;
+}
+
 }  // namespace vstcal

@@ -53,3 +53,13 @@ PoseRefinement RefinePose(std::span<const PoseObservations> sets, const Rigid3d&
                           const PoseRefineOptions& options = {});
 
 }  // namespace vstcal
+
+namespace vstcal {
+
+// One camera's pose from ≥ 4 world points and their pixels, end to end: fewer than 4 points or
+// collinear ones are refused (status), then the closed form (pnp.h) is refined; for a planar
+// layout the mirrored branch is refined too and the lower cost kept. `iterations` sums both.
+PoseRefinement SolvePnp(const Camera& camera, std::span<const Eigen::Vector3d> points_in_world,
+                        std::span<const Eigen::Vector2d> pixels, const PoseRefineOptions& options = {});
+
+}  // namespace vstcal

@@ -70,6 +70,10 @@ EyeSolve Refine(std::span<const PoseObservations> sets, const EyeSolve& start, c
 
 EyeSolve SolveEye(const Camera& camera, const EyeData& eye, const std::optional<Rigid3d>& start,
                   const PoseRefineOptions& refine) {
+  if (!start) {
+    const PoseRefinement r = SolvePnp(camera, eye.points, eye.pixels, refine);
+    return {r.status, r.body_from_world, {}, r.iterations};
+  }
   const EyeSolve s = Start(camera, eye, start);
   if (s.status != PoseStatus::kOk) return s;
   const PoseObservations set{&camera, Rigid3d::Identity(), eye.points, eye.pixels};

@@ -63,25 +63,6 @@ std::optional<Solo> CalibrateAlone(const Correspondences& c, const StereoSolveOp
   return solo;
 }
 
-// Renames each view to its key: the first group of `pattern`'s match in its name.
-void KeyViews(const std::string& pattern, const std::string& file, Correspondences* c) {
-  std::regex re;
-  try {
-    re = std::regex(pattern);
-  } catch (const std::regex_error& e) {
-    throw InputError("--match-views: \"" + pattern + "\" is not a regular expression (" + e.what() + "); e.g. '([0-9]+)$'");
-  }
-  if (re.mark_count() < 1) throw InputError("--match-views: \"" + pattern + "\" has no group; put the key in parentheses, e.g. '([0-9]+)$'");
-  for (View& v : c->views) {
-    std::smatch m;
-    if (!std::regex_search(v.name, m, re) || !m[1].matched) {
-      throw InputError(file + ": views: the name \"" + v.name + "\" does not match --match-views \"" + pattern +
-                       "\"; change the pattern or the view's name");
-    }
-    v.name = m[1].str();
-  }
-}
-
 void CheckInputs(const Correspondences& left, const Correspondences& right, const StereoSolveOptions& options,
                  const std::string& left_file, const std::string& right_file) {
   if (left.length_unit != right.length_unit) {
@@ -307,6 +288,24 @@ std::string List(const std::vector<std::string>& names) {
 }
 
 }  // namespace
+
+void KeyViews(const std::string& pattern, const std::string& file, Correspondences* c) {
+  std::regex re;
+  try {
+    re = std::regex(pattern);
+  } catch (const std::regex_error& e) {
+    throw InputError("--match-views: \"" + pattern + "\" is not a regular expression (" + e.what() + "); e.g. '([0-9]+)$'");
+  }
+  if (re.mark_count() < 1) throw InputError("--match-views: \"" + pattern + "\" has no group; put the key in parentheses, e.g. '([0-9]+)$'");
+  for (View& v : c->views) {
+    std::smatch m;
+    if (!std::regex_search(v.name, m, re) || !m[1].matched) {
+      throw InputError(file + ": views: the name \"" + v.name + "\" does not match --match-views \"" + pattern +
+                       "\"; change the pattern or the view's name");
+    }
+    v.name = m[1].str();
+  }
+}
 
 StereoSolveResult SolveStereo(Correspondences left, Correspondences right, const StereoSolveOptions& options,
                               const std::string& left_file, const std::string& right_file) {

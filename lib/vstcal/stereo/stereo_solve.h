@@ -50,6 +50,12 @@ struct StereoSolveResult {
   double rms_left_px = 0, rms_right_px = 0;  // reprojection RMS of each camera at the optimum
 };
 
+// Renames each view of `c` to its key: the first group of `pattern`'s match (ECMAScript) in its
+// name, as StereoSolveOptions::view_key_pattern pairs views. Throws InputError ("--match-views: …",
+// or `file` and the name) for a pattern that is no regular expression or has no group, and for a
+// name it does not match.
+void KeyViews(const std::string& pattern, const std::string& file, Correspondences* c);
+
 // `left_file`, `right_file` name the inputs in messages. Throws InputError for inputs that cannot
 // be solved together (differing length units or rigs, a view key twice in one file, a name the
 // view key pattern does not match, a given

@@ -1,0 +1,84 @@
+#include "vstcal/report/stereo_html.h"
+
+#include <algorithm>
+#include <cstdio>
+
+#include "vstcal/json/json_writer.h"
+#include "vstcal/report/charts.h"
+#include "vstcal/report/gnuplot.h"
+#include "vstcal/report/html_page.h"
+
+namespace vstcal {
+namespace {
+
+using html::Escape;
+using html::StatsRow;
+
+std::string Fixed4(double v) {
+  char b[64];
+  std::snprintf(b, sizeof b, "%.4f", v);
+  return b;
+}
+
+std::string StereoRows(const std::string& key, const std::string& unit, const StereoStats& s) {
+  return StatsRow("|dx| " + unit, key + "/x", s.x) + StatsRow("|dy| " + unit, key + "/y", s.y) +
+         StatsRow("|dz| " + unit, key + "/z", s.z) + StatsRow("linear " + unit, key + "/linear", s.linear) +
+         StatsRow("lateral " + unit, key + "/lateral", s.lateral) + StatsRow("|depth| " + unit, key + "/depth", s.depth) +
+         StatsRow("angular deg", key + "/angular_deg", s.angular_deg);
+}
+
+}  // namespace
+
+std::string StereoDepthScript(const StereoReport& r) {
+  std::vector<const StereoPointError*> points;
+  for (const StereoViewReport& v : r.views) {
+    for (const StereoPointError& e : v.points) {
+      if (e.excluded == StereoExclusion::kNone) points.push_back(&e);
+    }
+  }
+  if (points.empty()) return "";
+  const std::string unit(LengthUnitName(r.length_unit));
+  const size_t stride = std::max<size_t>(1, (points.size() + kMaxScatterPoints - 1) / kMaxScatterPoints);
+  std::string s = SvgChartHeader(900, 420) + "$d << EOD\n";
+  for (size_t i = 0; i < points.size(); i += stride) {
+    const Eigen::Vector3d d = points[i]->error();
+    s += io::ShortestDecimal(points[i]->truth.z()) + " " + io::ShortestDecimal(std::abs(d.x())) + " " +
+         io::ShortestDecimal(std::abs(d.y())) + " " + io::ShortestDecimal(std::abs(d.z())) + "\n";
+  }
+  s += "EOD\nset xlabel " + GnuplotQuoted("depth z of the point in the left camera's frame (" + unit + ")") +
+       "\nset ylabel " + GnuplotQuoted("triangulated error (" + unit + ")") + "\nset yrange [0:*]\nplot ";
+  const char* axes[] = {"|dx|", "|dy|", "|dz|"};
+  for (int a = 0; a < 3; ++a) {
+    s += std::string(a ? ", " : "") + "$d using 1:" + std::to_string(a + 2) + " with points pt 7 ps 0.35 lc rgb \"" +
+         ChartColour(static_cast<size_t>(a)) + "\" title \"" + axes[a] + "\"";
+  }
+  return s + "\n";
+}
+
+std::string StereoReportHtml(const StereoReport& r) {
+  const std::string unit(LengthUnitName(r.length_unit));
+  std::string s = html::PageStart("reproj-report: stereo rig " + r.rig_file);
+  s += "<h1>Stereo rig " + Escape(r.rig_file) + "</h1>\n<p>" + Escape(r.left_file) + " and " + Escape(r.right_file) + ": " +
+       std::to_string(r.views.size()) + " views seen by both cameras, baseline " + Fixed4(r.baseline) + " " +
+       Escape(unit) + ". Each point both cameras saw is triangulated through the rig (the midpoint of the two rays) and "
+       "compared with the known point in the left camera's frame (x right, y down, z forward); Holloway's terms are "
+       "seen from the midpoint of the cameras. Definitions: docs/math/stereo.md#triangulated-error.</p>\n";
+  s += html::StatsTable("every measured point", StereoRows("/stereo/overall", unit, r.overall));
+  s += "<p>Excluded: " + std::to_string(r.n_left_only) + " seen by the left camera only, " +
+       std::to_string(r.n_right_only) + " by the right only, " + std::to_string(r.n_no_pose) + " without a left pose, " +
+       std::to_string(r.n_no_ray) + " without a ray, " + std::to_string(r.n_behind) + " behind; views seen by one camera: " +
+       std::to_string(r.left_only_views.size()) + " left, " + std::to_string(r.right_only_views.size()) + " right.</p>\n";
+  const std::string chart = StereoDepthScript(r);
+  if (!chart.empty()) {
+    s += html::Chart(chart, "triangulated error per axis against depth",
+                     "|dx|, |dy|, |dz| of every measured point against its depth (seed 000 Figs. 9–10)");
+  }
+  std::string rows;
+  for (size_t v = 0; v < r.views.size(); ++v) {
+    rows += StatsRow(r.views[v].name, "/stereo/views/" + std::to_string(v) + "/stats/linear", r.views[v].stats.linear);
+  }
+  s += html::StatsTable("linear error (" + unit + ") per view", rows);
+  return s + html::kPageEnd;
+}
+
+}  // namespace vstcal

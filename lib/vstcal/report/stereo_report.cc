@@ -1,0 +1,282 @@
+#include "vstcal/report/stereo_report.h"
+
+#include <map>
+#include <set>
+#include <tuple>
+
+#include "vstcal/core/error.h"
+#include "vstcal/geometry/rotation.h"
+#include "vstcal/report/registration_error.h"
+#include "vstcal/stereo/pose_refine.h"
+#include "vstcal/stereo/stereo_solve.h"
+
+namespace vstcal {
+namespace {
+
+std::string SizeText(const ImageSize& s) { return std::to_string(s.width) + "x" + std::to_string(s.height); }
+
+void CheckInputs(const StereoRig& rig, const Correspondences& left, const Correspondences& right,
+                 const std::string& rig_file, const std::string& left_file, const std::string& right_file) {
+  const auto check = [&](const CalibratedCamera& cam, const char* eye, const Correspondences& c, const std::string& file) {
+    if (!(cam.camera.image_size == c.image_size)) {
+      throw InputError(file + ": image_size: " + SizeText(c.image_size) + " differs from " + rig_file + "'s " + eye +
+                       " camera (" + SizeText(cam.camera.image_size) + "); give the " + eye +
+                       " camera's correspondences of the images the rig was calibrated from");
+    }
+    if (c.length_unit != rig.length_unit) {
+      throw InputError(file + ": length_unit: \"" + std::string(LengthUnitName(c.length_unit)) + "\" differs from " +
+                       rig_file + "'s \"" + std::string(LengthUnitName(rig.length_unit)) +
+                       "\"; convert one of them (calib-convert) so that both use one unit");
+    }
+    std::set<std::string> names;
+    for (const View& v : c.views) {
+      if (!names.insert(v.name).second) {
+        throw InputError(file + ": views: the view key \"" + v.name + "\" is given twice (views are matched by name, or by --match-views' key): rename one");
+      }
+    }
+  };
+  check(rig.left, "left", left, left_file);
+  check(rig.right, "right", right, right_file);
+  if (left.rig != right.rig) {
+    throw InputError(left_file + " and " + right_file +
+                     ": rig: one is a volume and the other planar views; give both cameras' views of the same target");
+  }
+}
+
+using Key = std::tuple<double, double, double>;
+Key KeyOf(const Eigen::Vector3d& p) { return {p.x(), p.y(), p.z()}; }
+
+// Target point → its observation's index in the view; a point twice is bad input.
+std::map<Key, size_t> IndexPoints(const View& view, const std::string& file) {
+  std::map<Key, size_t> index;
+  for (size_t i = 0; i < view.observations.size(); ++i) {
+    if (!index.emplace(KeyOf(view.observations[i].point), i).second) {
+      const Eigen::Vector3d& p = view.observations[i].point;
+      throw InputError(file + ": views[\"" + view.name + "\"].points[" + std::to_string(i) + "]: the target point (" +
+                       std::to_string(p.x()) + ", " + std::to_string(p.y()) + ", " + std::to_string(p.z()) +
+                       ") is listed twice; points are matched between the cameras by their target coordinates: "
+                       "remove the duplicate");
+    }
+  }
+  return index;
+}
+
+// The left camera's pose from the left pixels of `views` (all of a volume's, or one planar view's).
+PoseRefinement LeftPose(const StereoRig& rig, std::span<const View* const> views) {
+  std::vector<Eigen::Vector3d> points;
+  std::vector<Eigen::Vector2d> pixels;
+  for (const View* v : views) {
+    for (const Observation& o : v->observations) {
+      points.push_back(o.point);
+      pixels.push_back(o.pixel);
+    }
+  }
+  return SolvePnp(rig.left.camera, points, pixels);
+}
+
+// The 3-D error of the point seen at `left_px` and `right_px` whose true left-frame position is `truth`.
+StereoPointError Measure(const StereoRig& rig, const Eigen::Vector3d& truth, const Eigen::Vector2d& left_px,
+                         const Eigen::Vector2d& right_px) {
+  StereoPointError e;
+  e.truth = truth;
+  const auto ray_left = rig.left.camera.Unproject(left_px);
+  const auto ray_right = rig.right.camera.Unproject(right_px);
+  const Eigen::Matrix3d left_from_right_R = rig.right_from_left.R.transpose();
+  const Eigen::Vector3d right_centre = -(left_from_right_R * rig.right_from_left.t);
+  Eigen::Vector3d seen;
+  if (!ray_left || !ray_right ||
+      !TriangulateMidpoint<double>(Eigen::Vector3d::Zero(), *ray_left, right_centre, left_from_right_R * *ray_right, &seen)) {
+    e.excluded = StereoExclusion::kNoRay;
+    return e;
+  }
+  if (!(seen.z() > 0)) {
+    e.excluded = StereoExclusion::kBehind;
+    return e;
+  }
+  e.triangulated = seen;
+  const RegistrationErrorOf<double> reg = RegistrationError<double>(0.5 * right_centre, truth, seen - truth);
+  e.linear = reg.linear;
+  e.lateral = reg.lateral;
+  e.depth = reg.depth;
+  e.angular_rad = reg.angular;
+  return e;
+}
+
+struct Collected {
+  std::vector<double> x, y, z, linear, lateral, depth, angular_deg;
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  double depth_sum = 0;
+  void Add(const StereoPointError& e) {
+    if (e.excluded != StereoExclusion::kNone) return;
+    const Eigen::Vector3d d = e.error();
+    x.push_back(std::abs(d.x()));
+    y.push_back(std::abs(d.y()));
+    z.push_back(std::abs(d.z()));
+    linear.push_back(e.linear);
+    lateral.push_back(e.lateral);
+    depth.push_back(std::abs(e.depth));
+    angular_deg.push_back(e.angular_deg());
+    sum += d;
+    depth_sum += e.depth;
+  }
+  StereoStats Stats() const {
+    StereoStats s{ComputeErrorStats(x),       ComputeErrorStats(y),     ComputeErrorStats(z),
+                  ComputeErrorStats(linear),  ComputeErrorStats(lateral), ComputeErrorStats(depth),
+                  ComputeErrorStats(angular_deg)};
+    if (!x.empty()) {
+      const double n = static_cast<double>(x.size());
+      s.bias = sum / n;
+      s.depth_bias = depth_sum / n;
+    }
+    return s;
+  }
+};
+
+// A volume's test points, matched by name, measured where both files give a pixel.
+void AddTestPoints(const StereoRig& rig, const PoseRefinement& pose, const Correspondences& left,
+                   const Correspondences& right, StereoReport* report) {
+  std::map<std::string, const TestPoint*> right_by_name;
+  for (const TestPoint& t : right.test_points) right_by_name.emplace(t.name, &t);
+  std::set<std::string> left_names;
+  Collected measured;
+  for (const TestPoint& t : left.test_points) {
+    left_names.insert(t.name);
+    StereoTestPoint out{t.name, t.point_in_world, {}};
+    const auto it = right_by_name.find(t.name);
+    const bool in_right = it != right_by_name.end() && it->second->pixel;
+    if (!t.pixel || !in_right) {
+      out.error.excluded = t.pixel ? StereoExclusion::kLeftOnly
+                                   : (in_right ? StereoExclusion::kRightOnly : StereoExclusion::kNotMeasured);
+    } else if (pose.status != PoseStatus::kOk) {
+      out.error.excluded = StereoExclusion::kNoPose;
+    } else {
+      out.error = Measure(rig, pose.body_from_world * t.point_in_world, *t.pixel, *it->second->pixel);
+    }
+    out.error.target = t.point_in_world;
+    measured.Add(out.error);
+    report->test_points.push_back(std::move(out));
+  }
+  for (const TestPoint& t : right.test_points) {
+    if (left_names.contains(t.name)) continue;
+    StereoTestPoint out{t.name, t.point_in_world, {}};
+    out.error.target = t.point_in_world;
+    out.error.excluded = t.pixel ? StereoExclusion::kRightOnly : StereoExclusion::kNotMeasured;
+    report->test_points.push_back(std::move(out));
+  }
+  report->test_stats = measured.Stats();
+}
+
+}  // namespace
+
+double StereoPointError::angular_deg() const { return RadToDeg(angular_rad); }
+
+std::string_view StereoExclusionName(StereoExclusion e) {
+  switch (e) {
+    case StereoExclusion::kNone: return "none";
+    case StereoExclusion::kLeftOnly: return "left-only";
+    case StereoExclusion::kRightOnly: return "right-only";
+    case StereoExclusion::kNoPose: return "no-pose";
+    case StereoExclusion::kNoRay: return "no-ray";
+    case StereoExclusion::kBehind: return "behind";
+    case StereoExclusion::kNotMeasured: return "not-measured";
+  }
+  return "none";
+}
+
+StereoReport BuildStereoReport(const StereoRig& rig, Correspondences left, Correspondences right,
+                               const std::string& rig_file, const std::string& left_file,
+                               const std::string& right_file, const StereoReportOptions& options) {
+  if (!options.view_key_pattern.empty()) {
+    KeyViews(options.view_key_pattern, left_file, &left);
+    KeyViews(options.view_key_pattern, right_file, &right);
+  }
+  CheckInputs(rig, left, right, rig_file, left_file, right_file);
+  StereoReport report;
+  report.rig_file = rig_file;
+  report.left_file = left_file;
+  report.right_file = right_file;
+  report.length_unit = rig.length_unit;
+  report.rig_kind = left.rig;
+  report.baseline = rig.baseline();
+
+  std::map<std::string, const View*> right_by_name;
+  for (const View& v : right.views) right_by_name.emplace(v.name, &v);
+  std::vector<std::pair<const View*, const View*>> common;
+  std::set<std::string> left_names;
+  for (const View& v : left.views) {
+    left_names.insert(v.name);
+    const auto it = right_by_name.find(v.name);
+    if (it == right_by_name.end()) {
+      report.left_only_views.push_back(v.name);
+    } else {
+      common.emplace_back(&v, it->second);
+    }
+  }
+  for (const View& v : right.views) {
+    if (!left_names.contains(v.name)) report.right_only_views.push_back(v.name);
+  }
+  if (common.empty()) {
+    throw InputError(left_file + " and " + right_file +
+                     ": views: no view name is in both files; views are matched by name, as calib-stereo solve "
+                     "matches them: give both cameras' views of the same target poses under the same names");
+  }
+
+  // A volume has one world frame: one left pose from every common view's left pixels.
+  std::optional<PoseRefinement> volume_pose;
+  if (left.rig == Rig::kVolume) {
+    std::vector<const View*> lefts;
+    for (const auto& [l, r] : common) lefts.push_back(l);
+    volume_pose = LeftPose(rig, lefts);
+  }
+
+  Collected all;
+  for (const auto& [lv, rv] : common) {
+    StereoViewReport vr;
+    vr.name = lv->name;
+    const PoseRefinement pose = volume_pose ? *volume_pose : LeftPose(rig, std::span<const View* const>(&lv, 1));
+    vr.pose_status = pose.status == PoseStatus::kOk ? "ok" : std::string(PoseStatusText(pose.status));
+    const std::map<Key, size_t> right_index = IndexPoints(*rv, right_file);
+    IndexPoints(*lv, left_file);  // for its check: a point twice in the left view
+    std::vector<bool> right_used(rv->observations.size(), false);
+    Collected in_view;
+    for (const Observation& o : lv->observations) {
+      StereoPointError e;
+      const auto it = right_index.find(KeyOf(o.point));
+      if (it == right_index.end()) {
+        e.excluded = StereoExclusion::kLeftOnly;
+      } else {
+        right_used[it->second] = true;
+        if (pose.status != PoseStatus::kOk) {
+          e.excluded = StereoExclusion::kNoPose;
+        } else {
+          e = Measure(rig, pose.body_from_world * o.point, o.pixel, rv->observations[it->second].pixel);
+        }
+      }
+      e.target = o.point;
+      vr.points.push_back(e);
+    }
+    for (size_t i = 0; i < rv->observations.size(); ++i) {
+      if (right_used[i]) continue;
+      StereoPointError e;
+      e.target = rv->observations[i].point;
+      e.excluded = StereoExclusion::kRightOnly;
+      vr.points.push_back(e);
+    }
+    for (const StereoPointError& e : vr.points) {
+      report.n_left_only += e.excluded == StereoExclusion::kLeftOnly;
+      report.n_right_only += e.excluded == StereoExclusion::kRightOnly;
+      report.n_no_pose += e.excluded == StereoExclusion::kNoPose;
+      report.n_no_ray += e.excluded == StereoExclusion::kNoRay;
+      report.n_behind += e.excluded == StereoExclusion::kBehind;
+      in_view.Add(e);
+      all.Add(e);
+    }
+    vr.stats = in_view.Stats();
+    report.views.push_back(std::move(vr));
+  }
+  report.overall = all.Stats();
+  if (volume_pose) AddTestPoints(rig, *volume_pose, left, right, &report);
+  return report;
+}
+
+}  // namespace vstcal

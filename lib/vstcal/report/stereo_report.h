@@ -1,0 +1,108 @@
+// The 3-D registration error of a stereo rig against both cameras' correspondences of the same
+// target (reproj-report RIG LEFT RIGHT, docs/tools/reproj-report.md#a-stereo-rig; seed 000 Figs.
+// 9–10, seed 001 Fig. 2; the math in docs/math/stereo.md#triangulated-error).
+//
+// Views are matched by name, as calib-stereo solve matches them; within a view, a left and a right
+// observation are one point when their target coordinates are equal (both files list the same
+// target's points). Per view, the left camera's pose left_from_<frame> is found by PnP from the
+// left pixels alone (pose_refine.h SolvePnp: one pose for a volume, one per view for planar
+// views), which puts the known point in the left frame: X = left_from_<frame> · X_target. The
+// point the rig sees, P, is the midpoint of the closest approach of the two measured pixels' rays
+// (TriangulateMidpoint, report/registration_error.h), the left ray from the origin and the right
+// one from the right camera's centre c_r = −Rᵀt along Rᵀ·ray_r. Then, in the rig's length unit:
+//   per axis    Δ = P − X, in the left camera's frame (x right, y down, z forward);
+//   Holloway    linear, lateral, depth, angular of Δ seen from the cyclopean eye c = c_r/2
+//               (RegistrationError, the one implementation err-sim uses).
+// What the statistics summarize is a magnitude (|Δx|, |depth|, …); the signed means (`bias`) say
+// which way the rig errs. A point that cannot be measured is excluded and counted by reason.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "vstcal/calib/correspondences.h"
+#include "vstcal/report/statistics.h"
+#include "vstcal/stereo/stereo_rig.h"
+
+namespace vstcal {
+
+// Why a point of a common view has no 3-D error.
+enum class StereoExclusion {
+  kNone,
+  kLeftOnly,   // seen by the left camera only
+  kRightOnly,  // seen by the right camera only
+  kNoPose,     // the view's left pose could not be found (too few points, collinear, …)
+  kNoRay,      // a measured pixel has no ray, or the rays are parallel
+  kBehind,     // the rays meet behind the left camera
+  kNotMeasured,  // a test point neither file gives a pixel for
+};
+// "left-only", "right-only", "no-pose", "no-ray", "behind", "not-measured"
+std::string_view StereoExclusionName(StereoExclusion e);
+
+struct StereoPointError {
+  Eigen::Vector3d target = Eigen::Vector3d::Zero();  // the point in the target's frame (world or board)
+  StereoExclusion excluded = StereoExclusion::kNone;
+  Eigen::Vector3d truth = Eigen::Vector3d::Zero();         // X, left frame (when measured)
+  Eigen::Vector3d triangulated = Eigen::Vector3d::Zero();  // P, left frame
+  double linear = 0, lateral = 0, depth = 0, angular_rad = 0;  // depth signed, > 0 farther
+
+  Eigen::Vector3d error() const { return triangulated - truth; }
+  double angular_deg() const;  // as files show it
+};
+
+// Statistics of the magnitudes, and the signed means.
+struct StereoStats {
+  std::optional<ErrorStats> x, y, z, linear, lateral, depth, angular_deg;
+  Eigen::Vector3d bias = Eigen::Vector3d::Zero();  // mean Δ (x, y, z), length unit
+  double depth_bias = 0;                           // mean signed depth term
+};
+
+struct StereoViewReport {
+  std::string name;
+  std::string pose_status;  // "ok", or why the left pose failed (PoseStatusText)
+  std::vector<StereoPointError> points;  // the left view's points in order, then the right-only ones
+  StereoStats stats;
+};
+
+// A test point of a volume (never used in a solve, seed 000 §4.2), matched between the files by
+// name, triangulated from the two pixels where it was measured.
+struct StereoTestPoint {
+  std::string name;
+  Eigen::Vector3d point_in_world = Eigen::Vector3d::Zero();
+  StereoPointError error;  // kLeftOnly / kRightOnly: measured in one file only
+};
+
+struct StereoReport {
+  std::string rig_file, left_file, right_file;
+  LengthUnit length_unit = LengthUnit::kMillimetre;
+  Rig rig_kind = Rig::kVolume;
+  double baseline = 0;
+  std::vector<StereoViewReport> views;  // views both cameras saw, in the left file's order
+  std::vector<std::string> left_only_views, right_only_views;
+  StereoStats overall;
+  size_t n_left_only = 0, n_right_only = 0, n_no_pose = 0, n_no_ray = 0, n_behind = 0;  // points, by reason
+  // Volumes only (planar views' boards share no world frame): the left file's test points in order,
+  // then the right file's that the left does not name.
+  std::vector<StereoTestPoint> test_points;
+  StereoStats test_stats;
+};
+
+struct StereoReportOptions {
+  // Views match when their keys are equal: the name, or given this pattern the first group of its
+  // match in the name (calib-stereo solve's --match-views: "([0-9]+)$" pairs left01 with right01);
+  // the report names views by their keys.
+  std::string view_key_pattern;
+};
+
+// Throws InputError naming the file and field when the inputs do not go together: a rig camera
+// and its correspondences of different image sizes, a length unit differing from the rig's, one
+// file a volume and the other planar views, a view key twice in one file, a target point twice in
+// one view, no view seen by both cameras, a key pattern that is bad or does not match a name.
+StereoReport BuildStereoReport(const StereoRig& rig, Correspondences left, Correspondences right,
+                               const std::string& rig_file, const std::string& left_file,
+                               const std::string& right_file, const StereoReportOptions& options = {});
+
+}  // namespace vstcal

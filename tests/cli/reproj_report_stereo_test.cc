@@ -1,0 +1,158 @@
+// CLI tests of reproj-report with a stereo rig (RIG LEFT RIGHT): a rig calib-stereo solved from
+// calib-synth's noise-free views of a volume triangulates every point where it is (zero error, all
+// 315 points of the 9 × 7 grid on five planes); a point one camera missed is left out and counted;
+// views are matched by name or by --match-views' key;
+// the page renders offline in Chromium with the JSON's numbers; every bad input is refused with one
+// line, exit code 2 and nothing written.
+#include <tuple>
+
+#include "browser_fixture.h"
+
+namespace vstcal::cli_test {
+namespace {
+
+class CliReprojReportStereo : public BrowserTest {
+ protected:
+  // in/l.json, in/r.json: the volume of calib_stereo_test's volume rig (two 1280×720 cameras 1.2 m
+  // away, converging by 1.5° each side, baseline ≈ 73 mm) with `noise` px (and seed 000's five test
+  // points), and in/rig.json solved from them.
+  void SolveVolumeRig(const std::string& noise = "0", bool test_points = false) {
+    for (const auto& [eye, direction, seed] : {std::tuple{"l", "180", "1"}, std::tuple{"r", "0", "2"}}) {
+      std::vector<std::string> args = {"--image-size", "1280x720", "--fx", "700", "--distortion", "-0.1,0.02,0,0,0",
+                                       "--grid", "9x7", "--spacing", "80", "--near", "0", "--far", "400", "--interval", "100",
+                                       "--camera-distance", "1200", "--tilt-deg", "1.5", "--tilt-direction-deg", direction,
+                                       "--noise", noise, "--seed", seed, "--camera-name", eye};
+      if (!test_points) args.push_back("--no-test-points");
+      Synth(std::string("in/") + eye + ".json", args);
+    }
+    const CommandResult r = Run("calib-stereo", {"solve", "in/l.json", "in/r.json", "-o", "in/rig.json"});
+    ASSERT_EQ(r.exit_code, kOk) << r.err;
+  }
+
+  ::testing::AssertionResult Refused(const std::vector<std::string>& args, const std::string& location,
+                                     const std::vector<std::string>& phrases) {
+    auto result = FailsWith(Run("reproj-report", args), "reproj-report", kBadInput, location, phrases);
+    if (!result) return result;
+    return OutDirEmpty();
+  }
+};
+
+TEST_F(CliReprojReportStereo, NoiseFreeRigTriangulatesEveryPointWhereItIs) {
+  SolveVolumeRig("0", true);
+  const CommandResult r =
+      Run("reproj-report", {"in/rig.json", "in/l.json", "in/r.json", "-o", "out/report.json", "--format", "text"});
+  ASSERT_EQ(r.exit_code, kOk) << r.err;
+  EXPECT_NE(r.out.find("5 views seen by both cameras"), std::string::npos) << r.out;
+  const Json report = ReadJson("out/report.json");
+  EXPECT_EQ(report["format"], "vstcal/reproj-report@1");
+  const Json& s = report["stereo"];
+  EXPECT_EQ(s["target"], "volume");
+  EXPECT_EQ(s["length_unit"], "mm");
+  EXPECT_EQ(s["overall"]["linear"]["n"], 9 * 7 * 5);
+  for (const char* measure : {"x", "y", "z", "linear", "lateral", "depth"}) {
+    EXPECT_LT(s["overall"][measure]["max"].get<double>(), 1e-6) << measure;  // mm at 1.2 m
+  }
+  ASSERT_EQ(s["views"].size(), 5u);
+  EXPECT_EQ(s["views"][0]["left_pose"], "ok");
+  EXPECT_EQ(s["views"][0]["points"][0].size(), 10u);
+  EXPECT_EQ(s["excluded"]["left_only"], 0);
+  // The test points, never used in the solve, matched by name.
+  ASSERT_EQ(s["test_points"]["points"].size(), 5u);
+  for (const Json& t : s["test_points"]["points"]) EXPECT_TRUE(t["excluded"].is_null()) << t["name"];
+  EXPECT_EQ(s["test_points"]["stats"]["linear"]["n"], 5);
+  EXPECT_LT(s["test_points"]["stats"]["linear"]["max"].get<double>(), 1e-6);
+
+  // A test point the right camera did not measure: listed, not measured.
+  Json right = ReadJson("in/r.json");
+  right["test_points"][1].erase("pixel");
+  WriteJson("in/r-unmeasured.json", right);
+  ASSERT_EQ(Run("reproj-report", {"in/rig.json", "in/l.json", "in/r-unmeasured.json", "-o", "out/t.json"}).exit_code, kOk);
+  const Json t = ReadJson("out/t.json")["stereo"]["test_points"];
+  EXPECT_EQ(t["points"][1]["excluded"], "left-only");
+  EXPECT_TRUE(t["points"][1]["error"][0].is_null());
+  EXPECT_EQ(t["stats"]["linear"]["n"], 4);
+}
+
+TEST_F(CliReprojReportStereo, APointOneCameraMissedIsCountedNotMeasured) {
+  SolveVolumeRig();
+  Json right = ReadJson("in/r.json");
+  right["views"][0]["points"].erase(3);
+  WriteJson("in/r-missing.json", right);
+  const CommandResult r = Run("reproj-report", {"in/rig.json", "in/l.json", "in/r-missing.json", "-o", "out/report.json"});
+  ASSERT_EQ(r.exit_code, kOk) << r.err;
+  const Json s = ReadJson("out/report.json")["stereo"];
+  EXPECT_EQ(s["excluded"]["left_only"], 1);
+  EXPECT_EQ(s["overall"]["linear"]["n"], 9 * 7 * 5 - 1);
+  EXPECT_EQ(s["views"][0]["excluded"][0]["index"], 3);
+  EXPECT_EQ(s["views"][0]["excluded"][0]["reason"], "left-only");
+  EXPECT_TRUE(s["views"][0]["points"][3][3].is_null());
+}
+
+TEST_F(CliReprojReportStereo, ViewsMatchedByAKeyPattern) {
+  SolveVolumeRig();
+  Json right = ReadJson("in/r.json");
+  for (Json& v : right["views"]) v["name"] = "right-" + v["name"].get<std::string>();
+  WriteJson("in/r-named.json", right);
+  const CommandResult r = Run("reproj-report", {"in/rig.json", "in/l.json", "in/r-named.json", "-o", "out/report.json",
+                                                "--match-views", "(plane-[0-9]+)$"});
+  ASSERT_EQ(r.exit_code, kOk) << r.err;
+  const Json s = ReadJson("out/report.json")["stereo"];
+  EXPECT_EQ(s["overall"]["linear"]["n"], 9 * 7 * 5);
+  EXPECT_EQ(s["views"][0]["name"], "plane-00");
+  fs::remove(Path("out/report.json"));  // the failures below must leave out/ empty
+  EXPECT_TRUE(Refused({"in/rig.json", "in/l.json", "in/r-named.json", "-o", "out/report.json", "--match-views", "plane"},
+                      "--match-views: ", {"has no group"}));
+  EXPECT_TRUE(Refused({"in/rig.json", "in/l.json", "in/r-named.json", "-o", "out/report.json", "--match-views", "(x[0-9])"},
+                      "in/l.json: views: ", {"does not match --match-views"}));
+  EXPECT_TRUE(Refused({"in/l.json", "in/l.json", "-o", "out/report.json", "--match-views", "([0-9]+)$"},
+                      "--match-views: ", {"goes with a stereo rig"}));
+}
+
+// The page as a person sees it: rendered by headless Chromium with no console message, its one
+// chart decoded, every number shown equal to the JSON's, a screenshot kept; and the same bytes twice.
+TEST_F(CliReprojReportStereo, PageRendersOfflineWithTheJsonsNumbers) {
+  ASSERT_TRUE(fs::exists(kChromium)) << "scripts/setup installs chromium";
+  SolveVolumeRig("0.3");
+  const std::vector<std::string> args = {"in/rig.json", "in/l.json", "in/r.json", "-o", "out/report.json", "--html", "out/report.html"};
+  ASSERT_EQ(Run("reproj-report", args).exit_code, kOk);
+  const CommandResult dom = Render("out/report.html", {"--dump-dom"});
+  ASSERT_EQ(dom.exit_code, 0) << dom.err;
+  EXPECT_TRUE(ConsoleLines(dom.err).empty()) << ConsoleLines(dom.err).front();
+  EXPECT_EQ(ExpectInlinePictures(dom.out), 1u);
+  EXPECT_EQ(ExpectNumbersOf(ReadJson("out/report.json"), dom.out), (7u + 5u) * 6u);  // overall 7 rows, 5 views
+  EXPECT_EQ(ImagesLoaded("out/report.html"), "1 loaded, 0 broken");
+  ExpectScreenshot("out/report.html", "reproj-report-stereo.png", 1000, 1400);
+  const std::string json = ReadText("out/report.json"), page = ReadText("out/report.html");
+  fs::remove(Path("out/report.json"));
+  fs::remove(Path("out/report.html"));
+  ASSERT_EQ(Run("reproj-report", args).exit_code, kOk);
+  EXPECT_TRUE(ReadText("out/report.json") == json);
+  EXPECT_TRUE(ReadText("out/report.html") == page);
+}
+
+TEST_F(CliReprojReportStereo, BadInput) {
+  SolveVolumeRig();
+  Json right = ReadJson("in/r.json");
+  Json other = right;
+  other["image_size"] = {1920, 1080};
+  WriteJson("in/r-size.json", other);
+  EXPECT_TRUE(Refused({"in/rig.json", "in/l.json", "in/r-size.json", "-o", "out/report.json"}, "in/r-size.json: image_size: ",
+                      {"1920x1080 differs from in/rig.json's right camera (1280x720)"}));
+  other = right;
+  other["length_unit"] = "m";
+  WriteJson("in/r-m.json", other);
+  EXPECT_TRUE(Refused({"in/rig.json", "in/l.json", "in/r-m.json", "-o", "out/report.json"}, "in/r-m.json: length_unit: ",
+                      {"\"m\" differs from in/rig.json's \"mm\"", "calib-convert"}));
+  other = right;
+  for (Json& v : other["views"]) v["name"] = v["name"].get<std::string>() + "-right";
+  WriteJson("in/r-renamed.json", other);
+  EXPECT_TRUE(Refused({"in/rig.json", "in/l.json", "in/r-renamed.json", "-o", "out/report.json"},
+                      "in/l.json and in/r-renamed.json: views: ", {"no view name is in both files", "matched by name"}));
+  EXPECT_TRUE(Refused({"in/rig.json", "in/l.json", "-o", "out/report.json"}, "in/rig.json: ",
+                      {"two correspondences files after it, LEFT then RIGHT; got 1"}));
+  EXPECT_TRUE(Refused({"in/rig.json", "in/l.json", "in/r.json", "-o", "out/nope/report.json"}, "out/nope/report.json: ",
+                      {"does not exist"}));
+}
+
+}  // namespace
+}  // namespace vstcal::cli_test

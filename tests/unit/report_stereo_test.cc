@@ -1,0 +1,114 @@
+// The stereo rig's triangulated 3-D error (report/stereo_report.h) on closed forms
+// (docs/math/stereo.md#triangulated-error): a noise-free rig measures no error; a right camera moved
+// by Δb along the baseline scales every triangulated point about the left camera by (b + Δb)/b,
+// so Δ = X·Δb/b (depth error z·Δb/b) exactly for a rig whose baseline lies along x, to first order
+// for a slightly turned one; points seen by one camera only and views one camera saw are left out
+// and counted.
+#include <gtest/gtest.h>
+
+#include "support/stereo_rigs.h"
+#include "vstcal/core/error.h"
+#include "vstcal/report/stereo_report.h"
+
+namespace vstcal {
+namespace {
+
+size_t CommonPoints(const Correspondences& left, const Correspondences& right) {
+  size_t n = 0;
+  for (size_t v = 0; v < left.views.size(); ++v) {
+    for (const Observation& l : left.views[v].observations) {
+      for (const Observation& r : right.views[v].observations) n += l.point == r.point;
+    }
+  }
+  return n;
+}
+
+// The rig with its right camera's centre moved by Δb along the left camera's x axis.
+StereoRig WithBaselineError(StereoRig rig, double delta_b) {
+  const Eigen::Vector3d right_centre = -(rig.right_from_left.R.transpose() * rig.right_from_left.t);
+  rig.right_from_left.t = -(rig.right_from_left.R * (right_centre + Eigen::Vector3d(delta_b, 0, 0)));
+  return rig;
+}
+
+TEST(StereoReport, NoiseFreeRigMeasuresNoError) {
+  const StereoRig rig = testing::ZedLikeRig();
+  const testing::StereoViews views = testing::SyntheticStereoViews(rig, 3, 5);
+  const StereoReport report = BuildStereoReport(rig, views.left, views.right, "rig", "l", "r");
+  ASSERT_TRUE(report.overall.linear);
+  EXPECT_EQ(report.overall.linear->n, CommonPoints(views.left, views.right));
+  EXPECT_LT(report.overall.linear->max, 1e-7);  // mm, 0.5–0.75 m away
+  EXPECT_LT(report.overall.angular_deg->max, 1e-9);
+  ASSERT_EQ(report.views.size(), 3u);
+  for (const StereoViewReport& v : report.views) EXPECT_EQ(v.pose_status, "ok");
+}
+
+TEST(StereoReport, BaselineErrorAlongAParallelBaselineScalesDepthExactly) {
+  StereoRig truth = testing::ZedLikeRig(false);
+  const double b = 63.0, delta_b = 0.5;  // mm
+  truth.right_from_left = Rigid3d{Eigen::Matrix3d::Identity(), Eigen::Vector3d(-b, 0, 0)};
+  const testing::StereoViews views = testing::SyntheticStereoViews(truth, 3, 8);
+  const StereoReport report = BuildStereoReport(WithBaselineError(truth, delta_b), views.left, views.right, "rig", "l", "r");
+  size_t checked = 0;
+  for (const StereoViewReport& v : report.views) {
+    for (const StereoPointError& e : v.points) {
+      if (e.excluded != StereoExclusion::kNone) continue;
+      const Eigen::Vector3d expected = e.truth * (delta_b / b);
+      EXPECT_NEAR(e.error().z(), expected.z(), 1e-9 * e.truth.z()) << v.name;
+      EXPECT_NEAR(e.error().x(), expected.x(), 1e-9 * e.truth.z());
+      EXPECT_NEAR(e.error().y(), expected.y(), 1e-9 * e.truth.z());
+      EXPECT_NEAR(e.linear, e.truth.norm() * delta_b / b, 1e-9 * e.truth.z());
+      ++checked;
+    }
+  }
+  EXPECT_EQ(checked, CommonPoints(views.left, views.right));
+  EXPECT_GT(checked, 100u);
+  // 0.45–0.75 m away: |Δz| between 3.6 and 6 mm, farther from the viewer.
+  EXPECT_GT(report.overall.z->max, 0.45e3 * delta_b / b);
+  EXPECT_GT(report.overall.depth_bias, 0);
+}
+
+TEST(StereoReport, BaselineErrorOfATurnedRigScalesDepthToFirstOrder) {
+  const StereoRig truth = testing::ZedLikeRig();  // turned by about 0.3°, baseline off x by 0.4 mm
+  const double b = truth.baseline(), delta_b = 0.2;
+  const testing::StereoViews views = testing::SyntheticStereoViews(truth, 2, 9);
+  const StereoReport report = BuildStereoReport(WithBaselineError(truth, delta_b), views.left, views.right, "rig", "l", "r");
+  ASSERT_TRUE(report.overall.z);
+  for (const StereoViewReport& v : report.views) {
+    for (const StereoPointError& e : v.points) {
+      if (e.excluded != StereoExclusion::kNone) continue;
+      const double first_order = e.truth.z() * delta_b / b;
+      // The sideways part Δb sin α (α ≈ 0.4°, docs/math/stereo.md#baseline-error) leaves 0.03–0.3 %.
+      EXPECT_NEAR(e.error().z(), first_order, 0.005 * first_order);
+    }
+  }
+}
+
+TEST(StereoReport, PointsAndViewsSeenByOneCameraAreLeftOutAndCounted) {
+  const StereoRig rig = testing::ZedLikeRig();
+  testing::StereoViews views = testing::SyntheticStereoViews(rig, 3, 5);
+  const size_t common = CommonPoints(views.left, views.right);
+  const size_t in_view2 = CommonPoints(Correspondences{.views = {views.left.views[2]}},
+                                       Correspondences{.views = {views.right.views[2]}});
+  views.right.views[0].observations.erase(views.right.views[0].observations.begin() + 4);  // left only
+  views.left.views[1].observations.erase(views.left.views[1].observations.begin());        // right only
+  views.right.views[2].name = "elsewhere";  // a view of each camera with no partner
+  const StereoReport report = BuildStereoReport(rig, views.left, views.right, "rig", "l", "r");
+  EXPECT_EQ(report.n_left_only, 1u);
+  EXPECT_EQ(report.n_right_only, 1u);
+  EXPECT_EQ(report.left_only_views, std::vector<std::string>{views.left.views[2].name});
+  EXPECT_EQ(report.right_only_views, std::vector<std::string>{"elsewhere"});
+  ASSERT_EQ(report.views.size(), 2u);
+  EXPECT_EQ(report.views[0].points[4].excluded, StereoExclusion::kLeftOnly);
+  EXPECT_EQ(report.views[1].points.back().excluded, StereoExclusion::kRightOnly);
+  EXPECT_EQ(report.overall.linear->n, common - in_view2 - 2);
+}
+
+TEST(StereoReport, NoCommonViewIsBadInput) {
+  const StereoRig rig = testing::ZedLikeRig();
+  testing::StereoViews views = testing::SyntheticStereoViews(rig, 2, 5);
+  for (View& v : views.right.views) v.name += "-r";
+  EXPECT_THROW(BuildStereoReport(rig, views.left, views.right, "rig", "l", "r"), InputError);
+}
+
+}  // namespace
+}  // namespace vstcal
