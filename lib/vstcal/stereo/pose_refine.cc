@@ -107,6 +107,18 @@ PoseRefinement RefinePose(std::span<const PoseObservations> sets, const Rigid3d&
   return result;
 }
 
+PoseRefinement RefineBranches(std::span<const PoseObservations> sets, const Rigid3d& start,
+                              const std::optional<Rigid3d>& mirrored, const PoseRefineOptions& options) {
+  PoseRefinement best = RefinePose(sets, start, options);
+  if (mirrored) {
+    const PoseRefinement other = RefinePose(sets, *mirrored, options);
+    const int iterations = best.iterations + other.iterations;
+    if (other.status == PoseStatus::kOk && (best.status != PoseStatus::kOk || other.cost < best.cost)) best = other;
+    best.iterations = iterations;
+  }
+  return best;
+}
+
 PoseRefinement SolvePnp(const Camera& camera, std::span<const Eigen::Vector3d> points_in_world,
                         std::span<const Eigen::Vector2d> pixels, const PoseRefineOptions& options) {
   VSTCAL_CHECK(points_in_world.size() == pixels.size(), "one pixel per point");
@@ -125,14 +137,7 @@ PoseRefinement SolvePnp(const Camera& camera, std::span<const Eigen::Vector3d> p
     return out;
   }
   const PoseObservations set{&camera, Rigid3d::Identity(), points_in_world, pixels};
-  out = RefinePose({&set, 1}, start.camera_from_world, options);
-  if (start.mirrored) {
-    const PoseRefinement other = RefinePose({&set, 1}, *start.mirrored, options);
-    const int iterations = out.iterations + other.iterations;
-    if (other.status == PoseStatus::kOk && (out.status != PoseStatus::kOk || other.cost < out.cost)) out = other;
-    out.iterations = iterations;
-  }
-  return out;
+  return RefineBranches({&set, 1}, start.camera_from_world, start.mirrored, options);
 }
 
 }  // namespace vstcal

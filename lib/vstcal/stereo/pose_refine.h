@@ -10,6 +10,7 @@
 // camera_from_body = right_from_left.
 #pragma once
 
+#include <optional>
 #include <span>
 
 #include <Eigen/Core>
@@ -52,9 +53,10 @@ struct PoseRefinement {
 PoseRefinement RefinePose(std::span<const PoseObservations> sets, const Rigid3d& start,
                           const PoseRefineOptions& options = {});
 
-}  // namespace vstcal
-
-namespace vstcal {
+// Refines `start` and, where a planar layout left a second branch (`mirrored`, pnp.h), that one
+// too, over `sets`; keeps the lower cost. `iterations` sums both refinements.
+PoseRefinement RefineBranches(std::span<const PoseObservations> sets, const Rigid3d& start,
+                              const std::optional<Rigid3d>& mirrored, const PoseRefineOptions& options = {});
 
 // One camera's pose from ≥ 4 world points and their pixels, end to end: fewer than 4 points or
 // collinear ones are refused (status), then the closed form (pnp.h) is refined; for a planar

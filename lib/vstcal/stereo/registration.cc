@@ -58,22 +58,12 @@ EyeSolve Start(const Camera& camera, const EyeData& eye, const std::optional<Rig
 
 // Refines the start (and a planar layout's mirrored start) over `sets`; keeps the lower cost.
 EyeSolve Refine(std::span<const PoseObservations> sets, const EyeSolve& start, const PoseRefineOptions& refine) {
-  PoseRefinement best = RefinePose(sets, start.camera_from_world, refine);
-  int iterations = best.iterations;
-  if (start.mirrored) {
-    const PoseRefinement other = RefinePose(sets, *start.mirrored, refine);
-    iterations += other.iterations;
-    if (other.status == PoseStatus::kOk && (best.status != PoseStatus::kOk || other.cost < best.cost)) best = other;
-  }
-  return {best.status, best.body_from_world, {}, iterations};
+  const PoseRefinement best = RefineBranches(sets, start.camera_from_world, start.mirrored, refine);
+  return {best.status, best.body_from_world, {}, best.iterations};
 }
 
 EyeSolve SolveEye(const Camera& camera, const EyeData& eye, const std::optional<Rigid3d>& start,
                   const PoseRefineOptions& refine) {
-  if (!start) {
-    const PoseRefinement r = SolvePnp(camera, eye.points, eye.pixels, refine);
-    return {r.status, r.body_from_world, {}, r.iterations};
-  }
   const EyeSolve s = Start(camera, eye, start);
   if (s.status != PoseStatus::kOk) return s;
   const PoseObservations set{&camera, Rigid3d::Identity(), eye.points, eye.pixels};
