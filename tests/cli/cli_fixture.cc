@@ -149,6 +149,25 @@ std::vector<std::string> CliTest::List(const std::string& relative) const {
   return names;
 }
 
+::testing::AssertionResult CliTest::SameBytesTwice(std::string_view tool, const std::vector<std::string>& args,
+                                                   const std::vector<std::string>& outputs) const {
+  std::vector<std::string> first;
+  for (int run = 0; run < 2; ++run) {
+    const CommandResult r = Run(tool, args);
+    if (r.exit_code != kOk) return ::testing::AssertionFailure() << "run " << run + 1 << " failed: " << r.err;
+    for (size_t i = 0; i < outputs.size(); ++i) {
+      const std::string text = ReadText(outputs[i]);
+      if (run == 0) {
+        first.push_back(text);
+        fs::remove(Path(outputs[i]));
+      } else if (text != first[i]) {
+        return ::testing::AssertionFailure() << outputs[i] << " differs between two runs";
+      }
+    }
+  }
+  return ::testing::AssertionSuccess();
+}
+
 ::testing::AssertionResult CliTest::OutDirEmpty() const {
   const std::vector<std::string> names = List("out");
   if (names.empty()) return ::testing::AssertionSuccess();

@@ -85,6 +85,10 @@ class CliTest : public ::testing::Test {
   std::vector<std::string> List(const std::string& relative) const;
   // out/ is empty: no output file and no stray temporary (".name.XXXXXX") was left behind.
   ::testing::AssertionResult OutDirEmpty() const;
+  // `tool` run with `args` writes `outputs` (relative paths, each overwritten by the second run's):
+  // run once, remove them, run again; success when both runs succeed with the same bytes in each.
+  ::testing::AssertionResult SameBytesTwice(std::string_view tool, const std::vector<std::string>& args,
+                                            const std::vector<std::string>& outputs) const;
 
  private:
   fs::path dir_;
