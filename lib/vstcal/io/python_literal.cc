@@ -118,7 +118,7 @@ class Parser {
       if (Peek() != ':') Fail(pos_, "expected ':' after the key " + Quote(key.text), "write 'key': value");
       ++pos_;
       PyValue value = Value(depth + 1);
-      v.members.emplace_back(std::move(key.text), std::move(value));
+      v.members.push_back({std::move(key.text), std::move(value)});
       if (!Separator('}')) break;
     }
     Close('}', "the dict");

@@ -13,6 +13,10 @@
 
 namespace vstcal::io {
 
+// A dict's key and value. Not std::pair: a pair of an incomplete PyValue inside PyValue is
+// rejected by clang with libstdc++ (the fuzz build), a vector of a declared struct is not.
+struct PyMember;
+
 struct PyValue {
   enum class Kind { kNone, kBool, kNumber, kString, kList, kDict };
   Kind kind = Kind::kNone;
@@ -20,8 +24,13 @@ struct PyValue {
   bool integral = false;       // kNumber written as an integer (no '.', no exponent)
   std::string text;            // kString: the value (bytes and str alike); kNumber: as written
   std::vector<PyValue> items;  // kList: lists and tuples
-  std::vector<std::pair<std::string, PyValue>> members;  // kDict: string keys, file order, unique
-  size_t offset = 0;                                     // where the value starts in the text
+  std::vector<PyMember> members;  // kDict: string keys, file order, unique
+  size_t offset = 0;              // where the value starts in the text
+};
+
+struct PyMember {
+  std::string first;  // the key
+  PyValue second;
 };
 
 // Parses a text that holds exactly one dict. Throws InputError
