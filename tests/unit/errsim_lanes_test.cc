@@ -91,9 +91,9 @@ TEST(ThetaSampler, LanesHoldTheBitsOfOneDrawAtATime) {
 
 // The x86-64 baseline lowering of SimdDouble (two SSE2 operations each), for comparison with the
 // AVX2 clone that SampleMeasurer runs on this machine.
-[[gnu::flatten]] void EvaluateBaseline(const ChainEvaluator& chain, const ErrorOutputs& outputs,
-                                       const SimdDouble* theta, ChainSample<SimdDouble>* sample, SimdDouble* y,
-                                       bool* defined) {
+[[VSTCAL_FLATTEN_LANES]] void EvaluateBaseline(const ChainEvaluator& chain, const ErrorOutputs& outputs,
+                                               const SimdDouble* theta, ChainSample<SimdDouble>* sample,
+                                               SimdDouble* y, bool* defined) {
   chain.Evaluate(theta, sample);
   outputs.Measure(chain, *sample, theta, y, defined);
 }

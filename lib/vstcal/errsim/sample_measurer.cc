@@ -10,18 +10,9 @@ namespace {
 // expression templates into it), cloned for AVX2 and for the x86-64 baseline: each SimdDouble
 // operation is then one 256-bit instruction or two 128-bit ones, with the same results. y moves
 // out here too, so that its stores have the width of the arithmetic.
-// Under AddressSanitizer the flattened body is so large that instrumenting it took minutes of
-// compile time per clone (most of the sanitizer build); inlining does not change a result
-// (-ffp-contract=off), so that build evaluates the same code without flatten. Clang (the fuzz
-// build, instrumented as well) refuses flatten on a multiversioned function altogether.
-#if defined(__SANITIZE_ADDRESS__) || defined(__clang__)
-#define VSTCAL_LANES_ATTRIBUTES [[gnu::target_clones("avx2", "default")]]
-#else
-#define VSTCAL_LANES_ATTRIBUTES [[gnu::target_clones("avx2", "default"), gnu::flatten]]
-#endif
-VSTCAL_LANES_ATTRIBUTES void EvaluateLanes(const ChainEvaluator& chain, const ErrorOutputs& outputs, const SimdDouble* theta,
-                                           double* y, bool* defined, ChainSample<SimdDouble>* sample,
-                                           SimdDouble* y_lanes) {
+[[gnu::target_clones("avx2", "default"), VSTCAL_FLATTEN_LANES]] void EvaluateLanes(
+    const ChainEvaluator& chain, const ErrorOutputs& outputs, const SimdDouble* theta, double* y, bool* defined,
+    ChainSample<SimdDouble>* sample, SimdDouble* y_lanes) {
   chain.Evaluate(theta, sample);
   outputs.Measure(chain, *sample, theta, y_lanes, defined);
   for (size_t k = 0; k < outputs.size(); ++k) y_lanes[k].Store(y + SimdDouble::kLanes * k);

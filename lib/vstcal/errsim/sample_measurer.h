@@ -16,6 +16,17 @@
 #include "vstcal/errsim/chain.h"
 #include "vstcal/errsim/measures.h"
 
+// The attribute for a function that evaluates a group of lanes in one body (chain and measures
+// inlined into it). Under AddressSanitizer the flattened body takes minutes of compile time to
+// instrument (once it was most of the sanitizer build), and clang (the fuzz build) refuses flatten
+// on a target_clones function; inlining does not change a result (-ffp-contract=off), so those
+// builds evaluate the same code without it.
+#if defined(__SANITIZE_ADDRESS__) || defined(__clang__)
+#define VSTCAL_FLATTEN_LANES
+#else
+#define VSTCAL_FLATTEN_LANES gnu::flatten
+#endif
+
 namespace vstcal::errsim {
 
 class SampleMeasurer {
