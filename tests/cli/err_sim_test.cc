@@ -554,6 +554,10 @@ TEST_F(CliErrSim, RigConflictsAndBadReferencesAreNamed) {
   c["sources"]["camera_extrinsic"]["right"] = {{"covariance", "rig"}};
   EXPECT_TRUE(fails(c, "in/chain.json: sources.camera_extrinsic.right.covariance: ", {"the chain references no rig", "add \"rig\""}));
   c = ChainWithRig();
+  c["sources"]["camera_intrinsic"] = {{"left", {{"covariance", "camera"}}}};
+  EXPECT_TRUE(fails(c, "in/chain.json: sources.camera_intrinsic.left.covariance: ",
+                    {"the rig rig.json's left camera has no covariance", "calib-stereo assemble"}));
+  c = ChainWithRig();
   c["sources"]["camera_extrinsic"]["right"]["covariance"] = "camera";
   EXPECT_TRUE(fails(c, "in/chain.json: sources.camera_extrinsic.right.covariance: ", {"unknown value \"camera\"", "write \"rig\""}));
   c = ChainWithRig();

@@ -331,6 +331,10 @@ class SourcesReader {
                       "write \"camera\" (the camera file's covariance) or an object {\"parameters\", \"matrix\"}");
           }
           if (!spec_->cameras[e].covariance) {
+            if (spec_->rig) {
+              cov->Fail("the rig " + spec_->rig->file + "'s " + std::string(kEyeNames[e]) + " camera has no covariance",
+                        "reference a rig assembled from camera@1 files that have \"covariance\" (calib-stereo assemble keeps their lens part), or give σ's per parameter");
+            }
             cov->Fail("the " + std::string(kEyeNames[e]) + " camera has no covariance",
                       "reference a camera@1 file that has \"covariance\", or give σ's per parameter");
           }
