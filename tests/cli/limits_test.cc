@@ -25,6 +25,15 @@ TEST_F(CliLimits, DeeplyNestedYamlIsRefused) {
   }
 }
 
+// 16 bytes on which cv::FileStorage 4.6 loops forever (found by libFuzzer, docs/reliability.md#fuzzing);
+// the ctest timeout would end this test if it still hung.
+TEST_F(CliLimits, YamlThatHangsOpenCvIsRefused) {
+  WriteText("in/hang.yaml", "%YAML:1.0\n -a\n:\n-");
+  const CommandResult r = Run("calib-convert", {"in/hang.yaml", "-o", "out/c.json"});
+  EXPECT_TRUE(FailsWith(r, "calib-convert", kBadInput, "in/hang.yaml: line 2, column 2: ", {"the top level is indented"}));
+  EXPECT_TRUE(OutDirEmpty());
+}
+
 TEST_F(CliLimits, DeeplyNestedJsonAndCameramodelAreRefused) {
   WriteText("in/deep.json", "{\"a\": " + std::string(50000, '[') + "\n");
   CommandResult r = Run("calib-convert", {"in/deep.json", "-o", "out/c.yaml"});

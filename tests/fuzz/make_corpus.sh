@@ -80,6 +80,12 @@ cat > "$corpus/cameramodel/mrcal-written.cameramodel" <<'PY'
     'icam_intrinsics': 0,
 }
 PY
+# Findings of the fuzz runs (docs/reliability.md#fuzzing), kept as seeds so that ctest replays them.
+printf '%%YAML:1.0\n -a\n:\n-' > "$corpus/opencv_yaml/indented-top-level.yaml"
+cat > "$corpus/cameramodel/overflowing-rotation.cameramodel" <<'PY'
+{'lensmodel': 'LENSMODEL_PINHOLE', 'intrinsics': [400, 400, 320, 240],
+ 'extrinsics': [0, 3.8e179, 0, 0, 0, 1000], 'imagersize': [640, 480]}
+PY
 
 # Chains: seed 001's with its camera file after "%%" (fuzz_chain.cc), and an inline one.
 sed 's#"file": "../zedmini/clean.truth.json"#"file": "camera.json"#' "$root/datasets/vst/seed001.json" > chain.json

@@ -293,5 +293,17 @@ TEST(MrcalCameramodel, RefusesOtherLensModelsByName) {
   }
 }
 
+// Found by libFuzzer (tests/fuzz/corpus/cameramodel/overflowing-rotation): a rotation vector
+// whose sum of squares overflows was refused with a message that printed its length, ∞, through
+// the writer's number formatting, which refuses non-finite numbers: an internal error, not exit 2.
+TEST(MrcalCameramodel, RefusesARotationVectorBeyondRange) {
+  const std::string text =
+      "{'lensmodel': 'LENSMODEL_PINHOLE', 'intrinsics': [400, 400, 320, 240], "
+      "'extrinsics': [0, 3.8e179, 0, 0, 0, 1000], 'imagersize': [640, 480]}";
+  EXPECT_EQ(ErrorOf([&] { ReadText(text); }),
+            "cam.cameramodel: extrinsics: the rotation vector's length, its angle, is 3.8e+179 rad; give the rotation "
+            "with an angle of at most 1000000.0 rad (mrcal writes it in [0, π])");
+}
+
 }  // namespace
 }  // namespace vstcal

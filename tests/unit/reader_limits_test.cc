@@ -39,6 +39,24 @@ TEST(ReaderLimits, YamlNestingIsBoundedBeforeOpenCvParses) {
       << YamlError(block + "x\n");
 }
 
+// cv::FileStorage 4.6 never returns from these (libFuzzer found the first): its first collection
+// ends before the text does, and it steps over 3 bytes as if they were "...". Refused first.
+TEST(ReaderLimits, YamlThatHangsOpenCvIsRefusedBeforeItParses) {
+  EXPECT_EQ(YamlError("%YAML:1.0\n -a\n:\n-"),
+            "t.yaml: line 2, column 2: the top level is indented; start its fields in the first column, as "
+            "cv::FileStorage writes them");
+  EXPECT_NE(YamlError("%YAML:1.0\n---\n# comment\n   camera_matrix: 1\nx: 2\n").find("line 4, column 4: the top level is indented"),
+            std::string::npos);
+  EXPECT_NE(YamlError("%YAML:1.0\n---\na: 1\n...\nb: 2\n").find("line 4, column 1: a second YAML document (\"...\")"),
+            std::string::npos);
+  EXPECT_NE(YamlError("%YAML:1.0\n---\na: 1\n---\n -a\n:\n-\n").find("line 4, column 1: a second YAML document (\"---\")"),
+            std::string::npos);
+  EXPECT_NE(YamlError("%YAML:1.0\n--- a: 1\nb: 2\n").find("line 2, column 5: the top level is indented (it starts on the \"---\" line)"),
+            std::string::npos);
+  // What cv::FileStorage writes passes: a directive, "---", comments, fields from the first column.
+  EXPECT_NE(YamlError("%YAML:1.0\n---\n# c\n\na: 1\n").find("camera_matrix: missing field"), std::string::npos);
+}
+
 TEST(ReaderLimits, YamlSizeIsBounded) {
   std::string text = "%YAML:1.0\n---\n# " + std::string(limits::kMaxOpenCvYamlBytes, 'x') + "\n";
   EXPECT_NE(YamlError(text).find("larger than the 16 MiB vstcal reads as OpenCV YAML"), std::string::npos);

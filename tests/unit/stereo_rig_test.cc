@@ -164,6 +164,8 @@ TEST(StereoRig, AssembleRefusesWhatItCannotKnow) {
   EXPECT_NE(ErrorOf([&] { AssembleRig(in); }).find("r.json: camera_from_world: absent"), std::string::npos);
   in.right_from_left = Rigid3d::Identity();
   EXPECT_NE(ErrorOf([&] { AssembleRig(in); }).find("right_from_left: the two cameras coincide (baseline 0)"), std::string::npos);
+  in.right_from_left->t = Eigen::Vector3d(3e200, 0, 0);  // finite, but its square is not
+  EXPECT_NE(ErrorOf([&] { AssembleRig(in); }).find("right_from_left: the baseline is too large to compute with"), std::string::npos);
   // Given, with its unit, the rig takes it whatever the cameras' units: they hold no lengths.
   in.right_from_left = truth.right_from_left;
   in.length_unit = LengthUnit::kCentimetre;

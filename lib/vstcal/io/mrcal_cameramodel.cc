@@ -145,8 +145,9 @@ ImportedCamera MrcalCameramodelFromText(std::string_view text, const std::string
   }
   Eigen::Matrix<double, 6, 1> rt;
   for (int i = 0; i < 6; ++i) rt(i) = extrinsics.at(i).Number();
-  if (!(rt.head<3>().norm() <= kMaxRotvecNorm)) {
-    extrinsics.Fail("the rotation vector's length, its angle, is " + ShortestDecimal(rt.head<3>().norm()) + " rad",
+  // stableNorm: a component beyond 1e154 would overflow norm()'s sum of squares to ∞.
+  if (const double angle = rt.head<3>().stableNorm(); !(angle <= kMaxRotvecNorm)) {
+    extrinsics.Fail("the rotation vector's length, its angle, is " + ShortestDecimal(angle) + " rad",
                     "give the rotation with an angle of at most " + ShortestDecimal(kMaxRotvecNorm) +
                         " rad (mrcal writes it in [0, π])");
   }

@@ -139,6 +139,42 @@ void CheckIntegers(const std::string& text, const std::string& name) {
   }
 }
 
+// cv::FileStorage (4.6) loops forever when the first collection ends before the end of the text:
+// it then steps 3 bytes ahead, as if over "..." or "---", and can land past the line it holds
+// (a 16-byte example: "%YAML:1.0\n -a\n:\n-", found by libFuzzer). A collection ends early only
+// at a line indented less than its first one, or at "..."; so the first content line must start
+// in the first column, as cv::FileStorage writes it, and the text must hold one document.
+void CheckOneUnindentedDocument(const std::string& text, const std::string& name) {
+  bool content = false;
+  for (size_t start = 0; start < text.size();) {
+    size_t end = text.find('\n', start);
+    if (end == std::string::npos) end = text.size();
+    const std::string_view line(text.data() + start, end - start);
+    const size_t first = line.find_first_not_of(" \r");
+    const bool skip = first == std::string_view::npos || line[first] == '#' || (!content && line.starts_with('%'));
+    if (!skip) {
+      if (line.starts_with("---") || line.starts_with("...")) {
+        if (content || line.starts_with("...")) {
+          FailSyntax(name, text, start, "a second YAML document (\"" + std::string(line.substr(0, 3)) + "\")",
+                     "a camera file is one document: keep its fields in the first and delete the rest");
+        }
+        const size_t after = line.find_first_not_of(" \r", 3);
+        if (after != std::string_view::npos && line[after] != '#') {
+          FailSyntax(name, text, start + after, "the top level is indented (it starts on the \"---\" line)",
+                     "start its fields on the next line, in the first column, as cv::FileStorage writes them");
+        }
+      } else if (!content) {
+        if (first != 0) {
+          FailSyntax(name, text, start + first, "the top level is indented",
+                     "start its fields in the first column, as cv::FileStorage writes them");
+        }
+        content = true;
+      }
+    }
+    start = end + 1;
+  }
+}
+
 cv::FileStorage Open(const std::string& text, const std::string& name) {
   if (IsBlank(text)) throw InputError(name + ": the file is empty; expected OpenCV FileStorage YAML");
   if (text.size() > limits::kMaxOpenCvYamlBytes) {
@@ -147,6 +183,7 @@ cv::FileStorage Open(const std::string& text, const std::string& name) {
   }
   CheckNesting(text, name);
   CheckIntegers(text, name);
+  CheckOneUnindentedDocument(text, name);
   try {
     cv::FileStorage fs(text, cv::FileStorage::READ | cv::FileStorage::MEMORY | cv::FileStorage::FORMAT_YAML);
     if (!fs.isOpened() || !fs.root().isMap()) {

@@ -73,7 +73,12 @@ CalibratedCamera IntrinsicsOnly(const CalibratedCamera& camera) {
 
 void CheckBaseline(const Rigid3d& right_from_left, std::string_view where) {
   const double b = right_from_left.t.norm();
-  if (!(b > 0) || !std::isfinite(b)) {
+  if (!std::isfinite(b)) {
+    throw InputError(std::string(where) +
+                     ": the baseline is too large to compute with (its square overflows); check the translation of "
+                     "right_from_left and its unit");
+  }
+  if (!(b > 0)) {
     throw InputError(std::string(where) +
                      ": the two cameras coincide (baseline 0): a stereo rig needs its cameras apart; check the "
                      "translation of right_from_left");

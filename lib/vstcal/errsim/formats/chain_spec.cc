@@ -1,6 +1,7 @@
 #include "vstcal/errsim/formats/chain_spec.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include <Eigen/Eigenvalues>
@@ -22,6 +23,9 @@ std::string PointField(size_t k) { return "test_points[" + std::to_string(k) + "
 // inside the image.
 void CheckTestPointsVisible(const ChainSpec& spec, const ChainGeometry& g) {
   const Rigid3d hmd_from_world = g.hmd_from_tracker * g.tracker_from_world;
+  // Once per camera: each is a search over the image plane (tens of thousands of Jacobians).
+  std::array<double, kNumEyes> valid_r2;
+  for (int e = 0; e < kNumEyes; ++e) valid_r2[e] = g.cameras[e].ValidRadiusSquared();
   for (size_t k = 0; k < g.test_points.size(); ++k) {
     for (int e = 0; e < kNumEyes; ++e) {
       const Camera& camera = g.cameras[e];
@@ -34,11 +38,11 @@ void CheckTestPointsVisible(const ChainSpec& spec, const ChainGeometry& g) {
                       "move the point in front of both cameras, or check frames (x_a = a_from_b · x_b)");
       }
       const double r2 = (x.x() * x.x() + x.y() * x.y()) / (x.z() * x.z());
-      if (!(r2 <= camera.ValidRadiusSquared())) {
+      if (!(r2 <= valid_r2[e])) {
         io::FailField(spec.file, PointField(k),
                       "lies " + MessageNumber(RadToDeg(std::atan(std::sqrt(r2)))) + "° off the " + eye +
                           " camera's axis, outside its lens model's valid domain (the distortion folds over beyond " +
-                          MessageNumber(RadToDeg(std::atan(std::sqrt(camera.ValidRadiusSquared())))) + "°)",
+                          MessageNumber(RadToDeg(std::atan(std::sqrt(valid_r2[e])))) + "°)",
                       "move the point into both cameras' field of view");
       }
       if (!camera.InImage(*q)) {
