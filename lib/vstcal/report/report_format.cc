@@ -110,6 +110,10 @@ void AppendStatsRow(std::string* out, const std::string& label, const std::optio
          s->p95, s->max);
 }
 
+OrderedJson VolumeJson(const MeasuredVolume& v) {
+  return {{"hull", v.status}, {"vertices", v.vertices}, {"facets", v.facets}};
+}
+
 OrderedJson StereoStatsJson(const StereoStats& s) {
   return {{"x", StatsJson(s.x)},
           {"y", StatsJson(s.y)},
@@ -174,7 +178,7 @@ OrderedJson ReprojReportToJson(const ReprojReport& r, const Provenance& provenan
   for (const View& v : c.views) images.push_back(v.image.empty() ? OrderedJson(nullptr) : OrderedJson(v.image));
   j["correspondences"]["images"] = std::move(images);
   j["grid"] = {{"cols", r.grid.cols}, {"rows", r.grid.rows}};
-  j["volume"] = {{"hull", r.hull_status}, {"vertices", r.hull_vertices}, {"facets", r.hull_facets}};
+  j["volume"] = VolumeJson(r.volume);
   OrderedJson cameras = OrderedJson::array();
   for (const CameraReport& cam : r.cameras) cameras.push_back(CameraJson(cam, r.grid));
   j["cameras"] = std::move(cameras);
@@ -197,7 +201,7 @@ std::string ReprojReportText(const ReprojReport& r) {
   const std::string unit(LengthUnitName(r.correspondences.length_unit));
   Append(&out, "%s: %zu points in %zu views, %zu test points; volume: %s\n", r.correspondences_file.c_str(),
          NumObservations(r.correspondences), r.correspondences.views.size(), r.correspondences.test_points.size(),
-         r.hull_status.c_str());
+         r.volume.status.c_str());
   for (size_t k = 0; k < r.cameras.size(); ++k) {
     const CameraReport& c = r.cameras[k];
     Append(&out, "\ncamera %zu: %s (%s)\n", k, c.file.c_str(), c.method.empty() ? "?" : c.method.c_str());
@@ -256,6 +260,7 @@ OrderedJson StereoReportToJson(const StereoReport& r, const Provenance& provenan
                  {"length_unit", LengthUnitName(r.length_unit)},
                  {"target", r.rig_kind == Rig::kVolume ? "volume" : "planar-views"},
                  {"baseline", r.baseline},
+                 {"volume", VolumeJson(r.volume)},
                  {"overall", StereoStatsJson(r.overall)},
                  {"excluded",
                   {{"left_only", r.n_left_only},
@@ -273,10 +278,14 @@ OrderedJson StereoReportToJson(const StereoReport& r, const Provenance& provenan
     point.erase(point.begin(), point.begin() + 3);  // the target point is `world`
     tests.push_back({{"name", t.name},
                      {"world", MatrixToJson(t.point_in_world)},
+                     {"inside_volume", t.inside_volume ? OrderedJson(*t.inside_volume) : OrderedJson(nullptr)},
                      {"error", std::move(point)},
                      {"excluded", measured ? OrderedJson(nullptr) : OrderedJson(StereoExclusionName(t.error.excluded))}});
   }
-  j["stereo"]["test_points"] = {{"stats", StereoStatsJson(r.test_stats)}, {"points", std::move(tests)}};
+  j["stereo"]["test_points"] = {{"stats", StereoStatsJson(r.test_stats)},
+                                {"inside", StereoStatsJson(r.test_inside)},
+                                {"outside", StereoStatsJson(r.test_outside)},
+                                {"points", std::move(tests)}};
   j["provenance"] = ProvenanceToJson(provenance);
   return j;
 }
@@ -292,6 +301,8 @@ std::string StereoReportText(const StereoReport& r) {
   if (!r.test_points.empty()) {
     AppendStatsRow(&out, "test |dz| " + unit, r.test_stats.z);
     AppendStatsRow(&out, "test linear " + unit, r.test_stats.linear);
+    AppendStatsRow(&out, "test inside linear " + unit, r.test_inside.linear);
+    AppendStatsRow(&out, "test outside linear " + unit, r.test_outside.linear);
   }
   Append(&out, "  bias (left frame) x %+.4f, y %+.4f, z %+.4f %s; depth %+.4f %s\n", r.overall.bias.x(), r.overall.bias.y(),
          r.overall.bias.z(), unit.c_str(), r.overall.depth_bias, unit.c_str());

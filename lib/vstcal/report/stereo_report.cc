@@ -138,10 +138,12 @@ void AddTestPoints(const StereoRig& rig, const PoseRefinement& pose, const Corre
   std::map<std::string, const TestPoint*> right_by_name;
   for (const TestPoint& t : right.test_points) right_by_name.emplace(t.name, &t);
   std::set<std::string> left_names;
-  Collected measured;
+  Collected measured, inside, outside;
+  const auto& hull = report->volume.hull;
   for (const TestPoint& t : left.test_points) {
     left_names.insert(t.name);
-    StereoTestPoint out{t.name, t.point_in_world, {}};
+    StereoTestPoint out{t.name, t.point_in_world, {}, {}};
+    if (hull) out.inside_volume = hull->Contains(t.point_in_world);
     const auto it = right_by_name.find(t.name);
     const bool in_right = it != right_by_name.end() && it->second->pixel;
     if (!t.pixel || !in_right) {
@@ -154,16 +156,20 @@ void AddTestPoints(const StereoRig& rig, const PoseRefinement& pose, const Corre
     }
     out.error.target = t.point_in_world;
     measured.Add(out.error);
+    if (out.inside_volume) (*out.inside_volume ? inside : outside).Add(out.error);
     report->test_points.push_back(std::move(out));
   }
   for (const TestPoint& t : right.test_points) {
     if (left_names.contains(t.name)) continue;
-    StereoTestPoint out{t.name, t.point_in_world, {}};
+    StereoTestPoint out{t.name, t.point_in_world, {}, {}};
+    if (hull) out.inside_volume = hull->Contains(t.point_in_world);
     out.error.target = t.point_in_world;
     out.error.excluded = t.pixel ? StereoExclusion::kRightOnly : StereoExclusion::kNotMeasured;
     report->test_points.push_back(std::move(out));
   }
   report->test_stats = measured.Stats();
+  report->test_inside = inside.Stats();
+  report->test_outside = outside.Stats();
 }
 
 }  // namespace
@@ -198,6 +204,8 @@ StereoReport BuildStereoReport(const StereoRig& rig, Correspondences left, Corre
   report.length_unit = rig.length_unit;
   report.rig_kind = left.rig;
   report.baseline = rig.baseline();
+  const Correspondences* files[] = {&left, &right};
+  report.volume = MeasuredVolumeOf(files);
 
   std::map<std::string, const View*> right_by_name;
   for (const View& v : right.views) right_by_name.emplace(v.name, &v);

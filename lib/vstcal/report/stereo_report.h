@@ -24,6 +24,7 @@
 #include <Eigen/Core>
 
 #include "vstcal/calib/correspondences.h"
+#include "vstcal/report/convex_hull.h"
 #include "vstcal/report/statistics.h"
 #include "vstcal/stereo/stereo_rig.h"
 
@@ -73,6 +74,7 @@ struct StereoTestPoint {
   std::string name;
   Eigen::Vector3d point_in_world = Eigen::Vector3d::Zero();
   StereoPointError error;  // kLeftOnly / kRightOnly: measured in one file only
+  std::optional<bool> inside_volume;  // inside the measured volume (`volume`); nullopt without a hull
 };
 
 struct StereoReport {
@@ -87,7 +89,12 @@ struct StereoReport {
   // Volumes only (planar views' boards share no world frame): the left file's test points in order,
   // then the right file's that the left does not name.
   std::vector<StereoTestPoint> test_points;
-  StereoStats test_stats;
+  StereoStats test_stats;  // every measured test point
+  // The convex hull of both files' calibration points (one world frame), and the measured test
+  // points inside it (or on its boundary) and outside it, as reproj-report splits a camera's (seed
+  // 000 §4.2); both empty without a hull.
+  MeasuredVolume volume;
+  StereoStats test_inside, test_outside;
 };
 
 struct StereoReportOptions {
