@@ -168,6 +168,9 @@ TEST_F(CliReprojReportStereo, BadInput) {
                       {"two correspondences files after it, LEFT then RIGHT; got 1"}));
   EXPECT_TRUE(Refused({"in/rig.json", "in/l.json", "in/r.json", "-o", "out/nope/report.json"}, "out/nope/report.json: ",
                       {"does not exist"}));
+  // A rig's report has no image cells: --grid is refused, not ignored.
+  EXPECT_TRUE(Refused({"in/rig.json", "in/l.json", "in/r.json", "-o", "out/report.json", "--grid", "4x3"}, "--grid: ",
+                      {"no image cells", "report each camera of the rig alone"}));
 }
 
 }  // namespace
