@@ -72,6 +72,19 @@ TEST_F(CliReprojReportStereo, NoiseFreeRigTriangulatesEveryPointWhereItIs) {
   }
   EXPECT_EQ(s["test_points"]["inside"]["linear"]["n"], 3);
   EXPECT_EQ(s["test_points"]["outside"]["linear"]["n"], 2);
+  // Each camera's reprojection error per image cell (--grid, default 8 × 6): noise-free, none.
+  EXPECT_EQ(s["grid"], Json({{"cols", 8}, {"rows", 6}}));
+  for (const char* eye : {"left", "right"}) {
+    const Json& cells = s["reprojection"][eye]["grid"];
+    ASSERT_EQ(cells.size(), 48u);
+    int n = 0;
+    for (const Json& c : cells) {
+      if (c["error_px"].is_null()) continue;
+      n += c["error_px"]["n"].get<int>();
+      EXPECT_LT(c["error_px"]["max"].get<double>(), 1e-6) << eye;
+    }
+    EXPECT_EQ(n, 9 * 7 * 5) << eye;
+  }
 
   // A test point the right camera did not measure: listed, not measured.
   Json right = ReadJson("in/r.json");
@@ -119,17 +132,18 @@ TEST_F(CliReprojReportStereo, ViewsMatchedByAKeyPattern) {
                       "--match-views: ", {"goes with a stereo rig"}));
 }
 
-// The page as a person sees it: rendered by headless Chromium with no console message, its one
-// chart decoded, every number shown equal to the JSON's, a screenshot kept; and the same bytes twice.
+// The page as a person sees it: rendered by headless Chromium with no console message, its three
+// charts decoded (error against depth, each camera's heat map over a --grid of 4 × 3 cells), every number shown equal to the JSON's, a screenshot kept; and the same bytes twice.
 TEST_F(CliReprojReportStereo, PageRendersOfflineWithTheJsonsNumbers) {
   ASSERT_TRUE(fs::exists(kChromium)) << "scripts/setup installs chromium";
   SolveVolumeRig("0.3", true);
-  const std::vector<std::string> args = {"in/rig.json", "in/l.json", "in/r.json", "-o", "out/report.json", "--html", "out/report.html"};
+  const std::vector<std::string> args = {"in/rig.json", "in/l.json", "in/r.json", "-o", "out/report.json", "--html", "out/report.html",
+                                         "--grid", "4x3"};
   ASSERT_EQ(Run("reproj-report", args).exit_code, kOk);
   const CommandResult dom = Render("out/report.html", {"--dump-dom"});
   ASSERT_EQ(dom.exit_code, 0) << dom.err;
   EXPECT_TRUE(ConsoleLines(dom.err).empty()) << ConsoleLines(dom.err).front();
-  EXPECT_EQ(ExpectInlinePictures(dom.out), 1u);
+  EXPECT_EQ(ExpectInlinePictures(dom.out), 3u);  // error against depth; each camera's heat map
   const Json report = ReadJson("out/report.json");
   const Json& tests = report["stereo"]["test_points"];
   ASSERT_EQ(tests["points"].size(), 5u);
@@ -141,7 +155,8 @@ TEST_F(CliReprojReportStereo, PageRendersOfflineWithTheJsonsNumbers) {
   size_t inside_cells = 0;
   for (const std::string& key : Attributes(dom.out, "data-key")) inside_cells += key.starts_with("/stereo/test_points/inside/");
   EXPECT_EQ(inside_cells, tests["inside"]["linear"].is_null() ? 0u : 7u * 6u);
-  EXPECT_EQ(ImagesLoaded("out/report.html"), "1 loaded, 0 broken");
+  EXPECT_EQ(ImagesLoaded("out/report.html"), "3 loaded, 0 broken");
+  EXPECT_EQ(report["stereo"]["reprojection"]["right"]["grid"].size(), 12u);
   ExpectScreenshot("out/report.html", "reproj-report-stereo.png", 1000, 1400);
   EXPECT_TRUE(SameBytesTwice("reproj-report", args, {"out/report.json", "out/report.html"}));
 }
@@ -168,9 +183,7 @@ TEST_F(CliReprojReportStereo, BadInput) {
                       {"two correspondences files after it, LEFT then RIGHT; got 1"}));
   EXPECT_TRUE(Refused({"in/rig.json", "in/l.json", "in/r.json", "-o", "out/nope/report.json"}, "out/nope/report.json: ",
                       {"does not exist"}));
-  // A rig's report has no image cells: --grid is refused, not ignored.
-  EXPECT_TRUE(Refused({"in/rig.json", "in/l.json", "in/r.json", "-o", "out/report.json", "--grid", "4x3"}, "--grid: ",
-                      {"no image cells", "report each camera of the rig alone"}));
+  EXPECT_TRUE(Refused({"in/rig.json", "in/l.json", "in/r.json", "-o", "out/report.json", "--grid", "0x3"}, "--grid: ", {}));
 }
 
 }  // namespace

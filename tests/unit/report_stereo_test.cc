@@ -187,5 +187,33 @@ TEST(StereoReport, CalibrationPointsOnOnePlaneGiveNoVolume) {
   EXPECT_EQ(report.test_stats.z->n, 1u);
 }
 
+TEST(StereoReport, GridCellsHoldEachCamerasReprojectionError) {
+  // The baseline off by Δb moves every right prediction by fx·Δb/z along u (the parallel rig above);
+  // the left camera, posed by PnP on its own noise-free pixels, reprojects exactly.
+  StereoRig truth = testing::ZedLikeRig(false);
+  const double b = 63.0, delta_b = 0.5, fx = truth.right.camera.K()(0, 0);
+  truth.right_from_left = Rigid3d{Eigen::Matrix3d::Identity(), Eigen::Vector3d(-b, 0, 0)};
+  const testing::StereoViews views = BoxVolume(truth, {});
+  StereoReportOptions one_cell;
+  one_cell.grid_cols = one_cell.grid_rows = 1;
+  const StereoReport report =
+      BuildStereoReport(WithBaselineError(truth, delta_b), views.left, views.right, "rig", "l", "r", one_cell);
+  ASSERT_EQ(report.left_grid.error_px.size(), 1u);
+  ASSERT_EQ(report.right_grid.error_px.size(), 1u);
+  const ErrorStats& left = *report.left_grid.error_px[0];
+  const ErrorStats& right = *report.right_grid.error_px[0];
+  EXPECT_EQ(left.n, 75u);
+  EXPECT_LT(left.max, 1e-6);
+  EXPECT_EQ(right.n, 75u);  // 25 points on each of the planes z = 500, 600, 700
+  EXPECT_NEAR(right.mean, fx * delta_b * (1 / 500.0 + 1 / 600.0 + 1 / 700.0) / 3, 1e-6);
+  EXPECT_NEAR(right.max, fx * delta_b / 500, 1e-6);
+  // The default 8 × 6 cells: every point in one of them.
+  const StereoReport cells = BuildStereoReport(WithBaselineError(truth, delta_b), views.left, views.right, "rig", "l", "r");
+  ASSERT_EQ(cells.right_grid.error_px.size(), 48u);
+  size_t n = 0;
+  for (const auto& cell : cells.right_grid.error_px) n += cell ? cell->n : 0;
+  EXPECT_EQ(n, 75u);
+}
+
 }  // namespace
 }  // namespace vstcal

@@ -56,6 +56,14 @@ OrderedJson TestPointJson(const TestPointReport& t) {
   return j;
 }
 
+// Cells `{col, row, error_px}` row-major, as the format's cameras[k].grid.
+OrderedJson GridJson(const ImageGrid& grid, const std::vector<std::optional<ErrorStats>>& stats) {
+  OrderedJson cells = OrderedJson::array();
+  const size_t cols = static_cast<size_t>(grid.cols);
+  for (size_t i = 0; i < stats.size(); ++i) cells.push_back({{"col", i % cols}, {"row", i / cols}, {"error_px", StatsJson(stats[i])}});
+  return cells;
+}
+
 OrderedJson CameraJson(const CameraReport& c, const ImageGrid& grid) {
   OrderedJson j;
   j["file"] = c.file;
@@ -75,12 +83,7 @@ OrderedJson CameraJson(const CameraReport& c, const ImageGrid& grid) {
                      {"points", std::move(points)}});
   }
   j["views"] = std::move(views);
-  OrderedJson cells = OrderedJson::array();
-  for (size_t i = 0; i < c.grid.size(); ++i) {
-    const size_t cols = static_cast<size_t>(grid.cols);
-    cells.push_back({{"col", i % cols}, {"row", i / cols}, {"error_px", StatsJson(c.grid[i])}});
-  }
-  j["grid"] = std::move(cells);
+  j["grid"] = GridJson(grid, c.grid);
   if (c.uncertainty_px.empty()) {
     j["projection_uncertainty"] = nullptr;
   } else {
@@ -270,7 +273,11 @@ OrderedJson StereoReportToJson(const StereoReport& r, const Provenance& provenan
                    {"behind", r.n_behind}}},
                  {"left_only_views", r.left_only_views},
                  {"right_only_views", r.right_only_views},
-                 {"views", std::move(views)}};
+                 {"views", std::move(views)},
+                 {"grid", {{"cols", r.left_grid.grid.cols}, {"rows", r.left_grid.grid.rows}}},
+                 {"reprojection",
+                  {{"left", {{"grid", GridJson(r.left_grid.grid, r.left_grid.error_px)}}},
+                   {"right", {{"grid", GridJson(r.right_grid.grid, r.right_grid.error_px)}}}}}};
   OrderedJson tests = OrderedJson::array();
   for (const StereoTestPoint& t : r.test_points) {
     const bool measured = t.error.excluded == StereoExclusion::kNone;

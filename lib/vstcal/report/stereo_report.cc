@@ -238,11 +238,25 @@ StereoReport BuildStereoReport(const StereoRig& rig, Correspondences left, Corre
   }
 
   Collected all;
+  struct Reprojected {
+    std::vector<Eigen::Vector2d> pixels;
+    std::vector<double> error_px;
+    void Add(const CalibratedCamera& camera, const Rigid3d& camera_from_target, const Observation& o) {
+      const auto p = camera.camera.Project(camera_from_target * o.point);
+      if (!p) return;
+      pixels.push_back(o.pixel);
+      error_px.push_back((*p - o.pixel).norm());
+    }
+  } left_reprojected, right_reprojected;
   for (const auto& [lv, rv] : common) {
     StereoViewReport vr;
     vr.name = lv->name;
     const PoseRefinement pose = volume_pose ? *volume_pose : LeftPose(rig, std::span<const View* const>(&lv, 1));
     vr.pose_status = pose.status == PoseStatus::kOk ? "ok" : std::string(PoseStatusText(pose.status));
+    if (pose.status == PoseStatus::kOk) {
+      for (const Observation& o : lv->observations) left_reprojected.Add(rig.left, pose.body_from_world, o);
+      for (const Observation& o : rv->observations) right_reprojected.Add(rig.right, rig.right_from_left * pose.body_from_world, o);
+    }
     const std::map<Key, size_t> right_index = IndexPoints(*rv, right_file);
     IndexPoints(*lv, left_file);  // for its check: a point twice in the left view
     std::vector<bool> right_used(rv->observations.size(), false);
@@ -283,6 +297,11 @@ StereoReport BuildStereoReport(const StereoRig& rig, Correspondences left, Corre
     report.views.push_back(std::move(vr));
   }
   report.overall = all.Stats();
+  for (auto [out, camera, reprojected] : {std::tuple{&report.left_grid, &rig.left, &left_reprojected},
+                                          std::tuple{&report.right_grid, &rig.right, &right_reprojected}}) {
+    out->grid = ImageGrid{camera->camera.image_size, options.grid_cols, options.grid_rows};
+    out->error_px = ComputeGridStats(out->grid, reprojected->pixels, reprojected->error_px);
+  }
   if (volume_pose) AddTestPoints(rig, *volume_pose, left, right, &report);
   return report;
 }

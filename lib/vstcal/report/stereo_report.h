@@ -77,6 +77,12 @@ struct StereoTestPoint {
   std::optional<bool> inside_volume;  // inside the measured volume (`volume`); nullopt without a hull
 };
 
+// A camera's image cells and the statistics of each (nullopt: no point in it).
+struct StereoCameraGrid {
+  ImageGrid grid;
+  std::vector<std::optional<ErrorStats>> error_px;
+};
+
 struct StereoReport {
   std::string rig_file, left_file, right_file;
   LengthUnit length_unit = LengthUnit::kMillimetre;
@@ -95,6 +101,12 @@ struct StereoReport {
   // 000 §4.2); both empty without a hull.
   MeasuredVolume volume;
   StereoStats test_inside, test_outside;
+  // Where in each image the rig mispredicts: per cell of its camera's grid (row-major), the statistics of the
+  // reprojection error |p̂ − m| (px) of the points of each common view with a left pose whose
+  // measured pixel m lies in the cell, p̂ = left.Project(left_from_<frame> · X) for the left camera
+  // (the PnP pose: its own fit), right.Project(right_from_left · left_from_<frame> · X) for the right
+  // one (the rig's relative pose too). A point projecting behind a camera is in no cell.
+  StereoCameraGrid left_grid, right_grid;
 };
 
 struct StereoReportOptions {
@@ -102,6 +114,7 @@ struct StereoReportOptions {
   // match in the name (calib-stereo solve's --match-views: "([0-9]+)$" pairs left01 with right01);
   // the report names views by their keys.
   std::string view_key_pattern;
+  int grid_cols = 8, grid_rows = 6;  // image cells of the per-region reprojection statistics
 };
 
 // Throws InputError naming the file and field when the inputs do not go together: a rig camera
