@@ -1,5 +1,5 @@
 // err-sim run --html as a person sees it (browser_fixture.h): the page of a short run of the shipped
-// seed 001 chain (and of a sweep) renders offline with no console message, every image decodes, every number shown
+// seed 001 chain (and of a sweep, Sobol indices, a linear comparison) renders offline with no console message, every image decodes, every number shown
 // is the JSON report's at the pointer it names; the same seed gives the same bytes; a page that
 // cannot be written leaves nothing behind.
 #include <algorithm>
@@ -107,6 +107,81 @@ TEST_F(CliErrSimHtml, PageThatCannotBeWrittenLeavesNothing) {
   args = ShortRun("out/r.json", "out/r.html");
   args.insert(args.end(), {"--shard", "0/2"});
   EXPECT_TRUE(FailsWith(Run("err-sim", args), "err-sim", kBadInput, "--html: ", {"give --html to `err-sim merge`"}));
+  EXPECT_TRUE(OutDirEmpty());
+}
+
+// Rows of the linear page's "differs" column that name a disagreement.
+size_t DifferingRows(const std::string& dom) {
+  size_t n = 0;
+  for (const char* cell : {"<td>mean</td>", "<td>σ</td>", "<td>mean, σ</td>"}) {
+    for (size_t at = dom.find(cell); at != std::string::npos; at = dom.find(cell, at + 1)) ++n;
+  }
+  return n;
+}
+
+TEST_F(CliErrSimHtml, SobolPageShowsEachSourcesIndicesWithTheirIntervals) {
+  ASSERT_TRUE(fs::exists(kChromium)) << "scripts/setup installs chromium";
+  const CommandResult r = Run("err-sim", {"sobol", kChain, "-o", "out/sobol.json", "--html", "out/sobol.html", "--samples", "64",
+                                          "--bootstrap", "20", "-q"});
+  ASSERT_EQ(r.exit_code, kOk) << r.err;
+  const Json sobol = ReadJson("out/sobol.json");
+  const size_t groups = sobol["groups"].size(), outputs = sobol["outputs"].size();
+  ASSERT_EQ(groups, 7u);
+  ASSERT_EQ(outputs, 5u * 14);
+  const CommandResult dom = Render("out/sobol.html", {"--dump-dom"});
+  ASSERT_EQ(dom.exit_code, 0) << dom.err;
+  EXPECT_TRUE(ConsoleLines(dom.err).empty()) << ConsoleLines(dom.err).front();
+  // A chart per test point for the image error of each eye and the linear misregistration and misperception.
+  const size_t charted = 5 * 4;
+  EXPECT_EQ(ExpectInlinePictures(dom.out), charted);
+  // The run (3); each charted output's first and total index of every source with both interval
+  // ends (6); every output's mean, variance and both indices of every source: all the JSON's.
+  EXPECT_EQ(ExpectNumbersOf(sobol, dom.out), 3 + charted * groups * 6 + outputs * (2 + 2 * groups));
+  // The interval cells are those of the charted outputs, and each source's of every one of them.
+  size_t lower_ends = 0;
+  for (const std::string& key : Attributes(dom.out, "data-key")) {
+    if (!key.ends_with("/first/interval/0")) continue;
+    ++lower_ends;
+    const std::string name = sobol.at(Json::json_pointer(key.substr(0, key.find("/indices")) + "/name")).get<std::string>();
+    EXPECT_TRUE(name.ends_with(".pixel_px") || name.ends_with(".linear")) << name;
+  }
+  EXPECT_EQ(lower_ends, charted * groups);
+  EXPECT_EQ(ImagesLoaded("out/sobol.html"), std::to_string(charted) + " loaded, 0 broken");
+  ExpectScreenshot("out/sobol.html", "err-sim-sobol.png", 1000, 1600);
+}
+
+TEST_F(CliErrSimHtml, LinearPageShowsFirstOrderAgainstMonteCarlo) {
+  ASSERT_TRUE(fs::exists(kChromium)) << "scripts/setup installs chromium";
+  const CommandResult r =
+      Run("err-sim", {"linear", kChain, "-o", "out/linear.json", "--html", "out/linear.html", "--samples", "200", "-q"});
+  ASSERT_EQ(r.exit_code, kOk) << r.err;
+  const Json linear = ReadJson("out/linear.json");
+  const size_t outputs = linear["outputs"].size(), sources = linear["outputs"][0]["linear_sigma_by_source"].size();
+  ASSERT_EQ(outputs, 5u * 10);
+  ASSERT_EQ(sources, 7u);
+  const CommandResult dom = Render("out/linear.html", {"--dump-dom"});
+  ASSERT_EQ(dom.exit_code, 0) << dom.err;
+  EXPECT_TRUE(ConsoleLines(dom.err).empty()) << ConsoleLines(dom.err).front();
+  // σ linear against Monte Carlo for the pixel and for the length outputs; the relative differences.
+  EXPECT_EQ(ExpectInlinePictures(dom.out), 3u);
+  // The run (4); per output both means, the mean's standard error, both σ, the σ's standard error,
+  // the relative difference and the σ from each source.
+  EXPECT_EQ(ExpectNumbersOf(linear, dom.out), 4 + outputs * (7 + sources));
+  // As many rows say "differs" as the file counts disagreements.
+  EXPECT_EQ(DifferingRows(dom.out), linear["disagreements"].get<size_t>());
+  EXPECT_EQ(ImagesLoaded("out/linear.html"), "3 loaded, 0 broken");
+  ExpectScreenshot("out/linear.html", "err-sim-linear.png", 1000, 1600);
+}
+
+TEST_F(CliErrSimHtml, SensitivityPagesAreAllOrNothingAndNormalizeHasNone) {
+  EXPECT_TRUE(FailsWith(Run("err-sim", {"sobol", kChain, "-o", "out/s.json", "--html", "out/missing/s.html", "--samples", "8", "-q"}),
+                        "err-sim", kBadInput, "out/missing/s.html: ", {"does not exist"}));
+  EXPECT_TRUE(OutDirEmpty());
+  EXPECT_TRUE(FailsWith(Run("err-sim", {"linear", kChain, "-o", "out/l.json", "--html", "out/l.json", "--samples", "8", "-q"}),
+                        "err-sim", kBadInput, "", {}));
+  EXPECT_TRUE(OutDirEmpty());
+  EXPECT_TRUE(FailsWith(Run("err-sim", {"normalize", kChain, "-o", "out/n.json", "--html", "out/n.html"}), "err-sim", kBadInput,
+                        "--html: ", {"no page", "give --html to run, merge, sweep, sobol or linear"}));
   EXPECT_TRUE(OutDirEmpty());
 }
 

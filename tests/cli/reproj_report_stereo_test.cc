@@ -1,6 +1,7 @@
 // CLI tests of reproj-report with a stereo rig (RIG LEFT RIGHT): a rig calib-stereo solved from
 // calib-synth's noise-free views of a volume triangulates every point where it is (zero error, all
-// 315 points of the 9 × 7 grid on five planes); a point one camera missed is left out and counted;
+// 315 points of the 9 × 7 grid on five planes) and splits the test points inside and outside the
+// calibration points' hull; a point one camera missed is left out and counted;
 // views are matched by name or by --match-views' key;
 // the page renders offline in Chromium with the JSON's numbers; every bad input is refused with one
 // line, exit code 2 and nothing written.
@@ -61,6 +62,29 @@ TEST_F(CliReprojReportStereo, NoiseFreeRigTriangulatesEveryPointWhereItIs) {
   for (const Json& t : s["test_points"]["points"]) EXPECT_TRUE(t["excluded"].is_null()) << t["name"];
   EXPECT_EQ(s["test_points"]["stats"]["linear"]["n"], 5);
   EXPECT_LT(s["test_points"]["stats"]["linear"]["max"].get<double>(), 1e-6);
+  // Split by the hull of the calibration points, the box of the 9 × 7 grid at 80 mm (x within
+  // ±320 mm) on planes z = 0 … 400 mm: seed 000's "Left" (x = −760) and "Right" (x = 480) lie
+  // beyond its sides, the three "Middle" points inside.
+  EXPECT_EQ(s["volume"]["hull"], "ok");
+  EXPECT_EQ(s["volume"]["vertices"], 8);
+  for (const Json& t : s["test_points"]["points"]) {
+    EXPECT_EQ(t["inside_volume"].get<bool>(), t["name"].get<std::string>().starts_with("Middle")) << t["name"];
+  }
+  EXPECT_EQ(s["test_points"]["inside"]["linear"]["n"], 3);
+  EXPECT_EQ(s["test_points"]["outside"]["linear"]["n"], 2);
+  // Each camera's reprojection error per image cell (--grid, default 8 × 6): noise-free, none.
+  EXPECT_EQ(s["grid"], Json({{"cols", 8}, {"rows", 6}}));
+  for (const char* eye : {"left", "right"}) {
+    const Json& cells = s["reprojection"][eye]["grid"];
+    ASSERT_EQ(cells.size(), 48u);
+    int n = 0;
+    for (const Json& c : cells) {
+      if (c["error_px"].is_null()) continue;
+      n += c["error_px"]["n"].get<int>();
+      EXPECT_LT(c["error_px"]["max"].get<double>(), 1e-6) << eye;
+    }
+    EXPECT_EQ(n, 9 * 7 * 5) << eye;
+  }
 
   // A test point the right camera did not measure: listed, not measured.
   Json right = ReadJson("in/r.json");
@@ -108,19 +132,31 @@ TEST_F(CliReprojReportStereo, ViewsMatchedByAKeyPattern) {
                       "--match-views: ", {"goes with a stereo rig"}));
 }
 
-// The page as a person sees it: rendered by headless Chromium with no console message, its one
-// chart decoded, every number shown equal to the JSON's, a screenshot kept; and the same bytes twice.
+// The page as a person sees it: rendered by headless Chromium with no console message, its three
+// charts decoded (error against depth, each camera's heat map over a --grid of 4 × 3 cells), every number shown equal to the JSON's, a screenshot kept; and the same bytes twice.
 TEST_F(CliReprojReportStereo, PageRendersOfflineWithTheJsonsNumbers) {
   ASSERT_TRUE(fs::exists(kChromium)) << "scripts/setup installs chromium";
-  SolveVolumeRig("0.3");
-  const std::vector<std::string> args = {"in/rig.json", "in/l.json", "in/r.json", "-o", "out/report.json", "--html", "out/report.html"};
+  SolveVolumeRig("0.3", true);
+  const std::vector<std::string> args = {"in/rig.json", "in/l.json", "in/r.json", "-o", "out/report.json", "--html", "out/report.html",
+                                         "--grid", "4x3"};
   ASSERT_EQ(Run("reproj-report", args).exit_code, kOk);
   const CommandResult dom = Render("out/report.html", {"--dump-dom"});
   ASSERT_EQ(dom.exit_code, 0) << dom.err;
   EXPECT_TRUE(ConsoleLines(dom.err).empty()) << ConsoleLines(dom.err).front();
-  EXPECT_EQ(ExpectInlinePictures(dom.out), 1u);
-  EXPECT_EQ(ExpectNumbersOf(ReadJson("out/report.json"), dom.out), (7u + 5u) * 6u);  // overall 7 rows, 5 views
-  EXPECT_EQ(ImagesLoaded("out/report.html"), "1 loaded, 0 broken");
+  EXPECT_EQ(ExpectInlinePictures(dom.out), 3u);  // error against depth; each camera's heat map
+  const Json report = ReadJson("out/report.json");
+  const Json& tests = report["stereo"]["test_points"];
+  ASSERT_EQ(tests["points"].size(), 5u);
+  // Overall 7 rows and 5 views of 6 statistics; 7 rows inside and 7 outside the volume (those of a
+  // side without a point are dashes); each test point's dx, dy, dz and linear.
+  const size_t sides = !tests["inside"]["linear"].is_null() + !tests["outside"]["linear"].is_null();
+  EXPECT_EQ(ExpectNumbersOf(report, dom.out), (7u + 5u) * 6u + sides * 7u * 6u + 5u * 4u);
+  EXPECT_EQ(Attributes(dom.out, "data-key").size(), (7u + 5u) * 6u + sides * 7u * 6u + 5u * 4u);
+  size_t inside_cells = 0;
+  for (const std::string& key : Attributes(dom.out, "data-key")) inside_cells += key.starts_with("/stereo/test_points/inside/");
+  EXPECT_EQ(inside_cells, tests["inside"]["linear"].is_null() ? 0u : 7u * 6u);
+  EXPECT_EQ(ImagesLoaded("out/report.html"), "3 loaded, 0 broken");
+  EXPECT_EQ(report["stereo"]["reprojection"]["right"]["grid"].size(), 12u);
   ExpectScreenshot("out/report.html", "reproj-report-stereo.png", 1000, 1400);
   EXPECT_TRUE(SameBytesTwice("reproj-report", args, {"out/report.json", "out/report.html"}));
 }
@@ -147,6 +183,7 @@ TEST_F(CliReprojReportStereo, BadInput) {
                       {"two correspondences files after it, LEFT then RIGHT; got 1"}));
   EXPECT_TRUE(Refused({"in/rig.json", "in/l.json", "in/r.json", "-o", "out/nope/report.json"}, "out/nope/report.json: ",
                       {"does not exist"}));
+  EXPECT_TRUE(Refused({"in/rig.json", "in/l.json", "in/r.json", "-o", "out/report.json", "--grid", "0x3"}, "--grid: ", {}));
 }
 
 }  // namespace

@@ -79,7 +79,7 @@ TEST(ReprojReport, ShiftedPixelsGiveTheirLateralErrorAtEachDepth) {
   EXPECT_NEAR(axis.depth, 1200, 1e-12);
   EXPECT_NEAR(axis.angular_rad, std::atan(5 / kF), 1e-15);
   EXPECT_NEAR(axis.lateral, 1200 * 5 / kF, 1e-10);
-  EXPECT_EQ(report.hull_status, "ok");
+  EXPECT_EQ(report.volume.status, "ok");
 }
 
 TEST(ReprojReport, RotationAboutTheCentreGivesDTanTheta) {

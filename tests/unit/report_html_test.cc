@@ -70,7 +70,7 @@ TEST(ErrSimReportHtml, UndefinedStatisticsAndNoBudgetAreDashesNotNumbers) {
   EXPECT_EQ(page.find("data-key=\"/totals/misperception_rms"), std::string::npos);
   EXPECT_NE(page.find("data-key=\"/test_points/0/image/left/pixel_px/p95\" data-value=\"5.0\">5.0000<"), std::string::npos);
   EXPECT_NE(page.find("data-key=\"/undefined_samples\" data-value=\"10\">10<"), std::string::npos);
-  EXPECT_THROW(ErrSimHtml({{"format", "vstcal/err-sim-sobol@2"}}), InternalError);
+  EXPECT_THROW(ErrSimHtml({{"format", "vstcal/err-sim-shard@2"}}), InternalError);  // a shard has no page
 }
 
 }  // namespace

@@ -54,9 +54,12 @@ ErrSimCommandLine::ErrSimCommandLine(CLI::App& app) {
   sobol_ = AddCommon(app.add_subcommand("sobol", "first-order and total Sobol indices per source"), true, true);
   sobol_->add_option("--sampling", sobol_request_.sampling, "sobol or pseudo-random")->check(CLI::IsMember({"sobol", "pseudo-random"}))->capture_default_str();
   sobol_->add_option("--bootstrap", sobol_request_.bootstrap, "bootstrap resamples for the intervals (0: none; at most 10000)")->capture_default_str();
+  sobol_->add_option("--html", html_, html_help)->check(kNonEmpty);
 
   linear_ = AddCommon(app.add_subcommand("linear", "first-order propagation (autodiff) compared with Monte Carlo"), true, true);
-  AddCommon(app.add_subcommand("normalize", "write the chain in the canonical vst-chain@1 layout, defaults spelled out"), false, false);
+  linear_->add_option("--html", html_, html_help)->check(kNonEmpty);
+  CLI::App* normalize = AddCommon(app.add_subcommand("normalize", "write the chain in the canonical vst-chain@1 layout, defaults spelled out"), false, false);
+  normalize->add_option("--html", html_, "refused: a chain has no page (run, merge, sweep, sobol and linear have one)");
 }
 
 errsim::Outcome ErrSimCommandLine::Run(int argc, char** argv) {
@@ -89,6 +92,7 @@ errsim::Outcome ErrSimCommandLine::Run(int argc, char** argv) {
     return errsim::SobolErrSim(sobol_request_, provenance);
   }
   if (used == linear_) return errsim::LinearErrSim(chain_, provenance);
+  if (!html_.empty()) throw InputError("--html: normalize writes a chain, which has no page; give --html to run, merge, sweep, sobol or linear");
   return errsim::NormalizeErrSim(chain_.chain, output_, provenance);
 }
 

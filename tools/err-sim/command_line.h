@@ -22,7 +22,7 @@ class ErrSimCommandLine {
   errsim::Outcome Run(int argc, char** argv);
   const std::string& output() const { return output_; }
   bool quiet() const { return quiet_; }
-  const std::string& html() const { return html_; }  // run, merge: the page to write too (empty: none)
+  const std::string& html() const { return html_; }  // run, merge, sweep, sobol, linear: the page to write too (empty: none)
 
  private:
   CLI::App* AddCommon(CLI::App* app, bool sources, bool sampling);

@@ -40,7 +40,7 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--match-views", match_views,
                  "with a rig: match views by the first group of this regular expression in their names ('([0-9]+)$')");
-  app.add_option("--grid", grid, "image cells COLSxROWS of the per-region statistics (1 to 64 each)")->capture_default_str();
+  app.add_option("--grid", grid, "image cells COLSxROWS of the per-region statistics (1 to 64 each; a rig: each camera's)")->capture_default_str();
 
   return vstcal::tools::RunTool(app, argc, argv, [&] {
     using namespace vstcal;
@@ -54,7 +54,8 @@ int main(int argc, char** argv) {
                          std::to_string(inputs.size() - 1));
       }
       const StereoReport report = BuildStereoReport(io::StereoRigFromJson(first), io::ReadCorrespondences(inputs[1]),
-                                                    io::ReadCorrespondences(inputs[2]), inputs[0], inputs[1], inputs[2], {match_views});
+                                                    io::ReadCorrespondences(inputs[2]), inputs[0], inputs[1], inputs[2],
+                                                    {match_views, options.grid_cols, options.grid_rows});
       std::vector<std::pair<std::filesystem::path, std::string>> files = {
           {output, io::DumpJson(io::StereoReportToJson(report, io::MakeProvenance("reproj-report", argc, argv)))}};
       if (!html.empty()) files.emplace_back(html, StereoReportHtml(report));

@@ -8,6 +8,7 @@ extern "C" {
 #include <libqhull_r/qhull_ra.h>
 }
 
+#include "vstcal/calib/correspondences.h"
 #include "vstcal/core/error.h"
 
 namespace vstcal {
@@ -92,5 +93,25 @@ double ConvexHull3::SignedDistance(const Eigen::Vector3d& point) const {
 }
 
 bool ConvexHull3::Contains(const Eigen::Vector3d& point) const { return SignedDistance(point) <= tolerance_; }
+
+MeasuredVolume MeasuredVolumeOf(std::span<const Correspondences* const> files) {
+  MeasuredVolume volume;
+  std::vector<Eigen::Vector3d> points;
+  for (const Correspondences* c : files) {
+    if (c->rig != Rig::kVolume) {
+      volume.status = "planar views: the boards share no world frame";
+      return volume;
+    }
+    for (const Observation& o : AllObservations(*c)) points.push_back(o.point);
+  }
+  ConvexHullOutcome outcome = ConvexHull3::Of(points);
+  volume.hull = std::move(outcome.hull);
+  volume.status = volume.hull ? "ok" : outcome.why;
+  if (volume.hull) {
+    volume.vertices = volume.hull->num_vertices();
+    volume.facets = volume.hull->num_facets();
+  }
+  return volume;
+}
 
 }  // namespace vstcal

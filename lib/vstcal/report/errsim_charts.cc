@@ -1,5 +1,7 @@
 #include "vstcal/report/errsim_charts.h"
 
+#include <algorithm>
+
 #include "vstcal/report/gnuplot.h"
 
 namespace vstcal {
@@ -87,6 +89,88 @@ std::string SweepCurvesScript(const io::OrderedJson& sweep, const std::string& s
   return SvgChartHeader(900, 360 + 18 * static_cast<int>((lines + 2) / 3)) + "set key noenhanced maxrows " +
          std::to_string((lines + 2) / 3) + "\n" + data + "set xlabel \"position in the swept range (-1: lo, 0: middle, +1: hi)\"\n" +
          "set ylabel " + GnuplotQuoted(ylabel) + "\nset xrange [-1:1]\nset yrange [0:*]\n" + plot + "\n";
+}
+
+}  // namespace vstcal
+
+namespace vstcal {
+namespace {
+
+// `value` of the index object {value, interval: [lo, hi]} as "value lo hi", NaN where null.
+std::string IndexColumns(const io::OrderedJson& index) {
+  const auto& interval = index.at("interval");
+  auto number = [](const io::OrderedJson& v) { return v.is_number() ? io::ShortestDecimal(v.get<double>()) : std::string("NaN"); };
+  return number(index.at("value")) + " " + number(interval.at(0)) + " " + number(interval.at(1));
+}
+
+// Rotated output names on the x axis, thinned past 40 labels (as QuantileBarsScript).
+std::string OutputTics(size_t n) {
+  return "set xtics rotate by -60 noenhanced font \",9\"\n" + (n > 40 ? "set xtics 0, " + std::to_string(n / 20) + "\n" : "");
+}
+
+}  // namespace
+
+std::string SobolIndicesScript(const io::OrderedJson& sobol_output, const io::OrderedJson& groups) {
+  std::string data = "$i << EOD\n";
+  bool any = false;
+  for (const auto& group : groups) {
+    const auto& indices = sobol_output.at("indices").at(group.get<std::string>());
+    any = any || indices.at("first").at("value").is_number() || indices.at("total").at("value").is_number();
+    data += GnuplotQuoted(group.get<std::string>()) + " " + IndexColumns(indices.at("first")) + " " +
+            IndexColumns(indices.at("total")) + "\n";
+  }
+  if (!any) return "";
+  return SvgChartHeader(900, 340) + data +
+         "EOD\nset style data histograms\nset style histogram errorbars gap 1 lw 1\nset style fill solid 0.85 border -1\n"
+         "set bars 0.4\nset ylabel \"Sobol index\"\nset xtics rotate by -30 noenhanced\nset xzeroaxis lt -1\n"
+         "plot $i using 2:3:4:xtic(1) lc rgb \"" + std::string(ChartColour(0)) + "\" title \"first order S_i\" noenhanced, "
+         "$i using 5:6:7 lc rgb \"" + ChartColour(1) + "\" title \"total S_Ti\" noenhanced\n";
+}
+
+std::string LinearScatterScript(const io::OrderedJson& linear, const std::vector<size_t>& indices, const std::string& unit) {
+  const auto& outputs = linear.at("outputs");
+  std::string data = "$p << EOD\n";
+  double top = 0;
+  for (size_t k : indices) {
+    const auto& o = outputs.at(k);
+    if (!o.at("linear_sigma").is_number() || !o.at("monte_carlo_sigma").is_number()) continue;
+    const double x = o.at("linear_sigma").get<double>(), y = o.at("monte_carlo_sigma").get<double>();
+    top = std::max({top, x, y});
+    const bool disagrees = o.at("mean_disagrees").get<bool>() || o.at("sigma_disagrees").get<bool>();
+    data += io::ShortestDecimal(x) + " " + io::ShortestDecimal(y) + " " + (disagrees ? "1" : "0") + "\n";
+  }
+  if (!(top > 0)) return "";
+  const std::string range = "[0:" + io::ShortestDecimal(1.05 * top) + "]";
+  return SvgChartHeader(560, 520) + data + "EOD\nset size ratio -1\nset xrange " + range + "\nset yrange " + range +
+         "\nset xlabel " + GnuplotQuoted("first-order σ (" + unit + ")") + "\nset ylabel " +
+         GnuplotQuoted("Monte Carlo σ (" + unit + ")") + " noenhanced\nset xlabel noenhanced\n"
+         "plot x with lines dt 2 lc rgb \"black\" title \"y = x (linear exact)\", "
+         "$p using 1:($3 == 0 ? $2 : NaN) with points pt 7 ps 0.8 lc rgb \"" + std::string(ChartColour(0)) +
+         "\" title \"agree\", $p using 1:($3 == 1 ? $2 : NaN) with points pt 7 ps 0.9 lc rgb \"" + ChartColour(1) +
+         "\" title \"differ beyond 3 standard errors\"\n";
+}
+
+std::string LinearRelativeDifferenceScript(const io::OrderedJson& linear, const std::vector<size_t>& indices) {
+  const auto& outputs = linear.at("outputs");
+  std::string data = "$d << EOD\n";
+  bool any = false;
+  for (size_t i = 0; i < indices.size(); ++i) {
+    const auto& o = outputs.at(indices[i]);
+    const auto& d = o.at("sigma_relative_difference");
+    const auto& se = o.at("sigma_standard_error");
+    const auto& mc = o.at("monte_carlo_sigma");
+    const bool band = se.is_number() && mc.is_number() && mc.get<double>() > 0;
+    any = any || d.is_number();
+    data += std::to_string(i) + " " + GnuplotQuoted(o.at("name").get<std::string>()) + " " +
+            (d.is_number() ? io::ShortestDecimal(100 * d.get<double>()) : "NaN") + " " +
+            (band ? io::ShortestDecimal(300 * se.get<double>() / mc.get<double>()) : "NaN") + "\n";
+  }
+  if (!any) return "";
+  return SvgChartHeader(900, 420) + data + "EOD\nset ylabel \"(linear σ - MC σ) / MC σ (%)\" noenhanced\n" +
+         "set xrange [-0.7:" + std::to_string(indices.size()) + "-0.3]\nset boxwidth 0.6\nset style fill solid 0.7 border -1\n" +
+         "set xzeroaxis lt -1\n" + OutputTics(indices.size()) + "plot $d using 1:3:xtic(2) with boxes lc rgb \"" +
+         ChartColour(0) + "\" title \"relative difference of σ\", $d using 1:3:4 with yerrorbars pt -1 lc rgb \"black\" "
+         "title \"± 3 standard errors of the Monte Carlo σ\"\n";
 }
 
 }  // namespace vstcal

@@ -35,3 +35,22 @@ std::string SweepCurvesScript(const io::OrderedJson& sweep, const std::string& s
                               const std::string& ylabel);
 
 }  // namespace vstcal
+
+namespace vstcal {
+
+// One output of a vstcal/err-sim-sobol@2 file (`outputs[k]`): for each source in `groups`, its
+// first-order and total Sobol index as two bars, each with its bootstrap interval as an error bar.
+// Empty when no index of the output is a number.
+std::string SobolIndicesScript(const io::OrderedJson& sobol_output, const io::OrderedJson& groups);
+
+// A vstcal/err-sim-linear@2 file's comparison for the outputs `indices` (one unit): each output a
+// point at (first-order σ, Monte Carlo σ), red where the file says linear and Monte Carlo disagree,
+// beside the line y = x where they would agree. `unit` labels the axes. Empty without a defined pair.
+std::string LinearScatterScript(const io::OrderedJson& linear, const std::vector<size_t>& indices, const std::string& unit);
+
+// The same outputs' relative difference (linear σ − MC σ) / MC σ in %, one bar each, with ±3 of the
+// Monte Carlo σ's standard errors (relative) as the error bar: a bar whose error bar misses 0 is
+// beyond what sampling noise explains. Empty without a defined difference.
+std::string LinearRelativeDifferenceScript(const io::OrderedJson& linear, const std::vector<size_t>& indices);
+
+}  // namespace vstcal

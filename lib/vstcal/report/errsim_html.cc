@@ -7,6 +7,7 @@
 #include "vstcal/core/error.h"
 
 #include "vstcal/report/errsim_charts.h"
+#include "vstcal/report/errsim_page_parts.h"
 #include "vstcal/report/html_page.h"
 
 namespace vstcal {
@@ -14,17 +15,11 @@ namespace {
 
 using html::Escape;
 using io::OrderedJson;
+using errsim_page::ChartOrNote;
+using errsim_page::Table;
+using errsim_page::ValueCell;
 
 constexpr std::array<const char*, 2> kEyes = {"left", "right"};
-
-// The report value at `pointer` as a table cell, a dash when it is null or absent.
-std::string ValueCell(const OrderedJson& report, const std::string& pointer) {
-  const OrderedJson::json_pointer at(pointer);
-  if (!report.contains(at)) return html::EmptyCells(1);
-  const OrderedJson& v = report.at(at);
-  if (v.is_number_integer() && v.get<int64_t>() >= 0) return html::Cell(pointer, v.get<size_t>());  // counts
-  return v.is_number() ? html::Cell(pointer, v.get<double>()) : html::EmptyCells(1);
-}
 
 // Cells of one statistics object (mean, rms, p50, p95, p99, max), dashes when it is null.
 std::string StatsCells(const OrderedJson& report, const std::string& pointer) {
@@ -33,15 +28,6 @@ std::string StatsCells(const OrderedJson& report, const std::string& pointer) {
   return s;
 }
 constexpr const char* kStatsHeads = "<th>mean</th><th>rms</th><th>p50</th><th>p95</th><th>p99</th><th>max</th>";
-
-// A chart, or a line saying why there is none (a script of nothing to draw is empty).
-std::string ChartOrNote(const std::string& script, const std::string& alt, const std::string& caption) {
-  return script.empty() ? "<p class=\"none\">" + Escape(alt) + ": no defined value to draw.</p>\n" : html::Chart(script, alt, caption);
-}
-
-std::string Table(const std::string& caption, const std::string& heads, const std::string& rows) {
-  return "<table><caption>" + Escape(caption) + "</caption><tr>" + heads + "</tr>\n" + rows + "</table>\n";
-}
 
 std::string Summary(const OrderedJson& r) {
   const std::string unit = r.at("length_unit").get<std::string>();
@@ -195,7 +181,9 @@ std::string ErrSimSweepHtml(const OrderedJson& r) {
 std::string ErrSimHtml(const OrderedJson& output) {
   const std::string format = output.value("format", "");
   if (format == "vstcal/err-sim-sweep@2") return ErrSimSweepHtml(output);
-  VSTCAL_CHECK(format == "vstcal/err-sim-report@2", "--html is offered for run, merge and sweep only");
+  if (format == "vstcal/err-sim-sobol@2") return ErrSimSobolHtml(output);
+  if (format == "vstcal/err-sim-linear@2") return ErrSimLinearHtml(output);
+  VSTCAL_CHECK(format == "vstcal/err-sim-report@2", "--html is offered for run, merge, sweep, sobol and linear only");
   return ErrSimReportHtml(output);
 }
 

@@ -5,14 +5,16 @@
 // carries the JSON pointer it comes from, e.g. data-key="/test_points/0/image/left/pixel_px/p95".
 #pragma once
 
+#include <cstddef>
 #include <string>
 
 #include "vstcal/json/json_writer.h"
 
 namespace vstcal {
 
-// The page of an err-sim output, by its "format": a run report (ErrSimReportHtml) or a sweep
-// (ErrSimSweepHtml). VSTCAL_CHECK for another format (the tool offers --html for these only).
+// The page of an err-sim output, by its "format": a run report (ErrSimReportHtml), a sweep
+// (ErrSimSweepHtml), Sobol indices (ErrSimSobolHtml) or a linear comparison (ErrSimLinearHtml).
+// VSTCAL_CHECK for another format (the tool offers --html for these only).
 std::string ErrSimHtml(const io::OrderedJson& output);
 
 // `report` is a complete err-sim run report (err-sim run or merge); the charts are drawn by gnuplot.
@@ -23,5 +25,17 @@ std::string ErrSimReportHtml(const io::OrderedJson& report);
 // misregistration along each parameter's swept range; per parameter, its range, the measures at both
 // ends and its largest slope (autodiff, at the middle) over the outputs, with that output's name.
 std::string ErrSimSweepHtml(const io::OrderedJson& sweep);
+
+// `sobol` is a vstcal/err-sim-sobol@2 output: the first-order and total index of each source with
+// its bootstrap interval, charted for each test point's image error per eye and linear
+// misregistration and misperception (the first kMaxSobolCharts of them: a chart is ~25 kB), in
+// tables for every output. errsim_sensitivity_html.cc.
+std::string ErrSimSobolHtml(const io::OrderedJson& sobol);
+inline constexpr size_t kMaxSobolCharts = 40;
+
+// `linear` is a vstcal/err-sim-linear@2 output: first-order σ against Monte Carlo σ per output (a
+// scatter with y = x for the pixel and for the length outputs), their relative difference with the
+// Monte Carlo σ's ±3 standard errors, and the table of means, σs and σ per source.
+std::string ErrSimLinearHtml(const io::OrderedJson& linear);
 
 }  // namespace vstcal

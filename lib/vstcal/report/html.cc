@@ -83,7 +83,7 @@ std::string ReprojReportHtml(const ReprojReport& r, const std::filesystem::path&
   s += "<p>" + std::to_string(NumObservations(c)) + " points in " + std::to_string(c.views.size()) + " views (" +
        (c.rig == Rig::kVolume ? "volume" : "planar views") + "), " + std::to_string(c.test_points.size()) +
        " test points, image " + std::to_string(c.image_size.width) + "×" + std::to_string(c.image_size.height) +
-       " px, lengths in " + std::string(LengthUnitName(c.length_unit)) + ". Measured volume: " + Escape(r.hull_status) +
+       " px, lengths in " + std::string(LengthUnitName(c.length_unit)) + ". Measured volume: " + Escape(r.volume.status) +
        ". Definitions: docs/math/report-statistics.md.</p>\n";
   if (!r.differences.empty()) {
     std::string rows;

@@ -56,6 +56,14 @@ OrderedJson TestPointJson(const TestPointReport& t) {
   return j;
 }
 
+// Cells `{col, row, error_px}` row-major, as the format's cameras[k].grid.
+OrderedJson GridJson(const ImageGrid& grid, const std::vector<std::optional<ErrorStats>>& stats) {
+  OrderedJson cells = OrderedJson::array();
+  const size_t cols = static_cast<size_t>(grid.cols);
+  for (size_t i = 0; i < stats.size(); ++i) cells.push_back({{"col", i % cols}, {"row", i / cols}, {"error_px", StatsJson(stats[i])}});
+  return cells;
+}
+
 OrderedJson CameraJson(const CameraReport& c, const ImageGrid& grid) {
   OrderedJson j;
   j["file"] = c.file;
@@ -75,12 +83,7 @@ OrderedJson CameraJson(const CameraReport& c, const ImageGrid& grid) {
                      {"points", std::move(points)}});
   }
   j["views"] = std::move(views);
-  OrderedJson cells = OrderedJson::array();
-  for (size_t i = 0; i < c.grid.size(); ++i) {
-    const size_t cols = static_cast<size_t>(grid.cols);
-    cells.push_back({{"col", i % cols}, {"row", i / cols}, {"error_px", StatsJson(c.grid[i])}});
-  }
-  j["grid"] = std::move(cells);
+  j["grid"] = GridJson(grid, c.grid);
   if (c.uncertainty_px.empty()) {
     j["projection_uncertainty"] = nullptr;
   } else {
@@ -108,6 +111,10 @@ void AppendStatsRow(std::string* out, const std::string& label, const std::optio
   }
   Append(out, "  %-24s %6zu %10.4f %10.4f %10.4f %10.4f %10.4f\n", label.c_str(), s->n, s->mean, s->rms, s->median,
          s->p95, s->max);
+}
+
+OrderedJson VolumeJson(const MeasuredVolume& v) {
+  return {{"hull", v.status}, {"vertices", v.vertices}, {"facets", v.facets}};
 }
 
 OrderedJson StereoStatsJson(const StereoStats& s) {
@@ -174,7 +181,7 @@ OrderedJson ReprojReportToJson(const ReprojReport& r, const Provenance& provenan
   for (const View& v : c.views) images.push_back(v.image.empty() ? OrderedJson(nullptr) : OrderedJson(v.image));
   j["correspondences"]["images"] = std::move(images);
   j["grid"] = {{"cols", r.grid.cols}, {"rows", r.grid.rows}};
-  j["volume"] = {{"hull", r.hull_status}, {"vertices", r.hull_vertices}, {"facets", r.hull_facets}};
+  j["volume"] = VolumeJson(r.volume);
   OrderedJson cameras = OrderedJson::array();
   for (const CameraReport& cam : r.cameras) cameras.push_back(CameraJson(cam, r.grid));
   j["cameras"] = std::move(cameras);
@@ -197,7 +204,7 @@ std::string ReprojReportText(const ReprojReport& r) {
   const std::string unit(LengthUnitName(r.correspondences.length_unit));
   Append(&out, "%s: %zu points in %zu views, %zu test points; volume: %s\n", r.correspondences_file.c_str(),
          NumObservations(r.correspondences), r.correspondences.views.size(), r.correspondences.test_points.size(),
-         r.hull_status.c_str());
+         r.volume.status.c_str());
   for (size_t k = 0; k < r.cameras.size(); ++k) {
     const CameraReport& c = r.cameras[k];
     Append(&out, "\ncamera %zu: %s (%s)\n", k, c.file.c_str(), c.method.empty() ? "?" : c.method.c_str());
@@ -256,6 +263,7 @@ OrderedJson StereoReportToJson(const StereoReport& r, const Provenance& provenan
                  {"length_unit", LengthUnitName(r.length_unit)},
                  {"target", r.rig_kind == Rig::kVolume ? "volume" : "planar-views"},
                  {"baseline", r.baseline},
+                 {"volume", VolumeJson(r.volume)},
                  {"overall", StereoStatsJson(r.overall)},
                  {"excluded",
                   {{"left_only", r.n_left_only},
@@ -265,7 +273,11 @@ OrderedJson StereoReportToJson(const StereoReport& r, const Provenance& provenan
                    {"behind", r.n_behind}}},
                  {"left_only_views", r.left_only_views},
                  {"right_only_views", r.right_only_views},
-                 {"views", std::move(views)}};
+                 {"views", std::move(views)},
+                 {"grid", {{"cols", r.left_grid.grid.cols}, {"rows", r.left_grid.grid.rows}}},
+                 {"reprojection",
+                  {{"left", {{"grid", GridJson(r.left_grid.grid, r.left_grid.error_px)}}},
+                   {"right", {{"grid", GridJson(r.right_grid.grid, r.right_grid.error_px)}}}}}};
   OrderedJson tests = OrderedJson::array();
   for (const StereoTestPoint& t : r.test_points) {
     const bool measured = t.error.excluded == StereoExclusion::kNone;
@@ -273,10 +285,14 @@ OrderedJson StereoReportToJson(const StereoReport& r, const Provenance& provenan
     point.erase(point.begin(), point.begin() + 3);  // the target point is `world`
     tests.push_back({{"name", t.name},
                      {"world", MatrixToJson(t.point_in_world)},
+                     {"inside_volume", t.inside_volume ? OrderedJson(*t.inside_volume) : OrderedJson(nullptr)},
                      {"error", std::move(point)},
                      {"excluded", measured ? OrderedJson(nullptr) : OrderedJson(StereoExclusionName(t.error.excluded))}});
   }
-  j["stereo"]["test_points"] = {{"stats", StereoStatsJson(r.test_stats)}, {"points", std::move(tests)}};
+  j["stereo"]["test_points"] = {{"stats", StereoStatsJson(r.test_stats)},
+                                {"inside", StereoStatsJson(r.test_inside)},
+                                {"outside", StereoStatsJson(r.test_outside)},
+                                {"points", std::move(tests)}};
   j["provenance"] = ProvenanceToJson(provenance);
   return j;
 }
@@ -292,6 +308,8 @@ std::string StereoReportText(const StereoReport& r) {
   if (!r.test_points.empty()) {
     AppendStatsRow(&out, "test |dz| " + unit, r.test_stats.z);
     AppendStatsRow(&out, "test linear " + unit, r.test_stats.linear);
+    AppendStatsRow(&out, "test inside linear " + unit, r.test_inside.linear);
+    AppendStatsRow(&out, "test outside linear " + unit, r.test_outside.linear);
   }
   Append(&out, "  bias (left frame) x %+.4f, y %+.4f, z %+.4f %s; depth %+.4f %s\n", r.overall.bias.x(), r.overall.bias.y(),
          r.overall.bias.z(), unit.c_str(), r.overall.depth_bias, unit.c_str());

@@ -245,23 +245,9 @@ ReprojReport BuildReprojReport(std::span<const ReportCamera> cameras, Correspond
   ReprojReport report;
   report.correspondences_file = std::move(corr_file);
   report.grid = ImageGrid{c.image_size, options.grid_cols, options.grid_rows};
-  std::optional<ConvexHull3> hull;
-  if (c.rig == Rig::kVolume) {
-    const std::vector<Observation> observations = AllObservations(c);
-    std::vector<Eigen::Vector3d> points;
-    points.reserve(observations.size());
-    for (const Observation& o : observations) points.push_back(o.point);
-    ConvexHullOutcome outcome = ConvexHull3::Of(points);
-    hull = std::move(outcome.hull);
-    report.hull_status = hull ? "ok" : outcome.why;
-    if (hull) {
-      report.hull_vertices = hull->num_vertices();
-      report.hull_facets = hull->num_facets();
-    }
-  } else {
-    report.hull_status = "planar views: the boards share no world frame";
-  }
-  for (const ReportCamera& rc : cameras) report.cameras.push_back(ReportOne(rc, c, report.grid, hull));
+  const Correspondences* files[] = {&c};
+  report.volume = MeasuredVolumeOf(files);
+  for (const ReportCamera& rc : cameras) report.cameras.push_back(ReportOne(rc, c, report.grid, report.volume.hull));
   for (size_t k = 1; k < report.cameras.size(); ++k) report.differences.push_back(Compare(report, k));
   report.correspondences = std::move(c);
   return report;

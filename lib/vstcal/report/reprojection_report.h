@@ -27,6 +27,7 @@
 
 #include "vstcal/calib/calibrated_camera.h"
 #include "vstcal/calib/correspondences.h"
+#include "vstcal/report/convex_hull.h"
 #include "vstcal/report/statistics.h"
 
 namespace vstcal {
@@ -111,8 +112,7 @@ struct ReprojReport {
   std::string correspondences_file;
   Correspondences correspondences;  // as read (its views give the measured pixels and names)
   ImageGrid grid;
-  std::string hull_status;  // "ok" or why no hull (the calibration points span no volume, planar views)
-  size_t hull_vertices = 0, hull_facets = 0;
+  MeasuredVolume volume;  // the calibration points' convex hull
   std::vector<CameraReport> cameras;
   std::vector<CameraDifference> differences;  // cameras 1.. against camera 0
 };

@@ -27,6 +27,30 @@ std::string StereoRows(const std::string& key, const std::string& unit, const St
          StatsRow("angular deg", key + "/angular_deg", s.angular_deg);
 }
 
+// Test points inside and outside the measured volume, and each one's error.
+std::string TestPointSection(const StereoReport& r, const std::string& unit) {
+  std::string s = "<h2>Test points</h2>\n<p>Points never used in a calibration, triangulated like the others. Measured "
+                  "volume (the convex hull of both files' calibration points): " + Escape(r.volume.status) + ".</p>\n";
+  s += html::StatsTable("measured test points inside the volume", StereoRows("/stereo/test_points/inside", unit, r.test_inside));
+  s += html::StatsTable("measured test points outside the volume", StereoRows("/stereo/test_points/outside", unit, r.test_outside));
+  std::string rows;
+  for (size_t i = 0; i < r.test_points.size(); ++i) {
+    const StereoTestPoint& t = r.test_points[i];
+    const std::string key = "/stereo/test_points/points/" + std::to_string(i) + "/error/";
+    rows += "<tr><th>" + Escape(t.name) + "</th><td>" +
+            (t.inside_volume ? (*t.inside_volume ? "inside" : "outside") : "—") + "</td>";
+    if (t.error.excluded != StereoExclusion::kNone) {
+      rows += "<td colspan=\"4\" class=\"none\">excluded: " + std::string(StereoExclusionName(t.error.excluded)) + "</td></tr>\n";
+      continue;
+    }
+    const Eigen::Vector3d d = t.error.error();
+    rows += html::Cell(key + "0", d.x()) + html::Cell(key + "1", d.y()) + html::Cell(key + "2", d.z()) +
+            html::Cell(key + "3", t.error.linear) + "</tr>\n";
+  }
+  return s + "<table><caption>each test point (" + Escape(unit) + ")</caption><tr><th>name</th><th>volume</th>"
+             "<th>dx</th><th>dy</th><th>dz</th><th>linear</th></tr>\n" + rows + "</table>\n";
+}
+
 }  // namespace
 
 std::string StereoDepthScript(const StereoReport& r) {
@@ -73,6 +97,15 @@ std::string StereoReportHtml(const StereoReport& r) {
     s += html::Chart(chart, "triangulated error per axis against depth",
                      "|dx|, |dy|, |dz| of every measured point against its depth (seed 000 Figs. 9–10)");
   }
+  for (const auto& [eye, cells] : {std::pair{"left", &r.left_grid}, std::pair{"right", &r.right_grid}}) {
+    std::vector<std::optional<double>> means;
+    for (const auto& cell : cells->error_px) means.push_back(cell ? std::optional<double>(cell->mean) : std::nullopt);
+    s += html::Chart(HeatMapScript(cells->grid, means, "mean |reprojection error| (px)"), std::string("heat map ") + eye,
+                     std::string("The ") + eye + " camera: mean reprojection error per image cell (" +
+                         std::to_string(cells->grid.cols) + "×" + std::to_string(cells->grid.rows) +
+                         "; blank: no point), " + (eye == std::string("left") ? "against its own PnP pose." : "through the rig's relative pose."));
+  }
+  if (!r.test_points.empty()) s += TestPointSection(r, unit);
   std::string rows;
   for (size_t v = 0; v < r.views.size(); ++v) {
     rows += StatsRow(r.views[v].name, "/stereo/views/" + std::to_string(v) + "/stats/linear", r.views[v].stats.linear);

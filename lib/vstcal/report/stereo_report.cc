@@ -138,10 +138,12 @@ void AddTestPoints(const StereoRig& rig, const PoseRefinement& pose, const Corre
   std::map<std::string, const TestPoint*> right_by_name;
   for (const TestPoint& t : right.test_points) right_by_name.emplace(t.name, &t);
   std::set<std::string> left_names;
-  Collected measured;
+  Collected measured, inside, outside;
+  const auto& hull = report->volume.hull;
   for (const TestPoint& t : left.test_points) {
     left_names.insert(t.name);
-    StereoTestPoint out{t.name, t.point_in_world, {}};
+    StereoTestPoint out{t.name, t.point_in_world, {}, {}};
+    if (hull) out.inside_volume = hull->Contains(t.point_in_world);
     const auto it = right_by_name.find(t.name);
     const bool in_right = it != right_by_name.end() && it->second->pixel;
     if (!t.pixel || !in_right) {
@@ -154,16 +156,20 @@ void AddTestPoints(const StereoRig& rig, const PoseRefinement& pose, const Corre
     }
     out.error.target = t.point_in_world;
     measured.Add(out.error);
+    if (out.inside_volume) (*out.inside_volume ? inside : outside).Add(out.error);
     report->test_points.push_back(std::move(out));
   }
   for (const TestPoint& t : right.test_points) {
     if (left_names.contains(t.name)) continue;
-    StereoTestPoint out{t.name, t.point_in_world, {}};
+    StereoTestPoint out{t.name, t.point_in_world, {}, {}};
+    if (hull) out.inside_volume = hull->Contains(t.point_in_world);
     out.error.target = t.point_in_world;
     out.error.excluded = t.pixel ? StereoExclusion::kRightOnly : StereoExclusion::kNotMeasured;
     report->test_points.push_back(std::move(out));
   }
   report->test_stats = measured.Stats();
+  report->test_inside = inside.Stats();
+  report->test_outside = outside.Stats();
 }
 
 }  // namespace
@@ -198,6 +204,8 @@ StereoReport BuildStereoReport(const StereoRig& rig, Correspondences left, Corre
   report.length_unit = rig.length_unit;
   report.rig_kind = left.rig;
   report.baseline = rig.baseline();
+  const Correspondences* files[] = {&left, &right};
+  report.volume = MeasuredVolumeOf(files);
 
   std::map<std::string, const View*> right_by_name;
   for (const View& v : right.views) right_by_name.emplace(v.name, &v);
@@ -230,11 +238,25 @@ StereoReport BuildStereoReport(const StereoRig& rig, Correspondences left, Corre
   }
 
   Collected all;
+  struct Reprojected {
+    std::vector<Eigen::Vector2d> pixels;
+    std::vector<double> error_px;
+    void Add(const CalibratedCamera& camera, const Rigid3d& camera_from_target, const Observation& o) {
+      const auto p = camera.camera.Project(camera_from_target * o.point);
+      if (!p) return;
+      pixels.push_back(o.pixel);
+      error_px.push_back((*p - o.pixel).norm());
+    }
+  } left_reprojected, right_reprojected;
   for (const auto& [lv, rv] : common) {
     StereoViewReport vr;
     vr.name = lv->name;
     const PoseRefinement pose = volume_pose ? *volume_pose : LeftPose(rig, std::span<const View* const>(&lv, 1));
     vr.pose_status = pose.status == PoseStatus::kOk ? "ok" : std::string(PoseStatusText(pose.status));
+    if (pose.status == PoseStatus::kOk) {
+      for (const Observation& o : lv->observations) left_reprojected.Add(rig.left, pose.body_from_world, o);
+      for (const Observation& o : rv->observations) right_reprojected.Add(rig.right, rig.right_from_left * pose.body_from_world, o);
+    }
     const std::map<Key, size_t> right_index = IndexPoints(*rv, right_file);
     IndexPoints(*lv, left_file);  // for its check: a point twice in the left view
     std::vector<bool> right_used(rv->observations.size(), false);
@@ -275,6 +297,11 @@ StereoReport BuildStereoReport(const StereoRig& rig, Correspondences left, Corre
     report.views.push_back(std::move(vr));
   }
   report.overall = all.Stats();
+  for (auto [out, camera, reprojected] : {std::tuple{&report.left_grid, &rig.left, &left_reprojected},
+                                          std::tuple{&report.right_grid, &rig.right, &right_reprojected}}) {
+    out->grid = ImageGrid{camera->camera.image_size, options.grid_cols, options.grid_rows};
+    out->error_px = ComputeGridStats(out->grid, reprojected->pixels, reprojected->error_px);
+  }
   if (volume_pose) AddTestPoints(rig, *volume_pose, left, right, &report);
   return report;
 }

@@ -24,6 +24,7 @@
 #include <Eigen/Core>
 
 #include "vstcal/calib/correspondences.h"
+#include "vstcal/report/convex_hull.h"
 #include "vstcal/report/statistics.h"
 #include "vstcal/stereo/stereo_rig.h"
 
@@ -73,6 +74,13 @@ struct StereoTestPoint {
   std::string name;
   Eigen::Vector3d point_in_world = Eigen::Vector3d::Zero();
   StereoPointError error;  // kLeftOnly / kRightOnly: measured in one file only
+  std::optional<bool> inside_volume;  // inside the measured volume (`volume`); nullopt without a hull
+};
+
+// A camera's image cells and the statistics of each (nullopt: no point in it).
+struct StereoCameraGrid {
+  ImageGrid grid;
+  std::vector<std::optional<ErrorStats>> error_px;
 };
 
 struct StereoReport {
@@ -87,7 +95,18 @@ struct StereoReport {
   // Volumes only (planar views' boards share no world frame): the left file's test points in order,
   // then the right file's that the left does not name.
   std::vector<StereoTestPoint> test_points;
-  StereoStats test_stats;
+  StereoStats test_stats;  // every measured test point
+  // The convex hull of both files' calibration points (one world frame), and the measured test
+  // points inside it (or on its boundary) and outside it, as reproj-report splits a camera's (seed
+  // 000 §4.2); both empty without a hull.
+  MeasuredVolume volume;
+  StereoStats test_inside, test_outside;
+  // Where in each image the rig mispredicts: per cell of its camera's grid (row-major), the statistics of the
+  // reprojection error |p̂ − m| (px) of the points of each common view with a left pose whose
+  // measured pixel m lies in the cell, p̂ = left.Project(left_from_<frame> · X) for the left camera
+  // (the PnP pose: its own fit), right.Project(right_from_left · left_from_<frame> · X) for the right
+  // one (the rig's relative pose too). A point projecting behind a camera is in no cell.
+  StereoCameraGrid left_grid, right_grid;
 };
 
 struct StereoReportOptions {
@@ -95,6 +114,7 @@ struct StereoReportOptions {
   // match in the name (calib-stereo solve's --match-views: "([0-9]+)$" pairs left01 with right01);
   // the report names views by their keys.
   std::string view_key_pattern;
+  int grid_cols = 8, grid_rows = 6;  // image cells of the per-region reprojection statistics
 };
 
 // Throws InputError naming the file and field when the inputs do not go together: a rig camera
