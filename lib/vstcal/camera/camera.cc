@@ -3,6 +3,8 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <optional>
+#include <vector>
 
 #include "vstcal/core/error.h"
 #include "vstcal/geometry/rotation.h"
@@ -102,9 +104,7 @@ double DistortionJacobianDeterminant(const double* distortion, double x, double 
   return xd.v[0] * yd.v[1] - xd.v[1] * yd.v[0];
 }
 
-}  // namespace
-
-double Camera::ValidRadiusSquared() const {
+double SearchValidRadiusSquared(const AnyLensModel& model, const std::vector<double>& params) {
   return std::visit(
       [&](const auto& m) -> double {
         using Model = std::decay_t<decltype(m)>;
@@ -139,6 +139,23 @@ double Camera::ValidRadiusSquared() const {
         }
       },
       model);
+}
+
+}  // namespace
+
+double Camera::ValidRadiusSquared() const {
+  // The search below evaluates some 74,000 Jacobians when the lens never folds, and reading a
+  // chain asks it of the same lens several times (each eye, the test points' check, the renderer):
+  // the last answer is kept, per thread (a pure function of the model and its parameters).
+  struct Answer {
+    size_t model = 0;
+    std::vector<double> params;
+    double r2 = 0;
+  };
+  static thread_local std::optional<Answer> last;
+  if (last && last->model == model.index() && last->params == params) return last->r2;
+  last = Answer{model.index(), params, SearchValidRadiusSquared(model, params)};
+  return last->r2;
 }
 
 }  // namespace vstcal
