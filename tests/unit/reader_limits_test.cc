@@ -53,6 +53,9 @@ TEST(ReaderLimits, YamlThatHangsOpenCvIsRefusedBeforeItParses) {
             std::string::npos);
   EXPECT_NE(YamlError("%YAML:1.0\n--- a: 1\nb: 2\n").find("line 2, column 5: the top level is indented (it starts on the \"---\" line)"),
             std::string::npos);
+  // An indented empty key made cv::FileStorage throw std::length_error (libFuzzer).
+  EXPECT_NE(YamlError("%YAML:1.0\n---\nm:\n   r: 3\n   :ols: 3\n").find("line 5, column 4: an empty key"),
+            std::string::npos);
   // What cv::FileStorage writes passes: a directive, "---", comments, fields from the first column.
   EXPECT_NE(YamlError("%YAML:1.0\n---\n# c\n\na: 1\n").find("camera_matrix: missing field"), std::string::npos);
 }

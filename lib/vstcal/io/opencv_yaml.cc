@@ -4,6 +4,7 @@
 #include <cstdlib>
 #include <limits>
 #include <regex>
+#include <stdexcept>
 
 #include <opencv2/core.hpp>
 
@@ -139,12 +140,15 @@ void CheckIntegers(const std::string& text, const std::string& name) {
   }
 }
 
-// cv::FileStorage (4.6) loops forever when the first collection ends before the end of the text:
-// it then steps 3 bytes ahead, as if over "..." or "---", and can land past the line it holds
-// (a 16-byte example: "%YAML:1.0\n -a\n:\n-", found by libFuzzer). A collection ends early only
-// at a line indented less than its first one, or at "..."; so the first content line must start
-// in the first column, as cv::FileStorage writes it, and the text must hold one document.
-void CheckOneUnindentedDocument(const std::string& text, const std::string& name) {
+// Two defects of cv::FileStorage (4.6) that libFuzzer found, refused here before it parses:
+// - it loops forever when the first collection ends before the end of the text: it then steps 3
+//   bytes ahead, as if over "..." or "---", and can land past the line it holds (16 bytes:
+//   "%YAML:1.0\n -a\n:\n-"). A collection ends early only at a line indented less than its first
+//   one, or at "..."; so the first content line must start in the first column, as cv::FileStorage
+//   writes it, and the text must hold one document;
+// - an indented line that starts with ':' (an empty key) makes it build a string of negative
+//   length: std::length_error, not its own parse error.
+void CheckLinesOpenCvMishandles(const std::string& text, const std::string& name) {
   bool content = false;
   for (size_t start = 0; start < text.size();) {
     size_t end = text.find('\n', start);
@@ -152,6 +156,9 @@ void CheckOneUnindentedDocument(const std::string& text, const std::string& name
     const std::string_view line(text.data() + start, end - start);
     const size_t first = line.find_first_not_of(" \r");
     const bool skip = first == std::string_view::npos || line[first] == '#' || (!content && line.starts_with('%'));
+    if (!skip && line[first] == ':') {
+      FailSyntax(name, text, start + first, "an empty key (the line starts with ':')", "write the field's name before the ':'");
+    }
     if (!skip) {
       if (line.starts_with("---") || line.starts_with("...")) {
         if (content || line.starts_with("...")) {
@@ -183,7 +190,7 @@ cv::FileStorage Open(const std::string& text, const std::string& name) {
   }
   CheckNesting(text, name);
   CheckIntegers(text, name);
-  CheckOneUnindentedDocument(text, name);
+  CheckLinesOpenCvMishandles(text, name);
   try {
     cv::FileStorage fs(text, cv::FileStorage::READ | cv::FileStorage::MEMORY | cv::FileStorage::FORMAT_YAML);
     if (!fs.isOpened() || !fs.root().isMap()) {
@@ -195,6 +202,12 @@ cv::FileStorage Open(const std::string& text, const std::string& name) {
     // OpenCV recognises its formats by their first bytes ("%YAML", "<?xml", "{").
     FailField(name, "", "not an OpenCV FileStorage file",
               "it must start with \"%YAML:1.0\", as cv::FileStorage writes it");
+  } catch (const InputError&) {
+    throw;
+  } catch (const std::length_error& e) {
+    // Another of its defects on malformed text, like the empty key refused above.
+    FailField(name, "", std::string("cv::FileStorage fails on it (") + e.what() + ")",
+              "give a file written by cv::FileStorage");
   }
 }
 
