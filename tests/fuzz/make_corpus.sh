@@ -83,6 +83,7 @@ PY
 # Findings of the fuzz runs (docs/reliability.md#fuzzing), kept as seeds so that ctest replays them.
 printf '%%YAML:1.0\n -a\n:\n-' > "$corpus/opencv_yaml/indented-top-level.yaml"
 printf '%%YAML:1.0\n---\nm:\n   r: 3\n   :ols: 3\n' > "$corpus/opencv_yaml/empty-key.yaml"
+printf '%%YAML:1.0\ncamera_matrix: 1e999\n' > "$corpus/opencv_yaml/infinite-number.yaml"
 cat > "$corpus/cameramodel/overflowing-rotation.cameramodel" <<'PY'
 {'lensmodel': 'LENSMODEL_PINHOLE', 'intrinsics': [400, 400, 320, 240],
  'extrinsics': [0, 3.8e179, 0, 0, 0, 1000], 'imagersize': [640, 480]}

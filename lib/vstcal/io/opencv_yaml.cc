@@ -36,7 +36,9 @@ struct Field {
     if (node.isSeq()) return "a sequence of " + std::to_string(node.size());
     if (node.isString()) return "the string \"" + node.string() + "\"";
     if (node.isInt()) return "the integer " + std::to_string(static_cast<int>(node));
-    return "the number " + ShortestDecimal(node.real());
+    // cv::FileStorage reads 1e999 as ∞ (libFuzzer): named, not formatted for a file.
+    const double v = node.real();
+    return std::isfinite(v) ? "the number " + ShortestDecimal(v) : "a number beyond the doubles (" + MessageNumber(v) + ")";
   }
 
   double Number() const {
