@@ -47,11 +47,13 @@ TEST(ReaderLimits, YamlThatHangsOpenCvIsRefusedBeforeItParses) {
             "cv::FileStorage writes them");
   EXPECT_NE(YamlError("%YAML:1.0\n---\n# comment\n   camera_matrix: 1\nx: 2\n").find("line 4, column 4: the top level is indented"),
             std::string::npos);
-  EXPECT_NE(YamlError("%YAML:1.0\n---\na: 1\n...\nb: 2\n").find("line 4, column 1: a second YAML document (\"...\")"),
+  EXPECT_NE(YamlError("%YAML:1.0\n---\na: 1\n...\nb: 2\n").find("line 5, column 1: text after the document's end"),
             std::string::npos);
   EXPECT_NE(YamlError("%YAML:1.0\n---\na: 1\n---\n -a\n:\n-\n").find("line 4, column 1: a second YAML document (\"---\")"),
             std::string::npos);
-  EXPECT_NE(YamlError("%YAML:1.0\n--- a: 1\nb: 2\n").find("line 2, column 5: the top level is indented (it starts on the \"---\" line)"),
+  EXPECT_NE(YamlError("%YAML:1.0\n--- a: 1\nb: 2\n").find("line 2, column 5: text after \"---\" on its line"),
+            std::string::npos);
+  EXPECT_NE(YamlError("%YAML:1.0\n---\na: 1\n...\n# the end\n...\n").find("line 6, column 1: text after the document's end"),
             std::string::npos);
   // An indented empty key made cv::FileStorage throw std::length_error (libFuzzer).
   EXPECT_NE(YamlError("%YAML:1.0\n---\nm:\n   r: 3\n   :ols: 3\n").find("line 5, column 4: an empty key"),
@@ -62,8 +64,10 @@ TEST(ReaderLimits, YamlThatHangsOpenCvIsRefusedBeforeItParses) {
                 .find("camera_matrix: expected an !!opencv-matrix (rows, cols, dt, data), got a number beyond the doubles (inf)"),
             std::string::npos)
       << YamlError("%YAML:1.0\ncamera_matrix: 1e999\n");
-  // What cv::FileStorage writes passes: a directive, "---", comments, fields from the first column.
+  // What cv::FileStorage writes passes: a directive, "---", comments, fields from the first column,
+  // and a closing "..." (the YAML document end, which OpenCV reads).
   EXPECT_NE(YamlError("%YAML:1.0\n---\n# c\n\na: 1\n").find("camera_matrix: missing field"), std::string::npos);
+  EXPECT_NE(YamlError("%YAML:1.0\n---\na: 1\n...\n# the end\n").find("camera_matrix: missing field"), std::string::npos);
 }
 
 TEST(ReaderLimits, YamlSizeIsBounded) {

@@ -147,37 +147,44 @@ void CheckIntegers(const std::string& text, const std::string& name) {
 //   bytes ahead, as if over "..." or "---", and can land past the line it holds (16 bytes:
 //   "%YAML:1.0\n -a\n:\n-"). A collection ends early only at a line indented less than its first
 //   one, or at "..."; so the first content line must start in the first column, as cv::FileStorage
-//   writes it, and the text must hold one document;
+//   writes it, and the text must hold one document (a closing "..." is fine: OpenCV steps over it);
 // - an indented line that starts with ':' (an empty key) makes it build a string of negative
 //   length: std::length_error, not its own parse error.
 void CheckLinesOpenCvMishandles(const std::string& text, const std::string& name) {
-  bool content = false;
+  enum class At { kBeforeFields, kInFields, kAfterEnd } at = At::kBeforeFields;
   for (size_t start = 0; start < text.size();) {
     size_t end = text.find('\n', start);
     if (end == std::string::npos) end = text.size();
     const std::string_view line(text.data() + start, end - start);
     const size_t first = line.find_first_not_of(" \r");
-    const bool skip = first == std::string_view::npos || line[first] == '#' || (!content && line.starts_with('%'));
-    if (!skip && line[first] == ':') {
-      FailSyntax(name, text, start + first, "an empty key (the line starts with ':')", "write the field's name before the ':'");
-    }
+    const bool skip = first == std::string_view::npos || line[first] == '#' ||
+                      (at == At::kBeforeFields && line.starts_with('%'));
     if (!skip) {
-      if (line.starts_with("---") || line.starts_with("...")) {
-        if (content || line.starts_with("...")) {
-          FailSyntax(name, text, start, "a second YAML document (\"" + std::string(line.substr(0, 3)) + "\")",
-                     "a camera file is one document: keep its fields in the first and delete the rest");
-        }
+      if (line[first] == ':') {
+        FailSyntax(name, text, start + first, "an empty key (the line starts with ':')", "write the field's name before the ':'");
+      }
+      const bool starts_document = line.starts_with("---"), ends_document = line.starts_with("...");
+      if (at == At::kAfterEnd) {
+        FailSyntax(name, text, start + first, "text after the document's end (\"...\" on an earlier line)",
+                   "a camera file is one document: delete the \"...\" or what follows it");
+      }
+      if ((starts_document && at == At::kInFields) || (ends_document && at == At::kBeforeFields)) {
+        FailSyntax(name, text, start, "a second YAML document (\"" + std::string(line.substr(0, 3)) + "\")",
+                   "a camera file is one document: keep its fields in the first and delete the rest");
+      }
+      if (starts_document || ends_document) {
         const size_t after = line.find_first_not_of(" \r", 3);
         if (after != std::string_view::npos && line[after] != '#') {
-          FailSyntax(name, text, start + after, "the top level is indented (it starts on the \"---\" line)",
-                     "start its fields on the next line, in the first column, as cv::FileStorage writes them");
+          FailSyntax(name, text, start + after, "text after \"" + std::string(line.substr(0, 3)) + "\" on its line",
+                     "put the fields on the lines after it, in the first column, as cv::FileStorage writes them");
         }
-      } else if (!content) {
+        if (ends_document) at = At::kAfterEnd;
+      } else if (at == At::kBeforeFields) {
         if (first != 0) {
           FailSyntax(name, text, start + first, "the top level is indented",
                      "start its fields in the first column, as cv::FileStorage writes them");
         }
-        content = true;
+        at = At::kInFields;
       }
     }
     start = end + 1;
