@@ -163,6 +163,15 @@ TEST(LensValidDomain, IsWhereUnprojectInvertsProject) {
   const auto back = camera.Unproject(*px);
   EXPECT_TRUE(!back.has_value() || (*back - folded).norm() > 0.1);
   EXPECT_EQ(Camera::FromK(K, {1280, 720}).ValidRadiusSquared(), std::numeric_limits<double>::infinity());
+  // Each answer is the lens's own, whichever was asked before (the last one is kept): another k1,
+  // then the same model with the first k1 again, then the first camera.
+  const std::vector<double> stronger_barrel = {-0.7, 0.0, 0.0, 0.0, 0.0};
+  const std::vector<double> rational_barrel = {-0.35, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+  const Camera stronger = Camera::FromK(K, {1280, 720}, RadialTangentialModel{}, stronger_barrel);
+  EXPECT_NEAR(stronger.ValidRadiusSquared(), 1 / 2.1, 1e-6);  // r (1 − 0.7 r²): maximum at r² = 1/2.1
+  const Camera rational = Camera::FromK(K, {1280, 720}, RationalModel{}, rational_barrel);
+  EXPECT_NEAR(rational.ValidRadiusSquared(), 1 / 1.05, 1e-6);
+  EXPECT_EQ(camera.ValidRadiusSquared(), r2);
 }
 
 // The same chain code under ceres::Jet: its derivatives agree with central differences of the
