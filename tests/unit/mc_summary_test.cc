@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <vector>
 
@@ -323,6 +324,59 @@ TEST(BlockAccumulator, PowerSumsMatchTwoPassMoments) {
   constant_summary.AddBlock(0, constant);
   EXPECT_EQ(constant_summary.Statistics(0).standard_deviation, 0.0);
   EXPECT_EQ(constant_summary.Statistics(0).mean, 0.1);
+}
+
+// err-sim's loop adds four samples at a time (AddLanes): groups where every output is defined in
+// every lane take a path without masks and are counted once for all outputs. Both paths, and a
+// last partial group, must give the bits of adding the samples one at a time (Add, AddUndefined).
+TEST(BlockAccumulator, FourLanesAtATimeGiveTheBitsOfOneAtATime) {
+  constexpr size_t kLanes = BlockAccumulator::kLanes, kSamples = 1022;  // 255 groups and a half
+  SummaryPlan plan;
+  plan.output_names = {"a", "b", "c"};
+  plan.total_samples = kSamples;
+  plan.higher_moments = true;
+  const std::vector<double> a = NormalSample(kSamples, 1e3, 2.0, 7), b = NormalSample(kSamples, -5.0, 0.1, 8);
+  // Sample s is undefined where s % 37 == 5: about one group in nine takes the masked path.
+  auto undefined = [](size_t s) { return s % 37 == 5; };
+  BlockAccumulator lanes(plan), one(plan);
+  for (size_t first = 0; first < kSamples; first += kLanes) {
+    const size_t count = std::min(kLanes, kSamples - first);
+    double y[3 * kLanes] = {};
+    uint8_t defined[3] = {};
+    uint64_t incomplete = 0;
+    for (size_t l = 0; l < count; ++l) {
+      const size_t s = first + l;
+      const double row[3] = {a[s], b[s], a[s] * b[s]};
+      for (size_t k = 0; k < 3; ++k) y[kLanes * k + l] = row[k];
+      if (undefined(s)) {
+        ++incomplete;
+        one.AddUndefined();
+      } else {
+        for (uint8_t& d : defined) d |= static_cast<uint8_t>(1u << l);
+        one.Add(row);
+      }
+    }
+    lanes.AddLanes(y, defined, count, incomplete);
+  }
+  MonteCarloSummary by_lanes(plan), by_one(plan);
+  by_lanes.AddBlock(0, lanes);
+  by_one.AddBlock(0, one);
+  size_t expected_count = 0;
+  for (size_t s = 0; s < kSamples; ++s) expected_count += !undefined(s);
+  EXPECT_EQ(by_lanes.undefined_samples(), kSamples - expected_count);
+  for (size_t k = 0; k < 3; ++k) {
+    const OutputStatistics x = by_lanes.Statistics(k), y = by_one.Statistics(k);
+    EXPECT_EQ(x.count, expected_count);
+    EXPECT_EQ(y.count, expected_count);
+    EXPECT_EQ(std::bit_cast<uint64_t>(x.mean), std::bit_cast<uint64_t>(y.mean)) << k;
+    EXPECT_EQ(std::bit_cast<uint64_t>(x.standard_deviation), std::bit_cast<uint64_t>(y.standard_deviation)) << k;
+    EXPECT_EQ(std::bit_cast<uint64_t>(x.standard_deviation_standard_error),
+              std::bit_cast<uint64_t>(y.standard_deviation_standard_error))
+        << k;
+    EXPECT_EQ(x.min, y.min);
+    EXPECT_EQ(x.max, y.max);
+    EXPECT_EQ(x.p95.value, y.p95.value);
+  }
 }
 
 // A summary holds a few tree nodes per level: its memory and its JSON do not grow with the number

@@ -94,7 +94,9 @@ struct GroupState {
   size_t sample;                // the group's first sample in the block
 };
 
-[[gnu::target_clones("avx2", "default")]] void AccumulateGroup(const GroupState& a, const double* y, const uint8_t* defined,
+// Returns whether every lane of every output was defined: those groups are counted once
+// (BlockAccumulator::full_groups_) rather than in every output's count.
+[[gnu::target_clones("avx2", "default")]] bool AccumulateGroup(const GroupState& a, const double* y, const uint8_t* defined,
                                                                unsigned lanes) {
   // Locals the stores below cannot alias, so that the loop keeps them in registers.
   double* __restrict shift = a.shift;
@@ -108,33 +110,42 @@ struct GroupState {
   SimdDouble* __restrict hi = a.hi;
   const size_t n = a.num_outputs;
   const SimdDouble zero(0.0), one(1.0);
-  auto add = [&](size_t k, unsigned bits, bool higher) {
+  // `full`: every lane of every output defined (nearly every group of a Monte Carlo run). The
+  // same sums then go without the masks, which are all ones (Select(m, x, y) is x), and without a
+  // count per output (an integer: Finish adds the group's four in any order, exactly).
+  auto add = [&](size_t k, unsigned bits, bool higher, bool full) {
     if (!has_shift[k]) {
       shift[k] = y[kLanes * k + std::countr_zero(bits)];
       has_shift[k] = 1;
     }
     const SimdMask m = kLaneMasks[bits];
     const SimdDouble v = SimdDouble::Load(y + kLanes * k);
-    const SimdDouble d = Select(m, v - shift[k], zero);
+    const SimdDouble d = full ? v - shift[k] : Select(m, v - shift[k], zero);
     const SimdDouble d2 = d * d;
-    count[k] += Select(m, one, zero);
+    if (!full) count[k] += Select(m, one, zero);
     s1[k] += d;
     s2[k] += d2;
     if (higher) {
       s3[k] += d2 * d;
       s4[k] += d2 * d2;
     }
-    lo[k] = Select(m && v < lo[k], v, lo[k]);
-    hi[k] = Select(m && v > hi[k], v, hi[k]);
+    lo[k] = full ? Select(v < lo[k], v, lo[k]) : Select(m && v < lo[k], v, lo[k]);
+    hi[k] = full ? Select(v > hi[k], v, hi[k]) : Select(m && v > hi[k], v, hi[k]);
   };
-  // The loop twice rather than a test per output: the plan fixes whether M₃, M₄ are kept.
-  if (a.higher_moments) {
+  bool full = lanes == 0xf;
+  for (size_t k = 0; k < n && full; ++k) full = defined[k] == 0xf;
+  // A loop per case rather than tests per output: the plan fixes whether M₃, M₄ are kept.
+  if (full && a.higher_moments) {
+    for (size_t k = 0; k < n; ++k) add(k, 0xf, true, true);
+  } else if (full) {
+    for (size_t k = 0; k < n; ++k) add(k, 0xf, false, true);
+  } else if (a.higher_moments) {
     for (size_t k = 0; k < n; ++k) {
-      if (const unsigned bits = defined[k] & lanes) add(k, bits, true);
+      if (const unsigned bits = defined[k] & lanes) add(k, bits, true, false);
     }
   } else {
     for (size_t k = 0; k < n; ++k) {
-      if (const unsigned bits = defined[k] & lanes) add(k, bits, false);
+      if (const unsigned bits = defined[k] & lanes) add(k, bits, false, false);
     }
   }
   const size_t histograms = a.plan->NumHistograms();
@@ -145,6 +156,7 @@ struct GroupState {
     BinsOf4Inline(spec, y + kLanes * k, out);
     for (int l = 0; l < 4; ++l) out[l] = (defined[k] >> l) & 1 ? out[l] : kNoBin;
   }
+  return full;
 }
 
 }  // namespace
@@ -156,7 +168,7 @@ void BlockAccumulator::AddLanes(const double* y, const uint8_t* defined, size_t 
   const GroupState state{num_outputs_, shift_.data(), has_shift_.data(), count_.data(), s1_.data(), s2_.data(),
                          s3_.data(), s4_.data(), min_.data(), max_.data(), plan_->higher_moments, &plan_->histogram,
                          plan_, bins_.data(), samples_};
-  AccumulateGroup(state, y, defined, lanes);
+  full_groups_ += AccumulateGroup(state, y, defined, lanes);
   samples_ += count;
   incomplete_ += incomplete;
 }
@@ -212,6 +224,7 @@ std::vector<Moments> BlockAccumulator::Finish() const {
       lo = std::min(lo, min_[k].lane(l));
       hi = std::max(hi, max_[k].lane(l));
     }
+    n += static_cast<double>(kLanes * full_groups_);
     Moments& m = out[k];
     if (n == 0) continue;
     const double delta = s1 / n, delta2 = delta * delta;

@@ -87,10 +87,13 @@ class BlockAccumulator {
   const SummaryPlan* plan_;
   size_t num_outputs_;
   // Per output: the shift c (the output's first defined value in the block) and, per lane, the
-  // count and the sums of (y − c)^k, k = 1…4, min and max.
+  // count and the sums of (y − c)^k, k = 1…4, min and max. Groups of four with every output
+  // defined are counted in full_groups_ instead of count_ (the loop's common case, one store less
+  // an output).
   std::vector<double> shift_;
   std::vector<uint8_t> has_shift_;
   std::vector<SimdDouble> count_, s1_, s2_, s3_, s4_, min_, max_;
+  uint64_t full_groups_ = 0;
   std::vector<std::vector<uint32_t>> bins_;  // per histogram and sample, the value's bin (undefined: a marker)
   uint64_t samples_ = 0;
   uint64_t incomplete_ = 0;
