@@ -13,8 +13,11 @@ namespace {
 
 #include "vstcal/errsim/ziggurat_table.inc"
 
-constexpr double kR = 3.6541528853610088;  // the base strip's edge (Marsaglia & Tsang 2000, 256 layers)
-constexpr uint64_t kLayerBits = 255, kSignBit = 256;
+// A word's low kZigLayerBits bits pick the layer, the next bit the sign; the top 53 bits (bits 11
+// to 63, which OpenUnit takes) the position.
+constexpr uint64_t kLayerBits = (uint64_t{1} << kZigLayerBits) - 1, kSignBit = uint64_t{1} << kZigLayerBits;
+constexpr int kSignToTop = 63 - kZigLayerBits;  // the sign bit's shift to a double's sign
+static_assert(kZigLayerBits + 1 <= 11, "the layer and the sign must stay below OpenUnit's 53 bits");
 constexpr uint32_t kExtraLanes = 0x80000000u;
 
 // (k + ½)·2⁻⁵³ for the top 53 bits k: in (0, 1), never 0 or 1. (Through int64: x86-64 converts
@@ -70,13 +73,13 @@ namespace {
   }
 }
 
-// Bits 0–7 pick the layer, bit 8 the sign, the top 53 the position: inside the layer's rectangle
-// (98.5 % of draws) the deviate is sign · u · x[layer].
+// Bits 0–9 pick the layer, bit 10 the sign, the top 53 the position: inside the layer's rectangle
+// (99.6 % of draws) the deviate is sign · u · x[layer].
 inline double ZigguratFast(uint64_t word, const CounterRng& rng, uint64_t index, uint32_t parameter) {
   const int layer = static_cast<int>(word & kLayerBits);
   const double x = OpenUnit(word) * kZigX[layer];
-  // The sign by flipping the sign bit, not by a branch: bit 7 is a coin toss no predictor can learn.
-  if (x < kZigX[layer + 1]) return std::bit_cast<double>(std::bit_cast<uint64_t>(x) ^ ((word & kSignBit) << 55));
+  // The sign by flipping the sign bit, not by a branch: the sign bit is a coin toss no predictor can learn.
+  if (x < kZigX[layer + 1]) return std::bit_cast<double>(std::bit_cast<uint64_t>(x) ^ ((word & kSignBit) << kSignToTop));
   return ZigguratSlow(word, rng, index, parameter);
 }
 
@@ -140,7 +143,7 @@ void FillGroupsScalar(size_t size, const std::vector<uint32_t>& blocks, const st
                                                _mm_loadu_pd(&kZigX[words[3] & kLayerBits]), 1);
   const __m256d x = _mm256_mul_pd(OpenUnitAvx2(word), _mm256_unpacklo_pd(pairs02, pairs13));
   const __m256d edge = _mm256_unpackhi_pd(pairs02, pairs13);
-  const __m256i sign = _mm256_slli_epi64(_mm256_and_si256(word, _mm256_set1_epi64x(kSignBit)), 55);
+  const __m256i sign = _mm256_slli_epi64(_mm256_and_si256(word, _mm256_set1_epi64x(kSignBit)), kSignToTop);
   *inside = _mm256_movemask_pd(_mm256_cmp_pd(x, edge, _CMP_LT_OQ));
   return _mm256_xor_pd(x, _mm256_castsi256_pd(sign));
 }

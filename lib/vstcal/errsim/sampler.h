@@ -4,8 +4,8 @@
 // stream (seed, stream 1) at index i — block lane j/2, first or second half — so a sample is the
 // same whatever the thread count, the shard, or which other parameters are random. Constant
 // parameters take their value without a draw. A uniform takes the word's top 53 bits; a normal
-// goes through a 256-layer ziggurat (Marsaglia & Tsang 2000, Doornik's 2005 layout) whose layer
-// table is frozen in the source, so no libm call is made in 98.5 % of draws (the tail and the
+// goes through a 1024-layer ziggurat (Marsaglia & Tsang 2000, Doornik's 2005 layout) whose layer
+// table is frozen in the source, so no libm call is made in 99.6 % of draws (the tail and the
 // wedges draw further words from lanes 2³¹ + …). Compared with the sensitivity module's inverse CDF
 // (AS 241, 11.5 ns a draw) this is the same distribution at about a fifth of the cost; it gives up
 // the one-coordinate-per-parameter property that quasi-Monte Carlo needs, which err-sim run does
