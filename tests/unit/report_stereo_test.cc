@@ -91,8 +91,10 @@ TEST(StereoReport, PointsAndViewsSeenByOneCameraAreLeftOutAndCounted) {
   const StereoRig rig = testing::ZedLikeRig();
   testing::StereoViews views = testing::SyntheticStereoViews(rig, 3, 5);
   const size_t common = CommonPoints(views.left, views.right);
-  const size_t in_view2 = CommonPoints(Correspondences{.views = {views.left.views[2]}},
-                                       Correspondences{.views = {views.right.views[2]}});
+  Correspondences left_view2, right_view2;
+  left_view2.views = {views.left.views[2]};
+  right_view2.views = {views.right.views[2]};
+  const size_t in_view2 = CommonPoints(left_view2, right_view2);
   views.right.views[0].observations.erase(views.right.views[0].observations.begin() + 4);  // left only
   views.left.views[1].observations.erase(views.left.views[1].observations.begin());        // right only
   views.right.views[2].name = "elsewhere";  // a view of each camera with no partner
@@ -123,7 +125,8 @@ testing::StereoViews BoxVolume(const StereoRig& rig, const std::vector<std::pair
     c->camera = camera->name;
     c->image_size = camera->camera.image_size;
     c->rig = Rig::kVolume;
-    View view{.name = "v"};
+    View view;
+    view.name = "v";
     for (const double z : {500.0, 600.0, 700.0}) {
       for (int i = -2; i <= 2; ++i) {
         for (int j = -2; j <= 2; ++j) {
