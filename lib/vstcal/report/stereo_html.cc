@@ -136,13 +136,14 @@ std::string StereoReportHtml(const StereoReport& r, const std::filesystem::path&
                      "|dx|, |dy|, |dz| of every measured point against its depth (seed 000 Figs. 9–10)");
   }
   for (const auto& [eye, cells] : {std::pair{"left", &r.left_grid}, std::pair{"right", &r.right_grid}}) {
+    const bool left = eye == std::string("left");
     std::vector<std::optional<double>> means;
     for (const auto& cell : cells->error_px) means.push_back(cell ? std::optional<double>(cell->mean) : std::nullopt);
     s += html::Chart(HeatMapScript(cells->grid, means, "mean |reprojection error| (px)"), std::string("heat map ") + eye,
                      std::string("The ") + eye + " camera: mean reprojection error per image cell (" +
                          std::to_string(cells->grid.cols) + "×" + std::to_string(cells->grid.rows) +
-                         "; blank: no point), " + (eye == std::string("left") ? "against its own PnP pose." : "through the rig's relative pose."));
-    s += OverlayFigure(r, eye == std::string("left"), eye == std::string("left") ? left_dir : right_dir);
+                         "; blank: no point), " + (left ? "against its own PnP pose." : "through the rig's relative pose."));
+    s += OverlayFigure(r, left, left ? left_dir : right_dir);
   }
   if (!r.test_points.empty()) s += TestPointSection(r, unit);
   s += PerViewTable(r, unit);

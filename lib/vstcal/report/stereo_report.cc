@@ -132,7 +132,7 @@ struct Collected {
   }
 };
 
-// Every camera's reprojected points over the common views, for its grid of cells.
+// One camera's reprojected points over all common views, for its grid of cells.
 struct Reprojected {
   std::vector<Eigen::Vector2d> pixels;
   std::vector<double> error_px;
