@@ -197,7 +197,8 @@ TEST_F(CliReprojReportStereo, PageRendersOfflineWithTheJsonsNumbers) {
   EXPECT_TRUE(SameBytesTwice("reproj-report", args, {"out/report.json", "out/report.html"}));
 
   // The right file names view 2's image: the right overlay is drawn on it (through the rig), the
-  // left one still on a blank canvas; a named image that is missing is refused naming its field.
+  // left one still on a blank canvas (the same PNG encoding the browser decoded above, so Chromium
+  // is not started again); a named image that is missing is refused naming its field.
   Json right = ReadJson("in/r.json");
   const std::string view2 = right["views"][2]["name"];
   right["views"][2]["image"] = "views/r2.png";
@@ -210,7 +211,6 @@ TEST_F(CliReprojReportStereo, PageRendersOfflineWithTheJsonsNumbers) {
   EXPECT_EQ(count(named_page, "The right camera's residual vectors through the rig's relative pose: view " + view2 +
                                  " on its image views/r2.png; 63 residuals drawn"), 1u);
   EXPECT_EQ(count(named_page, "The left camera's residual vectors against its own PnP pose: " + blank), 1u);
-  EXPECT_EQ(ImagesLoaded("out/named.html"), "5 loaded, 0 broken");
   right["views"][2]["image"] = "views/missing.png";
   WriteJson("in/r-missing.json", right);
   fs::remove_all(Path("out"));
