@@ -5,7 +5,10 @@
 // views are matched by name or by --match-views' key;
 // the page renders offline in Chromium with the JSON's numbers; every bad input is refused with one
 // line, exit code 2 and nothing written.
+#include <cmath>
 #include <tuple>
+
+#include <opencv2/imgcodecs.hpp>
 
 #include "browser_fixture.h"
 
@@ -84,6 +87,17 @@ TEST_F(CliReprojReportStereo, NoiseFreeRigTriangulatesEveryPointWhereItIs) {
       EXPECT_LT(c["error_px"]["max"].get<double>(), 1e-6) << eye;
     }
     EXPECT_EQ(n, 9 * 7 * 5) << eye;
+    EXPECT_EQ(s["reprojection"][eye]["error_px"]["n"], 9 * 7 * 5) << eye;
+    // Per view: each camera's 63 points reprojected through the rig, none off.
+    for (const Json& v : s["views"]) {
+      const Json& view = v["reprojection"][eye];
+      EXPECT_EQ(view["error_px"]["n"], 9 * 7) << eye;
+      EXPECT_LT(view["error_px"]["max"].get<double>(), 1e-6) << eye;
+      ASSERT_EQ(view["points"].size(), 63u);
+      EXPECT_EQ(view["points"][0].size(), 4u);
+      EXPECT_TRUE(view["excluded"].empty());
+    }
+    EXPECT_NE(r.out.find("view " + s["views"][4]["name"].get<std::string>() + " " + eye + " px"), std::string::npos) << r.out;
   }
 
   // A test point the right camera did not measure: listed, not measured.
@@ -143,22 +157,66 @@ TEST_F(CliReprojReportStereo, PageRendersOfflineWithTheJsonsNumbers) {
   const CommandResult dom = Render("out/report.html", {"--dump-dom"});
   ASSERT_EQ(dom.exit_code, 0) << dom.err;
   EXPECT_TRUE(ConsoleLines(dom.err).empty()) << ConsoleLines(dom.err).front();
-  EXPECT_EQ(ExpectInlinePictures(dom.out), 3u);  // error against depth; each camera's heat map
+  // Error against depth; each camera's heat map and residual overlay.
+  EXPECT_EQ(ExpectInlinePictures(dom.out), 5u);
   const Json report = ReadJson("out/report.json");
   const Json& tests = report["stereo"]["test_points"];
   ASSERT_EQ(tests["points"].size(), 5u);
-  // Overall 7 rows and 5 views of 6 statistics; 7 rows inside and 7 outside the volume (those of a
-  // side without a point are dashes); each test point's dx, dy, dz and linear.
+  // Overall 7 rows of 6 statistics; per view the left and right reprojection RMS, the points
+  // triangulated, the linear RMS and max; 7 rows inside and 7 outside the volume (those of a side
+  // without a point are dashes); each test point's dx, dy, dz and linear.
   const size_t sides = !tests["inside"]["linear"].is_null() + !tests["outside"]["linear"].is_null();
-  EXPECT_EQ(ExpectNumbersOf(report, dom.out), (7u + 5u) * 6u + sides * 7u * 6u + 5u * 4u);
-  EXPECT_EQ(Attributes(dom.out, "data-key").size(), (7u + 5u) * 6u + sides * 7u * 6u + 5u * 4u);
-  size_t inside_cells = 0;
-  for (const std::string& key : Attributes(dom.out, "data-key")) inside_cells += key.starts_with("/stereo/test_points/inside/");
+  EXPECT_EQ(ExpectNumbersOf(report, dom.out), 7u * 6u + 5u * 5u + sides * 7u * 6u + 5u * 4u);
+  EXPECT_EQ(Attributes(dom.out, "data-key").size(), 7u * 6u + 5u * 5u + sides * 7u * 6u + 5u * 4u);
+  size_t inside_cells = 0, reprojection_cells = 0;
+  for (const std::string& key : Attributes(dom.out, "data-key")) {
+    inside_cells += key.starts_with("/stereo/test_points/inside/");
+    reprojection_cells += key.starts_with("/stereo/views/") && key.ends_with("/error_px/rms");
+  }
   EXPECT_EQ(inside_cells, tests["inside"]["linear"].is_null() ? 0u : 7u * 6u);
-  EXPECT_EQ(ImagesLoaded("out/report.html"), "3 loaded, 0 broken");
+  EXPECT_EQ(reprojection_cells, 5u * 2u);  // both cameras of every view
+  // 0.3 px of noise per coordinate: every view's reprojection RMS of either camera near √2 · 0.3.
+  for (const Json& v : report["stereo"]["views"]) {
+    for (const char* eye : {"left", "right"}) {
+      EXPECT_NEAR(v["reprojection"][eye]["error_px"]["rms"].get<double>(), 0.3 * std::sqrt(2.0), 0.1) << eye;
+    }
+  }
+  // Each camera's overlay draws the 315 points of the five views (no image named: a blank canvas).
+  const std::string page = ReadText("out/report.html");
+  const auto count = [](const std::string& text, const std::string& what) {
+    size_t n = 0;
+    for (size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+    return n;
+  };
+  const std::string blank = "all views on a blank canvas (the correspondences name no image); 315 residuals drawn";
+  EXPECT_EQ(count(page, "The left camera's residual vectors against its own PnP pose: " + blank), 1u);
+  EXPECT_EQ(count(page, "The right camera's residual vectors through the rig's relative pose: " + blank), 1u);
+  EXPECT_EQ(ImagesLoaded("out/report.html"), "5 loaded, 0 broken");
   EXPECT_EQ(report["stereo"]["reprojection"]["right"]["grid"].size(), 12u);
   ExpectScreenshot("out/report.html", "reproj-report-stereo.png", 1000, 1400);
   EXPECT_TRUE(SameBytesTwice("reproj-report", args, {"out/report.json", "out/report.html"}));
+
+  // The right file names view 2's image: the right overlay is drawn on it (through the rig), the
+  // left one still on a blank canvas (the same PNG encoding the browser decoded above, so Chromium
+  // is not started again); a named image that is missing is refused naming its field.
+  Json right = ReadJson("in/r.json");
+  const std::string view2 = right["views"][2]["name"];
+  right["views"][2]["image"] = "views/r2.png";
+  WriteJson("in/r-named.json", right);
+  fs::create_directories(Path("in/views"));
+  ASSERT_TRUE(cv::imwrite(Path("in/views/r2.png").string(), cv::Mat(720, 1280, CV_8UC1, cv::Scalar(90))));
+  const CommandResult named = Run("reproj-report", {"in/rig.json", "in/l.json", "in/r-named.json", "-o", "out/named.json", "--html", "out/named.html"});
+  ASSERT_EQ(named.exit_code, kOk) << named.err;
+  const std::string named_page = ReadText("out/named.html");
+  EXPECT_EQ(count(named_page, "The right camera's residual vectors through the rig's relative pose: view " + view2 +
+                                 " on its image views/r2.png; 63 residuals drawn"), 1u);
+  EXPECT_EQ(count(named_page, "The left camera's residual vectors against its own PnP pose: " + blank), 1u);
+  right["views"][2]["image"] = "views/missing.png";
+  WriteJson("in/r-missing.json", right);
+  fs::remove_all(Path("out"));
+  fs::create_directories(Path("out"));
+  EXPECT_TRUE(Refused({"in/rig.json", "in/l.json", "in/r-missing.json", "-o", "out/m.json", "--html", "out/m.html"},
+                      "in/r-missing.json: views[2].image: ", {"not found", "blank canvas"}));
 }
 
 TEST_F(CliReprojReportStereo, BadInput) {

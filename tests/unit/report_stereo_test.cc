@@ -3,7 +3,9 @@
 // by Δb along the baseline scales every triangulated point about the left camera by (b + Δb)/b,
 // so Δ = X·Δb/b (depth error z·Δb/b) exactly for a rig whose baseline lies along x, to first order
 // for a slightly turned one; points seen by one camera only and views one camera saw are left out
-// and counted; test points inside and outside the calibration points' box split by that closed form.
+// and counted; test points inside and outside the calibration points' box split by that closed form;
+// one view's right pixels moved by a known offset give that view's right-camera residuals exactly
+// (the left pose, from the left pixels alone, does not move).
 #include <algorithm>
 #include <cmath>
 #include <tuple>
@@ -12,6 +14,7 @@
 
 #include "support/stereo_rigs.h"
 #include "vstcal/core/error.h"
+#include "vstcal/report/report_format.h"
 #include "vstcal/report/stereo_report.h"
 
 namespace vstcal {
@@ -216,6 +219,92 @@ TEST(StereoReport, GridCellsHoldEachCamerasReprojectionError) {
   size_t n = 0;
   for (const auto& cell : cells.right_grid.error_px) n += cell ? cell->n : 0;
   EXPECT_EQ(n, 75u);
+}
+
+TEST(StereoReport, PerViewReprojectionOfEachCameraThroughTheRig) {
+  // Noise-free views; the right camera's pixels of view 1 all moved by s = (3, −4) px. Its left
+  // pose (PnP on the left pixels) and so every prediction p̂ stay where they were, on the unmoved
+  // pixels: each of its right residuals p̂ − m is exactly −s (|r| = 5 px), every other residual 0.
+  const StereoRig rig = testing::ZedLikeRig();
+  testing::StereoViews views = testing::SyntheticStereoViews(rig, 3, 5);
+  const Eigen::Vector2d shift(3, -4);
+  for (Observation& o : views.right.views[1].observations) o.pixel += shift;
+  views.right.views[0].image = "right0.png";
+  // The right file's views in another order: each camera's reprojection names its own file's view.
+  std::reverse(views.right.views.begin(), views.right.views.end());
+  const StereoReport report = BuildStereoReport(rig, views.left, views.right, "rig", "l", "r");
+  ASSERT_EQ(report.views.size(), 3u);
+  size_t n_right = 0;
+  for (size_t v = 0; v < 3; ++v) {
+    const StereoViewReport& view = report.views[v];
+    const View& lv = views.left.views[v];
+    const View& rv = views.right.views[2 - v];
+    EXPECT_EQ(view.left.file_view, v);
+    EXPECT_EQ(view.right.file_view, 2 - v);
+    EXPECT_EQ(view.right.image, v == 0 ? "right0.png" : "");
+    ASSERT_EQ(view.left.points.size(), lv.observations.size());
+    ASSERT_EQ(view.right.points.size(), rv.observations.size());
+    EXPECT_EQ(view.left.error_px->n, lv.observations.size());
+    EXPECT_LT(view.left.error_px->max, 1e-6);
+    EXPECT_EQ(view.right.error_px->n, rv.observations.size());
+    n_right += rv.observations.size();
+    const double expected = v == 1 ? 5.0 : 0.0;
+    EXPECT_NEAR(view.right.error_px->rms, expected, 1e-6) << view.name;
+    EXPECT_NEAR(view.right.error_px->max, expected, 1e-6) << view.name;
+    EXPECT_NEAR(view.right.error_px->median, expected, 1e-6) << view.name;
+    for (size_t i = 0; i < rv.observations.size(); ++i) {
+      const PointError& e = view.right.points[i];
+      ASSERT_EQ(e.excluded, Exclusion::kNone);
+      EXPECT_EQ(e.measured, rv.observations[i].pixel);
+      const Eigen::Vector2d residual = v == 1 ? Eigen::Vector2d(-shift) : Eigen::Vector2d::Zero();
+      EXPECT_LT((*e.predicted - e.measured - residual).norm(), 1e-6);
+    }
+    // The view's triangulated error: only the moved view's, over every point both cameras saw.
+    Correspondences l, r;
+    l.views = {lv};
+    r.views = {rv};
+    EXPECT_EQ(view.stats.linear->n, CommonPoints(l, r));
+    if (v == 1) {
+      EXPECT_GT(view.stats.linear->rms, 1.0);  // mm: 5 px of disparity-ish error at 0.45–0.75 m
+    } else {
+      EXPECT_LT(view.stats.linear->max, 1e-7);
+    }
+  }
+  // Over every right point: √(25 · n₁ / n).
+  const double n1 = static_cast<double>(views.right.views[1].observations.size());
+  EXPECT_NEAR(report.right_grid.overall_px->rms, std::sqrt(25.0 * n1 / static_cast<double>(n_right)), 1e-6);
+  EXPECT_LT(report.left_grid.overall_px->max, 1e-6);
+
+  // The JSON report carries them: [u, v, du, dv] and each view's stats.
+  const io::OrderedJson j = io::StereoReportToJson(report, io::Provenance{"report_stereo_test", {}, std::nullopt});
+  const io::OrderedJson& right1 = j["stereo"]["views"][1]["reprojection"]["right"];
+  EXPECT_NEAR(right1["error_px"]["rms"].get<double>(), 5.0, 1e-6);
+  EXPECT_EQ(right1["points"].size(), views.right.views[1].observations.size());
+  EXPECT_EQ(right1["points"][0][0].get<double>(), views.right.views[1].observations[0].pixel.x());
+  EXPECT_NEAR(right1["points"][0][2].get<double>(), -3.0, 1e-6);
+  EXPECT_NEAR(right1["points"][0][3].get<double>(), 4.0, 1e-6);
+  EXPECT_EQ(j["stereo"]["reprojection"]["right"]["error_px"]["n"].get<size_t>(), n_right);
+}
+
+TEST(StereoReport, AViewWithoutALeftPoseReprojectsNoPoint) {
+  const StereoRig rig = testing::ZedLikeRig();
+  testing::StereoViews views = testing::SyntheticStereoViews(rig, 2, 5);
+  views.left.views[0].observations.resize(2);  // too few for PnP
+  const StereoReport report = BuildStereoReport(rig, views.left, views.right, "rig", "l", "r");
+  ASSERT_EQ(report.views.size(), 2u);
+  EXPECT_NE(report.views[0].pose_status, "ok");
+  for (const StereoReprojection* cam : {&report.views[0].left, &report.views[0].right}) {
+    EXPECT_FALSE(cam->error_px);
+    for (const PointError& e : cam->points) EXPECT_EQ(e.excluded, Exclusion::kNoPose);
+  }
+  EXPECT_EQ(report.views[0].right.points.size(), views.right.views[0].observations.size());
+  EXPECT_EQ(report.views[1].right.error_px->n, views.right.views[1].observations.size());
+  const io::OrderedJson j = io::StereoReportToJson(report, io::Provenance{"report_stereo_test", {}, std::nullopt});
+  const io::OrderedJson& right0 = j["stereo"]["views"][0]["reprojection"]["right"];
+  EXPECT_TRUE(right0["error_px"].is_null());
+  EXPECT_TRUE(right0["points"][0][2].is_null());
+  EXPECT_EQ(right0["excluded"].size(), views.right.views[0].observations.size());
+  EXPECT_EQ(right0["excluded"][0]["reason"], "no-pose");
 }
 
 }  // namespace

@@ -58,7 +58,8 @@ int main(int argc, char** argv) {
                                                     {match_views, options.grid_cols, options.grid_rows});
       std::vector<std::pair<std::filesystem::path, std::string>> files = {
           {output, io::DumpJson(io::StereoReportToJson(report, io::MakeProvenance("reproj-report", argc, argv)))}};
-      if (!html.empty()) files.emplace_back(html, StereoReportHtml(report));
+      if (!html.empty()) files.emplace_back(html, StereoReportHtml(report, std::filesystem::path(inputs[1]).parent_path(),
+                                                                 std::filesystem::path(inputs[2]).parent_path()));
       io::WriteFilesAtomically(files);
       if (format == "text") std::fputs(io::StereoReportText(report).c_str(), stdout);
       return 0;

@@ -26,18 +26,17 @@ double RoundScale(double x) {
 
 // The view's image, in grey (capture::LoadImageFile: its header is checked before anything is
 // decoded, so no file can make the report allocate more than a 100-megapixel image).
-cv::Mat LoadBackground(const ReprojReport& report, size_t view, const std::filesystem::path& dir) {
-  const std::string& named = report.correspondences.views[view].image;
+cv::Mat LoadBackground(const OverlayView& view, const ImageSize& size, const std::filesystem::path& dir) {
+  const std::string& named = view.image;
   std::filesystem::path path = named;
   if (!std::filesystem::exists(path) && path.is_relative()) path = dir / named;
-  const std::string field = report.correspondences_file + ": views[" + std::to_string(view) + "].image: ";
+  const std::string& field = view.image_field;
   if (!std::filesystem::is_regular_file(path)) {
     throw InputError(field + "\"" + named + "\" not found (as given or beside the correspondences); run from the folder " +
                      "the path is relative to, or remove the field to draw on a blank canvas");
   }
   const capture::LoadedImage loaded = capture::LoadImageFile(path);
   if (!loaded.problem.empty()) throw InputError(field + path.string() + ": " + loaded.problem + "; give a PNG or JPEG");
-  const ImageSize& size = report.correspondences.image_size;
   if (loaded.image.width != size.width || loaded.image.height != size.height) {
     throw InputError(field + path.string() + " is " + std::to_string(loaded.image.width) + "x" +
                      std::to_string(loaded.image.height) + " px but image_size is " + std::to_string(size.width) + "x" +
@@ -51,29 +50,27 @@ cv::Mat LoadBackground(const ReprojReport& report, size_t view, const std::files
 
 }  // namespace
 
-OverlayPicture DrawResidualOverlay(const ReprojReport& report, size_t camera, const std::filesystem::path& dir) {
-  VSTCAL_CHECK(camera < report.cameras.size(), "a camera of the report");
-  const CameraReport& cam = report.cameras[camera];
-  const ImageSize& size = report.correspondences.image_size;
+OverlayPicture DrawResidualOverlay(std::span<const OverlayView> all_views, const ImageSize& size,
+                                   const std::optional<ErrorStats>& overall, const std::filesystem::path& dir) {
   std::vector<size_t> views;
   cv::Mat canvas;
   std::string on;
-  for (size_t v = 0; v < report.correspondences.views.size() && views.empty(); ++v) {
-    if (!report.correspondences.views[v].image.empty()) {
-      canvas = LoadBackground(report, v, dir);
+  for (size_t v = 0; v < all_views.size() && views.empty(); ++v) {
+    if (!all_views[v].image.empty()) {
+      canvas = LoadBackground(all_views[v], size, dir);
       views.push_back(v);
-      on = "view " + report.correspondences.views[v].name + " on its image " + report.correspondences.views[v].image;
+      on = "view " + all_views[v].name + " on its image " + all_views[v].image;
     }
   }
   if (views.empty()) {
     canvas = cv::Mat(size.height, size.width, CV_8UC3, cv::Scalar(255, 255, 255));
-    for (size_t v = 0; v < report.correspondences.views.size(); ++v) views.push_back(v);
+    for (size_t v = 0; v < all_views.size(); ++v) views.push_back(v);
     on = "all views on a blank canvas (the correspondences name no image)";
   }
   // Draw at a resolution the page shows: at most kMaxWidth wide.
   const double shrink = std::min(1.0, static_cast<double>(kMaxWidth) / size.width);
   if (shrink < 1.0) cv::resize(canvas, canvas, cv::Size(), shrink, shrink, cv::INTER_AREA);
-  const double p95 = cam.overall.error_px ? std::max(cam.overall.error_px->p95, 1e-12) : 1.0;
+  const double p95 = overall ? std::max(overall->p95, 1e-12) : 1.0;
   const double diagonal = std::hypot(size.width, size.height);
   const double scale = RoundScale(0.02 * diagonal / p95);
   const int thickness = std::max(2, static_cast<int>(std::lround(std::max(canvas.cols, canvas.rows) / 600.0)));
@@ -86,7 +83,7 @@ OverlayPicture DrawResidualOverlay(const ReprojReport& report, size_t camera, co
   };
   size_t drawn = 0;
   for (const size_t v : views) {
-    for (const PointError& e : cam.views[v].points) {
+    for (const PointError& e : all_views[v].points) {
       if (e.excluded != Exclusion::kNone) {
         cv::drawMarker(canvas, at(e.measured) / 16, cv::Scalar(128, 128, 128), cv::MARKER_TILTED_CROSS, 6 * thickness,
                        thickness);
@@ -107,6 +104,18 @@ OverlayPicture DrawResidualOverlay(const ReprojReport& report, size_t camera, co
                 drawn, scale, p95, p95 * scale, p95);
   picture.caption = on + text;
   return picture;
+}
+
+OverlayPicture DrawResidualOverlay(const ReprojReport& report, size_t camera, const std::filesystem::path& dir) {
+  VSTCAL_CHECK(camera < report.cameras.size(), "a camera of the report");
+  const CameraReport& cam = report.cameras[camera];
+  std::vector<OverlayView> views;
+  for (size_t v = 0; v < report.correspondences.views.size(); ++v) {
+    const View& view = report.correspondences.views[v];
+    views.push_back({view.name, view.image, report.correspondences_file + ": views[" + std::to_string(v) + "].image: ",
+                     cam.views[v].points});
+  }
+  return DrawResidualOverlay(views, report.correspondences.image_size, cam.overall.error_px, dir);
 }
 
 }  // namespace vstcal

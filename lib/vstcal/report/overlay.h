@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -17,12 +18,23 @@ struct OverlayPicture {
   std::string caption;             // what is drawn, on what, and the vectors' scale
 };
 
-// Camera `camera` of `report`: on the image of the first view that names one (its points only, the
-// image in grey),
-// resolved as given or else relative to `correspondences_dir`; without images, all views on a
-// blank canvas. Vectors are drawn ×scale with scale = 2 % of the image diagonal over the p95 |r|
-// (rounded to 1, 2 or 5 × 10ᵏ), coloured green (|r| = 0) to red (|r| ≥ p95). Throws InputError
-// naming the correspondences' field when a named image cannot be read or has another size.
+// One view to draw: its points' residuals (PointError's measured, predicted, error_px and
+// excluded), its name and image as its correspondences give them, and that field for messages
+// ("l.json: views[3].image: ").
+struct OverlayView {
+  std::string name, image, image_field;
+  std::span<const PointError> points;
+};
+
+// On the image of the first of `views` that names one (its points only, the image in grey),
+// resolved as given or else relative to `correspondences_dir`; without images, all views on a blank
+// canvas of `size`. Vectors are drawn ×scale with scale = 2 % of the image diagonal over the p95 of
+// `overall` (rounded to 1, 2 or 5 × 10ᵏ), coloured green (|r| = 0) to red (|r| ≥ p95). Throws
+// InputError naming the image field when a named image cannot be read or has another size.
+OverlayPicture DrawResidualOverlay(std::span<const OverlayView> views, const ImageSize& size,
+                                   const std::optional<ErrorStats>& overall, const std::filesystem::path& correspondences_dir);
+
+// Camera `camera` of `report`, every view of its correspondences as above.
 OverlayPicture DrawResidualOverlay(const ReprojReport& report, size_t camera, const std::filesystem::path& correspondences_dir);
 
 }  // namespace vstcal

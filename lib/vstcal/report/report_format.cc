@@ -141,6 +141,18 @@ OrderedJson StereoPointJson(const StereoPointError& e) {
   return p;
 }
 
+// {error_px, excluded, points}: `points[j]` = [u, v, du, dv], du and dv null when excluded.
+OrderedJson StereoReprojectionJson(const StereoReprojection& r) {
+  OrderedJson points = OrderedJson::array();
+  for (const PointError& e : r.points) {
+    const bool measured = e.excluded == Exclusion::kNone;
+    const Eigen::Vector2d d = measured ? Eigen::Vector2d(*e.predicted - e.measured) : Eigen::Vector2d::Zero();
+    points.push_back({e.measured.x(), e.measured.y(), measured ? OrderedJson(d.x()) : OrderedJson(nullptr),
+                      measured ? OrderedJson(d.y()) : OrderedJson(nullptr)});
+  }
+  return {{"error_px", StatsJson(r.error_px)}, {"excluded", ExclusionsJson(r.points)}, {"points", std::move(points)}};
+}
+
 void AppendStereoRows(std::string* out, const std::string& prefix, const std::string& unit, const StereoStats& s) {
   AppendStatsRow(out, prefix + "|dx| " + unit, s.x);
   AppendStatsRow(out, prefix + "|dy| " + unit, s.y);
@@ -255,7 +267,8 @@ OrderedJson StereoReportToJson(const StereoReport& r, const Provenance& provenan
       }
     }
     views.push_back({{"name", v.name}, {"left_pose", v.pose_status}, {"stats", StereoStatsJson(v.stats)},
-                     {"excluded", std::move(excluded)}, {"points", std::move(points)}});
+                     {"excluded", std::move(excluded)}, {"points", std::move(points)},
+                     {"reprojection", {{"left", StereoReprojectionJson(v.left)}, {"right", StereoReprojectionJson(v.right)}}}});
   }
   j["stereo"] = {{"rig", r.rig_file},
                  {"left", r.left_file},
@@ -276,8 +289,8 @@ OrderedJson StereoReportToJson(const StereoReport& r, const Provenance& provenan
                  {"views", std::move(views)},
                  {"grid", {{"cols", r.left_grid.grid.cols}, {"rows", r.left_grid.grid.rows}}},
                  {"reprojection",
-                  {{"left", {{"grid", GridJson(r.left_grid.grid, r.left_grid.error_px)}}},
-                   {"right", {{"grid", GridJson(r.right_grid.grid, r.right_grid.error_px)}}}}}};
+                  {{"left", {{"error_px", StatsJson(r.left_grid.overall_px)}, {"grid", GridJson(r.left_grid.grid, r.left_grid.error_px)}}},
+                   {"right", {{"error_px", StatsJson(r.right_grid.overall_px)}, {"grid", GridJson(r.right_grid.grid, r.right_grid.error_px)}}}}}};
   OrderedJson tests = OrderedJson::array();
   for (const StereoTestPoint& t : r.test_points) {
     const bool measured = t.error.excluded == StereoExclusion::kNone;
@@ -304,7 +317,13 @@ std::string StereoReportText(const StereoReport& r) {
          unit.c_str(), r.left_file.c_str(), r.right_file.c_str(), r.views.size());
   Append(&out, "  %-24s %6s %10s %10s %10s %10s %10s\n", "", "n", "mean", "rms", "median", "p95", "max");
   AppendStereoRows(&out, "", unit, r.overall);
-  for (const StereoViewReport& v : r.views) AppendStatsRow(&out, "view " + v.name + " linear " + unit, v.stats.linear);
+  AppendStatsRow(&out, "left reprojection px", r.left_grid.overall_px);
+  AppendStatsRow(&out, "right reprojection px", r.right_grid.overall_px);
+  for (const StereoViewReport& v : r.views) {
+    AppendStatsRow(&out, "view " + v.name + " linear " + unit, v.stats.linear);
+    AppendStatsRow(&out, "view " + v.name + " left px", v.left.error_px);
+    AppendStatsRow(&out, "view " + v.name + " right px", v.right.error_px);
+  }
   if (!r.test_points.empty()) {
     AppendStatsRow(&out, "test |dz| " + unit, r.test_stats.z);
     AppendStatsRow(&out, "test linear " + unit, r.test_stats.linear);

@@ -7,6 +7,7 @@
 #include "vstcal/report/charts.h"
 #include "vstcal/report/gnuplot.h"
 #include "vstcal/report/html_page.h"
+#include "vstcal/report/overlay.h"
 
 namespace vstcal {
 namespace {
@@ -51,6 +52,43 @@ std::string TestPointSection(const StereoReport& r, const std::string& unit) {
              "<th>dx</th><th>dy</th><th>dz</th><th>linear</th></tr>\n" + rows + "</table>\n";
 }
 
+// Per view: each camera's reprojection RMS through the rig and the view's triangulated error.
+std::string PerViewTable(const StereoReport& r, const std::string& unit) {
+  const auto stat = [](const std::string& key, const std::optional<ErrorStats>& s, auto field) {
+    return s ? html::Cell(key, (*s).*field) : html::EmptyCells(1);
+  };
+  std::string rows;
+  for (size_t v = 0; v < r.views.size(); ++v) {
+    const StereoViewReport& view = r.views[v];
+    const std::string key = "/stereo/views/" + std::to_string(v);
+    rows += "<tr><th>" + Escape(view.name) + "</th><td>" + Escape(view.pose_status) + "</td>" +
+            stat(key + "/reprojection/left/error_px/rms", view.left.error_px, &ErrorStats::rms) +
+            stat(key + "/reprojection/right/error_px/rms", view.right.error_px, &ErrorStats::rms) +
+            (view.stats.linear ? html::Cell(key + "/stats/linear/n", view.stats.linear->n) : html::EmptyCells(1)) +
+            stat(key + "/stats/linear/rms", view.stats.linear, &ErrorStats::rms) +
+            stat(key + "/stats/linear/max", view.stats.linear, &ErrorStats::max) + "</tr>\n";
+  }
+  return "<table><caption>per view: each camera's reprojection error through the rig and the triangulated error</caption>"
+         "<tr><th>view</th><th>left pose</th><th>left RMS px</th><th>right RMS px</th><th>points triangulated</th>"
+         "<th>linear RMS " + Escape(unit) + "</th><th>linear max " + Escape(unit) + "</th></tr>\n" + rows + "</table>\n";
+}
+
+// A camera's residual vectors through the rig over the common views (overlay.h).
+std::string OverlayFigure(const StereoReport& r, bool left, const std::filesystem::path& dir) {
+  const std::string& file = left ? r.left_file : r.right_file;
+  std::vector<OverlayView> views;
+  for (const StereoViewReport& v : r.views) {
+    const StereoReprojection& cam = left ? v.left : v.right;
+    views.push_back({v.name, cam.image, file + ": views[" + std::to_string(cam.file_view) + "].image: ", cam.points});
+  }
+  const StereoCameraGrid& grid = left ? r.left_grid : r.right_grid;
+  const OverlayPicture overlay = DrawResidualOverlay(views, grid.grid.image_size, grid.overall_px, dir);
+  const std::string eye = left ? "left" : "right";
+  return html::Figure("image/png", html::Base64(overlay.png.data(), overlay.png.size()), "residual vectors " + eye,
+                      "The " + eye + " camera's residual vectors " +
+                          (left ? "against its own PnP pose" : "through the rig's relative pose") + ": " + overlay.caption + ".");
+}
+
 }  // namespace
 
 std::string StereoDepthScript(const StereoReport& r) {
@@ -79,7 +117,7 @@ std::string StereoDepthScript(const StereoReport& r) {
   return s + "\n";
 }
 
-std::string StereoReportHtml(const StereoReport& r) {
+std::string StereoReportHtml(const StereoReport& r, const std::filesystem::path& left_dir, const std::filesystem::path& right_dir) {
   const std::string unit(LengthUnitName(r.length_unit));
   std::string s = html::PageStart("reproj-report: stereo rig " + r.rig_file);
   s += "<h1>Stereo rig " + Escape(r.rig_file) + "</h1>\n<p>" + Escape(r.left_file) + " and " + Escape(r.right_file) + ": " +
@@ -98,19 +136,17 @@ std::string StereoReportHtml(const StereoReport& r) {
                      "|dx|, |dy|, |dz| of every measured point against its depth (seed 000 Figs. 9–10)");
   }
   for (const auto& [eye, cells] : {std::pair{"left", &r.left_grid}, std::pair{"right", &r.right_grid}}) {
+    const bool left = eye == std::string("left");
     std::vector<std::optional<double>> means;
     for (const auto& cell : cells->error_px) means.push_back(cell ? std::optional<double>(cell->mean) : std::nullopt);
     s += html::Chart(HeatMapScript(cells->grid, means, "mean |reprojection error| (px)"), std::string("heat map ") + eye,
                      std::string("The ") + eye + " camera: mean reprojection error per image cell (" +
                          std::to_string(cells->grid.cols) + "×" + std::to_string(cells->grid.rows) +
-                         "; blank: no point), " + (eye == std::string("left") ? "against its own PnP pose." : "through the rig's relative pose."));
+                         "; blank: no point), " + (left ? "against its own PnP pose." : "through the rig's relative pose."));
+    s += OverlayFigure(r, left, left ? left_dir : right_dir);
   }
   if (!r.test_points.empty()) s += TestPointSection(r, unit);
-  std::string rows;
-  for (size_t v = 0; v < r.views.size(); ++v) {
-    rows += StatsRow(r.views[v].name, "/stereo/views/" + std::to_string(v) + "/stats/linear", r.views[v].stats.linear);
-  }
-  s += html::StatsTable("linear error (" + unit + ") per view", rows);
+  s += PerViewTable(r, unit);
   return s + html::kPageEnd;
 }
 

@@ -132,6 +132,38 @@ struct Collected {
   }
 };
 
+// One camera's reprojected points over all common views, for its grid of cells.
+struct Reprojected {
+  std::vector<Eigen::Vector2d> pixels;
+  std::vector<double> error_px;
+};
+
+// `view` of `camera`'s file (index `file_view`) reprojected through `camera_from_target` (nullopt:
+// the view has no left pose); its points are added to `all`.
+StereoReprojection Reproject(const CalibratedCamera& camera, const std::optional<Rigid3d>& camera_from_target,
+                             const View& view, size_t file_view, Reprojected* all) {
+  StereoReprojection out;
+  out.file_view = file_view;
+  out.image = view.image;
+  std::vector<double> error_px;
+  for (const Observation& o : view.observations) {
+    PointError e;
+    e.measured = o.pixel;
+    if (camera_from_target) e.predicted = camera.camera.Project(*camera_from_target * o.point);
+    if (!e.predicted) {
+      e.excluded = camera_from_target ? Exclusion::kBehindCamera : Exclusion::kNoPose;
+    } else {
+      e.error_px = (*e.predicted - o.pixel).norm();
+      error_px.push_back(e.error_px);
+      all->pixels.push_back(o.pixel);
+      all->error_px.push_back(e.error_px);
+    }
+    out.points.push_back(e);
+  }
+  out.error_px = ComputeErrorStats(error_px);
+  return out;
+}
+
 // A volume's test points, matched by name, measured where both files give a pixel.
 void AddTestPoints(const StereoRig& rig, const PoseRefinement& pose, const Correspondences& left,
                    const Correspondences& right, StereoReport* report) {
@@ -238,25 +270,17 @@ StereoReport BuildStereoReport(const StereoRig& rig, Correspondences left, Corre
   }
 
   Collected all;
-  struct Reprojected {
-    std::vector<Eigen::Vector2d> pixels;
-    std::vector<double> error_px;
-    void Add(const CalibratedCamera& camera, const Rigid3d& camera_from_target, const Observation& o) {
-      const auto p = camera.camera.Project(camera_from_target * o.point);
-      if (!p) return;
-      pixels.push_back(o.pixel);
-      error_px.push_back((*p - o.pixel).norm());
-    }
-  } left_reprojected, right_reprojected;
+  Reprojected left_reprojected, right_reprojected;
   for (const auto& [lv, rv] : common) {
     StereoViewReport vr;
     vr.name = lv->name;
     const PoseRefinement pose = volume_pose ? *volume_pose : LeftPose(rig, std::span<const View* const>(&lv, 1));
     vr.pose_status = pose.status == PoseStatus::kOk ? "ok" : std::string(PoseStatusText(pose.status));
-    if (pose.status == PoseStatus::kOk) {
-      for (const Observation& o : lv->observations) left_reprojected.Add(rig.left, pose.body_from_world, o);
-      for (const Observation& o : rv->observations) right_reprojected.Add(rig.right, rig.right_from_left * pose.body_from_world, o);
-    }
+    const std::optional<Rigid3d> left_from_target =
+        pose.status == PoseStatus::kOk ? std::optional<Rigid3d>(pose.body_from_world) : std::nullopt;
+    vr.left = Reproject(rig.left, left_from_target, *lv, static_cast<size_t>(lv - left.views.data()), &left_reprojected);
+    vr.right = Reproject(rig.right, left_from_target ? std::optional<Rigid3d>(rig.right_from_left * *left_from_target) : std::nullopt,
+                         *rv, static_cast<size_t>(rv - right.views.data()), &right_reprojected);
     const std::map<Key, size_t> right_index = IndexPoints(*rv, right_file);
     IndexPoints(*lv, left_file);  // for its check: a point twice in the left view
     std::vector<bool> right_used(rv->observations.size(), false);
@@ -301,6 +325,7 @@ StereoReport BuildStereoReport(const StereoRig& rig, Correspondences left, Corre
                                           std::tuple{&report.right_grid, &rig.right, &right_reprojected}}) {
     out->grid = ImageGrid{camera->camera.image_size, options.grid_cols, options.grid_rows};
     out->error_px = ComputeGridStats(out->grid, reprojected->pixels, reprojected->error_px);
+    out->overall_px = ComputeErrorStats(reprojected->error_px);
   }
   if (volume_pose) AddTestPoints(rig, *volume_pose, left, right, &report);
   return report;

@@ -25,6 +25,7 @@
 
 #include "vstcal/calib/correspondences.h"
 #include "vstcal/report/convex_hull.h"
+#include "vstcal/report/reprojection_report.h"
 #include "vstcal/report/statistics.h"
 #include "vstcal/stereo/stereo_rig.h"
 
@@ -61,11 +62,24 @@ struct StereoStats {
   double depth_bias = 0;                           // mean signed depth term
 };
 
+// One camera's view of a common view reprojected through the rig, as the heat maps' cells count
+// it (StereoReport::left_grid): p̂ through the view's left PnP pose, and right_from_left too for the
+// right camera. `points` are its file's view's in order, each PointError with measured, predicted
+// and error_px = |p̂ − m| only (no lateral or angular error): kNoPose without a left pose,
+// kBehindCamera when p̂ does not exist.
+struct StereoReprojection {
+  size_t file_view = 0;  // the view's index in its camera's correspondences
+  std::string image;     // the view's image as that file names it ("" for none)
+  std::vector<PointError> points;
+  std::optional<ErrorStats> error_px;  // nullopt when no point is reprojected
+};
+
 struct StereoViewReport {
   std::string name;
   std::string pose_status;  // "ok", or why the left pose failed (PoseStatusText)
   std::vector<StereoPointError> points;  // the left view's points in order, then the right-only ones
   StereoStats stats;
+  StereoReprojection left, right;
 };
 
 // A test point of a volume (never used in a solve, seed 000 §4.2), matched between the files by
@@ -81,6 +95,7 @@ struct StereoTestPoint {
 struct StereoCameraGrid {
   ImageGrid grid;
   std::vector<std::optional<ErrorStats>> error_px;
+  std::optional<ErrorStats> overall_px;  // every reprojected point of the camera (in some cell or not)
 };
 
 struct StereoReport {
