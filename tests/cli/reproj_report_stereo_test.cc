@@ -157,6 +157,7 @@ TEST_F(CliReprojReportStereo, PageRendersOfflineWithTheJsonsNumbers) {
   EXPECT_EQ(inside_cells, tests["inside"]["linear"].is_null() ? 0u : 7u * 6u);
   EXPECT_EQ(ImagesLoaded("out/report.html"), "3 loaded, 0 broken");
   EXPECT_EQ(report["stereo"]["reprojection"]["right"]["grid"].size(), 12u);
+  EXPECT_EQ(TablesWiderThanThePage("out/report.html", 1000), "none");
   ExpectScreenshot("out/report.html", "reproj-report-stereo.png", 1000, 1400);
   EXPECT_TRUE(SameBytesTwice("reproj-report", args, {"out/report.json", "out/report.html"}));
 }
