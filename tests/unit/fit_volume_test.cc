@@ -7,16 +7,14 @@
 #include <vector>
 
 #include "vstcal/calib/fit.h"
+#include "vstcal/capture/synthetic_camera.h"
 #include "vstcal/io/camera_io.h"
 
 namespace vstcal {
 namespace {
 
-Camera CameraLookingAlongWorldZ() {
-  Eigen::Matrix3d K;
-  K << 1000, 0, 639.5, 0, 1000, 359.5, 0, 0, 1;
-  return Camera::FromK(K, ImageSize{1280, 720});
-}
+// fx = fy = 1000 px, the principal point at the image centre.
+Camera CameraLookingAlongWorldZ() { return MakeSyntheticCamera({.image_size = {1280, 720}, .fx = 1000.0}); }
 
 // The camera 1.5 m in front of the volume's centre, looking along world +z.
 Rigid3d CameraFromWorld() { return Rigid3d{Eigen::Matrix3d::Identity(), Eigen::Vector3d(-100, -100, 1500)}; }
