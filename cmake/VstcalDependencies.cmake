@@ -6,7 +6,7 @@ find_package(nlohmann_json 3.10 REQUIRED)
 find_package(CLI11 REQUIRED)
 find_package(apriltag REQUIRED)
 find_package(Threads REQUIRED)
-find_package(Qhull REQUIRED CONFIG)  # reproj-report: the measured volume's convex hull (libqhull_r)
+find_package(Qhull REQUIRED CONFIG)  # the measured volume: the calibration points' convex hull (libqhull_r)
 find_package(ZLIB REQUIRED)  # tests: an independent CRC-32 for the PNG chunks vstcal writes
 # Boost.Random (header-only) for the Sobol quasi-random sequence of lib/vstcal/sensitivity.
 find_package(Boost 1.74 REQUIRED)

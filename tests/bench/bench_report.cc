@@ -11,7 +11,7 @@
 
 #include "support/scenes.h"
 #include "vstcal/geometry/rotation.h"
-#include "vstcal/report/convex_hull.h"
+#include "vstcal/geometry/convex_hull.h"
 #include "vstcal/report/reprojection_report.h"
 
 namespace {

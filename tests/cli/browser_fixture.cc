@@ -68,22 +68,43 @@ size_t BrowserTest::ExpectNumbersOf(const Json& report, const std::string& dom) 
   return numbers;
 }
 
-std::string BrowserTest::ImagesLoaded(const std::string& page) const {
+// The page's policy allows no script; the copy allows inline ones and still no fetch.
+std::string BrowserTest::EvaluateOnLoad(const std::string& page, const std::string& expression,
+                                        const std::vector<std::string>& flags) const {
   std::string text = ReadText(page);
   const std::string policy = "default-src 'none';";
   const size_t at = text.find(policy);
   if (at == std::string::npos) return "no Content-Security-Policy";
   text.replace(at, policy.size(), "default-src 'none'; script-src 'unsafe-inline';");
   text.replace(text.rfind("</body>"), 7,
-               "<script>window.addEventListener('load', () => { const bad = [...document.images].filter(i => "
-               "!i.complete || i.naturalWidth === 0).length; document.body.setAttribute('data-images', "
-               "document.images.length + ' loaded, ' + bad + ' broken'); });</script></body>");
+               "<script>window.addEventListener('load', () => { document.body.setAttribute('data-result', (" +
+                   expression + ")); });</script></body>");
   WriteText("check.html", text);
-  const CommandResult checked = Render("check.html", {"--dump-dom"});
+  std::vector<std::string> extra = flags;
+  extra.push_back("--dump-dom");
+  const CommandResult checked = Render("check.html", extra);
   const std::vector<std::string> console = ConsoleLines(checked.err);
   EXPECT_TRUE(console.empty()) << console.front();
-  const std::vector<std::string> result = Attributes(checked.out, "data-images");
+  const std::vector<std::string> result = Attributes(checked.out, "data-result");
   return result.size() == 1 ? result[0] : "no result: " + checked.out.substr(0, 400);
+}
+
+std::string BrowserTest::ImagesLoaded(const std::string& page) const {
+  return EvaluateOnLoad(page,
+                        "document.images.length + ' loaded, ' + [...document.images].filter(i => !i.complete || "
+                        "i.naturalWidth === 0).length + ' broken'");
+}
+
+std::string BrowserTest::TablesWiderThanThePage(const std::string& page, int width) const {
+  // The body's content box: its border box less its padding (the page's margins lie outside it).
+  const std::string expression =
+      "(() => { const b = document.body.getBoundingClientRect(), st = getComputedStyle(document.body); "
+      "const limit = Math.min(b.right - parseFloat(st.paddingRight), document.documentElement.clientWidth); "
+      "const wide = [...document.querySelectorAll('table')].map(t => [t, t.getBoundingClientRect().left + "
+      "t.scrollWidth]).filter(([t, right]) => right > limit + 0.5).map(([t, right]) => (t.caption ? "
+      "t.caption.textContent : 'a table') + ': right edge ' + Math.round(right) + ' px, page ' + Math.round(limit) + ' px'); "
+      "return wide.length ? wide.join('; ') : 'none'; })()";
+  return EvaluateOnLoad(page, expression, {"--window-size=" + std::to_string(width) + ",1000"});
 }
 
 void BrowserTest::ExpectScreenshot(const std::string& page, const std::string& name, int width, int height) const {

@@ -36,9 +36,21 @@ class BrowserTest : public CliTest {
   // Expects no console message while that copy loads.
   std::string ImagesLoaded(const std::string& page) const;
 
+  // The tables of `page` that do not fit the page, rendered in a `width`-pixel window: each whose
+  // right edge passes the right edge of the body's content box (the page's column), as
+  // "CAPTION: right edge R px, page P px" joined by "; ", or "none". A table in a scrolling box counts by its
+  // own edge, so a table that fits only by scrolling is reported too. Expects no console message.
+  std::string TablesWiderThanThePage(const std::string& page, int width) const;
+
   // Saves a `width`×`height` screenshot of `page` as build/test-artifacts/<name> and expects a page
   // with something drawn on it (not blank).
   void ExpectScreenshot(const std::string& page, const std::string& name, int width, int height) const;
+
+ private:
+  // The value of the JavaScript `expression` once `page` has loaded (its load event), read back from
+  // a copy of the page that runs it; `flags` go to Chromium (e.g. a window size).
+  std::string EvaluateOnLoad(const std::string& page, const std::string& expression,
+                             const std::vector<std::string>& flags = {}) const;
 };
 
 }  // namespace vstcal::cli_test

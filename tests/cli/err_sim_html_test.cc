@@ -49,6 +49,7 @@ TEST_F(CliErrSimHtml, RendersOfflineWithEveryImageAndTheJsonsNumbers) {
   }
 
   EXPECT_EQ(ImagesLoaded("out/run.html"), "5 loaded, 0 broken");
+  EXPECT_EQ(TablesWiderThanThePage("out/run.html", 1000), "none");
   ExpectScreenshot("out/run.html", "err-sim.png", 1000, 2400);
 }
 
@@ -76,6 +77,9 @@ TEST_F(CliErrSimHtml, SweepPageShowsTheCurvesAndTheSteepestSlopes) {
   }
   EXPECT_EQ(slopes, 3u);
   EXPECT_EQ(ImagesLoaded("out/sweep.html"), "4 loaded, 0 broken");
+  // The table of the longest parameter names fits the 1000 px window without scrolling.
+  EXPECT_EQ(TablesWiderThanThePage("out/sweep.html", 1000), "none");
+  ExpectScreenshot("out/sweep.html", "err-sim-sweep.png", 1000, 1600);
 }
 
 TEST_F(CliErrSimHtml, SameSeedGivesTheSameBytes) {
@@ -147,6 +151,7 @@ TEST_F(CliErrSimHtml, SobolPageShowsEachSourcesIndicesWithTheirIntervals) {
   }
   EXPECT_EQ(lower_ends, charted * groups);
   EXPECT_EQ(ImagesLoaded("out/sobol.html"), std::to_string(charted) + " loaded, 0 broken");
+  EXPECT_EQ(TablesWiderThanThePage("out/sobol.html", 1000), "none");
   ExpectScreenshot("out/sobol.html", "err-sim-sobol.png", 1000, 1600);
 }
 
@@ -170,6 +175,7 @@ TEST_F(CliErrSimHtml, LinearPageShowsFirstOrderAgainstMonteCarlo) {
   // As many rows say "differs" as the file counts disagreements.
   EXPECT_EQ(DifferingRows(dom.out), linear["disagreements"].get<size_t>());
   EXPECT_EQ(ImagesLoaded("out/linear.html"), "3 loaded, 0 broken");
+  EXPECT_EQ(TablesWiderThanThePage("out/linear.html", 1000), "none");
   ExpectScreenshot("out/linear.html", "err-sim-linear.png", 1000, 1600);
 }
 

@@ -40,6 +40,7 @@ TEST_F(CliReprojReportHtml, RendersOfflineWithEveryImageAndTheJsonsNumbers) {
   EXPECT_EQ(ImagesLoaded("out/report.html"), "9 loaded, 0 broken");
 
   // 4. A screenshot, kept in the build tree for a person to look at.
+  EXPECT_EQ(TablesWiderThanThePage("out/report.html", 1000), "none");
   ExpectScreenshot("out/report.html", "reproj-report.png", 1000, 2400);
 }
 

@@ -193,6 +193,7 @@ TEST_F(CliReprojReportStereo, PageRendersOfflineWithTheJsonsNumbers) {
   EXPECT_EQ(count(page, "The right camera's residual vectors through the rig's relative pose: " + blank), 1u);
   EXPECT_EQ(ImagesLoaded("out/report.html"), "5 loaded, 0 broken");
   EXPECT_EQ(report["stereo"]["reprojection"]["right"]["grid"].size(), 12u);
+  EXPECT_EQ(TablesWiderThanThePage("out/report.html", 1000), "none");
   ExpectScreenshot("out/report.html", "reproj-report-stereo.png", 1000, 1400);
   EXPECT_TRUE(SameBytesTwice("reproj-report", args, {"out/report.json", "out/report.html"}));
 

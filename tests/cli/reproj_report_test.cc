@@ -106,11 +106,16 @@ TEST_F(CliReprojReport, OnePlaneSpansNoVolume) {
   const CommandResult r = Run("reproj-report", {"in/plane.truth.json", "in/plane.json", "-o", "out/report.json"});
   ASSERT_EQ(r.exit_code, kOk) << r.err;
   const Json report = ReadJson("out/report.json");
-  EXPECT_EQ(report["volume"]["hull"], "the calibration points lie on one plane: they span no volume");
+  EXPECT_EQ(report["volume"]["hull"], "the points lie on one plane: they span no volume");
   const Json& tests = report["cameras"][0]["test_points"];
   EXPECT_TRUE(tests["inside"]["error_px"].is_null());
   EXPECT_TRUE(tests["outside"]["error_px"].is_null());
   for (const Json& t : tests["points"]) EXPECT_TRUE(t["inside_volume"].is_null());
+  // The camera file (calib-synth's truth) follows the same rule with the same words.
+  const Json truth = ReadJson("in/plane.truth.json");
+  EXPECT_EQ(truth["fit"]["volume"]["hull"], report["volume"]["hull"]);
+  ASSERT_EQ(truth["fit"]["test_points"].size(), tests["points"].size());
+  for (const Json& t : truth["fit"]["test_points"]) EXPECT_TRUE(t["inside_volume"].is_null()) << t["name"];
 }
 
 TEST_F(CliReprojReport, DifferentImageSize) {

@@ -5,6 +5,7 @@
 
 #include "common/run_tool.h"
 #include "vstcal/calib/compare.h"
+#include "vstcal/calib/measured_volume.h"
 #include "vstcal/core/error.h"
 #include "vstcal/io/camera_io.h"
 #include "vstcal/io/correspondences_io.h"
@@ -59,7 +60,7 @@ int main(int argc, char** argv) {
       std::printf("%-14s %-8s %s\n", "test point", "volume", "disagreement px");
       const Fit fit = ComputeVolumeFit(a.camera, *a.camera_from_world, corners);  // inside/outside the volume
       for (size_t i = 0; i < d.size(); ++i) {
-        const char* where = fit.test_points[i].inside_volume ? "inside" : "outside";
+        const char* where = VolumeSideName(fit.test_points[i].inside_volume);
         if (d[i].pixel_distance) {
           std::printf("%-14s %-8s %.4f\n", d[i].name.c_str(), where, *d[i].pixel_distance);
         } else {

@@ -49,20 +49,15 @@ Fit ComputeViewsFit(const Camera& camera, std::span<const Rigid3d> camera_from_v
 Fit ComputeVolumeFit(const Camera& camera, const Rigid3d& camera_from_world, const Correspondences& c) {
   const std::vector<Rigid3d> same_pose(c.views.size(), camera_from_world);
   Fit fit = ComputeViewsFit(camera, same_pose, c);
-  Eigen::Vector3d lo = Eigen::Vector3d::Constant(INFINITY), hi = Eigen::Vector3d::Constant(-INFINITY);
-  for (const View& view : c.views) {
-    for (const Observation& o : view.observations) {
-      lo = lo.cwiseMin(o.point);
-      hi = hi.cwiseMax(o.point);
-    }
-  }
+  const Correspondences* files[] = {&c};
+  fit.volume = MeasuredVolumeOf(files);
   for (const TestPoint& t : c.test_points) {
     TestPointFit tf;
     tf.name = t.name;
     tf.point_in_world = t.point_in_world;
     tf.predicted = camera.Project(camera_from_world * t.point_in_world);
     tf.measured = t.pixel;
-    tf.inside_volume = (t.point_in_world.array() >= lo.array()).all() && (t.point_in_world.array() <= hi.array()).all();
+    tf.inside_volume = fit.volume->Contains(t.point_in_world);
     fit.test_points.push_back(std::move(tf));
   }
   return fit;

@@ -10,6 +10,7 @@
 #include <Eigen/Core>
 
 #include "vstcal/calib/correspondences.h"
+#include "vstcal/calib/measured_volume.h"
 #include "vstcal/camera/camera.h"
 #include "vstcal/geometry/rigid3.h"
 
@@ -32,7 +33,9 @@ struct TestPointFit {
   Eigen::Vector3d point_in_world;
   std::optional<Eigen::Vector2d> predicted;  // nullopt when the point is behind the camera
   std::optional<Eigen::Vector2d> measured;
-  bool inside_volume = false;  // inside the axis-aligned bounding box of the calibration points
+  // Inside (or on) the convex hull of the calibration points (`Fit::volume`); nullopt when they
+  // span no volume: the point is then neither inside nor outside.
+  std::optional<bool> inside_volume;
 
   std::optional<double> error_px() const {
     if (!predicted || !measured) return std::nullopt;
@@ -44,6 +47,7 @@ struct Fit {
   ResidualStats overall;
   std::vector<ViewFit> views;
   std::vector<TestPointFit> test_points;
+  std::optional<MeasuredVolume> volume;  // volume rigs: the calibration points' convex hull
   size_t n_behind_camera = 0;  // observations that project behind the camera (not in stats)
 };
 

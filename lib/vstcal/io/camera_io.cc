@@ -352,6 +352,7 @@ OrderedJson FitToJson(const Fit& fit) {
     views.push_back({{"name", v.name}, {"rms_px", v.stats.rms_px}, {"max_px", v.stats.max_px}, {"n_points", v.stats.n_points}});
   }
   j["views"] = std::move(views);
+  if (fit.volume) j["volume"] = MeasuredVolumeToJson(*fit.volume);
   OrderedJson tests = OrderedJson::array();
   for (const TestPointFit& t : fit.test_points) {
     OrderedJson jt;
@@ -361,11 +362,15 @@ OrderedJson FitToJson(const Fit& fit) {
     jt["measured"] = t.measured ? MatrixToJson(*t.measured) : OrderedJson(nullptr);
     const auto error = t.error_px();
     jt["error_px"] = error ? OrderedJson(*error) : OrderedJson(nullptr);
-    jt["inside_volume"] = t.inside_volume;
+    jt["inside_volume"] = t.inside_volume ? OrderedJson(*t.inside_volume) : OrderedJson(nullptr);
     tests.push_back(std::move(jt));
   }
   j["test_points"] = std::move(tests);
   return j;
+}
+
+OrderedJson MeasuredVolumeToJson(const MeasuredVolume& volume) {
+  return {{"hull", volume.status}, {"vertices", volume.vertices}, {"facets", volume.facets}};
 }
 
 OrderedJson CameraToJson(const CalibratedCamera& c, const Provenance& provenance, const OrderedJson& extra) {

@@ -27,6 +27,9 @@ CalibratedCamera CameraFromNode(const JsonNode& node);
 OrderedJson CameraToJson(const CalibratedCamera& camera, const Provenance& provenance,
                          const OrderedJson& extra = OrderedJson::object());
 OrderedJson FitToJson(const Fit& fit);
+// `{hull, vertices, facets}`: "ok" or why the calibration points have no convex hull, and its size
+// (0 without one). The camera file's `fit.volume` and the reports' `volume` alike.
+OrderedJson MeasuredVolumeToJson(const MeasuredVolume& volume);
 
 // Why K cannot be a camera matrix (upper triangular, K[2][2] = 1, fx > 0, fy > 0), or nullopt.
 // Every format's reader applies it, so that K is refused in the same words everywhere.

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "vstcal/calib/measured_volume.h"
 #include "vstcal/json/json_writer.h"
 #include "vstcal/report/gnuplot.h"
 
@@ -125,7 +126,7 @@ std::string TestPointsScript(const ReprojReport& r) {
   for (size_t k = 0; k < r.cameras.size(); ++k) {
     for (const TestPointReport& t : r.cameras[k].test_points) {
       if (t.error.excluded != Exclusion::kNone) continue;
-      const char* where = !t.inside_volume ? "unknown" : *t.inside_volume ? "inside" : "outside";
+      const char* where = VolumeSideName(t.inside_volume);
       data += GnuplotQuoted(std::to_string(k) + ":" + t.name + " (" + where + ")") + " " + Number(t.error.error_px) + " " +
               Number(t.error.lateral) + " " + (t.inside_volume && *t.inside_volume ? "1" : "2") + "\n";
       ++rows;

@@ -161,12 +161,12 @@ std::string ErrSimSweepHtml(const OrderedJson& r) {
           steepest = j;
         }
       }
-      rows += "<tr><th>" + Escape(p.at("name").get<std::string>()) + "</th><td>" + Escape(p.at("unit").get<std::string>()) +
+      rows += "<tr><th>" + html::Name(p.at("name").get<std::string>()) + "</th><td>" + Escape(p.at("unit").get<std::string>()) +
               "</td>" + ValueCell(r, key + "/values/0") + ValueCell(r, key + "/values/" + last) +
               ValueCell(r, key + "/image_rms_px/0") + ValueCell(r, key + "/image_rms_px/" + last) +
               ValueCell(r, key + "/misregistration_rms/0") + ValueCell(r, key + "/misregistration_rms/" + last) +
               (slopes.empty() ? html::EmptyCells(1) : ValueCell(r, key + "/slope_per_unit/" + std::to_string(steepest))) +
-              "<td style=\"text-align:left\">" + (slopes.empty() ? "" : Escape(r.at("outputs").at(steepest).get<std::string>())) +
+              "<td style=\"text-align:left\">" + (slopes.empty() ? "" : html::Name(r.at("outputs").at(steepest).get<std::string>())) +
               "</td></tr>\n";
     }
     s += Table("the sweeps of " + source,

@@ -70,7 +70,7 @@ std::string ErrSimSobolHtml(const OrderedJson& r) {
     const std::string name = outputs[k].at("name").get<std::string>();
     for (const auto& group : groups) {
       const std::string key = "/outputs/" + std::to_string(k) + "/indices/" + group.get<std::string>();
-      interval_rows += "<tr><th>" + Escape(name) + "</th><th>" + Escape(group.get<std::string>()) + "</th>";
+      interval_rows += "<tr><th>" + html::Name(name) + "</th><th>" + html::Name(group.get<std::string>()) + "</th>";
       for (const char* order : {"/first", "/total"}) {
         interval_rows += ValueCell(r, key + order + "/value") + ValueCell(r, key + order + "/interval/0") +
                          ValueCell(r, key + order + "/interval/1");
@@ -82,19 +82,25 @@ std::string ErrSimSobolHtml(const OrderedJson& r) {
              "<th>output</th><th>source</th><th>first order</th><th>lo</th><th>hi</th><th>total</th><th>lo</th><th>hi</th>",
              interval_rows);
   s += "</section>\n<section><h2>Every output</h2>\n";
-  std::string heads = "<th>output</th><th>mean</th><th>variance</th>", rows;
-  for (const auto& group : groups) heads += "<th>" + Escape(group.get<std::string>()) + " S<sub>i</sub></th><th>S<sub>Ti</sub></th>";
+  // One table per order: a column per source in each, so that seven sources fit the page.
+  std::string source_heads;
+  for (const auto& group : groups) source_heads += "<th>" + html::Name(group.get<std::string>()) + "</th>";
+  std::string first_rows, total_rows;
   for (size_t k = 0; k < outputs.size(); ++k) {
-    const std::string key = "/outputs/" + std::to_string(k);
-    rows += "<tr><th>" + Escape(outputs[k].at("name").get<std::string>()) + "</th>" + ValueCell(r, key + "/mean") +
-            ValueCell(r, key + "/variance");
+    const std::string key = "/outputs/" + std::to_string(k), name = "<tr><th>" + html::Name(outputs[k].at("name").get<std::string>()) + "</th>";
+    first_rows += name + ValueCell(r, key + "/mean") + ValueCell(r, key + "/variance");
+    total_rows += name;
     for (const auto& group : groups) {
       const std::string index = key + "/indices/" + group.get<std::string>();
-      rows += ValueCell(r, index + "/first/value") + ValueCell(r, index + "/total/value");
+      first_rows += ValueCell(r, index + "/first/value");
+      total_rows += ValueCell(r, index + "/total/value");
     }
-    rows += "</tr>\n";
+    first_rows += "</tr>\n";
+    total_rows += "</tr>\n";
   }
-  s += Table("first-order and total indices of every output", heads, rows) + "</section>\n";
+  s += Table("first-order indices S_i of every output, per source", "<th>output</th><th>mean</th><th>variance</th>" + source_heads,
+             first_rows);
+  s += Table("total indices S_Ti of every output, per source", "<th>output</th>" + source_heads, total_rows) + "</section>\n";
   return s + html::kPageEnd;
 }
 
@@ -124,26 +130,31 @@ std::string ErrSimLinearHtml(const OrderedJson& r) {
   s += ChartOrNote(LinearRelativeDifferenceScript(r, all), "relative difference of σ per output",
                    "(linear σ − Monte Carlo σ) / Monte Carlo σ of each output, with ±3 standard errors of the Monte "
                    "Carlo σ: linear σ / MC σ is 1 + this.");
-  std::string heads =
-      "<th>output</th><th>linear mean</th><th>MC mean</th><th>its s.e.</th><th>linear σ</th><th>MC σ</th><th>its s.e.</th>"
-      "<th>(lin − MC) / MC</th><th>differs</th>";
+  // The comparison and the σ from each source as two tables, each of which fits the page.
   const OrderedJson& groups = outputs.empty() ? OrderedJson::object() : outputs[0].at("linear_sigma_by_source");
-  for (const auto& [group, value] : groups.items()) heads += "<th>σ from " + Escape(group) + "</th>";
-  std::string rows;
+  std::string source_heads = "<th>output</th>";
+  for (const auto& [group, value] : groups.items()) source_heads += "<th>" + html::Name(group) + "</th>";
+  std::string rows, source_rows;
   for (size_t k = 0; k < outputs.size(); ++k) {
     const OrderedJson& o = outputs[k];
-    const std::string key = "/outputs/" + std::to_string(k);
-    rows += "<tr><th>" + Escape(o.at("name").get<std::string>()) + "</th>";
+    const std::string key = "/outputs/" + std::to_string(k), name = "<tr><th>" + html::Name(o.at("name").get<std::string>()) + "</th>";
+    rows += name;
     for (const char* field : {"linear_mean", "monte_carlo_mean", "mean_standard_error", "linear_sigma", "monte_carlo_sigma",
                               "sigma_standard_error", "sigma_relative_difference"}) {
       rows += ValueCell(r, key + "/" + field);
     }
     const bool mean = o.at("mean_disagrees").get<bool>(), sigma = o.at("sigma_disagrees").get<bool>();
-    rows += std::string("<td>") + (mean && sigma ? "mean, σ" : mean ? "mean" : sigma ? "σ" : "") + "</td>";
-    for (const auto& [group, value] : groups.items()) rows += ValueCell(r, key + "/linear_sigma_by_source/" + group);
-    rows += "</tr>\n";
+    rows += std::string("<td>") + (mean && sigma ? "mean, σ" : mean ? "mean" : sigma ? "σ" : "") + "</td></tr>\n";
+    source_rows += name;
+    for (const auto& [group, value] : groups.items()) source_rows += ValueCell(r, key + "/linear_sigma_by_source/" + group);
+    source_rows += "</tr>\n";
   }
-  s += Table("per output (pixel outputs in px, the others in " + unit + ")", heads, rows) + "</section>\n";
+  const std::string units = "pixel outputs in px, the others in " + unit;
+  s += Table("per output (" + units + ")",
+             "<th>output</th><th>linear mean</th><th>MC mean</th><th>its s.e.</th><th>linear σ</th><th>MC σ</th>"
+             "<th>its s.e.</th><th>(lin − MC) / MC</th><th>differs</th>",
+             rows);
+  s += Table("linear σ from each source alone, per output (" + units + ")", source_heads, source_rows) + "</section>\n";
   return s + html::kPageEnd;
 }
 

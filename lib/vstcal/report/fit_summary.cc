@@ -2,6 +2,7 @@
 
 #include <cstdio>
 
+#include "vstcal/calib/measured_volume.h"
 #include "vstcal/camera/intrinsics.h"
 
 namespace vstcal {
@@ -36,9 +37,9 @@ std::string FitSummaryText(const CalibratedCamera& c) {
     for (const TestPointFit& t : fit.test_points) {
       const auto e = t.error_px();
       if (e) {
-        Append(&out, "  %-14s %-8s %.4f\n", t.name.c_str(), t.inside_volume ? "inside" : "outside", *e);
+        Append(&out, "  %-14s %-8s %.4f\n", t.name.c_str(), VolumeSideName(t.inside_volume), *e);
       } else {
-        Append(&out, "  %-14s %-8s %s\n", t.name.c_str(), t.inside_volume ? "inside" : "outside",
+        Append(&out, "  %-14s %-8s %s\n", t.name.c_str(), VolumeSideName(t.inside_volume),
                t.predicted ? "(not measured)" : "(behind camera)");
       }
     }

@@ -21,6 +21,15 @@ std::string Escape(const std::string& text) {
   return out;
 }
 
+std::string Name(const std::string& name) {
+  std::string out;
+  for (const char c : name) {
+    out += Escape(std::string(1, c));
+    if (c == '.' || c == '_') out += "<wbr>";
+  }
+  return out;
+}
+
 std::string Cell(const std::string& key, double v, int digits) {
   char shown[64];
   std::snprintf(shown, sizeof shown, "%.*f", digits, v);
@@ -44,12 +53,15 @@ std::string Chart(const std::string& script, const std::string& alt, const std::
   return Figure("image/svg+xml", Base64(RunGnuplot(script)), alt, caption);
 }
 
+// Tables are set a little smaller than the text, with narrow cell padding: a row with a column per
+// error source (err-sim's seven) then fits the 1000 px page, as the browser tests check.
 std::string PageStart(const std::string& title) {
   return "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\n"
          "<meta http-equiv=\"Content-Security-Policy\" content=\"default-src 'none'; img-src data:; style-src 'unsafe-inline'\">\n"
          "<title>" + Escape(title) + "</title>\n<style>\n"
-         "body{font-family:sans-serif;margin:1.5em;max-width:1000px;color:#222}table{border-collapse:collapse;margin:0.8em 0}"
-         "td,th{border:1px solid #ccc;padding:2px 8px;text-align:right}th{background:#f4f4f4}caption{text-align:left;"
+         "body{font-family:sans-serif;margin:1.5em;max-width:1000px;color:#222}"
+         "table{border-collapse:collapse;margin:0.8em 0;font-size:90%}"
+         "td,th{border:1px solid #ccc;padding:2px 6px;text-align:right}th{background:#f4f4f4}caption{text-align:left;"
          "font-weight:bold;padding:4px 0}td.none{color:#999}figure{margin:1em 0}img{max-width:100%;border:1px solid #ddd}"
          "figcaption{font-size:90%;color:#555}\n</style></head><body>\n";
 }

@@ -15,6 +15,10 @@ namespace vstcal::html {
 
 // Text for element content and attribute values (& < > " escaped).
 std::string Escape(const std::string& text);
+// A dotted or snake_case name (a parameter, a source, an output: "camera_intrinsic.left.cx") as
+// element content, escaped, with a line-break opportunity (<wbr>) after each '.' and '_': the name
+// wraps there rather than pushing its table past the page.
+std::string Name(const std::string& name);
 
 // <td> showing `v` to 4 decimals (`digits`), carrying `key` (a JSON pointer) and the exact value.
 std::string Cell(const std::string& key, double v, int digits = 4);

@@ -113,10 +113,6 @@ void AppendStatsRow(std::string* out, const std::string& label, const std::optio
          s->p95, s->max);
 }
 
-OrderedJson VolumeJson(const MeasuredVolume& v) {
-  return {{"hull", v.status}, {"vertices", v.vertices}, {"facets", v.facets}};
-}
-
 OrderedJson StereoStatsJson(const StereoStats& s) {
   return {{"x", StatsJson(s.x)},
           {"y", StatsJson(s.y)},
@@ -193,7 +189,7 @@ OrderedJson ReprojReportToJson(const ReprojReport& r, const Provenance& provenan
   for (const View& v : c.views) images.push_back(v.image.empty() ? OrderedJson(nullptr) : OrderedJson(v.image));
   j["correspondences"]["images"] = std::move(images);
   j["grid"] = {{"cols", r.grid.cols}, {"rows", r.grid.rows}};
-  j["volume"] = VolumeJson(r.volume);
+  j["volume"] = io::MeasuredVolumeToJson(r.volume);
   OrderedJson cameras = OrderedJson::array();
   for (const CameraReport& cam : r.cameras) cameras.push_back(CameraJson(cam, r.grid));
   j["cameras"] = std::move(cameras);
@@ -276,7 +272,7 @@ OrderedJson StereoReportToJson(const StereoReport& r, const Provenance& provenan
                  {"length_unit", LengthUnitName(r.length_unit)},
                  {"target", r.rig_kind == Rig::kVolume ? "volume" : "planar-views"},
                  {"baseline", r.baseline},
-                 {"volume", VolumeJson(r.volume)},
+                 {"volume", io::MeasuredVolumeToJson(r.volume)},
                  {"overall", StereoStatsJson(r.overall)},
                  {"excluded",
                   {{"left_only", r.n_left_only},

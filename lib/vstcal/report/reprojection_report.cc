@@ -7,7 +7,6 @@
 
 #include "vstcal/calib/uncertainty.h"
 #include "vstcal/core/error.h"
-#include "vstcal/report/convex_hull.h"
 #include "vstcal/report/registration_error.h"
 
 namespace vstcal {
@@ -123,7 +122,7 @@ std::optional<Rigid3d> ViewPoseOf(const ReportCamera& rc, const Correspondences&
 }
 
 CameraReport ReportOne(const ReportCamera& rc, const Correspondences& c, const ImageGrid& grid,
-                       const std::optional<ConvexHull3>& hull) {
+                       const MeasuredVolume& volume) {
   CameraReport out;
   out.file = rc.file;
   out.name = rc.camera.name;
@@ -180,7 +179,7 @@ CameraReport ReportOne(const ReportCamera& rc, const Correspondences& c, const I
     TestPointReport tr;
     tr.name = t.name;
     tr.point_in_world = t.point_in_world;
-    if (hull) tr.inside_volume = hull->Contains(t.point_in_world);
+    tr.inside_volume = volume.Contains(t.point_in_world);
     if (!t.pixel) {
       tr.error.excluded = Exclusion::kNotMeasured;
     } else if (!rc.camera.camera_from_world) {
@@ -247,7 +246,7 @@ ReprojReport BuildReprojReport(std::span<const ReportCamera> cameras, Correspond
   report.grid = ImageGrid{c.image_size, options.grid_cols, options.grid_rows};
   const Correspondences* files[] = {&c};
   report.volume = MeasuredVolumeOf(files);
-  for (const ReportCamera& rc : cameras) report.cameras.push_back(ReportOne(rc, c, report.grid, report.volume.hull));
+  for (const ReportCamera& rc : cameras) report.cameras.push_back(ReportOne(rc, c, report.grid, report.volume));
   for (size_t k = 1; k < report.cameras.size(); ++k) report.differences.push_back(Compare(report, k));
   report.correspondences = std::move(c);
   return report;

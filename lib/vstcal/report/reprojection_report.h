@@ -27,7 +27,7 @@
 
 #include "vstcal/calib/calibrated_camera.h"
 #include "vstcal/calib/correspondences.h"
-#include "vstcal/report/convex_hull.h"
+#include "vstcal/calib/measured_volume.h"
 #include "vstcal/report/statistics.h"
 
 namespace vstcal {

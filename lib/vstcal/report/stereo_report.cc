@@ -171,11 +171,10 @@ void AddTestPoints(const StereoRig& rig, const PoseRefinement& pose, const Corre
   for (const TestPoint& t : right.test_points) right_by_name.emplace(t.name, &t);
   std::set<std::string> left_names;
   Collected measured, inside, outside;
-  const auto& hull = report->volume.hull;
   for (const TestPoint& t : left.test_points) {
     left_names.insert(t.name);
     StereoTestPoint out{t.name, t.point_in_world, {}, {}};
-    if (hull) out.inside_volume = hull->Contains(t.point_in_world);
+    out.inside_volume = report->volume.Contains(t.point_in_world);
     const auto it = right_by_name.find(t.name);
     const bool in_right = it != right_by_name.end() && it->second->pixel;
     if (!t.pixel || !in_right) {
@@ -194,7 +193,7 @@ void AddTestPoints(const StereoRig& rig, const PoseRefinement& pose, const Corre
   for (const TestPoint& t : right.test_points) {
     if (left_names.contains(t.name)) continue;
     StereoTestPoint out{t.name, t.point_in_world, {}, {}};
-    if (hull) out.inside_volume = hull->Contains(t.point_in_world);
+    out.inside_volume = report->volume.Contains(t.point_in_world);
     out.error.target = t.point_in_world;
     out.error.excluded = t.pixel ? StereoExclusion::kRightOnly : StereoExclusion::kNotMeasured;
     report->test_points.push_back(std::move(out));

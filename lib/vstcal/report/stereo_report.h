@@ -24,7 +24,7 @@
 #include <Eigen/Core>
 
 #include "vstcal/calib/correspondences.h"
-#include "vstcal/report/convex_hull.h"
+#include "vstcal/calib/measured_volume.h"
 #include "vstcal/report/reprojection_report.h"
 #include "vstcal/report/statistics.h"
 #include "vstcal/stereo/stereo_rig.h"

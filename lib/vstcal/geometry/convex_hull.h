@@ -1,7 +1,7 @@
 // The convex hull of a 3-D point set as the intersection of its facets' half-spaces, to tell
-// whether a test point lies inside the measured volume (seed 000 §4.2: registration error inside
-// vs outside the volume the calibration points span). Computed by Qhull (libqhull_r, Debian's
-// libqhull-dev; Barber, Dobkin & Huhdanpaa 1996); docs/math/report-statistics.md#hull.
+// whether a point lies inside the volume a point set spans (seed 000 §4.2: registration error
+// inside vs outside the volume the calibration points span). Computed by Qhull (libqhull_r,
+// Debian's libqhull-dev; Barber, Dobkin & Huhdanpaa 1996); docs/math/report-statistics.md#hull.
 #pragma once
 
 #include <optional>
@@ -41,20 +41,5 @@ struct ConvexHullOutcome {
   std::optional<ConvexHull3> hull;
   std::string why;  // empty when `hull` is set
 };
-
-struct Correspondences;
-
-// The measured volume of a report (reproj-report's `volume`, for cameras and for a rig): the convex
-// hull of the calibration points, with its status as the report writes it.
-struct MeasuredVolume {
-  std::optional<ConvexHull3> hull;
-  std::string status;  // "ok", or why there is no hull: the points span no volume, or planar views
-  size_t vertices = 0, facets = 0;
-};
-
-// The hull of every view's points of every file in `files` (a volume's files share its world
-// frame: a rig's two cameras' correspondences of one target). Planar views have no common frame:
-// no hull, whatever the files hold.
-MeasuredVolume MeasuredVolumeOf(std::span<const Correspondences* const> files);
 
 }  // namespace vstcal

@@ -1,4 +1,4 @@
-#include "vstcal/report/convex_hull.h"
+#include "vstcal/geometry/convex_hull.h"
 
 #include <cstdio>
 
@@ -8,7 +8,6 @@ extern "C" {
 #include <libqhull_r/qhull_ra.h>
 }
 
-#include "vstcal/calib/correspondences.h"
 #include "vstcal/core/error.h"
 
 namespace vstcal {
@@ -38,16 +37,16 @@ class MemoryFile {
 // Why the points span no volume, or empty: the smallest singular value of the centred points
 // against the largest tells a plane or a line apart from a volume before Qhull is asked.
 std::string WhyNoVolume(std::span<const Eigen::Vector3d> points) {
-  if (points.size() < 4) return "fewer than 4 calibration points";
+  if (points.size() < 4) return "fewer than 4 points";
   Eigen::Vector3d mean = Eigen::Vector3d::Zero();
   for (const Eigen::Vector3d& p : points) mean += p;
   mean /= static_cast<double>(points.size());
   Eigen::MatrixXd centred(points.size(), 3);
   for (size_t i = 0; i < points.size(); ++i) centred.row(static_cast<Eigen::Index>(i)) = (points[i] - mean).transpose();
   const Eigen::Vector3d s = Eigen::JacobiSVD<Eigen::MatrixXd>(centred).singularValues();
-  if (!(s(0) > 0)) return "all calibration points coincide";
-  if (s(1) <= 1e-12 * s(0)) return "the calibration points lie on one line";
-  if (s(2) <= 1e-12 * s(0)) return "the calibration points lie on one plane: they span no volume";
+  if (!(s(0) > 0)) return "all points coincide";
+  if (s(1) <= 1e-12 * s(0)) return "the points lie on one line";
+  if (s(2) <= 1e-12 * s(0)) return "the points lie on one plane: they span no volume";
   return {};
 }
 
@@ -93,25 +92,5 @@ double ConvexHull3::SignedDistance(const Eigen::Vector3d& point) const {
 }
 
 bool ConvexHull3::Contains(const Eigen::Vector3d& point) const { return SignedDistance(point) <= tolerance_; }
-
-MeasuredVolume MeasuredVolumeOf(std::span<const Correspondences* const> files) {
-  MeasuredVolume volume;
-  std::vector<Eigen::Vector3d> points;
-  for (const Correspondences* c : files) {
-    if (c->rig != Rig::kVolume) {
-      volume.status = "planar views: the boards share no world frame";
-      return volume;
-    }
-    for (const Observation& o : AllObservations(*c)) points.push_back(o.point);
-  }
-  ConvexHullOutcome outcome = ConvexHull3::Of(points);
-  volume.hull = std::move(outcome.hull);
-  volume.status = volume.hull ? "ok" : outcome.why;
-  if (volume.hull) {
-    volume.vertices = volume.hull->num_vertices();
-    volume.facets = volume.hull->num_facets();
-  }
-  return volume;
-}
 
 }  // namespace vstcal
