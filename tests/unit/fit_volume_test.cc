@@ -14,7 +14,12 @@ namespace vstcal {
 namespace {
 
 // fx = fy = 1000 px, the principal point at the image centre.
-Camera CameraLookingAlongWorldZ() { return MakeSyntheticCamera({.image_size = {1280, 720}, .fx = 1000.0}); }
+Camera CameraLookingAlongWorldZ() {
+  SyntheticCameraSpec spec;
+  spec.image_size = {1280, 720};
+  spec.fx = 1000.0;
+  return MakeSyntheticCamera(spec);
+}
 
 // The camera 1.5 m in front of the volume's centre, looking along world +z.
 Rigid3d CameraFromWorld() { return Rigid3d{Eigen::Matrix3d::Identity(), Eigen::Vector3d(-100, -100, 1500)}; }

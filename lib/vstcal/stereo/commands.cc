@@ -105,7 +105,9 @@ Outcome Export(const ExportRequest& request, const io::Provenance& provenance) {
     notes.insert(notes.end(), yaml.notes.begin(), yaml.notes.end());
   }
   if (!request.mrcal_left.empty()) {
-    const auto [l, r] = io::MrcalStereoTexts(rig, request.rig, {.length_unit = request.mrcal_length_unit}, provenance);
+    io::MrcalWriteOptions options;
+    options.length_unit = request.mrcal_length_unit;
+    const auto [l, r] = io::MrcalStereoTexts(rig, request.rig, options, provenance);
     out.files.emplace_back(request.mrcal_left, l.text);
     out.files.emplace_back(request.mrcal_right, r.text);
     for (const auto* e : {&l, &r}) notes.insert(notes.end(), e->notes.begin(), e->notes.end());
