@@ -86,9 +86,13 @@ Outcome Solve(const SolveRequest& request, const io::Provenance& provenance) {
   if (request.rectify) rig.rectification = Rectify(rig, *request.rectify, request.output);
   out.files.emplace_back(request.output, io::DumpJson(io::StereoRigToJson(rig, provenance)));
   for (const auto& note : solved.notes) out.text += "note: " + note + "\n";
-  out.text += Format("%zu views seen by both cameras; reprojection RMS %.3g px (left), %.3g px (right); sigma %.3g px; "
-                     "epipolar RMS %.3g px; %d iterations\n",
-                     solved.common_views.size(), solved.rms_left_px, solved.rms_right_px, solved.sigma_px,
+  // A volume is one board pose (the world) whatever its planes; say so rather than "1 views".
+  const std::string seen = left.rig == Rig::kVolume
+                               ? Format("the volume (one pose, %zu planes) seen by both cameras", left.views.size())
+                               : Format("%zu views seen by both cameras", solved.common_views.size());
+  out.text += Format("%s; reprojection RMS %.3g px (left), %.3g px (right); sigma %.3g px; epipolar RMS %.3g px; "
+                     "%d iterations\n",
+                     seen.c_str(), solved.rms_left_px, solved.rms_right_px, solved.sigma_px,
                      rig.fit ? rig.fit->epipolar.rms_px : 0.0, solved.iterations);
   out.text += RigSummary(rig);
   return out;
