@@ -1,6 +1,7 @@
 // The chain and its error measures for err-sim's Monte Carlo loop (engine.h), four samples at a
 // time: ChainEvaluator::Evaluate and ErrorOutputs::Measure instantiated with SimdDouble, one
-// sample per lane, compiled for AVX2 where the CPU has it. The same templates with double give
+// sample per lane, compiled for AVX-512 machines (32 registers) and for AVX2 where the CPU has
+// them, else for the x86-64 baseline. The same templates with double give
 // every lane's numbers bit for bit (simd_double.h, geometry/fixed_order.h), so where the lanes
 // would branch differently (in some lanes only: a point undefined, a rotation or an angle beyond
 // 0.1 rad, a fiducial registration that converges later) the group is redone one sample at a time,
