@@ -35,6 +35,18 @@ int main(int argc, char** argv) {
         throw InputError(other + " vs " + reference + ": " + e.what());  // name the files
       }
     }();
+    // Every input is read and checked before anything is printed: a refused --test-points file
+    // leaves no half comparison on stdout.
+    std::optional<std::vector<PointDisagreement>> at_points;
+    if (!points_file.empty()) {
+      const Correspondences corners = io::ReadCorrespondences(points_file);
+      if (corners.test_points.empty()) throw InputError(points_file + ": test_points: none; give a file with test points");
+      try {
+        at_points = CompareAtTestPoints(a, b, corners);
+      } catch (const InputError& e) {
+        throw InputError(other + " vs " + reference + ": " + e.what());
+      }
+    }
     const Eigen::Matrix3d Ka = a.camera.K(), Kb = b.camera.K();
     const char* names[5] = {"fx", "fy", "cx", "cy", "skew"};
     const int rows[5] = {0, 1, 0, 1, 0}, cols[5] = {0, 1, 2, 2, 1};
@@ -48,23 +60,14 @@ int main(int argc, char** argv) {
     if (c.centre_distance) std::printf("camera centre distance   %.6f %s\n", *c.centre_distance, unit.c_str());
     std::printf("pixel disagreement at depth %.1f %s: RMS %.4f px, max %.4f px over %zu grid points\n", c.depth,
                 unit.c_str(), c.rms_px, c.max_px, c.n_points);
-    if (!points_file.empty()) {
-      const Correspondences corners = io::ReadCorrespondences(points_file);
-      if (corners.test_points.empty()) throw InputError(points_file + ": test_points: none; give a file with test points");
-      std::vector<PointDisagreement> d;
-      try {
-        d = CompareAtTestPoints(a, b, corners.test_points);
-      } catch (const InputError& e) {
-        throw InputError(other + " vs " + reference + ": " + e.what());
-      }
+    if (at_points) {
       std::printf("%-14s %-8s %s\n", "test point", "volume", "disagreement px");
-      const Fit fit = ComputeVolumeFit(a.camera, *a.camera_from_world, corners);  // inside/outside the volume
-      for (size_t i = 0; i < d.size(); ++i) {
-        const char* where = VolumeSideName(fit.test_points[i].inside_volume);
-        if (d[i].pixel_distance) {
-          std::printf("%-14s %-8s %.4f\n", d[i].name.c_str(), where, *d[i].pixel_distance);
+      for (const PointDisagreement& d : *at_points) {
+        const char* where = VolumeSideName(d.inside_volume);
+        if (d.pixel_distance) {
+          std::printf("%-14s %-8s %.4f\n", d.name.c_str(), where, *d.pixel_distance);
         } else {
-          std::printf("%-14s %-8s (behind a camera)\n", d[i].name.c_str(), where);
+          std::printf("%-14s %-8s (behind a camera)\n", d.name.c_str(), where);
         }
       }
     }

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "vstcal/calib/measured_volume.h"
 #include "vstcal/core/error.h"
 
 namespace vstcal {
@@ -50,13 +51,15 @@ CameraComparison CompareCameras(const CalibratedCamera& a, const CalibratedCamer
 }
 
 std::vector<PointDisagreement> CompareAtTestPoints(const CalibratedCamera& a, const CalibratedCamera& b,
-                                                   const std::vector<TestPoint>& points) {
+                                                   const Correspondences& corners) {
   if (!a.camera_from_world || !b.camera_from_world) {
     throw InputError("camera_from_world: comparing at world points needs both cameras posed in the world (volume rigs)");
   }
+  const Correspondences* files[] = {&corners};
+  const MeasuredVolume volume = MeasuredVolumeOf(files);
   std::vector<PointDisagreement> out;
-  for (const TestPoint& t : points) {
-    PointDisagreement d{t.name, t.point_in_world, std::nullopt};
+  for (const TestPoint& t : corners.test_points) {
+    PointDisagreement d{t.name, t.point_in_world, std::nullopt, volume.Contains(t.point_in_world)};
     const auto qa = a.camera.Project(*a.camera_from_world * t.point_in_world);
     const auto qb = b.camera.Project(*b.camera_from_world * t.point_in_world);
     if (qa && qb) d.pixel_distance = (*qa - *qb).norm();

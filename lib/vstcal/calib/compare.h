@@ -22,15 +22,18 @@ struct CameraComparison {
   size_t n_points = 0;
 };
 
-// Registration disagreement at world points (e.g. a dataset's test points): each point projected
-// by both posed cameras; nullopt where either sees it behind. Both cameras need camera_from_world.
+// Registration disagreement at the test points of `corners` (a volume's correspondences): each
+// point projected by both posed cameras; nullopt where either sees it behind. Each point is inside
+// or outside the convex hull of the file's calibration points (MeasuredVolume; nullopt when they
+// span no volume). Both cameras need camera_from_world (InputError otherwise).
 struct PointDisagreement {
   std::string name;
   Eigen::Vector3d point_in_world;
   std::optional<double> pixel_distance;
+  std::optional<bool> inside_volume;
 };
 std::vector<PointDisagreement> CompareAtTestPoints(const CalibratedCamera& a, const CalibratedCamera& b,
-                                                   const std::vector<TestPoint>& points);
+                                                   const Correspondences& corners);
 
 // `depth` defaults to the depth of the world origin in a's camera frame when both cameras are
 // posed (a volume calibration), else 1000 length units. Throws InputError when the cameras
