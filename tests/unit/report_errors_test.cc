@@ -10,6 +10,7 @@
 #include "vstcal/calib/uncertainty.h"
 #include "vstcal/core/error.h"
 #include "vstcal/geometry/rotation.h"
+#include "vstcal/report/charts.h"
 #include "vstcal/report/reprojection_report.h"
 
 namespace vstcal {
@@ -49,6 +50,27 @@ ReportCamera Model(const Rigid3d& camera_from_world) {
   rc.camera.camera = Pinhole();
   rc.camera.camera_from_world = camera_from_world;
   return rc;
+}
+
+// The test-point chart colours each bar by its side of the measured volume: a point of a
+// calibration whose points span no volume is neither inside (blue) nor outside (red) but grey.
+TEST(ReprojReportCharts, TestPointBarsColouredByTheirSideOfTheVolume) {
+  ReprojReport r;
+  r.cameras.resize(1);
+  for (const auto& [name, side] : {std::pair{"a", std::optional<bool>(true)}, std::pair{"b", std::optional<bool>(false)},
+                                   std::pair{"c", std::optional<bool>()}}) {
+    TestPointReport t;
+    t.name = name;
+    t.error.error_px = 1.5;
+    t.error.lateral = 0.25;
+    t.inside_volume = side;
+    r.cameras[0].test_points.push_back(t);
+  }
+  const std::string script = TestPointsScript(r);
+  EXPECT_NE(script.find("\"0:a (inside)\" 1.5 0.25 1\n"), std::string::npos) << script;
+  EXPECT_NE(script.find("\"0:b (outside)\" 1.5 0.25 2\n"), std::string::npos) << script;
+  EXPECT_NE(script.find("\"0:c (no hull)\" 1.5 0.25 0\n"), std::string::npos) << script;
+  EXPECT_NE(script.find("($4 == 1 ? 0x1f77b4 : $4 == 2 ? 0xd62728 : 0x7f7f7f)"), std::string::npos) << script;
 }
 
 TEST(ReprojReport, ShiftedPixelsGiveTheirLateralErrorAtEachDepth) {

@@ -121,6 +121,8 @@ std::string HeatMapScript(const ImageGrid& g, const std::vector<std::optional<do
 }
 
 std::string TestPointsScript(const ReprojReport& r) {
+  // Column 4: 1 inside the measured volume, 2 outside, 0 when the calibration points span none.
+  const std::string kSideColour = "($4 == 1 ? 0x1f77b4 : $4 == 2 ? 0xd62728 : 0x7f7f7f)";
   std::string data;
   size_t rows = 0;
   for (size_t k = 0; k < r.cameras.size(); ++k) {
@@ -128,7 +130,7 @@ std::string TestPointsScript(const ReprojReport& r) {
       if (t.error.excluded != Exclusion::kNone) continue;
       const char* where = VolumeSideName(t.inside_volume);
       data += GnuplotQuoted(std::to_string(k) + ":" + t.name + " (" + where + ")") + " " + Number(t.error.error_px) + " " +
-              Number(t.error.lateral) + " " + (t.inside_volume && *t.inside_volume ? "1" : "2") + "\n";
+              Number(t.error.lateral) + " " + (!t.inside_volume ? "0" : *t.inside_volume ? "1" : "2") + "\n";
       ++rows;
     }
   }
@@ -138,10 +140,10 @@ std::string TestPointsScript(const ReprojReport& r) {
   s += "$t << EOD\n" + data + "EOD\n";
   s += "set style fill solid 0.85 border -1\nset boxwidth 0.7\nset xtics rotate by -45 noenhanced\nset yrange [0:*]\n"
        "set multiplot layout 1,2\nset key off\n"
-       "set title \"|residual| (px): blue inside the volume, red outside\"\n"
-       "plot $t using 0:2:($4 == 1 ? 0x1f77b4 : 0xd62728):xtic(1) with boxes lc rgb variable\n"
+       "set title \"|residual| (px): blue inside the volume, red outside, grey without a hull\"\n"
+       "plot $t using 0:2:" + kSideColour + ":xtic(1) with boxes lc rgb variable\n"
        "set title " + GnuplotQuoted("lateral error (" + unit + ")") + "\n"
-       "plot $t using 0:3:($4 == 1 ? 0x1f77b4 : 0xd62728):xtic(1) with boxes lc rgb variable\nunset multiplot\n";
+       "plot $t using 0:3:" + kSideColour + ":xtic(1) with boxes lc rgb variable\nunset multiplot\n";
   return s;
 }
 
