@@ -78,7 +78,7 @@ def triangulate(e0, d0, e1, d1):
 
 
 def holloway(c, reference, seen):
-    """Holloway's terms of seen − reference from the viewpoint c (report/registration_error.h)."""
+    """Holloway's terms of seen − reference from the viewpoint c (geometry/registration_error.h)."""
     delta = seen - reference
     sight = reference - c
     sight_unit = sight / np.linalg.norm(sight, axis=-1, keepdims=True)

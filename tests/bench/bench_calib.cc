@@ -13,15 +13,15 @@
 #include "support/dense_covariance.h"
 #include "support/opencv_views.h"
 #include "support/scenes.h"
-#include "vstcal/calib/decompose.h"
+#include "vstcal/estimators/decompose.h"
 #include "vstcal/calib/dlt.h"
-#include "vstcal/calib/information.h"
+#include "vstcal/estimators/information.h"
 #include "vstcal/calib/pipeline.h"
 #include "vstcal/calib/refine.h"
 #include "vstcal/calib/tsai.h"
 #include "vstcal/capture/synthetic_views.h"
 #include "vstcal/capture/synthetic_volume.h"
-#include "vstcal/io/correspondences_io.h"
+#include "vstcal/formats/camera/correspondences_io.h"
 
 namespace {
 
@@ -46,7 +46,7 @@ const Correspondences& Volume600() {
 }
 
 const Correspondences& Seed000() {
-  static const Correspondences c = io::ReadCorrespondences(std::string(VSTCAL_SOURCE_DIR) + "/datasets/seed000/distorted-noisy.json");
+  static const Correspondences c = ReadCorrespondences(std::string(VSTCAL_SOURCE_DIR) + "/datasets/seed000/distorted-noisy.json");
   return c;
 }
 

@@ -1,7 +1,7 @@
 // Chessboard detection speed (issue 9 item 8), on rendered 10×10-corner chessboards (the board
 // mrgingham reads too) at 640×480 (squares ≈ 30 px) and 1280×720 (≈ 50 px), 8 views each with
 // blur σ 0.8 px and noise σ 2:
-//   BM_CaptureDetect          vstcal::capture::DetectTarget, one image at a time, one core
+//   BM_CaptureDetect          vstcal::DetectTarget, one image at a time, one core
 //   BM_OpenCvFindChessboard   cv::findChessboardCorners alone, as DetectTarget calls it
 //   BM_OpenCvFindAndSubPix    the same plus cv::cornerSubPix (a usual OpenCV pipeline)
 //   BM_CaptureSteps           what DetectTarget adds to the finder, alone: orientation, point-
@@ -33,10 +33,10 @@ namespace {
 using namespace vstcal;
 namespace fs = std::filesystem;
 
-capture::Target Board() { return testing::SpeedTestBoard(); }
+Target Board() { return testing::SpeedTestBoard(); }
 
 struct Set {
-  std::vector<capture::GrayImage> images;
+  std::vector<GrayImage> images;
 };
 
 const Set& Images(int width) {
@@ -46,16 +46,16 @@ const Set& Images(int width) {
   return s;
 }
 
-cv::Mat AsMat(const capture::GrayImage& g) { return cv::Mat(g.height, g.width, CV_8U, const_cast<uint8_t*>(g.pixels.data())); }
+cv::Mat AsMat(const GrayImage& g) { return cv::Mat(g.height, g.width, CV_8U, const_cast<uint8_t*>(g.pixels.data())); }
 
 void BM_CaptureDetect(benchmark::State& state) {
   cv::setNumThreads(1);
   const Set& s = Images(static_cast<int>(state.range(0)));
-  const capture::Target t = Board();
+  const Target t = Board();
   size_t k = 0, found = 0;
   for (auto _ : state) {
-    const capture::Detection d = capture::DetectTarget(s.images[k++ % s.images.size()], t, capture::DetectorOptions{});
-    found += d.status == capture::DetectionStatus::kFound;
+    const Detection d = DetectTarget(s.images[k++ % s.images.size()], t, DetectorOptions{});
+    found += d.status == DetectionStatus::kFound;
   }
   if (found != k) state.SkipWithError("a view was not found");
   state.SetItemsProcessed(static_cast<int64_t>(k));
@@ -90,9 +90,9 @@ void BM_OpenCvFindAndSubPix(benchmark::State& state) {
 
 void BM_CaptureSteps(benchmark::State& state) {
   const Set& s = Images(static_cast<int>(state.range(0)));
-  const capture::Target t = Board();
+  const Target t = Board();
   std::vector<std::vector<Eigen::Vector2d>> grids;
-  for (const capture::GrayImage& image : s.images) {
+  for (const GrayImage& image : s.images) {
     std::vector<cv::Point2f> corners;
     cv::findChessboardCorners(AsMat(image), cv::Size(10, 10), corners, cv::CALIB_CB_ADAPTIVE_THRESH | cv::CALIB_CB_NORMALIZE_IMAGE);
     grids.emplace_back();
@@ -101,29 +101,29 @@ void BM_CaptureSteps(benchmark::State& state) {
   size_t k = 0;
   for (auto _ : state) {
     const size_t i = k++ % s.images.size();
-    const capture::GridOrientation o = capture::OrientChessboard(s.images[i], t, grids[i], false);
-    std::vector<capture::DetectedCorner> corners(grids[i].size());
+    const GridOrientation o = OrientChessboard(s.images[i], t, grids[i], false);
+    std::vector<DetectedCorner> corners(grids[i].size());
     for (size_t id = 0; id < corners.size(); ++id) corners[id] = {static_cast<int>(id), grids[i][o.detected_index[id]]};
-    capture::RefineXCorners(s.images[i], t, capture::CornerRefiner::kSymmetry, 0.4, &corners);
-    benchmark::DoNotOptimize(capture::MedianGridEdgeBlur(s.images[i], t, corners, 0.4));
+    RefineXCorners(s.images[i], t, CornerRefiner::kSymmetry, 0.4, &corners);
+    benchmark::DoNotOptimize(MedianGridEdgeBlur(s.images[i], t, corners, 0.4));
   }
   state.SetItemsProcessed(static_cast<int64_t>(k));
 }
 
 // 32 PNGs (the 8 views, 4 times, as different files: the bytes differ by a pixel so that the
 // duplicate check passes) in a temporary folder.
-const std::vector<capture::CaptureInput>& Files(int width) {
-  static std::map<int, std::vector<capture::CaptureInput>> files;
-  std::vector<capture::CaptureInput>& f = files[width];
+const std::vector<CaptureInput>& Files(int width) {
+  static std::map<int, std::vector<CaptureInput>> files;
+  std::vector<CaptureInput>& f = files[width];
   if (f.empty()) {
     const fs::path dir = fs::temp_directory_path() / ("vstcal-bench-capture-" + std::to_string(width));
     fs::create_directories(dir);
     const Set& s = Images(width);
     for (int k = 0; k < 32; ++k) {
-      capture::GrayImage image = s.images[k % s.images.size()];
+      GrayImage image = s.images[k % s.images.size()];
       image.pixels[0] = static_cast<uint8_t>(k);
       const fs::path path = dir / ("view-" + std::to_string(k) + ".png");
-      std::ofstream(path, std::ios::binary) << capture::EncodePng(image);
+      std::ofstream(path, std::ios::binary) << EncodePng(image);
       f.push_back({path.string(), path, std::nullopt});
     }
   }
@@ -132,11 +132,11 @@ const std::vector<capture::CaptureInput>& Files(int width) {
 
 void BM_CaptureDetectFiles(benchmark::State& state) {
   const auto& files = Files(static_cast<int>(state.range(0)));
-  capture::DetectRequest request;
+  DetectRequest request;
   request.target = Board();
   request.threads = static_cast<unsigned>(state.range(1));
   for (auto _ : state) {
-    const capture::CaptureResult r = capture::DetectInFiles(files, request);
+    const CaptureResult r = DetectInFiles(files, request);
     if (r.correspondences.views.size() != files.size()) state.SkipWithError("a view was not found");
   }
   state.SetItemsProcessed(static_cast<int64_t>(state.iterations() * files.size()));
@@ -144,13 +144,13 @@ void BM_CaptureDetectFiles(benchmark::State& state) {
 
 void BM_RenderView(benchmark::State& state) {
   const Camera camera = testing::DistortedCamera(640, 480, 600);
-  const capture::PixelCornerRays rays(camera);
-  const capture::Pattern pattern = capture::TargetPattern(Board());
+  const PixelCornerRays rays(camera);
+  const Pattern pattern = TargetPattern(Board());
   const Rigid3d pose = testing::TestViewPose(camera, Board(), 30, 0, 9);
-  capture::RenderOptions options;
+  RenderOptions options;
   options.blur_px = 0.8;
   options.noise = 2;
-  for (auto _ : state) benchmark::DoNotOptimize(capture::RenderView(rays, pattern, pose, options, 0));
+  for (auto _ : state) benchmark::DoNotOptimize(RenderView(rays, pattern, pose, options, 0));
   state.SetItemsProcessed(state.iterations());
 }
 

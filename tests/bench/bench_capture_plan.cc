@@ -10,7 +10,6 @@
 namespace {
 
 using namespace vstcal;
-using namespace vstcal::capture;
 
 PlanRequest Request(Rig rig, int positions) {
   PlanRequest r;

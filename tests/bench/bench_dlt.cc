@@ -3,7 +3,7 @@
 #include <benchmark/benchmark.h>
 
 #include "support/scenes.h"
-#include "vstcal/calib/decompose.h"
+#include "vstcal/estimators/decompose.h"
 #include "vstcal/calib/dlt.h"
 
 namespace {

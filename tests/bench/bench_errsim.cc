@@ -19,14 +19,15 @@
 
 #include "vstcal/errsim/chain.h"
 #include "vstcal/errsim/engine.h"
-#include "vstcal/errsim/formats/chain_reader.h"
+#include "vstcal/formats/errsim/chain_reader.h"
 #include "vstcal/errsim/measures.h"
 #include "vstcal/errsim/sample_measurer.h"
 #include "vstcal/errsim/sampler.h"
 
+using namespace vstcal;
+
 namespace {
 
-using namespace vstcal::errsim;
 using vstcal::SimdDouble;
 
 const ChainModel& Seed001() {

@@ -8,7 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "support/scenes.h"
-#include "vstcal/io/correspondences_io.h"
+#include "vstcal/formats/camera/correspondences_io.h"
 
 namespace {
 
@@ -24,14 +24,14 @@ const std::string& VolumeText(size_t n) {
       if (i % 100 == 0) c.views.push_back({"view-" + std::to_string(i / 100), "", std::nullopt, {}});
       c.views.back().observations.push_back(scene.observations[i]);
     }
-    text = vstcal::io::DumpJson(vstcal::io::CorrespondencesToJson(c, {"bench_io", {}, std::nullopt}));
+    text = vstcal::DumpJson(vstcal::CorrespondencesToJson(c, {"bench_io", {}, std::nullopt}));
   }
   return text;
 }
 
 void BM_StrictJsonParse(benchmark::State& state) {
   const std::string& text = VolumeText(static_cast<size_t>(state.range(0)));
-  for (auto _ : state) benchmark::DoNotOptimize(vstcal::io::JsonDocument::Parse(text, "bench.json"));
+  for (auto _ : state) benchmark::DoNotOptimize(vstcal::JsonDocument::Parse(text, "bench.json"));
   state.SetBytesProcessed(state.iterations() * static_cast<int64_t>(text.size()));
 }
 
@@ -44,7 +44,7 @@ void BM_NlohmannParse(benchmark::State& state) {
 void BM_ReadCorrespondences(benchmark::State& state) {
   const std::string& text = VolumeText(static_cast<size_t>(state.range(0)));
   for (auto _ : state) {
-    benchmark::DoNotOptimize(vstcal::io::CorrespondencesFromJson(vstcal::io::JsonDocument::Parse(text, "bench.json")));
+    benchmark::DoNotOptimize(vstcal::CorrespondencesFromJson(vstcal::JsonDocument::Parse(text, "bench.json")));
   }
   state.SetBytesProcessed(state.iterations() * static_cast<int64_t>(text.size()));
 }

@@ -12,9 +12,10 @@
 #include "vstcal/sensitivity/sobol_indices.h"
 #include "vstcal/sensitivity/unit_points.h"
 
+using namespace vstcal;
+
 namespace {
 
-using namespace vstcal::sensitivity;
 
 void SobolIshigami(benchmark::State& state, SamplingMethod method, size_t bootstrap) {
   const ParameterSpace space = vstcal::testing::IshigamiSpace();

@@ -20,11 +20,11 @@
 #include "support/stereo_rigs.h"
 #include "vstcal/camera/opencv_distortion.h"
 #include "vstcal/random/philox.h"
-#include "vstcal/stereo/pnp.h"
-#include "vstcal/stereo/pose_refine.h"
+#include "vstcal/estimators/pnp.h"
+#include "vstcal/estimators/pose_refine.h"
 #include "vstcal/stereo/registration.h"
 #include "vstcal/stereo/registration_accuracy.h"
-#include "vstcal/stereo/stereo_solve.h"
+#include "vstcal/calib/stereo_solve.h"
 #include "vstcal/stereo/synthetic_tracks.h"
 
 namespace {

@@ -7,10 +7,10 @@
 #include "cli_fixture.h"
 #include "support/scenes.h"
 #include "support/stereo_rigs.h"
-#include "vstcal/io/camera_io.h"
-#include "vstcal/io/correspondences_io.h"
+#include "vstcal/formats/camera/camera_io.h"
+#include "vstcal/formats/camera/correspondences_io.h"
 #include "vstcal/geometry/rotation.h"
-#include "vstcal/io/stereo_io.h"
+#include "vstcal/formats/stereo/stereo_io.h"
 
 namespace vstcal::cli_test {
 namespace {
@@ -22,10 +22,10 @@ class CliCalibStereo : public CliTest {
   // in/left.json and in/right.json: the ZED-like rig's cameras (camera@1, no pose), and in/rig.json.
   void WriteInputs() {
     const StereoRig rig = testing::ZedLikeRig();
-    const io::Provenance p{"test", {}, std::nullopt};
-    WriteText("in/left.json", io::DumpJson(io::CameraToJson(rig.left, p)));
-    WriteText("in/right.json", io::DumpJson(io::CameraToJson(rig.right, p)));
-    WriteText("in/rig.json", io::DumpJson(io::StereoRigToJson(rig, p)));
+    const Provenance p{"test", {}, std::nullopt};
+    WriteText("in/left.json", DumpJson(CameraToJson(rig.left, p)));
+    WriteText("in/right.json", DumpJson(CameraToJson(rig.right, p)));
+    WriteText("in/rig.json", DumpJson(StereoRigToJson(rig, p)));
   }
 
   CommandResult Ok(const std::vector<std::string>& args) {
@@ -56,11 +56,11 @@ class CliCalibStereo : public CliTest {
   // Both cameras' views (in/l.json and in/r.json unless named) with 0.2 px of noise.
   void WriteStereoViews(testing::StereoViews views, const std::string& left = "in/l.json",
                         const std::string& right = "in/r.json") {
-    const io::Provenance p{"test", {}, std::nullopt};
+    const Provenance p{"test", {}, std::nullopt};
     views.left = testing::WithNoise(views.left, 0.2, 1);
     views.right = testing::WithNoise(views.right, 0.2, 2);
-    WriteText(left, io::DumpJson(io::CorrespondencesToJson(views.left, p)));
-    WriteText(right, io::DumpJson(io::CorrespondencesToJson(views.right, p)));
+    WriteText(left, DumpJson(CorrespondencesToJson(views.left, p)));
+    WriteText(right, DumpJson(CorrespondencesToJson(views.right, p)));
   }
 };
 
@@ -93,17 +93,17 @@ TEST_F(CliCalibStereo, AssembleFromTwoCamerasSolvedInOneWorld) {
   CalibratedCamera left = rig.left, right = rig.right;
   left.camera_from_world = Rigid3d::FromRotvec(Eigen::Vector3d(0.1, 0.2, -0.1), Eigen::Vector3d(10, 20, 1500));
   right.camera_from_world = rig.right_from_left * *left.camera_from_world;
-  const io::Provenance p{"test", {}, std::nullopt};
-  WriteText("in/left-posed.json", io::DumpJson(io::CameraToJson(left, p)));
-  WriteText("in/right-posed.json", io::DumpJson(io::CameraToJson(right, p)));
+  const Provenance p{"test", {}, std::nullopt};
+  WriteText("in/left-posed.json", DumpJson(CameraToJson(left, p)));
+  WriteText("in/right-posed.json", DumpJson(CameraToJson(right, p)));
   Ok({"assemble", "in/left-posed.json", "in/right-posed.json", "--rectify", "--alpha", "0", "-o", "out/rig.json"});
-  const StereoRig back = io::ReadStereoRig(Path("out/rig.json"));
+  const StereoRig back = ReadStereoRig(Path("out/rig.json"));
   EXPECT_LT((back.right_from_left.t - rig.right_from_left.t).norm(), 1e-9);
   ASSERT_TRUE(back.rectification.has_value());
   EXPECT_EQ(back.rectification->alpha, 0.0);
   // A camera in metres cannot be composed with one in millimetres.
   right.length_unit = LengthUnit::kMetre;
-  WriteText("in/right-m.json", io::DumpJson(io::CameraToJson(right, p)));
+  WriteText("in/right-m.json", DumpJson(CameraToJson(right, p)));
   EXPECT_TRUE(Fails({"assemble", "in/left-posed.json", "in/right-m.json", "-o", "out/rig.json"}, kBadInput,
                     "in/right-m.json: length_unit: \"m\", but in/left-posed.json is in \"mm\"", {"one length unit"}));
 }
@@ -125,7 +125,7 @@ TEST_F(CliCalibStereo, AssembleRefusesBadInput) {
   // stereoRectify takes one image size.
   CalibratedCamera right = testing::ZedLikeRig().right;
   right.camera.image_size = {1920, 1080};
-  WriteText("in/right-hd.json", io::DumpJson(io::CameraToJson(right, {"test", {}, std::nullopt})));
+  WriteText("in/right-hd.json", DumpJson(CameraToJson(right, {"test", {}, std::nullopt})));
   EXPECT_TRUE(Fails({"assemble", "in/left.json", "in/right-hd.json", "--translation", "-63,0,0", "--rectify", "-o", "out/rig.json"},
                     kBadInput, "out/rig.json: right.image_size: 1920×1080, but the left camera's is 1280×720", {"one image size"}));
   WriteText("in/cam.txt", "");
@@ -303,7 +303,7 @@ TEST_F(CliCalibStereo, SolveWritesTheRigWithItsCovarianceAndFit) {
   WriteStereoViews(testing::SyntheticStereoViews(truth, 8, 11));
   const CommandResult r = Ok({"solve", "in/l.json", "in/r.json", "--rectify", "-o", "out/rig.json"});
   EXPECT_NE(r.err.find("8 views seen by both cameras"), std::string::npos) << r.err;
-  const StereoRig rig = io::ReadStereoRig(Path("out/rig.json"));
+  const StereoRig rig = ReadStereoRig(Path("out/rig.json"));
   EXPECT_EQ(rig.method, "stereo-solve");
   ASSERT_TRUE(rig.covariance);
   ASSERT_TRUE(rig.fit);
@@ -332,9 +332,9 @@ TEST_F(CliCalibStereo, SolveUsesViewsOfOneCameraAndMatchesByPattern) {
 TEST_F(CliCalibStereo, SolveHoldsACameraReadFromAnEarlierCalibration) {
   const StereoRig truth = SolvableRig();
   WriteStereoViews(testing::SyntheticStereoViews(truth, 8, 13));
-  WriteText("in/left-cam.json", io::DumpJson(io::CameraToJson(truth.left, {"test", {}, std::nullopt})));
+  WriteText("in/left-cam.json", DumpJson(CameraToJson(truth.left, {"test", {}, std::nullopt})));
   Ok({"solve", "in/l.json", "in/r.json", "--left-camera", "in/left-cam.json", "--hold-left", "-o", "out/rig.json"});
-  const StereoRig rig = io::ReadStereoRig(Path("out/rig.json"));
+  const StereoRig rig = ReadStereoRig(Path("out/rig.json"));
   for (size_t i = 0; i < truth.left.camera.params.size(); ++i) EXPECT_DOUBLE_EQ(rig.left.camera.params[i], truth.left.camera.params[i]);
   EXPECT_FALSE(rig.left.covariance);
   EXPECT_TRUE(rig.right.covariance);
@@ -356,21 +356,21 @@ TEST_F(CliCalibStereo, SolveRecoversAVolumeRigWithinItsSigma) {
                                   "--camera-name", eye, "--no-test-points", "--truth", "in/" + eye + ".truth.json"});
   };
   const auto truth_pose = [&](const std::string& eye) {
-    return *io::CameraFromJson(io::JsonDocument::Load(Path("in/" + eye + ".truth.json"))).camera_from_world;
+    return *CameraFromJson(JsonDocument::Load(Path("in/" + eye + ".truth.json"))).camera_from_world;
   };
   synth("l", "180", "0", "1");
   synth("r", "0", "0", "2");
   const Rigid3d truth = truth_pose("r") * truth_pose("l").inverse();
   const CommandResult exact = Ok({"solve", "in/l.json", "in/r.json", "-o", "out/exact.json"});
   EXPECT_NE(exact.err.find("the volume (one pose, 5 planes) seen by both cameras"), std::string::npos) << exact.err;
-  const StereoRig solved = io::ReadStereoRig(Path("out/exact.json"));
+  const StereoRig solved = ReadStereoRig(Path("out/exact.json"));
   EXPECT_LT((solved.right_from_left.R - truth.R).norm(), 1e-9);
   EXPECT_LT((solved.right_from_left.t - truth.t).norm(), 1e-6 * truth.t.norm());
 
   synth("l", "180", "0.3", "1");
   synth("r", "0", "0.3", "2");
   Ok({"solve", "in/l.json", "in/r.json", "-o", "out/rig.json"});
-  const StereoRig rig = io::ReadStereoRig(Path("out/rig.json"));
+  const StereoRig rig = ReadStereoRig(Path("out/rig.json"));
   ASSERT_TRUE(rig.covariance);
   ASSERT_EQ(rig.covariance->parameters, std::vector<std::string>(RelativePoseTangentNames().begin(), RelativePoseTangentNames().end()));
   const Eigen::Matrix3d E = rig.right_from_left.R * truth.R.transpose();
@@ -414,7 +414,7 @@ TEST_F(CliCalibStereo, SolveRefusesBadInput) {
   // A held camera of another resolution.
   CalibratedCamera hd = truth.left;
   hd.camera.image_size = {1920, 1080};
-  WriteText("in/hd.json", io::DumpJson(io::CameraToJson(hd, {"test", {}, std::nullopt})));
+  WriteText("in/hd.json", DumpJson(CameraToJson(hd, {"test", {}, std::nullopt})));
   EXPECT_TRUE(Fails(solve("in/l.json", "in/r.json", {"--left-camera", "in/hd.json", "--hold-left"}), kBadInput,
                     "in/l.json: image_size 1280x720 differs from the given camera's 1920x1080", {}));
   // Two image sizes cannot be rectified together.

@@ -26,7 +26,7 @@ TEST_F(CliReprojReport, AgreesWithTheSolversOwnFit) {
   const Json report = ReadJson("out/report.json"), cam = ReadJson("in/cam.json");
   EXPECT_EQ(report["format"], "vstcal/reproj-report@1");
   const Json& c = report["cameras"][0];
-  // calib-dlt's fit block comes from calib/fit.cc, not from the report module.
+  // calib-dlt's fit block comes from scene/fit.cc, not from the report module.
   EXPECT_EQ(c["overall"]["error_px"]["n"], cam["fit"]["n_points"]);
   EXPECT_NEAR(c["overall"]["error_px"]["rms"].get<double>(), cam["fit"]["rms_px"].get<double>(), 1e-12);
   EXPECT_NEAR(c["overall"]["error_px"]["max"].get<double>(), cam["fit"]["max_px"].get<double>(), 1e-12);

@@ -1,12 +1,12 @@
 // vstcal/capture-plan@1 as calib-capture plan --compare reads it (docs/formats.md#capture-plan):
 // the reader, then the comparison of the plan with itself in both forms (every ratio 1 or null).
 #include "harness.h"
-#include "vstcal/capture/plan_compare.h"
+#include "vstcal/formats/capture/plan_compare.h"
 #include "vstcal/json/json_writer.h"
 
 VSTCAL_FUZZ_TARGET(text) {
   using namespace vstcal;
-  const capture::PlanPrediction p = capture::PlanPredictionFromJson(io::JsonDocument::Parse(text, "fuzz.json"));
-  (void)io::DumpJson(capture::ComparePlansToJson(p, p, fuzz::kProvenance));
-  (void)capture::ComparePlansText(p, p);
+  const PlanPrediction p = PlanPredictionFromJson(JsonDocument::Parse(text, "fuzz.json"));
+  (void)DumpJson(ComparePlansToJson(p, p, fuzz::kProvenance));
+  (void)ComparePlansText(p, p);
 }

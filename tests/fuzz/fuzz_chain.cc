@@ -12,9 +12,9 @@
 
 #include "harness.h"
 #include "vstcal/errsim/chain.h"
-#include "vstcal/errsim/formats/chain_reader.h"
-#include "vstcal/errsim/formats/chain_writer.h"
-#include "vstcal/errsim/formats/report_format.h"
+#include "vstcal/formats/errsim/chain_reader.h"
+#include "vstcal/formats/errsim/chain_writer.h"
+#include "vstcal/formats/errsim/report_format.h"
 
 namespace {
 
@@ -28,12 +28,12 @@ const std::filesystem::path& Directory() {
   return dir;
 }
 
-vstcal::errsim::ChainSpec Read(const std::string& chain_text) {
-  return vstcal::errsim::ChainSpecFromJson(vstcal::io::JsonDocument::Parse(chain_text, "fuzz.json"), Directory());
+vstcal::ChainSpec Read(const std::string& chain_text) {
+  return vstcal::ChainSpecFromJson(vstcal::JsonDocument::Parse(chain_text, "fuzz.json"), Directory());
 }
 
 std::string Pass(const std::string& chain_text) {
-  return vstcal::io::DumpJson(vstcal::errsim::ChainSpecToJson(Read(chain_text), vstcal::fuzz::kProvenance));
+  return vstcal::DumpJson(vstcal::ChainSpecToJson(Read(chain_text), vstcal::fuzz::kProvenance));
 }
 
 }  // namespace
@@ -44,15 +44,15 @@ VSTCAL_FUZZ_TARGET(text) {
   std::ofstream(Directory() / "camera.json", std::ios::binary | std::ios::trunc)
       << (split == std::string::npos ? std::string() : text.substr(split + 4));
   const std::string chain_text = text.substr(0, split);
-  errsim::ChainModel model = errsim::BuildChainModel(Read(chain_text));
+  ChainModel model = BuildChainModel(Read(chain_text));
   fuzz::RequireFixedPoint(chain_text, Pass);
-  errsim::SimulationOptions options;
+  SimulationOptions options;
   options.samples = 8;
   options.seed = model.seed;
   options.budget = false;
   options.threads = 1;
   model.samples = options.samples;
-  errsim::RunDescription run{"fuzz.json", errsim::ChainDigest(model), {}, {}, options};
-  const errsim::SimulationResult result = errsim::RunSimulation(errsim::MakeScenarios(model, false), options, run.digest);
-  io::DumpJson(errsim::ReportToJson(errsim::ChainEvaluator(model), result, run, fuzz::kProvenance));
+  RunDescription run{"fuzz.json", ChainDigest(model), {}, {}, options};
+  const SimulationResult result = RunSimulation(MakeScenarios(model, false), options, run.digest);
+  DumpJson(ReportToJson(ChainEvaluator(model), result, run, fuzz::kProvenance));
 }

@@ -2,21 +2,21 @@
 // (docs/formats.md#correspondences).
 #include "harness.h"
 #include "vstcal/calib/dlt.h"
-#include "vstcal/io/correspondences_io.h"
+#include "vstcal/formats/camera/correspondences_io.h"
 
 namespace {
 
 std::string Pass(const std::string& text) {
   using namespace vstcal;
-  const Correspondences c = io::CorrespondencesFromJson(io::JsonDocument::Parse(text, "fuzz.json"));
-  return io::DumpJson(io::CorrespondencesToJson(c, fuzz::kProvenance));
+  const Correspondences c = CorrespondencesFromJson(JsonDocument::Parse(text, "fuzz.json"));
+  return DumpJson(CorrespondencesToJson(c, fuzz::kProvenance));
 }
 
 }  // namespace
 
 VSTCAL_FUZZ_TARGET(text) {
   using namespace vstcal;
-  const Correspondences c = io::CorrespondencesFromJson(io::JsonDocument::Parse(text, "fuzz.json"));
+  const Correspondences c = CorrespondencesFromJson(JsonDocument::Parse(text, "fuzz.json"));
   fuzz::RequireFixedPoint(text, Pass);
   if (c.rig == Rig::kVolume) {
     DltOptions options;

@@ -1,13 +1,13 @@
 // OpenCV FileStorage YAML: the reader (cv::FileStorage behind a nesting check) and the writer's
 // fixed point (docs/formats.md#opencv-yaml).
 #include "harness.h"
-#include "vstcal/io/opencv_yaml.h"
+#include "vstcal/formats/camera/opencv_yaml.h"
 
 VSTCAL_FUZZ_TARGET(text) {
   using namespace vstcal;
-  io::OpenCvYamlFromText(text, "fuzz.yaml", LengthUnit::kMillimetre);
+  OpenCvYamlFromText(text, "fuzz.yaml", LengthUnit::kMillimetre);
   fuzz::RequireFixedPoint(text, [](const std::string& s) {
-    const io::ImportedCamera in = io::OpenCvYamlFromText(s, "fuzz.yaml", LengthUnit::kMillimetre);
-    return io::OpenCvYamlText(in.camera, "fuzz.yaml", fuzz::kProvenance).text;
+    const ImportedCamera in = OpenCvYamlFromText(s, "fuzz.yaml", LengthUnit::kMillimetre);
+    return OpenCvYamlText(in.camera, "fuzz.yaml", fuzz::kProvenance).text;
   });
 }

@@ -1,15 +1,15 @@
 // vstcal/err-sim-shard@2: the reader (`err-sim merge`) and the writer's fixed point
 // (docs/formats.md#err-sim-shard).
 #include "harness.h"
-#include "vstcal/errsim/formats/shard_format.h"
+#include "vstcal/formats/errsim/shard_format.h"
 
 namespace {
 
 std::string Pass(const std::string& text) {
   using namespace vstcal;
-  errsim::RunDescription run;
-  const errsim::SimulationResult result = errsim::ShardFromJson(io::JsonDocument::Parse(text, "fuzz.json"), &run);
-  return io::DumpJson(errsim::ShardToJson(result, run, fuzz::kProvenance));
+  RunDescription run;
+  const SimulationResult result = ShardFromJson(JsonDocument::Parse(text, "fuzz.json"), &run);
+  return DumpJson(ShardToJson(result, run, fuzz::kProvenance));
 }
 
 }  // namespace

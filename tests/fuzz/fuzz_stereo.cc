@@ -5,21 +5,21 @@
 
 #include "harness.h"
 #include "vstcal/core/error.h"
-#include "vstcal/io/stereo_io.h"
-#include "vstcal/stereo/stereo_rig.h"
+#include "vstcal/formats/stereo/stereo_io.h"
+#include "vstcal/scene/stereo_rig.h"
 
 namespace {
 
 std::string Pass(const std::string& text) {
   using namespace vstcal;
-  return io::DumpJson(io::StereoRigToJson(io::StereoRigFromJson(io::JsonDocument::Parse(text, "fuzz.json")), fuzz::kProvenance));
+  return DumpJson(StereoRigToJson(StereoRigFromJson(JsonDocument::Parse(text, "fuzz.json")), fuzz::kProvenance));
 }
 
 }  // namespace
 
 VSTCAL_FUZZ_TARGET(text) {
   using namespace vstcal;
-  const StereoRig rig = io::StereoRigFromJson(io::JsonDocument::Parse(text, "fuzz.json"));
+  const StereoRig rig = StereoRigFromJson(JsonDocument::Parse(text, "fuzz.json"));
   fuzz::RequireFixedPoint(text, Pass);
   if (const auto sigma = BaselineSigma(rig)) VSTCAL_CHECK(std::isfinite(*sigma), "a non-finite baseline sigma");
 }

@@ -1,22 +1,22 @@
 // vstcal/target@1 (docs/formats.md#target): the reader, the writer's fixed point, and the corners
 // and marker squares of what was read.
 #include "harness.h"
-#include "vstcal/capture/target_io.h"
+#include "vstcal/formats/capture/target_io.h"
 #include "vstcal/json/json_writer.h"
 
 namespace {
 
 std::string Pass(const std::string& text) {
   using namespace vstcal;
-  return io::DumpJson(capture::TargetToJson(capture::TargetFromJson(io::JsonDocument::Parse(text, "fuzz.json")), fuzz::kProvenance));
+  return DumpJson(TargetToJson(TargetFromJson(JsonDocument::Parse(text, "fuzz.json")), fuzz::kProvenance));
 }
 
 }  // namespace
 
 VSTCAL_FUZZ_TARGET(text) {
   using namespace vstcal;
-  const capture::Target t = capture::TargetFromJson(io::JsonDocument::Parse(text, "fuzz.json"));
+  const Target t = TargetFromJson(JsonDocument::Parse(text, "fuzz.json"));
   fuzz::RequireFixedPoint(text, Pass);
-  fuzz::Require(static_cast<int>(capture::TargetCorners(t).size()) == capture::NumCorners(t), "corner count");
-  (void)capture::MarkerQuads(t);
+  fuzz::Require(static_cast<int>(TargetCorners(t).size()) == NumCorners(t), "corner count");
+  (void)MarkerQuads(t);
 }

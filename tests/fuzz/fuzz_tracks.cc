@@ -1,12 +1,12 @@
 // vstcal/tracks@1 (calib-stereo register's input): the reader and the writer's fixed point
 // (docs/formats.md#tracks).
 #include "harness.h"
-#include "vstcal/io/registration_io.h"
+#include "vstcal/formats/stereo/registration_io.h"
 
 VSTCAL_FUZZ_TARGET(text) {
   using namespace vstcal;
-  io::TracksFromJson(io::JsonDocument::Parse(text, "fuzz.json"));
+  TracksFromJson(JsonDocument::Parse(text, "fuzz.json"));
   fuzz::RequireFixedPoint(text, [](const std::string& s) {
-    return io::DumpJson(io::TracksToJson(io::TracksFromJson(io::JsonDocument::Parse(s, "fuzz.json")), fuzz::kProvenance));
+    return DumpJson(TracksToJson(TracksFromJson(JsonDocument::Parse(s, "fuzz.json")), fuzz::kProvenance));
   });
 }

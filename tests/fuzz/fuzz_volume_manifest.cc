@@ -6,7 +6,7 @@
 #include <fstream>
 
 #include "harness.h"
-#include "vstcal/capture/volume_manifest.h"
+#include "vstcal/formats/capture/volume_manifest.h"
 #include "vstcal/json/json_writer.h"
 
 namespace {
@@ -31,19 +31,19 @@ const std::filesystem::path& Folder() {
   return folder.path;
 }
 
-vstcal::capture::VolumeManifest Read(const std::string& text) {
+vstcal::VolumeManifest Read(const std::string& text) {
   using namespace vstcal;
-  return capture::VolumeManifestFromJson(io::JsonDocument::Parse(text, "fuzz.json"), Folder());
+  return VolumeManifestFromJson(JsonDocument::Parse(text, "fuzz.json"), Folder());
 }
 
 std::string Pass(const std::string& text) {
-  return vstcal::io::DumpJson(vstcal::capture::VolumeManifestToJson(Read(text), vstcal::fuzz::kProvenance));
+  return vstcal::DumpJson(vstcal::VolumeManifestToJson(Read(text), vstcal::fuzz::kProvenance));
 }
 
 }  // namespace
 
 VSTCAL_FUZZ_TARGET(text) {
-  const vstcal::capture::VolumeManifest manifest = Read(text);
+  const vstcal::VolumeManifest manifest = Read(text);
   vstcal::fuzz::Require(!manifest.images.empty(), "a manifest read has images");
   vstcal::fuzz::RequireFixedPoint(text, Pass);
 }

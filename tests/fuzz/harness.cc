@@ -8,7 +8,7 @@
 
 namespace vstcal::fuzz {
 
-const io::Provenance kProvenance{"fuzz", {"--fuzz"}, std::nullopt};
+const Provenance kProvenance{"fuzz", {"--fuzz"}, std::nullopt};
 
 void RunOne(const uint8_t* data, size_t size, void (*body)(const std::string&)) {
   const std::string text(reinterpret_cast<const char*>(data), size);

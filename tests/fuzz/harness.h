@@ -3,7 +3,7 @@
 //
 //   #include "harness.h"
 //   VSTCAL_FUZZ_TARGET(text) {
-//     const Thing t = vstcal::io::ThingFromJson(vstcal::io::JsonDocument::Parse(text, "fuzz.json"));
+//     const Thing t = vstcal::ThingFromJson(vstcal::JsonDocument::Parse(text, "fuzz.json"));
 //     vstcal::fuzz::RequireFixedPoint(text, [](const std::string& s) { return Write(Read(s)); });
 //   }
 //
@@ -25,7 +25,7 @@
 namespace vstcal::fuzz {
 
 // The provenance written by harnesses (fixed, so that written texts can be compared).
-extern const io::Provenance kProvenance;
+extern const Provenance kProvenance;
 
 // Runs `body` on the input as described above.
 void RunOne(const uint8_t* data, size_t size, void (*body)(const std::string&));

@@ -14,7 +14,7 @@
 #include "vstcal/errsim/measures.h"
 #include "vstcal/random/philox.h"
 
-namespace vstcal::errsim {
+namespace vstcal {
 namespace {
 
 using testing::ParallelRig;
@@ -337,4 +337,4 @@ TEST(ErrsimGolden, EyepointErrorsTurnRaysThroughTheVirtualImage) {
 }
 
 }  // namespace
-}  // namespace vstcal::errsim
+}  // namespace vstcal

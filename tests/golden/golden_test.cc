@@ -9,8 +9,8 @@
 #include <fstream>
 
 #include "support/crb.h"
-#include "vstcal/io/camera_io.h"
-#include "vstcal/io/correspondences_io.h"
+#include "vstcal/formats/camera/camera_io.h"
+#include "vstcal/formats/camera/correspondences_io.h"
 
 namespace vstcal {
 namespace {
@@ -47,7 +47,7 @@ Solved RunCalibDlt(const std::string& dataset) {
   command.append("\" -o \"").append(out.string()).append("\"");
   EXPECT_EQ(std::system(command.c_str()), 0) << command;
   Solved s;
-  s.camera = io::ReadCamera(out);
+  s.camera = ReadCamera(out);
   std::ifstream in(out);
   s.json = nlohmann::json::parse(in);
   fs::remove(out);
@@ -89,7 +89,7 @@ TEST_P(GoldenDlt, RecoversGroundTruth) {
   const std::string name = GetParam();
   const std::string stem = "datasets/" + name.substr(0, name.find('-')) + "/" + name.substr(name.find('-') + 1);
   const Solved s = RunCalibDlt(stem + ".json");
-  const CalibratedCamera truth = io::ReadCamera(kRoot / (stem + ".truth.json"));
+  const CalibratedCamera truth = ReadCamera(kRoot / (stem + ".truth.json"));
   const Eigen::Matrix3d K = s.camera.camera.K(), Kt = truth.camera.K();
   const Rigid3d& pose = *s.camera.camera_from_world;
   const Rigid3d& pose_t = *truth.camera_from_world;
@@ -101,7 +101,7 @@ TEST_P(GoldenDlt, RecoversGroundTruth) {
     return;
   }
   // Noisy (σ = 0.2 px): within 6σ of the Cramér–Rao bound, parameter by parameter.
-  const Correspondences c = io::ReadCorrespondences(kRoot / (stem + ".json"));
+  const Correspondences c = ReadCorrespondences(kRoot / (stem + ".json"));
   const std::vector<Observation> obs = AllObservations(c);
   const testing::Matrix11d crb = testing::PinholeCrb(truth.camera, pose_t, obs, 0.2);
   const double K_err[5] = {K(0, 0) - Kt(0, 0), K(1, 1) - Kt(1, 1), K(0, 2) - Kt(0, 2), K(1, 2) - Kt(1, 2), K(0, 1) - Kt(0, 1)};

@@ -23,7 +23,7 @@
 
 #include "support/opencv_views.h"
 #include "vstcal/calib/pipeline.h"
-#include "vstcal/io/correspondences_io.h"
+#include "vstcal/formats/camera/correspondences_io.h"
 
 namespace {
 
@@ -63,7 +63,7 @@ int main(int argc, char** argv) {
   Correspondences c;
   int repeat = 5;
   try {
-    c = io::ReadCorrespondences(argv[2]);
+    c = ReadCorrespondences(argv[2]);
     if (argc == 4) repeat = std::stoi(argv[3]);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "peer_calibrate: error: %s\n", e.what());

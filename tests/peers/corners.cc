@@ -35,21 +35,20 @@
 
 #include "support/capture_scenes.h"
 #include "vstcal/calib/pipeline.h"
-#include "vstcal/capture/image_io.h"
+#include "vstcal/image/image_io.h"
 #include "vstcal/capture/target_drawing.h"
-#include "vstcal/capture/target_io.h"
+#include "vstcal/formats/capture/target_io.h"
 
 namespace {
 
 namespace fs = std::filesystem;
 using namespace vstcal;
-using capture::GrayImage;
 
 constexpr int kViews = 10;
 const double kSquares[] = {12, 20, 30, 45, 60};
 
-capture::Target Board10() {
-  capture::Target t = testing::Chessboard9x6();
+Target Board10() {
+  Target t = testing::Chessboard9x6();
   t.rows = t.cols = 10;
   return t;
 }
@@ -77,15 +76,15 @@ std::vector<cv::Point2f> Classic(const cv::Mat& gray) {
   return p;
 }
 
-std::vector<std::pair<std::string, Finder>> Detectors(const capture::Target& target) {
+std::vector<std::pair<std::string, Finder>> Detectors(const Target& target) {
   return {
       {"vstcal",
        [target](const cv::Mat& gray, double) {
          GrayImage image(gray.cols, gray.rows);
          std::memcpy(image.pixels.data(), gray.data, image.pixels.size());
-         const capture::Detection d = capture::DetectTarget(image, target, capture::DetectorOptions{});
+         const Detection d = DetectTarget(image, target, DetectorOptions{});
          std::vector<cv::Point2f> p;
-         if (d.status == capture::DetectionStatus::kFound) {
+         if (d.status == DetectionStatus::kFound) {
            for (const auto& c : d.corners) p.emplace_back(static_cast<float>(c.pixel.x()), static_cast<float>(c.pixel.y()));
          }
          return p;
@@ -119,13 +118,13 @@ std::vector<std::pair<std::string, Finder>> Detectors(const capture::Target& tar
 }
 
 int Render(const fs::path& dir) {
-  const capture::Target t = Board10();
+  const Target t = Board10();
   const Camera camera = testing::PinholeCamera(1280, 1024, 1400);
   for (const Condition& c : Conditions()) {
     fs::create_directories(dir / c.name);
     nlohmann::json truth = nlohmann::json::object();
     for (int k = 0; k < kViews; ++k) {
-      capture::RenderOptions options;
+      RenderOptions options;
       options.blur_px = c.blur;
       options.noise = c.noise;
       options.seed = 1000 + k;
@@ -133,7 +132,7 @@ int Render(const fs::path& dir) {
           testing::RenderTestView(camera, t, testing::TestViewPose(camera, t, c.square_px, k, 77, 360.0 * k / kViews), options, k);
       char name[32];
       std::snprintf(name, sizeof name, "view-%02d.png", k);
-      std::ofstream(dir / c.name / name, std::ios::binary) << capture::EncodePng(view.image);
+      std::ofstream(dir / c.name / name, std::ios::binary) << EncodePng(view.image);
       nlohmann::json corners = nlohmann::json::array();
       for (const auto& [id, px] : view.truth) corners.push_back({px.x(), px.y()});
       truth[name] = corners;
@@ -145,18 +144,18 @@ int Render(const fs::path& dir) {
 
 int Markers() {
   const Camera camera = testing::DistortedCamera(640, 480, 600);
-  capture::RenderOptions options;
+  RenderOptions options;
   options.blur_px = 0.7;
   options.noise = 2;
   struct Row {
     const char* name;
-    capture::Target target;
-    capture::CornerRefiner refiner;
+    Target target;
+    CornerRefiner refiner;
   };
-  for (const Row& row : {Row{"charuco, OpenCV's corners", testing::Charuco7x5(), capture::CornerRefiner::kNone},
-                         Row{"charuco, vstcal", testing::Charuco7x5(), capture::CornerRefiner::kSymmetry},
-                         Row{"apriltag-grid, libapriltag", testing::AprilGrid6x4(), capture::CornerRefiner::kSymmetry}}) {
-    capture::DetectorOptions detector;
+  for (const Row& row : {Row{"charuco, OpenCV's corners", testing::Charuco7x5(), CornerRefiner::kNone},
+                         Row{"charuco, vstcal", testing::Charuco7x5(), CornerRefiner::kSymmetry},
+                         Row{"apriltag-grid, libapriltag", testing::AprilGrid6x4(), CornerRefiner::kSymmetry}}) {
+    DetectorOptions detector;
     detector.refiner = row.refiner;
     double sum2 = 0;
     Eigen::Vector2d mean = Eigen::Vector2d::Zero();
@@ -164,10 +163,10 @@ int Markers() {
     for (int k = 0; k < 10; ++k) {
       const testing::RenderedView view =
           testing::RenderTestView(camera, row.target, testing::TestViewPose(camera, row.target, 40, k, 21), options, k);
-      const capture::Detection d = capture::DetectTarget(view.image, row.target, detector);
-      if (d.status != capture::DetectionStatus::kFound) continue;
+      const Detection d = DetectTarget(view.image, row.target, detector);
+      if (d.status != DetectionStatus::kFound) continue;
       ++found;
-      for (const capture::DetectedCorner& c : d.corners) {
+      for (const DetectedCorner& c : d.corners) {
         const Eigen::Vector2d e = c.pixel - view.truth.at(c.id);
         sum2 += e.squaredNorm();
         mean += e;
@@ -191,21 +190,21 @@ int SpeedSet(const fs::path& dir) {
       image.pixels[0] = static_cast<uint8_t>(k);
       char name[32];
       std::snprintf(name, sizeof name, "view-%02d.png", k);
-      std::ofstream(dir / std::to_string(width) / name, std::ios::binary) << capture::EncodePng(image);
+      std::ofstream(dir / std::to_string(width) / name, std::ios::binary) << EncodePng(image);
     }
   }
-  std::ofstream(dir / "board.target.json") << io::DumpJson(capture::TargetToJson(testing::SpeedTestBoard(), io::Provenance{"peer_corners", {}, std::nullopt}));
+  std::ofstream(dir / "board.target.json") << DumpJson(TargetToJson(testing::SpeedTestBoard(), Provenance{"peer_corners", {}, std::nullopt}));
   return 0;
 }
 
 int Detect(const fs::path& dir) {
-  const capture::Target t = Board10();
+  const Target t = Board10();
   cv::setNumThreads(1);  // one core each, as mrgingham --jobs 1
   for (const Condition& c : Conditions()) {
     for (int k = 0; k < kViews; ++k) {
       char name[32];
       std::snprintf(name, sizeof name, "view-%02d.png", k);
-      const capture::LoadedImage loaded = capture::LoadImageFile(dir / c.name / name);
+      const LoadedImage loaded = LoadImageFile(dir / c.name / name);
       if (!loaded.problem.empty()) throw std::runtime_error(loaded.problem);
       const cv::Mat gray(loaded.image.height, loaded.image.width, CV_8U, const_cast<uint8_t*>(loaded.image.pixels.data()));
       for (const auto& [detector, find] : Detectors(t)) {
@@ -230,15 +229,15 @@ int Detect(const fs::path& dir) {
 // by the same solver (vstcal::Calibrate, k1, k2, p1, p2): the reprojection RMS says how
 // consistent each detector's corners are where no truth is known.
 int Real() {
-  const capture::Target t = testing::Chessboard9x6();
+  const Target t = testing::Chessboard9x6();
   for (const std::string side : {"left", "right"}) {
     std::map<std::string, Correspondences> sets;
     for (const int i : {1, 2, 3, 4, 5, 6, 7, 8, 9, 11, 12, 13, 14}) {
       char path[128];
       std::snprintf(path, sizeof path, "/usr/share/doc/opencv-doc/examples/data/%s%02d.jpg", side.c_str(), i);
-      const capture::LoadedImage loaded = capture::LoadImageFile(path);
+      const LoadedImage loaded = LoadImageFile(path);
       if (!loaded.problem.empty()) throw std::runtime_error(std::string(path) + ": " + loaded.problem);
-      const capture::Detection ours = capture::DetectTarget(loaded.image, t, capture::DetectorOptions{});
+      const Detection ours = DetectTarget(loaded.image, t, DetectorOptions{});
       const cv::Mat gray(loaded.image.height, loaded.image.width, CV_8U, const_cast<uint8_t*>(loaded.image.pixels.data()));
       for (const auto& [detector, find] : Detectors(t)) {
         std::vector<cv::Point2f> p;
@@ -261,7 +260,7 @@ int Real() {
         c.rig = Rig::kPlanarViews;
         View v{std::to_string(i), "", std::nullopt, {}};
         for (const auto& corner : ours.corners) {
-          const Eigen::Vector2d xy = capture::CornerPosition(t, corner.id);
+          const Eigen::Vector2d xy = CornerPosition(t, corner.id);
           const auto nearest = *std::min_element(p.begin(), p.end(), [&](const cv::Point2f& a, const cv::Point2f& b) {
             return (Eigen::Vector2d(a.x, a.y) - corner.pixel).norm() < (Eigen::Vector2d(b.x, b.y) - corner.pixel).norm();
           });

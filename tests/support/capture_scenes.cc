@@ -7,8 +7,8 @@
 
 namespace vstcal::testing {
 
-capture::Target Chessboard9x6() {
-  capture::Target t;
+Target Chessboard9x6() {
+  Target t;
   t.rows = 6;
   t.cols = 9;
   t.square_size = 25;
@@ -16,9 +16,9 @@ capture::Target Chessboard9x6() {
   return t;
 }
 
-capture::Target Charuco7x5() {
-  capture::Target t;
-  t.type = capture::TargetType::kCharuco;
+Target Charuco7x5() {
+  Target t;
+  t.type = TargetType::kCharuco;
   t.rows = 5;
   t.cols = 7;
   t.square_size = 30;
@@ -28,9 +28,9 @@ capture::Target Charuco7x5() {
   return t;
 }
 
-capture::Target AprilGrid6x4() {
-  capture::Target t;
-  t.type = capture::TargetType::kAprilTagGrid;
+Target AprilGrid6x4() {
+  Target t;
+  t.type = TargetType::kAprilTagGrid;
   t.rows = 4;
   t.cols = 6;
   t.tag_size = 30;
@@ -52,48 +52,48 @@ Camera DistortedCamera(int width, int height, double f) {
   return Camera::FromK(pinhole.K(), pinhole.image_size, RadialTangentialModel{}, d);
 }
 
-Rigid3d TestViewPose(const Camera& camera, const capture::Target& target, double square_px, int k, uint64_t seed,
+Rigid3d TestViewPose(const Camera& camera, const Target& target, double square_px, int k, uint64_t seed,
                      double extra_roll_deg) {
   const CounterRng rng(seed, 0x5CE7u);
   const auto a = rng.Uniform2(static_cast<uint64_t>(k), 0), b = rng.Uniform2(static_cast<uint64_t>(k), 1);
-  const double square = target.type == capture::TargetType::kAprilTagGrid ? target.tag_size : target.square_size;
+  const double square = target.type == TargetType::kAprilTagGrid ? target.tag_size : target.square_size;
   const double depth = camera.params[0] * square / square_px;
   const double tilt = DegToRad(35.0) * a[0], axis = 2 * kPi * a[1];
   const double roll = DegToRad(60.0 * (b[0] - 0.5) + extra_roll_deg);
   const Eigen::Matrix3d R = RotationFromRotvec(Eigen::Vector3d(tilt * std::cos(axis), tilt * std::sin(axis), 0)) *
                             RotationFromRotvec(Eigen::Vector3d(0, 0, roll));
-  Eigen::Vector2d lo = capture::CornerPosition(target, 0), hi = lo;
-  for (const capture::TargetCorner& c : capture::TargetCorners(target)) lo = lo.cwiseMin(c.xy), hi = hi.cwiseMax(c.xy);
+  Eigen::Vector2d lo = CornerPosition(target, 0), hi = lo;
+  for (const TargetCorner& c : TargetCorners(target)) lo = lo.cwiseMin(c.xy), hi = hi.cwiseMax(c.xy);
   const Eigen::Vector3d centre(0.5 * (lo.x() + hi.x()), 0.5 * (lo.y() + hi.y()), 0);
   const Eigen::Vector3d shift(0.05 * depth * (b[1] - 0.5), 0, depth);
   return Rigid3d{R, shift - R * centre};
 }
 
-RenderedView RenderTestView(const Camera& camera, const capture::Target& target, const Rigid3d& camera_from_board,
-                            const capture::RenderOptions& options, uint32_t view) {
+RenderedView RenderTestView(const Camera& camera, const Target& target, const Rigid3d& camera_from_board,
+                            const RenderOptions& options, uint32_t view) {
   RenderedView out;
   out.camera_from_board = camera_from_board;
-  out.image = capture::RenderView(capture::PixelCornerRays(camera), capture::TargetPattern(target), camera_from_board, options, view);
-  for (const capture::TargetCorner& c : capture::TargetCorners(target)) {
+  out.image = RenderView(PixelCornerRays(camera), TargetPattern(target), camera_from_board, options, view);
+  for (const TargetCorner& c : TargetCorners(target)) {
     const auto px = camera.Project(camera_from_board * Eigen::Vector3d(c.xy.x(), c.xy.y(), 0));
     if (px && camera.InImage(*px)) out.truth[c.id] = *px;
   }
   return out;
 }
 
-capture::Target SpeedTestBoard() {
-  capture::Target t = Chessboard9x6();
+Target SpeedTestBoard() {
+  Target t = Chessboard9x6();
   t.rows = t.cols = 10;
   return t;
 }
 
-std::vector<capture::GrayImage> SpeedTestImages(int width) {
+std::vector<GrayImage> SpeedTestImages(int width) {
   const bool vga = width == 640;
   const Camera camera = DistortedCamera(width, vga ? 480 : 720, vga ? 600 : 1000);
-  capture::RenderOptions options;
+  RenderOptions options;
   options.blur_px = 0.8;
   options.noise = 2;
-  std::vector<capture::GrayImage> images;
+  std::vector<GrayImage> images;
   for (int k = 0; k < 8; ++k) {
     const Rigid3d pose = TestViewPose(camera, SpeedTestBoard(), vga ? 30 : 50, k, 9);
     images.push_back(RenderTestView(camera, SpeedTestBoard(), pose, options, k).image);
@@ -101,10 +101,10 @@ std::vector<capture::GrayImage> SpeedTestImages(int width) {
   return images;
 }
 
-CornerErrors CompareWithTruth(const capture::Detection& detection, const RenderedView& view) {
+CornerErrors CompareWithTruth(const Detection& detection, const RenderedView& view) {
   CornerErrors e;
   double sum2 = 0;
-  for (const capture::DetectedCorner& c : detection.corners) {
+  for (const DetectedCorner& c : detection.corners) {
     const auto it = view.truth.find(c.id);
     if (it == view.truth.end()) {
       ++e.wrong_id;

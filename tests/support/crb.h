@@ -8,7 +8,7 @@
 
 #include <Eigen/Core>
 
-#include "vstcal/calib/correspondences.h"
+#include "vstcal/scene/correspondences.h"
 #include "vstcal/camera/camera.h"
 #include "vstcal/geometry/rigid3.h"
 

@@ -3,8 +3,8 @@
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 
-#include "vstcal/calib/reprojection_cost.h"
-#include "vstcal/calib/robust_loss.h"
+#include "vstcal/estimators/reprojection_cost.h"
+#include "vstcal/estimators/robust_loss.h"
 
 namespace vstcal::testing {
 namespace {

@@ -13,9 +13,9 @@
 
 #include <Eigen/Core>
 
-#include "vstcal/calib/correspondences.h"
-#include "vstcal/calib/free_intrinsics.h"
-#include "vstcal/calib/refine_options.h"
+#include "vstcal/scene/correspondences.h"
+#include "vstcal/estimators/free_intrinsics.h"
+#include "vstcal/estimators/refine_options.h"
 #include "vstcal/camera/camera.h"
 #include "vstcal/geometry/rigid3.h"
 

@@ -4,7 +4,7 @@
 
 #include <vector>
 
-#include "vstcal/calib/calibrated_camera.h"
+#include "vstcal/scene/calibrated_camera.h"
 
 namespace vstcal::testing {
 

@@ -7,7 +7,7 @@
 
 #include <opencv2/core.hpp>
 
-#include "vstcal/calib/correspondences.h"
+#include "vstcal/scene/correspondences.h"
 
 namespace vstcal::testing {
 

@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "vstcal/calib/correspondences.h"
+#include "vstcal/scene/correspondences.h"
 #include "vstcal/camera/camera.h"
 #include "vstcal/capture/synthetic_volume.h"
 #include "vstcal/geometry/rigid3.h"

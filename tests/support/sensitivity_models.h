@@ -30,10 +30,9 @@ struct Ishigami {
 };
 
 // x1, x2, x3 ~ U(−π, π), each in its own group named after it.
-inline sensitivity::ParameterSpace IshigamiSpace() {
-  using sensitivity::Distribution;
+inline ParameterSpace IshigamiSpace() {
   const double pi = 3.14159265358979323846;
-  sensitivity::ParameterSpace space;
+  ParameterSpace space;
   for (const char* name : {"x1", "x2", "x3"}) space.Add({name, name, Distribution::MakeUniform(-pi, pi), {}});
   return space;
 }
@@ -61,13 +60,13 @@ struct SobolG {
   }
 };
 
-inline sensitivity::ParameterSpace SobolGSpace(size_t n) {
-  sensitivity::ParameterSpace space;
+inline ParameterSpace SobolGSpace(size_t n) {
+  ParameterSpace space;
   for (size_t i = 0; i < n; ++i) {
     // Appended rather than "x" + to_string(): GCC 12 warns falsely (-Wrestrict) on the latter.
     std::string name = "x";
     name += std::to_string(i + 1);
-    space.Add({name, name, sensitivity::Distribution::MakeUniform(0, 1), {}});
+    space.Add({name, name, Distribution::MakeUniform(0, 1), {}});
   }
   return space;
 }
@@ -105,9 +104,8 @@ struct GroupedSetup {
   double s1 = 1.0, s2 = 0.8, h3 = 1.5, s4 = 1.2, s5 = 1.0, bias = 2.0;
 };
 
-inline sensitivity::ParameterSpace GroupedSpace(const GroupedSetup& c = {}) {
-  using sensitivity::Distribution;
-  return sensitivity::ParameterSpace({{"x1", "g1", Distribution::MakeNormal(0, c.s1), {}},
+inline ParameterSpace GroupedSpace(const GroupedSetup& c = {}) {
+  return ParameterSpace({{"x1", "g1", Distribution::MakeNormal(0, c.s1), {}},
                                       {"x2", "g1", Distribution::MakeNormal(0, c.s2), {}},
                                       {"x3", "g2", Distribution::MakeUniform(-c.h3, c.h3), {}},
                                       {"x4", "g3", Distribution::MakeNormal(0, c.s4), {}},

@@ -3,8 +3,8 @@
 
 #include <cstdint>
 
-#include "vstcal/calib/correspondences.h"
-#include "vstcal/stereo/stereo_rig.h"
+#include "vstcal/scene/correspondences.h"
+#include "vstcal/scene/stereo_rig.h"
 
 namespace vstcal::testing {
 

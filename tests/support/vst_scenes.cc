@@ -12,13 +12,13 @@ Eigen::Vector3d WorldFromHmdPoint(const Eigen::Vector3d& point_in_hmd) {
   return point_in_hmd - Eigen::Vector3d(0, 0, 2000);
 }
 
-errsim::ChainGeometry ParallelRig(std::vector<Eigen::Vector3d> points_in_world, double focal, double baseline) {
-  errsim::ChainGeometry g;
+ChainGeometry ParallelRig(std::vector<Eigen::Vector3d> points_in_world, double focal, double baseline) {
+  ChainGeometry g;
   g.length_unit = LengthUnit::kMillimetre;
   // hmd_from_world = translation (0, 0, 2000): the tracker is an arbitrary frame in between.
   g.tracker_from_world = Pose(0.3, -0.2, 0.1, 150, -400, 900);
   g.hmd_from_tracker = Pose(0, 0, 0, 0, 0, 2000) * g.tracker_from_world.inverse();
-  for (int e = 0; e < errsim::kNumEyes; ++e) {
+  for (int e = 0; e < kNumEyes; ++e) {
     g.camera_from_hmd[e] = Rigid3d{Eigen::Matrix3d::Identity(), Eigen::Vector3d((e == 0 ? 0.5 : -0.5) * baseline, 0, 0)};
     Eigen::Matrix3d K;
     K << focal, 0, 639.5, 0, focal, 359.5, 0, 0, 1;

@@ -15,7 +15,7 @@ namespace vstcal::testing {
 // non-trivial tracker in between); the virtual world and the object frame are rotated and
 // shifted away from the world so that every frame of the chain is exercised. Test points are
 // given in the world frame. Lengths in mm.
-errsim::ChainGeometry ParallelRig(std::vector<Eigen::Vector3d> points_in_world, double focal = 700.0,
+ChainGeometry ParallelRig(std::vector<Eigen::Vector3d> points_in_world, double focal = 700.0,
                                   double baseline = 63.0);
 
 // The hmd frame's origin expressed in the world frame of ParallelRig: a point at hmd (x, y, z) is

@@ -18,7 +18,7 @@ extern "C" {
 #include "vstcal/capture/detect.h"
 #include "vstcal/capture/target_pattern.h"
 
-namespace vstcal::capture {
+namespace vstcal {
 namespace {
 
 using testing::AprilGrid6x4;
@@ -320,4 +320,4 @@ TEST(Detect, RejectsTooFewCorners) {
 }
 
 }  // namespace
-}  // namespace vstcal::capture
+}  // namespace vstcal

@@ -14,7 +14,7 @@
 #include "vstcal/core/error.h"
 #include "vstcal/random/philox.h"
 
-namespace vstcal::capture {
+namespace vstcal {
 namespace {
 
 constexpr double kF = 1400;
@@ -242,4 +242,4 @@ TEST(CapturePlan, RefusesImpossibleRequests) {
 }
 
 }  // namespace
-}  // namespace vstcal::capture
+}  // namespace vstcal

@@ -14,9 +14,9 @@
 #include "support/capture_scenes.h"
 #include "vstcal/calib/pipeline.h"
 #include "vstcal/capture/detect_run.h"
-#include "vstcal/capture/image_io.h"
+#include "vstcal/image/image_io.h"
 
-namespace vstcal::capture {
+namespace vstcal {
 namespace {
 
 namespace fs = std::filesystem;
@@ -149,4 +149,4 @@ TEST_P(RealImages, CalibrationAgreesWithOpenCvCalibrateCamera) {
 INSTANTIATE_TEST_SUITE_P(OpenCvSample, RealImages, ::testing::Values("left", "right"));
 
 }  // namespace
-}  // namespace vstcal::capture
+}  // namespace vstcal

@@ -11,7 +11,7 @@
 #include "vstcal/capture/target_pattern.h"
 #include "vstcal/random/philox.h"
 
-namespace vstcal::capture {
+namespace vstcal {
 namespace {
 
 using testing::Chessboard9x6;
@@ -177,4 +177,4 @@ TEST(Render, LightingIsALinearGain) {
 }
 
 }  // namespace
-}  // namespace vstcal::capture
+}  // namespace vstcal

@@ -22,11 +22,11 @@ extern "C" {
 #include "support/error_of.h"
 #include "vstcal/capture/pattern.h"
 #include "vstcal/capture/target_drawing.h"
-#include "vstcal/capture/target_io.h"
+#include "vstcal/formats/capture/target_io.h"
 #include "vstcal/capture/target_pattern.h"
 #include "vstcal/core/error.h"
 
-namespace vstcal::capture {
+namespace vstcal {
 namespace {
 
 using testing::AprilGrid6x4;
@@ -180,8 +180,8 @@ TEST(Target, CheckTargetNamesTheFieldAndTheFix) {
 
 TEST(TargetIo, RoundTripsEveryType) {
   for (const Target& t : {Chessboard9x6(), Charuco7x5(), AprilGrid6x4()}) {
-    const std::string text = io::DumpJson(TargetToJson(t, io::Provenance{"test", {}, std::nullopt}));
-    const Target back = TargetFromJson(io::JsonDocument::Parse(text, "t.json"));
+    const std::string text = DumpJson(TargetToJson(t, Provenance{"test", {}, std::nullopt}));
+    const Target back = TargetFromJson(JsonDocument::Parse(text, "t.json"));
     EXPECT_EQ(back.type, t.type);
     EXPECT_EQ(back.rows, t.rows);
     EXPECT_EQ(back.cols, t.cols);
@@ -192,23 +192,23 @@ TEST(TargetIo, RoundTripsEveryType) {
     EXPECT_EQ(back.tag_gap, t.tag_gap);
     EXPECT_EQ(back.family, t.family);
     EXPECT_EQ(back.margin, t.margin);
-    EXPECT_EQ(io::DumpJson(TargetToJson(back, io::Provenance{"test", {}, std::nullopt})), text);
+    EXPECT_EQ(DumpJson(TargetToJson(back, Provenance{"test", {}, std::nullopt})), text);
   }
 }
 
 TEST(TargetIo, RefusesFieldsOfAnotherTypeAndBadValues) {
   using testing::ErrorOf;
   const std::string head = R"({"format": "vstcal/target@1", "length_unit": "mm", "rows": 6, "cols": 9, )";
-  EXPECT_EQ(ErrorOf([&] { TargetFromJson(io::JsonDocument::Parse(head + R"("type": "chessboard", "square_size": 25, "marker_size": 18})", "t.json")); }),
+  EXPECT_EQ(ErrorOf([&] { TargetFromJson(JsonDocument::Parse(head + R"("type": "chessboard", "square_size": 25, "marker_size": 18})", "t.json")); }),
             "t.json: marker_size: is not a field of a chessboard target; remove it, or set \"type\" to the board's type (charuco has it)");
-  EXPECT_EQ(ErrorOf([&] { TargetFromJson(io::JsonDocument::Parse(head + R"("type": "chessbord", "square_size": 25})", "t.json")); }),
+  EXPECT_EQ(ErrorOf([&] { TargetFromJson(JsonDocument::Parse(head + R"("type": "chessbord", "square_size": 25})", "t.json")); }),
             "t.json: type: unknown value \"chessbord\"; use one of \"chessboard\", \"charuco\", \"apriltag-grid\"");
-  EXPECT_EQ(ErrorOf([&] { TargetFromJson(io::JsonDocument::Parse(head + R"("type": "charuco", "square_size": 25})", "t.json")); }),
+  EXPECT_EQ(ErrorOf([&] { TargetFromJson(JsonDocument::Parse(head + R"("type": "charuco", "square_size": 25})", "t.json")); }),
             "t.json: marker_size: missing field; add \"marker_size\"");
-  EXPECT_EQ(ErrorOf([&] { TargetFromJson(io::JsonDocument::Parse(head + R"("type": "chessboard", "square_size": 0})", "t.json")); }),
+  EXPECT_EQ(ErrorOf([&] { TargetFromJson(JsonDocument::Parse(head + R"("type": "chessboard", "square_size": 0})", "t.json")); }),
             "t.json: square_size: must be a positive length, got 0; give the printed size");
   // Without "margin" the default is one square, which CheckTarget accepts.
-  EXPECT_EQ(TargetFromJson(io::JsonDocument::Parse(head + R"("type": "chessboard", "square_size": 25})", "t.json")).margin, 25);
+  EXPECT_EQ(TargetFromJson(JsonDocument::Parse(head + R"("type": "chessboard", "square_size": 25})", "t.json")).margin, 25);
 }
 
 // Exact areas: a square centred on a chessboard corner, at any rotation, is half black (the four
@@ -290,4 +290,4 @@ TEST(TargetDrawing, RefusesHugeRasters) {
 }
 
 }  // namespace
-}  // namespace vstcal::capture
+}  // namespace vstcal

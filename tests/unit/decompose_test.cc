@@ -1,7 +1,7 @@
 // P → K, R, t on synthetic matrices with known factors, any scale and sign.
 #include <gtest/gtest.h>
 
-#include "vstcal/calib/decompose.h"
+#include "vstcal/estimators/decompose.h"
 #include "vstcal/random/philox.h"
 
 namespace vstcal {

@@ -116,18 +116,18 @@ TEST(DisplayPlan, AgreesWithErrSimsDisplayModel) {
       in.ipd = ipd;
       const DisplayPlan plan = PlanDisplay(in);
 
-      errsim::ChainModel model = errsim::ChainModel::WithZeroErrors(testing::ParallelRig(points, focal, baseline));
+      ChainModel model = ChainModel::WithZeroErrors(testing::ParallelRig(points, focal, baseline));
       const std::pair<const char*, double> biases[] = {{"display.ipd", ipd - baseline},
                                                        {"display.left.screen_shift.u", -plan.translation_px / 2},
                                                        {"display.right.screen_shift.u", plan.translation_px / 2}};
       for (const auto& [name, value] : biases) {
-        errsim::ChainParameter* p = model.Find(name);
+        ChainParameter* p = model.Find(name);
         ASSERT_NE(p, nullptr) << name;
-        p->distribution = errsim::Distribution::MakeFixed(value);
+        p->distribution = Distribution::MakeFixed(value);
       }
-      const errsim::ChainEvaluator chain(model);
+      const ChainEvaluator chain(model);
       const std::vector<double> theta = model.MeanTheta();
-      errsim::ChainSample<double> sample(points.size());
+      ChainSample<double> sample(points.size());
       chain.Evaluate(theta.data(), &sample);
       for (size_t k = 0; k < depths.size(); ++k) {
         ASSERT_TRUE(plan.rows[k].perceived_depth.has_value());

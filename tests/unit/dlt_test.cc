@@ -6,7 +6,7 @@
 
 #include "support/crb.h"
 #include "support/scenes.h"
-#include "vstcal/calib/decompose.h"
+#include "vstcal/estimators/decompose.h"
 #include "vstcal/calib/dlt.h"
 #include "vstcal/random/philox.h"
 

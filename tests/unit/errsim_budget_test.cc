@@ -14,7 +14,7 @@
 #include "vstcal/errsim/budget.h"
 #include "vstcal/errsim/simulation.h"
 
-namespace vstcal::errsim {
+namespace vstcal {
 namespace {
 
 void SetNormal(ChainModel* m, const std::string& name, double sigma) {
@@ -155,4 +155,4 @@ TEST(Simulation, SameBitsForAnyThreadCountAndShardSplit) {
 }
 
 }  // namespace
-}  // namespace vstcal::errsim
+}  // namespace vstcal

@@ -14,10 +14,10 @@
 #include "support/vst_scenes.h"
 #include "vstcal/errsim/chain.h"
 #include "vstcal/errsim/measures.h"
-#include "vstcal/errsim/point_registration.h"
+#include "vstcal/geometry/point_registration.h"
 #include "vstcal/random/philox.h"
 
-namespace vstcal::errsim {
+namespace vstcal {
 namespace {
 
 const std::vector<Eigen::Vector3d> kFiducials = {{-120, -80, 0}, {150, -60, 20}, {130, 90, -30}, {-100, 110, 10}};
@@ -225,4 +225,4 @@ TEST(ChainJet, DerivativesMatchCentralDifferences) {
 }
 
 }  // namespace
-}  // namespace vstcal::errsim
+}  // namespace vstcal

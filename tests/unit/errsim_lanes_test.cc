@@ -13,12 +13,12 @@
 
 #include "support/vst_scenes.h"
 #include "vstcal/core/simd_double.h"
-#include "vstcal/errsim/formats/chain_reader.h"
+#include "vstcal/formats/errsim/chain_reader.h"
 #include "vstcal/errsim/sample_measurer.h"
 #include "vstcal/errsim/sampler.h"
 #include "vstcal/random/philox.h"
 
-namespace vstcal::errsim {
+namespace vstcal {
 namespace {
 
 constexpr size_t kLanes = SampleMeasurer::kLanes;
@@ -202,4 +202,4 @@ TEST(SampleMeasurer, LanesThatTakeDifferentBranchesAreRedoneOneAtATime) {
 }
 
 }  // namespace
-}  // namespace vstcal::errsim
+}  // namespace vstcal

@@ -11,20 +11,19 @@
 
 #include "support/stereo_rigs.h"
 #include "vstcal/errsim/chain.h"
-#include "vstcal/errsim/formats/chain_reader.h"
-#include "vstcal/errsim/formats/report_format.h"
+#include "vstcal/formats/errsim/chain_reader.h"
+#include "vstcal/formats/errsim/report_format.h"
 #include "vstcal/errsim/sampler.h"
 #include "vstcal/errsim/simulation.h"
 #include "vstcal/geometry/rotation.h"
-#include "vstcal/io/camera_io.h"
-#include "vstcal/io/stereo_io.h"
+#include "vstcal/formats/camera/camera_io.h"
+#include "vstcal/formats/stereo/stereo_io.h"
 
-namespace vstcal::errsim {
+namespace vstcal {
 namespace {
 
-using io::OrderedJson;
 
-const io::Provenance kProvenance{"errsim_rig_test", {}, std::nullopt};
+const Provenance kProvenance{"errsim_rig_test", {}, std::nullopt};
 
 OrderedJson Pose(double tx, double ty, double tz) { return {{"rotvec_deg", {0.0, 0.0, 0.0}}, {"t", {tx, ty, tz}}}; }
 OrderedJson Normal(double sigma) { return {{"distribution", "normal"}, {"sigma", sigma}}; }
@@ -60,8 +59,8 @@ OrderedJson ChainAroundRig() {
 
 OrderedJson InlineCamera(const CalibratedCamera& c) {
   return {{"image_size", {c.camera.image_size.width, c.camera.image_size.height}},
-          {"K", io::MatrixToJson(c.camera.K())},
-          {"distortion", io::DistortionToJson(c.camera)}};
+          {"K", MatrixToJson(c.camera.K())},
+          {"distortion", DistortionToJson(c.camera)}};
 }
 
 // The same chain written by hand: the rig's cameras inline, camera_from_hmd.right = right_from_left
@@ -69,10 +68,10 @@ OrderedJson InlineCamera(const CalibratedCamera& c) {
 OrderedJson HandWrittenEquivalent(const StereoRig& rig) {
   OrderedJson c = ChainAroundRig();
   const Rigid3d right = rig.right_from_left * Rigid3d::FromRotvec(Eigen::Vector3d::Zero(), Eigen::Vector3d(31.5, 0, 0));
-  c["frames"]["camera_from_hmd"]["right"] = {{"R", io::MatrixToJson(right.R)}, {"t", io::MatrixToJson(right.t)}};
+  c["frames"]["camera_from_hmd"]["right"] = {{"R", MatrixToJson(right.R)}, {"t", MatrixToJson(right.t)}};
   c["cameras"] = {{"left", InlineCamera(rig.left)}, {"right", InlineCamera(rig.right)}};
   c["sources"]["camera_extrinsic"]["right"]["covariance"] = {{"parameters", rig.covariance->parameters},
-                                                             {"matrix", io::MatrixToJson(rig.covariance->matrix)}};
+                                                             {"matrix", MatrixToJson(rig.covariance->matrix)}};
   return c;
 }
 
@@ -81,12 +80,12 @@ class ErrSimRig : public ::testing::Test {
   void SetUp() override {
     dir_ = std::filesystem::path(::testing::TempDir()) / ("errsim_rig_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
     std::filesystem::create_directories(dir_);
-    std::ofstream(dir_ / "rig.json") << io::DumpJson(io::StereoRigToJson(rig_, kProvenance));
+    std::ofstream(dir_ / "rig.json") << DumpJson(StereoRigToJson(rig_, kProvenance));
   }
   void TearDown() override { std::filesystem::remove_all(dir_); }
 
   ChainModel Build(const OrderedJson& chain) const {
-    return BuildChainModel(ChainSpecFromJson(io::JsonDocument::Parse(chain.dump(), "chain.json"), dir_));
+    return BuildChainModel(ChainSpecFromJson(JsonDocument::Parse(chain.dump(), "chain.json"), dir_));
   }
   OrderedJson WithRig() const {
     OrderedJson c = ChainAroundRig();
@@ -108,7 +107,7 @@ std::string ReportOf(const ChainModel& model) {
   options.threads = 2;
   const RunDescription run{"chain.json", ChainDigest(model), {}, {}, options};
   const SimulationResult result = RunSimulation(MakeScenarios(model, false), options, run.digest);
-  return io::DumpJson(ReportToJson(ChainEvaluator(model), result, run, kProvenance));
+  return DumpJson(ReportToJson(ChainEvaluator(model), result, run, kProvenance));
 }
 
 TEST_F(ErrSimRig, ChainFromARigIsTheHandWrittenChain) {
@@ -200,4 +199,4 @@ TEST_F(ErrSimRig, ChainMixesTheRightCamerasPoseSlots) {
 }
 
 }  // namespace
-}  // namespace vstcal::errsim
+}  // namespace vstcal

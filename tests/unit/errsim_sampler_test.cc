@@ -12,7 +12,7 @@
 #include "support/vst_scenes.h"
 #include "vstcal/errsim/sampler.h"
 
-namespace vstcal::errsim {
+namespace vstcal {
 namespace {
 
 namespace table {
@@ -91,4 +91,4 @@ TEST(ThetaSampler, DrawsOnlyRandomParametersAndRowsDoNotDependOnTheBatch) {
 }
 
 }  // namespace
-}  // namespace vstcal::errsim
+}  // namespace vstcal

@@ -6,9 +6,9 @@
 #include <cmath>
 #include <vector>
 
-#include "vstcal/calib/fit.h"
+#include "vstcal/scene/fit.h"
 #include "vstcal/capture/synthetic_camera.h"
-#include "vstcal/io/camera_io.h"
+#include "vstcal/formats/camera/camera_io.h"
 
 namespace vstcal {
 namespace {
@@ -69,7 +69,7 @@ TEST(FitVolume, TestPointInTheBoxButOutsideTheHullIsOutside) {
   EXPECT_EQ(fit.test_points[2].inside_volume, std::optional<bool>(true));
   EXPECT_EQ(fit.test_points[3].inside_volume, std::optional<bool>(false));
 
-  const io::OrderedJson j = io::FitToJson(fit);
+  const OrderedJson j = FitToJson(fit);
   EXPECT_EQ(j.at("volume").at("hull"), "ok");
   EXPECT_EQ(j.at("volume").at("vertices"), 8);
   EXPECT_EQ(j.at("test_points").at(0).at("inside_volume"), false);
@@ -88,7 +88,7 @@ TEST(FitVolume, OnePlaneHasNoHullAndNoSide) {
   EXPECT_EQ(fit.test_points[1].inside_volume, std::nullopt);
   EXPECT_STREQ(VolumeSideName(fit.test_points[0].inside_volume), "no hull");
 
-  const io::OrderedJson j = io::FitToJson(fit);
+  const OrderedJson j = FitToJson(fit);
   EXPECT_EQ(j.at("volume").at("hull"), "the points lie on one plane: they span no volume");
   EXPECT_EQ(j.at("volume").at("vertices"), 0);
   EXPECT_EQ(j.at("volume").at("facets"), 0);
@@ -105,7 +105,7 @@ TEST(FitVolume, PlanarViewsWriteNoVolume) {
   const std::vector<Rigid3d> poses = {CameraFromWorld()};
   const Fit fit = ComputeViewsFit(CameraLookingAlongWorldZ(), poses, c);
   EXPECT_FALSE(fit.volume);
-  EXPECT_FALSE(io::FitToJson(fit).contains("volume"));
+  EXPECT_FALSE(FitToJson(fit).contains("volume"));
 }
 
 }  // namespace

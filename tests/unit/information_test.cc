@@ -1,4 +1,4 @@
-// The covariance by Schur elimination of the poses (calib/information.h, arrow_information.h)
+// The covariance by Schur elimination of the poses (estimators/information.h, arrow_information.h)
 // against the dense path it replaced (tests/support/dense_covariance.h, the old refine.cc code):
 // every block equal to 1e-9 relative on small problems — planar views, a volume, a tied aspect,
 // weights, a robust loss — and the pose–pose blocks it does not store, implied through the
@@ -11,7 +11,7 @@
 
 #include "support/dense_covariance.h"
 #include "support/scenes.h"
-#include "vstcal/calib/information.h"
+#include "vstcal/estimators/information.h"
 #include "vstcal/calib/refine.h"
 #include "vstcal/calib/zhang.h"
 #include "vstcal/capture/synthetic_views.h"

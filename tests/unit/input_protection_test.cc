@@ -1,4 +1,4 @@
-// io::InputProtection: an output is refused when it is an input, by file identity (a symlink, a
+// InputProtection: an output is refused when it is an input, by file identity (a symlink, a
 // hard link, another spelling), in whichever order the two are met; two outputs that are one file
 // are refused; without the guard nothing is recorded.
 #include <gtest/gtest.h>
@@ -8,7 +8,7 @@
 #include <stdlib.h>
 
 #include "vstcal/core/error.h"
-#include "vstcal/json/input_protection.h"
+#include "vstcal/files/input_protection.h"
 #include "vstcal/json/json_writer.h"
 #include "vstcal/json/reader_common.h"
 
@@ -31,17 +31,17 @@ class InputProtectionTest : public ::testing::Test {
 
 TEST_F(InputProtectionTest, OutputReadBeforeOrAfterIsRefused) {
   {
-    const io::InputProtection guard;
-    io::ReadInputFile(dir_ / "in.json", "a JSON file");
-    EXPECT_THROW(io::CheckOutputs({dir_ / "." / "in.json"}), InputError);
-    EXPECT_THROW(io::WriteFileAtomically(dir_ / "in.json", "x"), InputError);
-    EXPECT_NO_THROW(io::CheckOutputs({dir_ / "out.json"}));
+    const InputProtection guard;
+    ReadInputFile(dir_ / "in.json", "a JSON file");
+    EXPECT_THROW(CheckOutputs({dir_ / "." / "in.json"}), InputError);
+    EXPECT_THROW(WriteFileAtomically(dir_ / "in.json", "x"), InputError);
+    EXPECT_NO_THROW(CheckOutputs({dir_ / "out.json"}));
   }
   {
-    const io::InputProtection guard;
-    io::DeclareOutputs({dir_ / "in.json"});
+    const InputProtection guard;
+    DeclareOutputs({dir_ / "in.json"});
     try {
-      io::ReadInputFile(dir_ / "in.json", "a JSON file");
+      ReadInputFile(dir_ / "in.json", "a JSON file");
       FAIL();
     } catch (const InputError& e) {
       EXPECT_NE(std::string(e.what()).find("is the input"), std::string::npos) << e.what();
@@ -54,24 +54,24 @@ TEST_F(InputProtectionTest, OutputReadBeforeOrAfterIsRefused) {
 TEST_F(InputProtectionTest, LinksAreTheSameFile) {
   fs::create_symlink(dir_ / "in.json", dir_ / "sym.json");
   fs::create_hard_link(dir_ / "in.json", dir_ / "hard.json");
-  const io::InputProtection guard;
-  io::ReadInputFile(dir_ / "in.json", "a JSON file");
-  EXPECT_THROW(io::CheckOutputs({dir_ / "sym.json"}), InputError);
-  EXPECT_THROW(io::CheckOutputs({dir_ / "hard.json"}), InputError);
+  const InputProtection guard;
+  ReadInputFile(dir_ / "in.json", "a JSON file");
+  EXPECT_THROW(CheckOutputs({dir_ / "sym.json"}), InputError);
+  EXPECT_THROW(CheckOutputs({dir_ / "hard.json"}), InputError);
 }
 
 TEST_F(InputProtectionTest, TwoOutputsThatAreOneFile) {
-  EXPECT_THROW(io::CheckOutputs({dir_ / "a.json", dir_ / "sub" / ".." / "a.json"}), InputError);
+  EXPECT_THROW(CheckOutputs({dir_ / "a.json", dir_ / "sub" / ".." / "a.json"}), InputError);
   fs::create_hard_link(dir_ / "in.json", dir_ / "hard.json");
-  EXPECT_THROW(io::CheckOutputs({dir_ / "in.json", dir_ / "hard.json"}), InputError);
-  EXPECT_NO_THROW(io::CheckOutputs({dir_ / "a.json", dir_ / "b.json", ""}));
+  EXPECT_THROW(CheckOutputs({dir_ / "in.json", dir_ / "hard.json"}), InputError);
+  EXPECT_NO_THROW(CheckOutputs({dir_ / "a.json", dir_ / "b.json", ""}));
 }
 
 TEST_F(InputProtectionTest, WithoutAGuardNothingIsRecorded) {
-  io::ReadInputFile(dir_ / "in.json", "a JSON file");
-  EXPECT_NO_THROW(io::WriteFileAtomically(dir_ / "in.json", "{\"a\": 1}"));
-  const io::InputProtection guard;  // a new run starts with no inputs
-  EXPECT_NO_THROW(io::CheckOutputs({dir_ / "in.json"}));
+  ReadInputFile(dir_ / "in.json", "a JSON file");
+  EXPECT_NO_THROW(WriteFileAtomically(dir_ / "in.json", "{\"a\": 1}"));
+  const InputProtection guard;  // a new run starts with no inputs
+  EXPECT_NO_THROW(CheckOutputs({dir_ / "in.json"}));
 }
 
 }  // namespace

@@ -4,8 +4,8 @@
 
 #include "vstcal/capture/synthetic_volume.h"
 #include "vstcal/core/error.h"
-#include "vstcal/io/camera_io.h"
-#include "vstcal/io/correspondences_io.h"
+#include "vstcal/formats/camera/camera_io.h"
+#include "vstcal/formats/camera/correspondences_io.h"
 
 namespace vstcal {
 namespace {
@@ -22,12 +22,12 @@ CalibratedCamera SampleCamera() {
   return c;
 }
 
-io::Provenance TestProvenance() { return io::Provenance{"io_test", {"--flag", "value"}, 7}; }
+Provenance TestProvenance() { return Provenance{"io_test", {"--flag", "value"}, 7}; }
 
 TEST(CameraIo, RoundTripIsExact) {
   const CalibratedCamera c = SampleCamera();
-  const std::string text = io::DumpJson(io::CameraToJson(c, TestProvenance()));
-  const CalibratedCamera back = io::CameraFromJson(io::JsonDocument::Parse(text, "mem.json"));
+  const std::string text = DumpJson(CameraToJson(c, TestProvenance()));
+  const CalibratedCamera back = CameraFromJson(JsonDocument::Parse(text, "mem.json"));
   EXPECT_EQ(back.camera.params, c.camera.params);
   EXPECT_EQ(LensModelName(back.camera.model), "radial-tangential");
   EXPECT_EQ(back.camera.image_size, c.camera.image_size);
@@ -37,11 +37,11 @@ TEST(CameraIo, RoundTripIsExact) {
   EXPECT_EQ(back.camera_from_world->R, c.camera_from_world->R);
   EXPECT_EQ(back.camera_from_world->t, c.camera_from_world->t);
   // Written again, the file is the same bytes, P included (kept as read, already scaled).
-  EXPECT_EQ(io::DumpJson(io::CameraToJson(back, TestProvenance())), text);
+  EXPECT_EQ(DumpJson(CameraToJson(back, TestProvenance())), text);
 }
 
 TEST(CameraIo, WritesProvenanceAndEq5Intrinsics) {
-  const io::OrderedJson j = io::CameraToJson(SampleCamera(), TestProvenance());
+  const OrderedJson j = CameraToJson(SampleCamera(), TestProvenance());
   EXPECT_EQ(j["format"], "vstcal/camera@1");
   EXPECT_EQ(j["provenance"]["tool"], "io_test");
   EXPECT_EQ(j["provenance"]["seed"], 7);
@@ -58,24 +58,24 @@ TEST(CameraIo, WritesProvenanceAndEq5Intrinsics) {
 }
 
 TEST(CameraIo, RedundantFieldsMustAgreeWithK) {
-  io::OrderedJson j = io::CameraToJson(SampleCamera(), TestProvenance());
+  OrderedJson j = CameraToJson(SampleCamera(), TestProvenance());
   j["intrinsics"]["fu"] = 1300.0;
   try {
-    io::CameraFromJson(io::JsonDocument::Parse(j.dump(), "cam.json"));
+    CameraFromJson(JsonDocument::Parse(j.dump(), "cam.json"));
     FAIL();
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("cam.json: intrinsics: disagrees with K"), std::string::npos) << e.what();
   }
-  j = io::CameraToJson(SampleCamera(), TestProvenance());
+  j = CameraToJson(SampleCamera(), TestProvenance());
   j["P"][0][3] = j["P"][0][3].get<double>() * (1 + 1e-5);
-  EXPECT_THROW(io::CameraFromJson(io::JsonDocument::Parse(j.dump(), "cam.json")), InputError);
-  j = io::CameraToJson(SampleCamera(), TestProvenance());
+  EXPECT_THROW(CameraFromJson(JsonDocument::Parse(j.dump(), "cam.json")), InputError);
+  j = CameraToJson(SampleCamera(), TestProvenance());
   j["camera_from_world"]["R"][0][0] = 2.0;
-  EXPECT_THROW(io::CameraFromJson(io::JsonDocument::Parse(j.dump(), "cam.json")), InputError);
-  j = io::CameraToJson(SampleCamera(), TestProvenance());
+  EXPECT_THROW(CameraFromJson(JsonDocument::Parse(j.dump(), "cam.json")), InputError);
+  j = CameraToJson(SampleCamera(), TestProvenance());
   j["distortion"]["model"] = "fisheye";
   try {
-    io::CameraFromJson(io::JsonDocument::Parse(j.dump(), "cam.json"));
+    CameraFromJson(JsonDocument::Parse(j.dump(), "cam.json"));
     FAIL();
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("\"none\", \"radial-tangential\""), std::string::npos) << e.what();
@@ -85,22 +85,22 @@ TEST(CameraIo, RedundantFieldsMustAgreeWithK) {
 // P's sign is free; its 3×3 block is checked at its own scale; without a pose its intrinsic part
 // must still match K.
 TEST(CameraIo, ProjectionMatrixChecks) {
-  io::OrderedJson j = io::CameraToJson(SampleCamera(), TestProvenance());
+  OrderedJson j = CameraToJson(SampleCamera(), TestProvenance());
   for (auto& row : j["P"]) {
     for (auto& v : row) v = -v.get<double>();
   }
-  const CalibratedCamera negated = io::CameraFromJson(io::JsonDocument::Parse(j.dump(), "cam.json"));
+  const CalibratedCamera negated = CameraFromJson(JsonDocument::Parse(j.dump(), "cam.json"));
   EXPECT_GT(negated.P->leftCols<3>().determinant(), 0);
-  j = io::CameraToJson(SampleCamera(), TestProvenance());
+  j = CameraToJson(SampleCamera(), TestProvenance());
   j["P"][0][0] = j["P"][0][0].get<double>() + 0.5;  // 0.5 px in K R: tiny next to the translation column
-  EXPECT_THROW(io::CameraFromJson(io::JsonDocument::Parse(j.dump(), "cam.json")), InputError);
-  j = io::CameraToJson(SampleCamera(), TestProvenance());
+  EXPECT_THROW(CameraFromJson(JsonDocument::Parse(j.dump(), "cam.json")), InputError);
+  j = CameraToJson(SampleCamera(), TestProvenance());
   j.erase("camera_from_world");
-  EXPECT_NO_THROW(io::CameraFromJson(io::JsonDocument::Parse(j.dump(), "cam.json")));
+  EXPECT_NO_THROW(CameraFromJson(JsonDocument::Parse(j.dump(), "cam.json")));
   j["K"][0][0] = 1300.0;
   j.erase("intrinsics");
   try {
-    io::CameraFromJson(io::JsonDocument::Parse(j.dump(), "cam.json"));
+    CameraFromJson(JsonDocument::Parse(j.dump(), "cam.json"));
     FAIL();
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("cam.json: P: its intrinsic part disagrees with K"), std::string::npos) << e.what();
@@ -114,8 +114,8 @@ TEST(CorrespondencesIo, RoundTripIsExact) {
   Eigen::Matrix3d K;
   K << 1500, 0, 639.5, 0, 1500, 511.5, 0, 0, 1;
   const auto v = SynthesizeVolume(Camera::FromK(K, ImageSize{1280, 1024}), spec, Seed000TestPoints(spec));
-  const std::string text = io::DumpJson(io::CorrespondencesToJson(v.correspondences, TestProvenance()));
-  const Correspondences back = io::CorrespondencesFromJson(io::JsonDocument::Parse(text, "c.json"));
+  const std::string text = DumpJson(CorrespondencesToJson(v.correspondences, TestProvenance()));
+  const Correspondences back = CorrespondencesFromJson(JsonDocument::Parse(text, "c.json"));
   EXPECT_EQ(back.camera, "right");
   ASSERT_EQ(back.views.size(), v.correspondences.views.size());
   for (size_t i = 0; i < back.views.size(); ++i) {
@@ -129,7 +129,7 @@ TEST(CorrespondencesIo, RoundTripIsExact) {
   }
   ASSERT_EQ(back.test_points.size(), 5u);
   EXPECT_EQ(back.test_points[3].pixel, v.correspondences.test_points[3].pixel);
-  EXPECT_EQ(io::DumpJson(io::CorrespondencesToJson(back, TestProvenance())), text);
+  EXPECT_EQ(DumpJson(CorrespondencesToJson(back, TestProvenance())), text);
 }
 
 // Weights are a sixth number, written only when not 1, read back exactly; inches are a unit.
@@ -145,14 +145,14 @@ TEST(CorrespondencesIo, WeightsAndInchesRoundTrip) {
   Correspondences c = SynthesizeVolume(Camera::FromK(K, ImageSize{1280, 1024}), spec, {}).correspondences;
   c.views[0].observations[0].weight = 0.25;
   c.views[1].observations[3].weight = 1.0 / 3.0;
-  const std::string text = io::DumpJson(io::CorrespondencesToJson(c, TestProvenance()));
+  const std::string text = DumpJson(CorrespondencesToJson(c, TestProvenance()));
   EXPECT_NE(text.find("\"length_unit\": \"in\""), std::string::npos);
-  const Correspondences back = io::CorrespondencesFromJson(io::JsonDocument::Parse(text, "c.json"));
+  const Correspondences back = CorrespondencesFromJson(JsonDocument::Parse(text, "c.json"));
   EXPECT_EQ(back.length_unit, LengthUnit::kInch);
   EXPECT_EQ(back.views[0].observations[0].weight, 0.25);
   EXPECT_EQ(back.views[1].observations[3].weight, 1.0 / 3.0);
   EXPECT_EQ(back.views[0].observations[1].weight, 1.0);
-  EXPECT_EQ(io::DumpJson(io::CorrespondencesToJson(back, TestProvenance())), text);
+  EXPECT_EQ(DumpJson(CorrespondencesToJson(back, TestProvenance())), text);
   EXPECT_EQ(MetresPer(LengthUnit::kInch), 0.0254);
 }
 
@@ -173,8 +173,8 @@ TEST(CameraIo, PoseBlocksRoundTrip) {
     cov.poses.push_back(p);
   }
   c.covariance = cov;
-  const std::string text = io::DumpJson(io::CameraToJson(c, TestProvenance()));
-  const CalibratedCamera back = io::CameraFromJson(io::JsonDocument::Parse(text, "mem.json"));
+  const std::string text = DumpJson(CameraToJson(c, TestProvenance()));
+  const CalibratedCamera back = CameraFromJson(JsonDocument::Parse(text, "mem.json"));
   ASSERT_TRUE(back.covariance.has_value());
   EXPECT_EQ(back.covariance->parameters, cov.parameters);
   EXPECT_EQ(back.covariance->matrix, cov.matrix);

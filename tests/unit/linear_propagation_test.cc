@@ -11,7 +11,7 @@
 #include "vstcal/sensitivity/monte_carlo.h"
 #include "vstcal/sensitivity/oat_sweep.h"
 
-namespace vstcal::sensitivity {
+namespace vstcal {
 namespace {
 
 // y_k = Σᵢ wᵢ sin((k + 1) θᵢ), n = 21 parameters: three jet chunks, the last one partial.
@@ -217,4 +217,4 @@ TEST(OatSweep, MarksUndefinedPointsAndRefusesBadRanges) {
 }
 
 }  // namespace
-}  // namespace vstcal::sensitivity
+}  // namespace vstcal

@@ -12,10 +12,10 @@
 #include "vstcal/core/error.h"
 #include "vstcal/json/json_reader.h"
 #include "vstcal/random/philox.h"
-#include "vstcal/sensitivity/mc_summary_json.h"
+#include "vstcal/formats/errsim/mc_summary_json.h"
 #include "vstcal/sensitivity/monte_carlo.h"
 
-namespace vstcal::sensitivity {
+namespace vstcal {
 namespace {
 
 std::string MethodName(const ::testing::TestParamInfo<SamplingMethod>& param) {
@@ -181,8 +181,8 @@ MonteCarloOptions Options(SamplingMethod method) {
 }
 
 MonteCarloSummary ThroughJson(const MonteCarloSummary& s) {
-  const std::string text = io::DumpJson(SummaryToJson(s));
-  return SummaryFromJson(io::JsonDocument::Parse(text, "shard.json").root());
+  const std::string text = DumpJson(SummaryToJson(s));
+  return SummaryFromJson(JsonDocument::Parse(text, "shard.json").root());
 }
 
 std::vector<double> Flatten(const MonteCarloSummary& s) {
@@ -205,7 +205,7 @@ TEST_P(MonteCarloDeterminism, BitIdenticalForThreadsAndShards) {
   const MonteCarloSummary reference = RunMonteCarlo(space, model, o);
   ASSERT_TRUE(reference.complete());
   const std::vector<double> expected = Flatten(reference);
-  const std::string expected_json = io::DumpJson(SummaryToJson(reference));
+  const std::string expected_json = DumpJson(SummaryToJson(reference));
   for (unsigned threads : {2u, 4u}) {
     o.threads = threads;
     EXPECT_EQ(Flatten(RunMonteCarlo(space, model, o)), expected) << threads << " threads";
@@ -224,7 +224,7 @@ TEST_P(MonteCarloDeterminism, BitIdenticalForThreadsAndShards) {
     for (size_t i = parts.size() - 1; i-- > 0;) merged.Merge(parts[i]);
     ASSERT_TRUE(merged.complete()) << shards << " shards";
     EXPECT_EQ(Flatten(merged), expected) << shards << " shards";
-    EXPECT_EQ(io::DumpJson(SummaryToJson(merged)), expected_json);
+    EXPECT_EQ(DumpJson(SummaryToJson(merged)), expected_json);
   }
 }
 
@@ -286,12 +286,12 @@ TEST(MonteCarloSummary, RefusesBadMerges) {
   EXPECT_THROW(other_run.Merge(first), InputError);
   o.shard = 2;
   EXPECT_THROW(RunMonteCarlo(space, model, o), InputError);  // shard 2/2
-  nlohmann::json bad = nlohmann::json::parse(io::DumpJson(SummaryToJson(first)));
+  nlohmann::json bad = nlohmann::json::parse(DumpJson(SummaryToJson(first)));
   bad["format"] = "vstcal/mc-summary@1";
-  EXPECT_THROW(SummaryFromJson(io::JsonDocument::Parse(bad.dump(), "x.json").root()), InputError);
-  bad = nlohmann::json::parse(io::DumpJson(SummaryToJson(first)));
+  EXPECT_THROW(SummaryFromJson(JsonDocument::Parse(bad.dump(), "x.json").root()), InputError);
+  bad = nlohmann::json::parse(DumpJson(SummaryToJson(first)));
   bad["histograms"][0][0][1] = 999999;  // counts no longer match the moments
-  EXPECT_THROW(SummaryFromJson(io::JsonDocument::Parse(bad.dump(), "x.json").root()), InputError);
+  EXPECT_THROW(SummaryFromJson(JsonDocument::Parse(bad.dump(), "x.json").root()), InputError);
 }
 
 // A block's moments from four lanes of power sums about one of its values equal two-pass sums,
@@ -393,7 +393,7 @@ TEST(MonteCarloSummary, MemoryAndShardSizeDoNotGrowWithTheSamples) {
     o.shards = 3;
     const MonteCarloSummary shard = RunMonteCarlo(space, model, o);
     bytes.push_back(shard.MemoryBytes());
-    text.push_back(io::DumpJson(SummaryToJson(shard)).size());
+    text.push_back(DumpJson(SummaryToJson(shard)).size());
     const uint64_t levels = static_cast<uint64_t>(std::ceil(std::log2(static_cast<double>(samples / 64)))) + 1;
     EXPECT_LE(shard.nodes().size(), 2 * levels) << samples;
   }
@@ -403,4 +403,4 @@ TEST(MonteCarloSummary, MemoryAndShardSizeDoNotGrowWithTheSamples) {
 }
 
 }  // namespace
-}  // namespace vstcal::sensitivity
+}  // namespace vstcal

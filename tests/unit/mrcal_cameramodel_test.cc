@@ -16,7 +16,7 @@
 #include "vstcal/calib/pipeline.h"
 #include "vstcal/capture/synthetic_views.h"
 #include "vstcal/core/error.h"
-#include "vstcal/io/mrcal_cameramodel.h"
+#include "vstcal/formats/camera/mrcal_cameramodel.h"
 
 namespace vstcal {
 namespace {
@@ -25,14 +25,14 @@ using testing::ErrorOf;
 using testing::InteropCameras;
 using testing::PointsInFront;
 
-const io::Provenance kProvenance{"mrcal_cameramodel_test", {"--flag"}, std::nullopt};
+const Provenance kProvenance{"mrcal_cameramodel_test", {"--flag"}, std::nullopt};
 
-std::string WriteText(const CalibratedCamera& c, const io::MrcalWriteOptions& options = {}) {
-  return io::MrcalCameramodelText(c, "cam.json", options, kProvenance).text;
+std::string WriteText(const CalibratedCamera& c, const MrcalWriteOptions& options = {}) {
+  return MrcalCameramodelText(c, "cam.json", options, kProvenance).text;
 }
 
-io::ImportedCamera ReadText(const std::string& text, std::optional<LengthUnit> unit = std::nullopt) {
-  return io::MrcalCameramodelFromText(text, "cam.cameramodel", unit);
+ImportedCamera ReadText(const std::string& text, std::optional<LengthUnit> unit = std::nullopt) {
+  return MrcalCameramodelFromText(text, "cam.cameramodel", unit);
 }
 
 struct MrcalModelDeleter {
@@ -48,7 +48,7 @@ TEST(MrcalCameramodel, RoundTripIsExactForEveryModel) {
   for (const bool with_pose : {false, true}) {
     for (const CalibratedCamera& c : InteropCameras(with_pose)) {
       const std::string name(LensModelName(c.camera.model));
-      const io::ImportedCamera back = ReadText(WriteText(c));
+      const ImportedCamera back = ReadText(WriteText(c));
       EXPECT_EQ(LensModelName(back.camera.camera.model), name);
       EXPECT_EQ(back.camera.camera.params, c.camera.params) << name;  // bit for bit, 1e-12 included
       EXPECT_EQ(back.camera.camera.image_size, c.camera.image_size);
@@ -166,7 +166,7 @@ TEST(MrcalCameramodel, ReadsFilesLibmrcalWrites) {
 
     const MrcalModel theirs = MrcalRead(text.str());
     ASSERT_NE(theirs, nullptr);
-    const io::ImportedCamera in = ReadText(text.str());
+    const ImportedCamera in = ReadText(text.str());
     const Camera& cam = in.camera.camera;
     EXPECT_EQ(cam.params[0], theirs->intrinsics[0]);
     EXPECT_EQ(cam.params[1], theirs->intrinsics[1]);
@@ -222,7 +222,7 @@ TEST(MrcalCameramodel, LengthUnits) {
   ASSERT_NE(MrcalRead(in_metres), nullptr);
 
   const std::string in_mm = WriteText(c, {std::nullopt, LengthUnit::kMillimetre, std::nullopt});
-  const io::ImportedCamera back = ReadText(in_mm);
+  const ImportedCamera back = ReadText(in_mm);
   EXPECT_EQ(back.camera.length_unit, LengthUnit::kMillimetre);
   EXPECT_EQ(back.camera.camera_from_world->t, Eigen::Vector3d(250, -500, 2000));
   EXPECT_EQ(MrcalRead(in_mm)->rt_cam_ref[5], 2000.0);
@@ -238,7 +238,7 @@ TEST(MrcalCameramodel, LengthUnits) {
   bare.erase(bare.find("    'vstcal_length_unit'"));
   bare += "}\n";
   EXPECT_EQ(ReadText(bare, LengthUnit::kCentimetre).camera.length_unit, LengthUnit::kCentimetre);
-  const io::ImportedCamera assumed = ReadText(bare);
+  const ImportedCamera assumed = ReadText(bare);
   EXPECT_EQ(assumed.camera.length_unit, LengthUnit::kMillimetre);
   ASSERT_EQ(assumed.notes.size(), 1u);
   EXPECT_NE(assumed.notes[0].find("the translation is taken to be in mm"), std::string::npos) << assumed.notes[0];
@@ -269,7 +269,7 @@ TEST(MrcalCameramodel, ReadsMrcalPythonStyle) {
     'optimization_inputs': b'c$Vr6Ut~l+0{',
 }
 )";
-  const io::ImportedCamera in = ReadText(text);
+  const ImportedCamera in = ReadText(text);
   const Camera& cam = in.camera.camera;
   EXPECT_EQ(LensModelName(cam.model), "rational");
   EXPECT_EQ(cam.params[0], 1761.181055);

@@ -8,7 +8,7 @@
 #include "vstcal/sensitivity/distribution.h"
 #include "vstcal/sensitivity/normal_quantile.h"
 
-namespace vstcal::sensitivity {
+namespace vstcal {
 namespace {
 
 constexpr double kEps = std::numeric_limits<double>::epsilon();
@@ -103,4 +103,4 @@ TEST(Distribution, RefusesBadArguments) {
 }
 
 }  // namespace
-}  // namespace vstcal::sensitivity
+}  // namespace vstcal

@@ -9,9 +9,9 @@
 
 #include "support/scenes.h"
 #include "vstcal/calib/pipeline.h"
-#include "vstcal/calib/uncertainty.h"
+#include "vstcal/estimators/uncertainty.h"
 #include "vstcal/capture/synthetic_volume.h"
-#include "vstcal/io/calibration_io.h"
+#include "vstcal/formats/calib/calibration_io.h"
 
 namespace vstcal {
 namespace {
@@ -98,9 +98,9 @@ TEST(OnePlane, RefinedAgainstTheTruthAndItsReportedSigma) {
   EXPECT_LT(std::abs(Mean(k1) - truth.params[5]), 4 * sigma_k1 / std::sqrt(trials));
 
   // The camera file says what was held and why.
-  const io::OrderedJson blocks = io::CalibrationBlocksToJson(first, CalibrationOptions{});
-  const io::OrderedJson& held = blocks["refinement"]["held"];
-  auto find = [&](const std::string& name) -> const io::OrderedJson* {
+  const OrderedJson blocks = CalibrationBlocksToJson(first, CalibrationOptions{});
+  const OrderedJson& held = blocks["refinement"]["held"];
+  auto find = [&](const std::string& name) -> const OrderedJson* {
     for (const auto& h : held) {
       if (h["parameter"] == name) return &h;
     }
@@ -113,7 +113,7 @@ TEST(OnePlane, RefinedAgainstTheTruthAndItsReportedSigma) {
   EXPECT_EQ((*find("cx"))["value"], 639.5);
   EXPECT_NE((*find("cy"))["because"].get<std::string>().find("--free-principal-point"), std::string::npos);
   EXPECT_EQ(blocks["refinement"]["one_plane"]["principal_point"], "held");
-  EXPECT_EQ(blocks["refinement"]["free_intrinsics"], io::OrderedJson({"fx", "fy", "k1", "k2", "p1", "p2"}));
+  EXPECT_EQ(blocks["refinement"]["free_intrinsics"], OrderedJson({"fx", "fy", "k1", "k2", "p1", "p2"}));
 }
 
 // auto: a pinhole's principal point is not determined by one plane (the homography has 8 degrees

@@ -9,7 +9,7 @@
 #include "support/interop_cameras.h"
 #include "support/scenes.h"
 #include "vstcal/core/error.h"
-#include "vstcal/io/opencv_yaml.h"
+#include "vstcal/formats/camera/opencv_yaml.h"
 
 namespace vstcal {
 namespace {
@@ -18,17 +18,17 @@ using testing::ErrorOf;
 using testing::InteropCameras;
 using testing::PointsInFront;
 
-const io::Provenance kProvenance{"opencv_yaml_test", {"--flag", "a\nb"}, std::nullopt};
+const Provenance kProvenance{"opencv_yaml_test", {"--flag", "a\nb"}, std::nullopt};
 
-io::ImportedCamera ReadText(const std::string& text) {
-  return io::OpenCvYamlFromText(text, "cam.yaml", LengthUnit::kMillimetre);
+ImportedCamera ReadText(const std::string& text) {
+  return OpenCvYamlFromText(text, "cam.yaml", LengthUnit::kMillimetre);
 }
 
-std::string WriteText(const CalibratedCamera& c) { return io::OpenCvYamlText(c, "cam.json", kProvenance).text; }
+std::string WriteText(const CalibratedCamera& c) { return OpenCvYamlText(c, "cam.json", kProvenance).text; }
 
 TEST(OpenCvYaml, RoundTripIsExactForEveryModel) {
   for (const CalibratedCamera& c : InteropCameras(false)) {
-    const io::ImportedCamera back = ReadText(WriteText(c));
+    const ImportedCamera back = ReadText(WriteText(c));
     EXPECT_EQ(LensModelName(back.camera.camera.model), LensModelName(c.camera.model));
     EXPECT_EQ(back.camera.camera.params, c.camera.params) << LensModelName(c.camera.model);  // bit for bit
     EXPECT_EQ(back.camera.camera.image_size, c.camera.image_size);
@@ -99,7 +99,7 @@ TEST(OpenCvYaml, ReadsFilesOpenCvWrites) {
       {cv::Mat(), "none", {}},
   };
   for (const Case& c : cases) {
-    const io::ImportedCamera in = ReadText(SampleFile(K, c.d));
+    const ImportedCamera in = ReadText(SampleFile(K, c.d));
     const Camera& cam = in.camera.camera;
     EXPECT_EQ(LensModelName(cam.model), c.model);
     EXPECT_EQ(std::vector<double>(cam.distortion().begin(), cam.distortion().end()), c.expected) << c.model;
@@ -122,7 +122,7 @@ TEST(OpenCvYaml, ReadsFloatMatrices) {
 
 TEST(OpenCvYaml, SkewInTheFileIsKeptWithANote) {
   const cv::Mat K = (cv::Mat_<double>(3, 3) << 800, 0.75, 320, 0, 800, 240, 0, 0, 1);
-  const io::ImportedCamera in = ReadText(SampleFile(K, cv::Mat::zeros(5, 1, CV_64F)));
+  const ImportedCamera in = ReadText(SampleFile(K, cv::Mat::zeros(5, 1, CV_64F)));
   EXPECT_EQ(in.camera.camera.K()(0, 1), 0.75);
   ASSERT_EQ(in.notes.size(), 1u);
   EXPECT_NE(in.notes[0].find("cam.yaml: camera_matrix: K[0][1] (skew) = 0.75 is kept"), std::string::npos)
@@ -140,7 +140,7 @@ TEST(OpenCvYaml, RefusesToWriteSkew) {
 }
 
 TEST(OpenCvYaml, APoseIsNotWrittenAndANoteSaysSo) {
-  const io::ExportedCamera out = io::OpenCvYamlText(InteropCameras(true)[1], "cam.json", kProvenance);
+  const ExportedCamera out = OpenCvYamlText(InteropCameras(true)[1], "cam.json", kProvenance);
   EXPECT_EQ(out.text.find("camera_from_world"), std::string::npos);
   ASSERT_EQ(out.notes.size(), 1u);
   EXPECT_NE(out.notes[0].find("cam.json: camera_from_world: not written"), std::string::npos) << out.notes[0];

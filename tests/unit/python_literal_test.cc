@@ -3,9 +3,9 @@
 #include <gtest/gtest.h>
 
 #include "vstcal/core/error.h"
-#include "vstcal/io/python_literal.h"
+#include "vstcal/formats/camera/python_literal.h"
 
-namespace vstcal::io {
+namespace vstcal {
 namespace {
 
 std::string ErrorOf(const std::string& text) {
@@ -112,4 +112,4 @@ TEST(PythonLiteral, NodesNameTheirField) {
 }
 
 }  // namespace
-}  // namespace vstcal::io
+}  // namespace vstcal

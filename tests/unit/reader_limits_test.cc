@@ -9,18 +9,18 @@
 #include "support/error_of.h"
 #include "vstcal/core/error.h"
 #include "vstcal/core/limits.h"
-#include "vstcal/io/mrcal_cameramodel.h"
-#include "vstcal/io/opencv_yaml.h"
+#include "vstcal/formats/camera/mrcal_cameramodel.h"
+#include "vstcal/formats/camera/opencv_yaml.h"
 
 namespace vstcal {
 namespace {
 
 std::string YamlError(const std::string& text) {
-  return testing::ErrorOf([&] { io::OpenCvYamlFromText(text, "t.yaml", LengthUnit::kMillimetre); });
+  return testing::ErrorOf([&] { OpenCvYamlFromText(text, "t.yaml", LengthUnit::kMillimetre); });
 }
 
 std::string MrcalError(const std::string& text) {
-  return testing::ErrorOf([&] { io::MrcalCameramodelFromText(text, "t.cameramodel", std::nullopt); });
+  return testing::ErrorOf([&] { MrcalCameramodelFromText(text, "t.cameramodel", std::nullopt); });
 }
 
 // The bound 2·(indentation + indicators) + brackets + 1 against 64: after "a: " (one indicator),

@@ -9,7 +9,7 @@
 
 #include "support/opencv_views.h"
 #include "support/scenes.h"
-#include "vstcal/calib/decompose.h"
+#include "vstcal/estimators/decompose.h"
 #include "vstcal/calib/dlt.h"
 #include "vstcal/calib/refine.h"
 #include "vstcal/calib/zhang.h"

@@ -7,10 +7,10 @@
 
 #include "support/scenes.h"
 #include "vstcal/calib/pipeline.h"
-#include "vstcal/calib/uncertainty.h"
+#include "vstcal/estimators/uncertainty.h"
 #include "vstcal/core/error.h"
 #include "vstcal/geometry/rotation.h"
-#include "vstcal/report/charts.h"
+#include "vstcal/pages/charts.h"
 #include "vstcal/report/reprojection_report.h"
 
 namespace vstcal {

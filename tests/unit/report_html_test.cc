@@ -3,24 +3,24 @@
 #include <gtest/gtest.h>
 
 #include "vstcal/core/error.h"
-#include "vstcal/report/errsim_html.h"
-#include "vstcal/report/gnuplot.h"
-#include "vstcal/report/html.h"
-#include "vstcal/report/html_page.h"
+#include "vstcal/pages/errsim_html.h"
+#include "vstcal/pages/gnuplot.h"
+#include "vstcal/pages/html.h"
+#include "vstcal/pages/html_page.h"
 
 namespace vstcal {
 namespace {
 
 TEST(Base64, Rfc4648TestVectors) {  // RFC 4648 §10
-  EXPECT_EQ(html::Base64(""), "");
-  EXPECT_EQ(html::Base64("f"), "Zg==");
-  EXPECT_EQ(html::Base64("fo"), "Zm8=");
-  EXPECT_EQ(html::Base64("foo"), "Zm9v");
-  EXPECT_EQ(html::Base64("foob"), "Zm9vYg==");
-  EXPECT_EQ(html::Base64("fooba"), "Zm9vYmE=");
-  EXPECT_EQ(html::Base64("foobar"), "Zm9vYmFy");
+  EXPECT_EQ(Base64(""), "");
+  EXPECT_EQ(Base64("f"), "Zg==");
+  EXPECT_EQ(Base64("fo"), "Zm8=");
+  EXPECT_EQ(Base64("foo"), "Zm9v");
+  EXPECT_EQ(Base64("foob"), "Zm9vYg==");
+  EXPECT_EQ(Base64("fooba"), "Zm9vYmE=");
+  EXPECT_EQ(Base64("foobar"), "Zm9vYmFy");
   const unsigned char high[] = {0xfb, 0xff, 0xfe};
-  EXPECT_EQ(html::Base64(high, 3), "+//+");
+  EXPECT_EQ(Base64(high, 3), "+//+");
 }
 
 TEST(GnuplotQuoted, NamesCannotEndTheStringOrTheLine) {
@@ -45,13 +45,13 @@ TEST(RunGnuplot, DrawsAnSvgAndReportsItsErrors) {
 TEST(ErrSimReportHtml, UndefinedStatisticsAndNoBudgetAreDashesNotNumbers) {
   // A report as err-sim writes it for a test point whose right eye has no defined sample, without
   // a budget (--no-budget): nulls are shown as dashes, never as a number, and no chart fails.
-  const io::OrderedJson stats = {{"mean", 2.0}, {"rms", 2.5}, {"standard_deviation", 1.5}, {"mean_standard_error", 0.1},
+  const OrderedJson stats = {{"mean", 2.0}, {"rms", 2.5}, {"standard_deviation", 1.5}, {"mean_standard_error", 0.1},
                                  {"max", 9.0},  {"p50", 1.75}, {"p95", 5.0}, {"p99", 8.0}};
-  io::OrderedJson point = {{"name", "a<b"}, {"undefined", {{"samples", 10}, {"rate", 0.5}}}};
+  OrderedJson point = {{"name", "a<b"}, {"undefined", {{"samples", 10}, {"rate", 0.5}}}};
   point["image"] = {{"left", {{"pixel_px", stats}}}, {"right", {{"pixel_px", nullptr}}}};
   point["misregistration"] = {{"linear", stats}};
   point["misperception"] = {{"systematic", {{"linear", 3.0}}}, {"linear", nullptr}};
-  const io::OrderedJson report = {
+  const OrderedJson report = {
       {"format", "vstcal/err-sim-report@2"}, {"chain", "c.json"}, {"length_unit", "mm"}, {"samples", 20}, {"seed", 1},
       {"sources", {{"active", {"tracking"}}}}, {"undefined_samples", 10},
       {"test_points", {point}},

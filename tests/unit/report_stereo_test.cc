@@ -14,7 +14,7 @@
 
 #include "support/stereo_rigs.h"
 #include "vstcal/core/error.h"
-#include "vstcal/report/report_format.h"
+#include "vstcal/formats/report/report_format.h"
 #include "vstcal/report/stereo_report.h"
 
 namespace vstcal {
@@ -276,8 +276,8 @@ TEST(StereoReport, PerViewReprojectionOfEachCameraThroughTheRig) {
   EXPECT_LT(report.left_grid.overall_px->max, 1e-6);
 
   // The JSON report carries them: [u, v, du, dv] and each view's stats.
-  const io::OrderedJson j = io::StereoReportToJson(report, io::Provenance{"report_stereo_test", {}, std::nullopt});
-  const io::OrderedJson& right1 = j["stereo"]["views"][1]["reprojection"]["right"];
+  const OrderedJson j = StereoReportToJson(report, Provenance{"report_stereo_test", {}, std::nullopt});
+  const OrderedJson& right1 = j["stereo"]["views"][1]["reprojection"]["right"];
   EXPECT_NEAR(right1["error_px"]["rms"].get<double>(), 5.0, 1e-6);
   EXPECT_EQ(right1["points"].size(), views.right.views[1].observations.size());
   EXPECT_EQ(right1["points"][0][0].get<double>(), views.right.views[1].observations[0].pixel.x());
@@ -299,8 +299,8 @@ TEST(StereoReport, AViewWithoutALeftPoseReprojectsNoPoint) {
   }
   EXPECT_EQ(report.views[0].right.points.size(), views.right.views[0].observations.size());
   EXPECT_EQ(report.views[1].right.error_px->n, views.right.views[1].observations.size());
-  const io::OrderedJson j = io::StereoReportToJson(report, io::Provenance{"report_stereo_test", {}, std::nullopt});
-  const io::OrderedJson& right0 = j["stereo"]["views"][0]["reprojection"]["right"];
+  const OrderedJson j = StereoReportToJson(report, Provenance{"report_stereo_test", {}, std::nullopt});
+  const OrderedJson& right0 = j["stereo"]["views"][0]["reprojection"]["right"];
   EXPECT_TRUE(right0["error_px"].is_null());
   EXPECT_TRUE(right0["points"][0][2].is_null());
   EXPECT_EQ(right0["excluded"].size(), views.right.views[0].observations.size());

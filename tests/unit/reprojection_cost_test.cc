@@ -5,10 +5,10 @@
 
 #include <ceres/jet.h>
 
-#include "vstcal/calib/reprojection_cost.h"
+#include "vstcal/estimators/reprojection_cost.h"
 #include "vstcal/camera/camera.h"
 #include "vstcal/random/philox.h"
-#include "vstcal/stereo/chained_reprojection_cost.h"
+#include "vstcal/estimators/chained_reprojection_cost.h"
 
 namespace vstcal {
 namespace {
@@ -116,7 +116,7 @@ TEST(ReprojectionCost, JacobiansMatchCentralDifferences) {
   }
 }
 
-// calib-stereo solve's right-camera cost (stereo/chained_reprojection_cost.h) for one lens model:
+// calib-stereo solve's right-camera cost (estimators/chained_reprojection_cost.h) for one lens model:
 // every block's analytic Jacobian — θ_R, δ_rl, δ_v — against central differences of the cost's own
 // residuals, at non-zero δ's (so both J_l(ω) are exercised) and unequal weights, over a 9 × 6 board
 // (70 mm) tilted 0.5 m in front, covering u ≈ 180…855 px, v ≈ 115…565 px of the right image (radius

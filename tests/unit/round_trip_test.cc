@@ -8,15 +8,15 @@
 #include <string>
 
 #include "support/interop_cameras.h"
-#include "vstcal/io/camera_io.h"
-#include "vstcal/io/mrcal_cameramodel.h"
-#include "vstcal/io/opencv_yaml.h"
+#include "vstcal/formats/camera/camera_io.h"
+#include "vstcal/formats/camera/mrcal_cameramodel.h"
+#include "vstcal/formats/camera/opencv_yaml.h"
 #include "vstcal/random/philox.h"
 
 namespace vstcal {
 namespace {
 
-const io::Provenance kRoundTripProvenance{"round_trip_test", {"--flag"}, std::nullopt};
+const Provenance kRoundTripProvenance{"round_trip_test", {"--flag"}, std::nullopt};
 
 // Camera k of a deterministic family: every lens model, a rotation anywhere on SO(3) (angles up
 // to π), translations from 1e-3 to 1e4.
@@ -30,9 +30,9 @@ CalibratedCamera FamilyCamera(int k) {
   return cam;
 }
 
-std::string CameraText(const CalibratedCamera& c) { return io::DumpJson(io::CameraToJson(c, kRoundTripProvenance)); }
+std::string CameraText(const CalibratedCamera& c) { return DumpJson(CameraToJson(c, kRoundTripProvenance)); }
 std::string CameraPass(const std::string& text) {
-  return CameraText(io::CameraFromJson(io::JsonDocument::Parse(text, "cam.json")));
+  return CameraText(CameraFromJson(JsonDocument::Parse(text, "cam.json")));
 }
 
 TEST(RoundTrip, CameraFileIsAFixedPointAfterOnePass) {
@@ -69,14 +69,14 @@ TEST(RoundTrip, PlanarViewsCameraWithCovariance) {
 
 TEST(RoundTrip, MrcalFileIsAFixedPointAfterOnePass) {
   auto pass = [](const std::string& text) {
-    const io::ImportedCamera in = io::MrcalCameramodelFromText(text, "cam.cameramodel", std::nullopt);
-    return io::MrcalCameramodelText(in.camera, "cam.cameramodel", {std::nullopt, std::nullopt, in.rotation_vector},
+    const ImportedCamera in = MrcalCameramodelFromText(text, "cam.cameramodel", std::nullopt);
+    return MrcalCameramodelText(in.camera, "cam.cameramodel", {std::nullopt, std::nullopt, in.rotation_vector},
                                     kRoundTripProvenance)
         .text;
   };
   for (int k = 0; k < 400; ++k) {
     // Written from a camera@1's R, then read and written: the rotation vector is kept exactly.
-    const std::string written = io::MrcalCameramodelText(FamilyCamera(k), "cam.json", {}, kRoundTripProvenance).text;
+    const std::string written = MrcalCameramodelText(FamilyCamera(k), "cam.json", {}, kRoundTripProvenance).text;
     EXPECT_EQ(pass(written), written) << "camera " << k;
   }
 }
@@ -85,9 +85,9 @@ TEST(RoundTrip, OpenCvYamlIsAFixedPoint) {
   for (int k = 0; k < 8; ++k) {
     CalibratedCamera c = FamilyCamera(k);
     c.camera_from_world.reset();
-    const std::string written = io::OpenCvYamlText(c, "cam.json", kRoundTripProvenance).text;
-    const io::ImportedCamera in = io::OpenCvYamlFromText(written, "cam.yaml", LengthUnit::kMillimetre);
-    EXPECT_EQ(io::OpenCvYamlText(in.camera, "cam.yaml", kRoundTripProvenance).text, written) << "camera " << k;
+    const std::string written = OpenCvYamlText(c, "cam.json", kRoundTripProvenance).text;
+    const ImportedCamera in = OpenCvYamlFromText(written, "cam.yaml", LengthUnit::kMillimetre);
+    EXPECT_EQ(OpenCvYamlText(in.camera, "cam.yaml", kRoundTripProvenance).text, written) << "camera " << k;
   }
 }
 

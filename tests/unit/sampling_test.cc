@@ -10,7 +10,7 @@
 #include "vstcal/sensitivity/parameter_space.h"
 #include "vstcal/sensitivity/unit_points.h"
 
-namespace vstcal::sensitivity {
+namespace vstcal {
 namespace {
 
 std::vector<double> FillAll(const UnitPoints& points, uint64_t first, size_t count) {
@@ -101,4 +101,4 @@ TEST(ParameterSpace, GroupsInOrderOfFirstAppearance) {
 }
 
 }  // namespace
-}  // namespace vstcal::sensitivity
+}  // namespace vstcal

@@ -14,7 +14,7 @@
 #include "vstcal/core/error.h"
 #include "vstcal/sensitivity/sobol_indices.h"
 
-namespace vstcal::sensitivity {
+namespace vstcal {
 namespace {
 
 std::string MethodName(const ::testing::TestParamInfo<SamplingMethod>& param) {
@@ -205,4 +205,4 @@ TEST(SobolIndices, RefusesBadOptions) {
 }
 
 }  // namespace
-}  // namespace vstcal::sensitivity
+}  // namespace vstcal

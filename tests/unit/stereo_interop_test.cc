@@ -13,9 +13,9 @@
 #include "support/mrcal.h"
 #include "support/scenes.h"
 #include "support/stereo_rigs.h"
-#include "vstcal/io/mrcal_cameramodel.h"
-#include "vstcal/io/stereo_peer_formats.h"
-#include "vstcal/stereo/epipolar.h"
+#include "vstcal/formats/camera/mrcal_cameramodel.h"
+#include "vstcal/formats/stereo/stereo_peer_formats.h"
+#include "vstcal/scene/epipolar.h"
 #include "vstcal/stereo/rectify.h"
 
 namespace vstcal {
@@ -25,7 +25,7 @@ using testing::ErrorOf;
 using testing::PointsInFront;
 using testing::ZedLikeRig;
 
-const io::Provenance kProvenance{"stereo_interop_test", {}, std::nullopt};
+const Provenance kProvenance{"stereo_interop_test", {}, std::nullopt};
 
 // Points 0.3 to 4.3 m in front of the left camera (mm) that both cameras see.
 std::vector<Eigen::Vector3d> SharedPoints(const StereoRig& rig) {
@@ -54,7 +54,7 @@ Eigen::Matrix<double, R, C> ToEigen(const cv::Mat& m) {
 TEST(StereoInterop, OpenCvReadsTheYamlAndAgreesWithTheRig) {
   StereoRig rig = ZedLikeRig();
   rig.rectification = Rectify(rig, {0.0, true}, "rig");
-  const io::ExportedCamera yaml = io::OpenCvStereoYamlText(rig, "rig.json", kProvenance);
+  const ExportedCamera yaml = OpenCvStereoYamlText(rig, "rig.json", kProvenance);
   const cv::FileStorage fs(yaml.text, cv::FileStorage::READ | cv::FileStorage::MEMORY);
   ASSERT_TRUE(fs.isOpened());
   EXPECT_EQ(static_cast<int>(fs["image_width"]), 1280);
@@ -133,13 +133,13 @@ TEST(StereoInterop, OpenCvReadsTheYamlAndAgreesWithTheRig) {
 TEST(StereoInterop, YamlRefusesWhatOpenCvCannotHold) {
   StereoRig rig = ZedLikeRig();
   rig.right.camera.image_size = {1920, 1080};
-  EXPECT_NE(ErrorOf([&] { io::OpenCvStereoYamlText(rig, "rig.json", kProvenance); })
+  EXPECT_NE(ErrorOf([&] { OpenCvStereoYamlText(rig, "rig.json", kProvenance); })
                 .find("rig.json: right.image_size: differs from the left camera's (1280×720)"),
             std::string::npos);
   EXPECT_NE(ErrorOf([&] { Rectify(rig, {}, "rig.json"); }).find("rig.json: right.image_size: 1920×1080"), std::string::npos);
   rig = ZedLikeRig();
   rig.left.camera.params[4] = 0.5;
-  EXPECT_NE(ErrorOf([&] { io::OpenCvStereoYamlText(rig, "rig.json", kProvenance); })
+  EXPECT_NE(ErrorOf([&] { OpenCvStereoYamlText(rig, "rig.json", kProvenance); })
                 .find("rig.json: left: K[0][1]: the camera has skew 0.5 px"),
             std::string::npos);
 }
@@ -152,7 +152,7 @@ using MrcalModel = std::unique_ptr<mrcal_cameramodel_t, MrcalModelDeleter>;
 TEST(StereoInterop, LibmrcalReadsThePairAndProjectsFromTheLeftFrame) {
   for (const bool distorted : {false, true}) {
     const StereoRig rig = ZedLikeRig(distorted);
-    const auto [left, right] = io::MrcalStereoTexts(rig, "rig.json", {}, kProvenance);
+    const auto [left, right] = MrcalStereoTexts(rig, "rig.json", {}, kProvenance);
     const MrcalModel ml(mrcal_read_cameramodel_string(left.text.c_str(), static_cast<int>(left.text.size())));
     const MrcalModel mr(mrcal_read_cameramodel_string(right.text.c_str(), static_cast<int>(right.text.size())));
     ASSERT_NE(ml, nullptr);
@@ -172,7 +172,7 @@ TEST(StereoInterop, LibmrcalReadsThePairAndProjectsFromTheLeftFrame) {
     }
     EXPECT_LT(worst, 1e-9);
     // Our reader takes them back: the right camera's extrinsics are right_from_left.
-    const io::ImportedCamera back = io::MrcalCameramodelFromText(right.text, "right.cameramodel", std::nullopt);
+    const ImportedCamera back = MrcalCameramodelFromText(right.text, "right.cameramodel", std::nullopt);
     EXPECT_EQ(back.camera.camera.params, rig.right.camera.params);
     EXPECT_LT((back.camera.camera_from_world->R - rig.right_from_left.R).cwiseAbs().maxCoeff(), 1e-15);
     EXPECT_EQ(back.camera.camera_from_world->t, rig.right_from_left.t);

@@ -7,7 +7,7 @@
 #include "support/error_of.h"
 #include "support/stereo_rigs.h"
 #include "vstcal/core/error.h"
-#include "vstcal/io/stereo_io.h"
+#include "vstcal/formats/stereo/stereo_io.h"
 #include "vstcal/random/philox.h"
 #include "vstcal/stereo/rectify.h"
 
@@ -18,10 +18,10 @@ using testing::ErrorOf;
 using testing::SampleRelativePoseCovariance;
 using testing::ZedLikeRig;
 
-const io::Provenance kProvenance{"stereo_rig_test", {"--flag"}, std::nullopt};
+const Provenance kProvenance{"stereo_rig_test", {"--flag"}, std::nullopt};
 
-std::string Write(const StereoRig& rig) { return io::DumpJson(io::StereoRigToJson(rig, kProvenance)); }
-StereoRig Read(const std::string& text) { return io::StereoRigFromJson(io::JsonDocument::Parse(text, "rig.json")); }
+std::string Write(const StereoRig& rig) { return DumpJson(StereoRigToJson(rig, kProvenance)); }
+StereoRig Read(const std::string& text) { return StereoRigFromJson(JsonDocument::Parse(text, "rig.json")); }
 
 // Everything a rig file can hold.
 StereoRig FullRig() {
@@ -60,17 +60,17 @@ TEST(StereoRigIo, ReadsBackEveryField) {
   EXPECT_EQ(back.rectification->valid_roi_right, rig.rectification->valid_roi_right);
   EXPECT_EQ(back.fit->views[1].name, "pair-01");
   EXPECT_EQ(back.left.covariance->matrix, rig.left.covariance->matrix);
-  const io::OrderedJson j = io::StereoRigToJson(rig, kProvenance);
+  const OrderedJson j = StereoRigToJson(rig, kProvenance);
   EXPECT_EQ(j["baseline"].get<double>(), rig.right_from_left.t.norm());
   EXPECT_TRUE(j["left"].find("provenance") == j["left"].end());  // one provenance, the rig's
-  EXPECT_TRUE(io::StereoRigToJson(ZedLikeRig(), kProvenance)["fit"].is_null());
+  EXPECT_TRUE(StereoRigToJson(ZedLikeRig(), kProvenance)["fit"].is_null());
 }
 
 // R written by another tool with 9 digits is a rotation within 1e-6: replaced by the nearest one.
 TEST(StereoRigIo, CoarseRotationIsOrthonormalized) {
-  io::OrderedJson j = io::StereoRigToJson(ZedLikeRig(), kProvenance);
+  OrderedJson j = StereoRigToJson(ZedLikeRig(), kProvenance);
   j["right_from_left"]["R"][0][0] = std::round(j["right_from_left"]["R"][0][0].get<double>() * 1e9) / 1e9;
-  const StereoRig back = Read(io::DumpJson(j));
+  const StereoRig back = Read(DumpJson(j));
   EXPECT_LT((back.right_from_left.R.transpose() * back.right_from_left.R - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff(), 1e-15);
 }
 

@@ -16,8 +16,8 @@
 #include "support/stereo_rigs.h"
 #include "vstcal/capture/detect_run.h"
 #include "vstcal/geometry/rotation.h"
-#include "vstcal/stereo/rotation_average.h"
-#include "vstcal/stereo/stereo_solve.h"
+#include "vstcal/geometry/rotation_average.h"
+#include "vstcal/calib/stereo_solve.h"
 
 namespace vstcal {
 namespace {
@@ -144,17 +144,17 @@ const fs::path kData = "/usr/share/doc/opencv-doc/examples/data";
 // One camera of OpenCV's stereo sample detected by the capture module, views named by their pair
 // number ("01") so that the two cameras' views match.
 Correspondences DetectSample(const std::string& side) {
-  std::vector<capture::CaptureInput> inputs;
+  std::vector<CaptureInput> inputs;
   for (int k = 1; k <= 14; ++k) {
     const std::string number = (k < 10 ? "0" : "") + std::to_string(k);
     const fs::path path = kData / (side + number + ".jpg");
     if (fs::exists(path)) inputs.push_back({number, path, std::nullopt});
   }
-  capture::DetectRequest request;
+  DetectRequest request;
   request.target = testing::Chessboard9x6();
   request.camera_name = side;
   request.threads = 1;
-  Correspondences c = capture::DetectInFiles(inputs, request).correspondences;
+  Correspondences c = DetectInFiles(inputs, request).correspondences;
   for (View& v : c.views) {
     v.name = v.image;
     for (Observation& o : v.observations) {  // as OpenCV takes them: float

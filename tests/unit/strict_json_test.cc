@@ -17,7 +17,7 @@ namespace {
 
 // The message of the InputError that parsing `text` throws ("" when it parses).
 std::string ParseError(const std::string& text) {
-  return testing::ErrorOf([&] { io::JsonDocument::Parse(text, "t.json"); });
+  return testing::ErrorOf([&] { JsonDocument::Parse(text, "t.json"); });
 }
 
 TEST(StrictJson, DuplicateKeysAreRefusedWithLineColumnAndPath) {
@@ -48,7 +48,7 @@ TEST(StrictJson, NestingIsBounded) {
 
 TEST(StrictJson, ParsedDocumentMatchesNlohmann) {
   const std::string text = R"({"b": [1, -2, 3.5, 1e-300, 18446744073709551615, true, null, "s\u00e9"], "a": {"x": {}}})";
-  const io::JsonDocument doc = io::JsonDocument::Parse(text, "t.json");
+  const JsonDocument doc = JsonDocument::Parse(text, "t.json");
   EXPECT_EQ(doc.root().json(), nlohmann::json::parse(text));
 }
 
@@ -63,18 +63,18 @@ TEST(StrictJson, SyntaxErrorsKeepTheirMessages) {
 }
 
 TEST(StrictJson, IntegersOutOfRangeSaySo) {
-  const io::JsonDocument doc = io::JsonDocument::Parse(R"({"n": 1e10, "f": 2.5})", "t.json");
+  const JsonDocument doc = JsonDocument::Parse(R"({"n": 1e10, "f": 2.5})", "t.json");
   EXPECT_EQ(testing::ErrorOf([&] { doc.root().at("n").Integer(); }),
             "t.json: n: the integer 10000000000.0 is out of range; write a whole number from -2147483647 to 2147483647");
   EXPECT_THROW(doc.root().at("f").Integer(), InputError);
 }
 
 TEST(JsonWriter, RefusesNonFiniteNumbersInsteadOfWritingNull) {
-  io::OrderedJson j;
+  OrderedJson j;
   j["fit"]["rms_px"] = 0.5;
   j["P"] = {{1.0, std::numeric_limits<double>::quiet_NaN()}};
   try {
-    io::DumpJson(j);
+    DumpJson(j);
     FAIL();
   } catch (const InternalError& e) {
     EXPECT_NE(std::string(e.what()).find("a non-finite number at P[0][1] would be written as null"), std::string::npos)
@@ -82,10 +82,10 @@ TEST(JsonWriter, RefusesNonFiniteNumbersInsteadOfWritingNull) {
   }
   j["P"] = {{1.0, 2.0}};
   j["fit"]["max_px"] = std::numeric_limits<double>::infinity();
-  EXPECT_THROW(io::DumpJson(j), InternalError);
-  EXPECT_THROW(io::ShortestDecimal(-std::numeric_limits<double>::infinity()), InternalError);
+  EXPECT_THROW(DumpJson(j), InternalError);
+  EXPECT_THROW(ShortestDecimal(-std::numeric_limits<double>::infinity()), InternalError);
   j["fit"]["max_px"] = nullptr;  // null written on purpose stays allowed
-  EXPECT_NO_THROW(io::DumpJson(j));
+  EXPECT_NO_THROW(DumpJson(j));
 }
 
 }  // namespace

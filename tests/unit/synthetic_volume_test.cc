@@ -1,7 +1,7 @@
 // Synthetic calibration volumes: geometry of the pose, noise statistics and keying, test points.
 #include <gtest/gtest.h>
 
-#include "vstcal/calib/fit.h"
+#include "vstcal/scene/fit.h"
 #include "vstcal/capture/synthetic_volume.h"
 #include "vstcal/core/error.h"
 #include "vstcal/random/philox.h"

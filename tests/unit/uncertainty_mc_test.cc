@@ -10,7 +10,7 @@
 #include "support/crb.h"
 #include "support/sanitizers.h"
 #include "vstcal/calib/pipeline.h"
-#include "vstcal/calib/uncertainty.h"
+#include "vstcal/estimators/uncertainty.h"
 #include "support/scenes.h"
 #include "vstcal/capture/synthetic_views.h"
 #include "vstcal/capture/synthetic_volume.h"

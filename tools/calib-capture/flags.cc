@@ -38,7 +38,7 @@ void RefuseOtherRigFlags(CLI::App* app, bool planar, const std::pair<std::string
 }  // namespace
 
 void TargetFlags::Add(CLI::App* app) {
-  capture::Target& t = request.target;
+  Target& t = request.target;
   t.dictionary = "DICT_5X5_1000";
   t.family = "tag36h11";
   app->add_option("--type", type, "chessboard, charuco or apriltag-grid")
@@ -59,23 +59,23 @@ void TargetFlags::Add(CLI::App* app) {
   app->add_option("-o,--output", request.output, "writes OUTPUT.target.json, OUTPUT.svg, OUTPUT.png")->required()->check(kNonEmpty);
 }
 
-capture::TargetRequest TargetFlags::Finish() {
-  capture::Target& t = request.target;
-  t.type = *capture::TargetTypeFromName(type);
+app::TargetRequest TargetFlags::Finish() {
+  Target& t = request.target;
+  t.type = *TargetTypeFromName(type);
   t.length_unit = *LengthUnitFromName(unit);
-  const bool tags = t.type == capture::TargetType::kAprilTagGrid;
+  const bool tags = t.type == TargetType::kAprilTagGrid;
   if (tags && t.square_size != 0) throw InputError("--square-size: an apriltag-grid has tags, not squares; give --tag-size");
   if (!tags && t.tag_size != 0) throw InputError("--tag-size: applies to --type apriltag-grid; give --square-size");
   if (tags && !(t.tag_size > 0)) throw InputError("--tag-size: required for --type apriltag-grid (side of a tag's black square)");
   if (!tags && !(t.square_size > 0)) throw InputError("--square-size: required for --type " + type + " (side of a square)");
-  if (t.type == capture::TargetType::kCharuco) t.marker_size = marker_size.value_or(0.75 * t.square_size);
+  if (t.type == TargetType::kCharuco) t.marker_size = marker_size.value_or(0.75 * t.square_size);
   if (tags) t.tag_gap = tag_gap.value_or(0.25 * t.tag_size);
   t.margin = margin.value_or(tags ? t.tag_gap : t.square_size);
   return request;
 }
 
 void DetectFlags::Add(CLI::App* app) {
-  capture::DetectCommand& c = command;
+  app::DetectCommand& c = command;
   app->add_option("TARGET", c.target_file, "the board's vstcal/target@1 file")->required()->check(kNonEmpty);
   app->add_option("IMAGES", c.images, "image files, folders (their images, sorted) or quoted globs");
   app->add_option("--manifest", c.manifest, "volume: vstcal/volume-manifest@1 file: each image with its plane_offset")->check(kNonEmpty);
@@ -104,22 +104,22 @@ void DetectFlags::Add(CLI::App* app) {
   app->add_flag("-q,--quiet", quiet, "print only errors");
 }
 
-capture::DetectCommand DetectFlags::Finish() {
-  capture::DetectorOptions& d = command.detect.detector;
-  d.finder = finder == "classic" ? capture::ChessboardFinder::kClassic
-             : finder == "sector-based" ? capture::ChessboardFinder::kSectorBased
-                                        : capture::ChessboardFinder::kClassicThenSectorBased;
-  d.refiner = refiner == "symmetry" ? capture::CornerRefiner::kSymmetry
-              : refiner == "cornersubpix" ? capture::CornerRefiner::kCornerSubPix
-                                          : capture::CornerRefiner::kNone;
+app::DetectCommand DetectFlags::Finish() {
+  DetectorOptions& d = command.detect.detector;
+  d.finder = finder == "classic" ? ChessboardFinder::kClassic
+             : finder == "sector-based" ? ChessboardFinder::kSectorBased
+                                        : ChessboardFinder::kClassicThenSectorBased;
+  d.refiner = refiner == "symmetry" ? CornerRefiner::kSymmetry
+              : refiner == "cornersubpix" ? CornerRefiner::kCornerSubPix
+                                          : CornerRefiner::kNone;
   if (d.min_corners < 4) throw InputError("--min-corners: must be at least 4 (a homography needs 4 points)");
   if (command.detect.min_views < 1) throw InputError("--min-views: must be at least 1");
   return command;
 }
 
 void RenderFlags::Add(CLI::App* app) {
-  capture::RenderCommand& c = command;
-  capture::SceneSpec& s = c.scene;
+  app::RenderCommand& c = command;
+  SceneSpec& s = c.scene;
   app->add_option("TARGET", c.target_file, "the vstcal/target@1 file to draw")->required()->check(kNonEmpty);
   app->add_option("--camera", c.camera_file, "vstcal/camera@1 file: image size, K and distortion (its pose is not used)")
       ->required()
@@ -138,8 +138,8 @@ void RenderFlags::Add(CLI::App* app) {
   app->add_option("--threads", s.threads, "threads (0: all cores; the images do not depend on it)");
 }
 
-capture::RenderCommand RenderFlags::Finish(CLI::App* app) {
-  capture::SceneSpec& s = command.scene;
+app::RenderCommand RenderFlags::Finish(CLI::App* app) {
+  SceneSpec& s = command.scene;
   s.rig = rig == "volume" ? Rig::kVolume : Rig::kPlanarViews;
   const bool planar = s.rig == Rig::kPlanarViews;
   RefuseOtherRigFlags(app, planar, {});
@@ -151,8 +151,8 @@ capture::RenderCommand RenderFlags::Finish(CLI::App* app) {
 }
 
 void PlanFlags::Add(CLI::App* app) {
-  capture::PlanCommand& c = command;
-  capture::PlanRequest& r = c.request;
+  app::PlanCommand& c = command;
+  PlanRequest& r = c.request;
   CLI::Option* target = app->add_option("TARGET", c.target_file, "the board's vstcal/target@1 file")->check(kNonEmpty);
   app->add_option("--compare", c.compare, "PLAN_A PLAN_B: put two vstcal/capture-plan@1 files side by side instead of planning")
       ->expected(2)
@@ -208,8 +208,8 @@ std::vector<double> Expect(const std::vector<std::vector<double>>& lists, size_t
 
 }  // namespace
 
-capture::PlanCommand PlanFlags::Finish(CLI::App* app) {
-  capture::PlanRequest& r = command.request;
+app::PlanCommand PlanFlags::Finish(CLI::App* app) {
+  PlanRequest& r = command.request;
   command.text = format == "text";
   if (!command.compare.empty()) {
     for (const CLI::Option* o : app->get_options()) {

@@ -30,23 +30,23 @@ int main(int argc, char** argv) {
   return vstcal::tools::RunTool(app, argc, argv, [&] {
     using namespace vstcal;
     const CLI::App* used = app.get_subcommands().front();
-    const io::Provenance provenance = io::MakeProvenance("calib-capture", argc, argv,
+    const Provenance provenance = MakeProvenance("calib-capture", argc, argv,
                                                          used == render_app ? std::optional<uint64_t>(render.command.scene.render.seed)
                                                                             : std::nullopt);
-    capture::OutputFiles outputs;
+    app::Outcome outputs;
     bool quiet = false;
     if (used == detect_app) {
       quiet = detect.quiet;
       tools::ProgressBar bar("calib-capture detect", !quiet);
-      outputs = capture::RunDetect(detect.Finish(), provenance, [&](double f) { bar.Update(f); });
+      outputs = app::RunDetect(detect.Finish(), provenance, [&](double f) { bar.Update(f); });
     } else if (used == plan_app) {
-      outputs = capture::RunPlan(plan.Finish(plan_app), provenance);
+      outputs = app::RunPlan(plan.Finish(plan_app), provenance);
     } else if (used == render_app) {
-      outputs = capture::RunRender(render.Finish(render_app), provenance);
+      outputs = app::RunRender(render.Finish(render_app), provenance);
     } else {
-      outputs = capture::MakeTarget(target.Finish(), provenance);
+      outputs = app::MakeTarget(target.Finish(), provenance);
     }
-    capture::WriteOutputs(outputs);
+    app::WriteOutcome(outputs);
     if (!quiet) std::cerr << outputs.summary << "\n";
     return 0;
   });

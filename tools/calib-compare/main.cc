@@ -5,10 +5,10 @@
 
 #include "common/run_tool.h"
 #include "vstcal/calib/compare.h"
-#include "vstcal/calib/measured_volume.h"
+#include "vstcal/scene/measured_volume.h"
 #include "vstcal/core/error.h"
-#include "vstcal/io/camera_io.h"
-#include "vstcal/io/correspondences_io.h"
+#include "vstcal/formats/camera/camera_io.h"
+#include "vstcal/formats/camera/correspondences_io.h"
 
 int main(int argc, char** argv) {
   CLI::App app{
@@ -27,7 +27,7 @@ int main(int argc, char** argv) {
       ->check(CLI::PositiveNumber);
   return vstcal::tools::RunTool(app, argc, argv, [&] {
     using namespace vstcal;
-    const CalibratedCamera a = io::ReadCamera(reference), b = io::ReadCamera(other);
+    const CalibratedCamera a = ReadCamera(reference), b = ReadCamera(other);
     const CameraComparison c = [&] {
       try {
         return CompareCameras(a, b, depth);
@@ -39,7 +39,7 @@ int main(int argc, char** argv) {
     // leaves no half comparison on stdout.
     std::optional<std::vector<PointDisagreement>> at_points;
     if (!points_file.empty()) {
-      const Correspondences corners = io::ReadCorrespondences(points_file);
+      const Correspondences corners = ReadCorrespondences(points_file);
       if (corners.test_points.empty()) throw InputError(points_file + ": test_points: none; give a file with test points");
       try {
         at_points = CompareAtTestPoints(a, b, corners);

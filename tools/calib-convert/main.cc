@@ -4,28 +4,28 @@
 #include "common/run_tool.h"
 #include "common/validators.h"
 #include "vstcal/core/error.h"
-#include "vstcal/io/camera_convert.h"
+#include "vstcal/formats/camera/camera_convert.h"
 #include "vstcal/json/json_writer.h"
 
 namespace {
 
 using vstcal::InputError;
-using vstcal::io::CameraFileFormat;
+using vstcal::CameraFileFormat;
 
 CameraFileFormat InputFormat(const std::string& input) {
-  if (const auto f = vstcal::io::CameraFileFormatFromPath(input)) return *f;
+  if (const auto f = vstcal::CameraFileFormatFromPath(input)) return *f;
   throw InputError(input +
                    ": cannot tell the format from the file name; name it .json (vstcal/camera@1), "
                    ".yaml or .yml (OpenCV) or .cameramodel (mrcal)");
 }
 
 CameraFileFormat OutputFormat(const std::string& output, const std::string& to) {
-  const auto named = vstcal::io::CameraFileFormatFromPath(output);
+  const auto named = vstcal::CameraFileFormatFromPath(output);
   if (!to.empty()) {
-    const CameraFileFormat format = *vstcal::io::CameraFileFormatFromName(to);
+    const CameraFileFormat format = *vstcal::CameraFileFormatFromName(to);
     if (named && *named != format) {
       throw InputError("--to: " + to + " contradicts the output's name " + output + ", which says " +
-                       std::string(vstcal::io::CameraFileFormatDescription(*named)) +
+                       std::string(vstcal::CameraFileFormatDescription(*named)) +
                        "; rename the output or drop --to");
     }
     return format;
@@ -39,8 +39,8 @@ CameraFileFormat OutputFormat(const std::string& output, const std::string& to) 
 // A flag that would change nothing is refused: the user expected it to do something.
 void CheckFlagsApply(CameraFileFormat from, CameraFileFormat to, bool length_unit, bool mrcal_model) {
   using F = CameraFileFormat;
-  const std::string conversion = std::string(vstcal::io::CameraFileFormatDescription(from)) + " to " +
-                                 std::string(vstcal::io::CameraFileFormatDescription(to));
+  const std::string conversion = std::string(vstcal::CameraFileFormatDescription(from)) + " to " +
+                                 std::string(vstcal::CameraFileFormatDescription(to));
   if (length_unit && from != F::kMrcal && to != F::kMrcal && !(from == F::kOpenCvYaml && to == F::kVstcal)) {
     throw InputError("--length-unit: has no effect converting " + conversion +
                      " (it is the unit of a .cameramodel's lengths, or of a camera read from OpenCV YAML); drop it");
@@ -80,17 +80,17 @@ int main(int argc, char** argv) {
 
   return vstcal::tools::RunTool(app, argc, argv, [&] {
     using namespace vstcal;
-    io::DeclareOutputs({output});
-    const io::CameraFileFormat from = InputFormat(input), to_format = OutputFormat(output, to);
+    DeclareOutputs({output});
+    const CameraFileFormat from = InputFormat(input), to_format = OutputFormat(output, to);
     CheckFlagsApply(from, to_format, !unit.empty(), !mrcal_model.empty());
-    io::ConvertOptions options;
+    ConvertOptions options;
     if (!unit.empty()) options.length_unit = LengthUnitFromName(unit);
     if (!mrcal_model.empty()) options.mrcal_lensmodel = "LENSMODEL_" + mrcal_model;
-    const io::Conversion c =
-        io::ConvertCamera(input, from, to_format, options, io::MakeProvenance("calib-convert", argc, argv));
-    io::WriteFileAtomically(output, c.text);
+    const Conversion c =
+        ConvertCamera(input, from, to_format, options, MakeProvenance("calib-convert", argc, argv));
+    WriteFileAtomically(output, c.text);
     for (const std::string& note : c.notes) std::cerr << "calib-convert: note: " << note << "\n";
-    std::cerr << "calib-convert: wrote " << output << " (" << io::CameraFileFormatDescription(to_format) << ")\n";
+    std::cerr << "calib-convert: wrote " << output << " (" << CameraFileFormatDescription(to_format) << ")\n";
     return 0;
   });
 }

@@ -2,7 +2,7 @@
 #include "common/calibration_flags.h"
 #include "common/run_tool.h"
 #include "common/validators.h"
-#include "vstcal/io/correspondences_io.h"
+#include "vstcal/formats/camera/correspondences_io.h"
 
 int main(int argc, char** argv) {
   CLI::App app{
@@ -41,16 +41,16 @@ int main(int argc, char** argv) {
 
   return vstcal::tools::RunTool(app, argc, argv, [&] {
     using namespace vstcal;
-    io::DeclareOutputs({output, flags.residuals});
+    DeclareOutputs({output, flags.residuals});
     options.dlt.exact_diagnostics = true;  // the camera file reports sigma_11
     options.dlt.solver = solver == "svd" ? DltOptions::Solver::kFullSvd : DltOptions::Solver::kNormalEquations;
     options.refinement = flags.Refinement();
-    Correspondences corners = io::ReadCorrespondences(input);
+    Correspondences corners = ReadCorrespondences(input);
     if (corners.rig != Rig::kVolume) {
       throw InputError(input + ": rig: DLT needs one world frame (rig \"volume\"), got \"planar-views\"; "
                        "calibrate planar views with calib-tsai");
     }
-    const io::UncertaintyRequest request = flags.Uncertainty(corners);
+    const UncertaintyRequest request = flags.Uncertainty(corners);
     const CalibrationResult result = Calibrate(std::move(corners), options);
     return tools::FinishCalibration("calib-dlt", input, output, result, options, flags, request, argc, argv);
   });

@@ -24,12 +24,12 @@ int main(int argc, char** argv) {
       if (!s.app->parsed()) continue;
       // Only `simulate` draws random numbers: its seed goes into the provenance.
       const CLI::Option* seed = s.app->get_option_no_throw("--seed");
-      const io::Provenance provenance = io::MakeProvenance(
+      const Provenance provenance = MakeProvenance(
           "calib-stereo", argc, argv, seed ? std::optional(seed->as<uint64_t>()) : std::nullopt);
-      const stereo::Outcome outcome = s.run(provenance);
-      io::WriteFilesAtomically({outcome.files.begin(), outcome.files.end()});
-      std::cerr << outcome.text;
-      for (const auto& [path, text] : outcome.files) std::cerr << "calib-stereo: wrote " << path << "\n";
+      const app::Outcome outcome = s.run(provenance);
+      app::WriteOutcome(outcome);
+      std::cerr << outcome.summary;
+      for (const auto& [path, text] : outcome.files) std::cerr << "calib-stereo: wrote " << path.string() << "\n";
     }
     return 0;
   });

@@ -35,7 +35,7 @@ std::optional<LengthUnit> Unit(const std::string& name) {
 
 Subcommand AddSolve(CLI::App& parent) {
   struct Flags {
-    stereo::SolveRequest request;
+    app::SolveRequest request;
     CalibrationFlags calibration;
     RectifyFlags rectify;
   };
@@ -65,17 +65,17 @@ Subcommand AddSolve(CLI::App& parent) {
   }
   f->calibration.loss_scale_option = nullptr;
   f->rectify.Add(app);
-  return {app, [f, app](const io::Provenance& provenance) {
-            stereo::SolveRequest r = f->request;
+  return {app, [f, app](const Provenance& provenance) {
+            app::SolveRequest r = f->request;
             r.options.calibration.refinement = f->calibration.Refinement();
             r.rectify = f->rectify.Get(app);
-            return stereo::Solve(r, provenance);
+            return app::Solve(r, provenance);
           }};
 }
 
 Subcommand AddAssemble(CLI::App& parent) {
   struct Flags {
-    stereo::AssembleRequest request;
+    app::AssembleRequest request;
     std::vector<double> rotvec_deg, translation;
     std::string unit;
     RectifyFlags rectify;
@@ -96,8 +96,8 @@ Subcommand AddAssemble(CLI::App& parent) {
   app->add_option("--length-unit", f->unit, "mm, cm or m: the unit of --translation (default mm) and of .cameramodel and OpenCV YAML inputs")
       ->check(CLI::IsMember(kUnits));
   f->rectify.Add(app);
-  return {app, [f, app](const io::Provenance& provenance) {
-            stereo::AssembleRequest r = f->request;
+  return {app, [f, app](const Provenance& provenance) {
+            app::AssembleRequest r = f->request;
             if (!f->rotvec_deg.empty() && f->translation.empty()) {
               throw InputError("--rotvec-deg: given without --translation; give both, or neither to derive right_from_left from the cameras' poses");
             }
@@ -108,13 +108,13 @@ Subcommand AddAssemble(CLI::App& parent) {
             }
             r.length_unit = Unit(f->unit);
             r.rectify = f->rectify.Get(app);
-            return stereo::Assemble(r, provenance);
+            return app::Assemble(r, provenance);
           }};
 }
 
 Subcommand AddExport(CLI::App& parent) {
   struct Flags {
-    stereo::ExportRequest request;
+    app::ExportRequest request;
     std::vector<std::string> mrcal;
     std::string unit;
     RectifyFlags rectify;
@@ -129,21 +129,21 @@ Subcommand AddExport(CLI::App& parent) {
   app->add_option("--length-unit", f->unit, "mm, cm or m: unit of the .cameramodel translation (default: the rig's)")
       ->check(CLI::IsMember(kUnits));
   f->rectify.Add(app);
-  return {app, [f, app](const io::Provenance& provenance) {
-            stereo::ExportRequest r = f->request;
+  return {app, [f, app](const Provenance& provenance) {
+            app::ExportRequest r = f->request;
             if (r.opencv.empty() && f->mrcal.empty()) throw InputError("export: nothing to write; give --opencv FILE and/or --mrcal LEFT RIGHT");
             if (!f->mrcal.empty()) std::tie(r.mrcal_left, r.mrcal_right) = std::tie(f->mrcal[0], f->mrcal[1]);
             if (!f->unit.empty() && f->mrcal.empty()) throw InputError("--length-unit: applies to --mrcal output only; drop it");
             r.mrcal_length_unit = Unit(f->unit);
             r.rectify = f->rectify.Get(app);
             if (r.rectify && r.opencv.empty()) throw InputError("--rectify: the rectification goes into --opencv's YAML; give --opencv");
-            return stereo::Export(r, provenance);
+            return app::Export(r, provenance);
           }};
 }
 
 Subcommand AddSimulate(CLI::App& parent) {
   struct Flags {
-    stereo::SimulateRequest request;
+    app::SimulateRequest request;
     std::string layout = "planar";
   };
   auto f = std::make_shared<Flags>();
@@ -160,16 +160,16 @@ Subcommand AddSimulate(CLI::App& parent) {
       ->check(CLI::IsMember({"planar", "spatial"}))->capture_default_str();
   app->add_option("--size", s.size, "side of the square or cube of embedded points, the rig's length unit")->check(kPositiveFinite)->capture_default_str();
   app->add_option("--distance", s.distance, "distance of the rig from the points, the rig's length unit")->check(kPositiveFinite)->capture_default_str();
-  return {app, [f](const io::Provenance& provenance) {
-            stereo::SimulateRequest r = f->request;
+  return {app, [f](const Provenance& provenance) {
+            app::SimulateRequest r = f->request;
             r.spec.planar = f->layout == "planar";
-            return stereo::Simulate(r, provenance);
+            return app::Simulate(r, provenance);
           }};
 }
 
 Subcommand AddRegister(CLI::App& parent) {
   struct Flags {
-    stereo::RegisterRequest request;
+    app::RegisterRequest request;
     std::string mode = "left";
   };
   auto f = std::make_shared<Flags>();
@@ -184,16 +184,16 @@ Subcommand AddRegister(CLI::App& parent) {
       ->check(CLI::IsMember({"left", "per-eye", "joint"}))->capture_default_str();
   app->add_flag("--warm-start", f->request.options.warm_start,
                 "start each frame from the previous frame's pose instead of the closed form (tracking)");
-  return {app, [f](const io::Provenance& provenance) {
-            stereo::RegisterRequest r = f->request;
+  return {app, [f](const Provenance& provenance) {
+            app::RegisterRequest r = f->request;
             r.options.mode = *RegistrationModeFromName(f->mode);
-            return stereo::Register(r, provenance);
+            return app::Register(r, provenance);
           }};
 }
 
 Subcommand AddPlan(CLI::App& parent) {
   struct Flags {
-    stereo::PlanRequest request;
+    app::DisplayPlanRequest request;
     double hfov_deg = 0, focal = 0, z0 = 0;
     int capture_width = 0;
     std::string viewer = "none", unit;
@@ -222,8 +222,8 @@ Subcommand AddPlan(CLI::App& parent) {
   app->add_option("--viewing-distance", in.viewing_distance, "screen viewer: the eyes' distance from the screen")->check(kPositiveFinite);
   app->add_option("--length-unit", f->unit, "mm, cm or m: the unit of the lengths given (default mm; the rig's with --rig)")
       ->check(CLI::IsMember(kUnits));
-  return {app, [f, app](const io::Provenance& provenance) {
-            stereo::PlanRequest r = f->request;
+  return {app, [f, app](const Provenance& provenance) {
+            app::DisplayPlanRequest r = f->request;
             if (app->count("--focal-px")) r.input.focal_px = f->focal;
             if (app->count("--hfov-deg")) r.input.hfov_rad = DegToRad(f->hfov_deg);
             if (app->count("--capture-width")) r.input.capture_width = f->capture_width;
@@ -240,7 +240,7 @@ Subcommand AddPlan(CLI::App& parent) {
             if (!r.rig.empty() && !f->unit.empty()) throw InputError("--length-unit: with --rig, lengths are in the rig's unit; drop --length-unit");
             if (r.rig.empty() && !app->count("--baseline")) throw InputError("--baseline: required without --rig");
             if (!f->unit.empty()) r.length_unit = *LengthUnitFromName(f->unit);
-            return stereo::Plan(r, provenance);
+            return app::Plan(r, provenance);
           }};
 }
 

@@ -1,5 +1,5 @@
 // calib-stereo's subcommands: each adds its flags to the app and returns what runs it — the
-// conversion of the parsed flags into one library request (vstcal/stereo/commands.h).
+// conversion of the parsed flags into one library request (vstcal/app/calib_stereo.h).
 #pragma once
 
 #include <functional>
@@ -7,13 +7,13 @@
 #include <CLI/CLI.hpp>
 
 #include "vstcal/json/provenance.h"
-#include "vstcal/stereo/commands.h"
+#include "vstcal/app/calib_stereo.h"
 
 namespace vstcal::tools {
 
 struct Subcommand {
   CLI::App* app = nullptr;
-  std::function<stereo::Outcome(const io::Provenance&)> run;
+  std::function<app::Outcome(const Provenance&)> run;
 };
 
 Subcommand AddSolve(CLI::App& parent);

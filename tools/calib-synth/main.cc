@@ -9,8 +9,8 @@
 #include "vstcal/capture/synthetic_volume.h"
 #include "vstcal/core/error.h"
 #include "vstcal/core/limits.h"
-#include "vstcal/io/camera_io.h"
-#include "vstcal/io/correspondences_io.h"
+#include "vstcal/formats/camera/camera_io.h"
+#include "vstcal/formats/camera/correspondences_io.h"
 
 namespace {
 
@@ -100,13 +100,13 @@ int main(int argc, char** argv) {
         tools::ParseSize(grid, "--grid", "COLSxROWS (e.g. 13x9)", static_cast<int>(limits::kMaxPoints));
     spec.length_unit = *LengthUnitFromName(unit);
     if (truth.empty()) truth = std::filesystem::path(output).replace_extension(".truth.json").string();
-    io::DeclareOutputs({output, truth});
+    DeclareOutputs({output, truth});
     if (camera_path.empty()) {
       if (image_size.empty()) throw InputError("--image-size: required without --camera (e.g. --image-size 1280x720)");
       const auto [w, h] = tools::ParseSize(image_size, "--image-size", "WxH (e.g. 1280x720)", limits::kMaxImageSide);
       cam.image_size = ImageSize{w, h};
     }
-    const Camera camera = camera_path.empty() ? MakeSyntheticCamera(cam) : io::ReadCamera(camera_path).camera;
+    const Camera camera = camera_path.empty() ? MakeSyntheticCamera(cam) : ReadCamera(camera_path).camera;
 
     CalibratedCamera truth_camera;
     Correspondences corners;
@@ -129,9 +129,9 @@ int main(int argc, char** argv) {
       corners = volume.correspondences;
     }
 
-    const io::Provenance provenance = io::MakeProvenance("calib-synth", argc, argv, spec.seed);
-    io::WriteFilesAtomically({{output, io::DumpJson(io::CorrespondencesToJson(corners, provenance))},
-                              {truth, io::DumpJson(io::CameraToJson(truth_camera, provenance))}});
+    const Provenance provenance = MakeProvenance("calib-synth", argc, argv, spec.seed);
+    WriteFilesAtomically({{output, DumpJson(CorrespondencesToJson(corners, provenance))},
+                              {truth, DumpJson(CameraToJson(truth_camera, provenance))}});
     std::cerr << "calib-synth: " << NumObservations(corners) << " points in " << corners.views.size() << " views, "
               << corners.test_points.size() << " test points; wrote " << output << " and " << truth << "\n";
     return 0;

@@ -3,7 +3,7 @@
 #include "common/calibration_flags.h"
 #include "common/run_tool.h"
 #include "common/validators.h"
-#include "vstcal/io/correspondences_io.h"
+#include "vstcal/formats/camera/correspondences_io.h"
 
 int main(int argc, char** argv) {
   CLI::App app{
@@ -48,7 +48,7 @@ int main(int argc, char** argv) {
 
   return vstcal::tools::RunTool(app, argc, argv, [&] {
     using namespace vstcal;
-    io::DeclareOutputs({output, flags.residuals});
+    DeclareOutputs({output, flags.residuals});
     options.refine = !no_refine;
     options.refinement = flags.Refinement();
     options.tsai.variant = variant == "coplanar"       ? TsaiOptions::Variant::kCoplanar
@@ -60,7 +60,7 @@ int main(int argc, char** argv) {
     options.plane_principal_point = free_pp == "yes"    ? CalibrationOptions::PlanePrincipalPoint::kFree
                                     : free_pp == "auto" ? CalibrationOptions::PlanePrincipalPoint::kAuto
                                                         : CalibrationOptions::PlanePrincipalPoint::kHold;
-    Correspondences corners = io::ReadCorrespondences(input);
+    Correspondences corners = ReadCorrespondences(input);
     if (corners.rig == Rig::kPlanarViews) {
       for (const char* flag : {"--variant", "--principal-point", "--sx", "--free-principal-point"}) {
         if (app.count(flag) > 0) {
@@ -69,7 +69,7 @@ int main(int argc, char** argv) {
         }
       }
     }
-    const io::UncertaintyRequest request = flags.Uncertainty(corners);
+    const UncertaintyRequest request = flags.Uncertainty(corners);
     const CalibrationResult result = Calibrate(std::move(corners), options);
     if (app.count("--sx") > 0 && result.tsai && result.tsai->variant == TsaiOptions::Variant::kNonCoplanar) {
       throw InputError("--sx: the points are not coplanar, so Tsai's non-coplanar variant estimates sx and --sx would "

@@ -6,8 +6,8 @@
 
 #include "common/validators.h"
 #include "vstcal/core/limits.h"
-#include "vstcal/io/camera_io.h"
-#include "vstcal/io/residuals_io.h"
+#include "vstcal/formats/camera/camera_io.h"
+#include "vstcal/formats/calib/residuals_io.h"
 #include "vstcal/report/fit_summary.h"
 
 namespace vstcal::tools {
@@ -25,9 +25,9 @@ void ExpectThree(const std::vector<double>& numbers, const std::string& flag, co
                    "); give each point as its own " + flag);
 }
 
-// The two kinds of projection uncertainty, each labelled (io::kWithPosesMeaning …), at the image
+// The two kinds of projection uncertainty, each labelled (kWithPosesMeaning …), at the image
 // centre at the calibration points' median depth, and at each --uncertainty-pixel.
-std::string UncertaintySummary(const CalibrationResult& result, const io::UncertaintyRequest& request) {
+std::string UncertaintySummary(const CalibrationResult& result, const UncertaintyRequest& request) {
   const CalibratedCamera& c = result.camera;
   if (!c.covariance || !c.fit) return "";
   std::vector<double> depths;
@@ -122,8 +122,8 @@ RefineOptions CalibrationFlags::Refinement() const {
   return o;
 }
 
-io::UncertaintyRequest CalibrationFlags::Uncertainty(const Correspondences& corners) const {
-  io::UncertaintyRequest r;
+UncertaintyRequest CalibrationFlags::Uncertainty(const Correspondences& corners) const {
+  UncertaintyRequest r;
   if (!at_world.empty() && corners.rig != Rig::kVolume) {
     throw InputError("--uncertainty-at: planar views have no world frame; use --uncertainty-pixel U,V,DEPTH");
   }
@@ -163,19 +163,19 @@ io::UncertaintyRequest CalibrationFlags::Uncertainty(const Correspondences& corn
 
 int FinishCalibration(const std::string& tool, const std::string& input, const std::string& output,
                       const CalibrationResult& result, const CalibrationOptions& options, const CalibrationFlags& flags,
-                      const io::UncertaintyRequest& request, int argc, char** argv) {
+                      const UncertaintyRequest& request, int argc, char** argv) {
   if (result.exit_code != ExitCode::kOk) throw Error(result.exit_code, input + ": " + result.message);
   for (const std::string& w : result.warnings) std::cerr << tool << ": warning: " << w << "\n";
 
-  const io::Provenance provenance = io::MakeProvenance(tool, argc, argv);
-  io::OrderedJson blocks = io::CalibrationBlocksToJson(result, options);
-  if (result.camera.covariance) blocks["projection_uncertainty"] = io::UncertaintyToJson(result.camera, request);
+  const Provenance provenance = MakeProvenance(tool, argc, argv);
+  OrderedJson blocks = CalibrationBlocksToJson(result, options);
+  if (result.camera.covariance) blocks["projection_uncertainty"] = UncertaintyToJson(result.camera, request);
   std::vector<std::pair<std::filesystem::path, std::string>> outputs;
-  outputs.emplace_back(output, io::DumpJson(io::CameraToJson(result.camera, provenance, blocks)));
+  outputs.emplace_back(output, DumpJson(CameraToJson(result.camera, provenance, blocks)));
   if (!flags.residuals.empty()) {
-    outputs.emplace_back(flags.residuals, io::DumpJson(io::ResidualsToJson(result.used, *result.camera.fit, provenance)));
+    outputs.emplace_back(flags.residuals, DumpJson(ResidualsToJson(result.used, *result.camera.fit, provenance)));
   }
-  io::WriteFilesAtomically(outputs);
+  WriteFilesAtomically(outputs);
   if (!flags.quiet) {
     std::cerr << tool << ": " << input << ": " << NumObservations(result.used) << " points in " << result.used.views.size()
               << " views, method " << result.camera.method << "\n"

@@ -10,7 +10,7 @@
 #include <CLI/CLI.hpp>
 
 #include "vstcal/calib/pipeline.h"
-#include "vstcal/io/calibration_io.h"
+#include "vstcal/formats/calib/calibration_io.h"
 
 namespace vstcal::tools {
 
@@ -43,7 +43,7 @@ struct CalibrationFlags {
   RefineOptions Refinement() const;
   // The uncertainty flags checked against the data before any solve: throws InputError naming the
   // flag for malformed values, pixels outside the image, and world points for planar views.
-  io::UncertaintyRequest Uncertainty(const Correspondences& corners) const;
+  UncertaintyRequest Uncertainty(const Correspondences& corners) const;
 };
 
 // Turns a failed result into the documented exit code and its one-line message (throws
@@ -51,6 +51,6 @@ struct CalibrationFlags {
 // all-or-nothing and prints warnings and the summary on stderr.
 int FinishCalibration(const std::string& tool, const std::string& input, const std::string& output,
                       const CalibrationResult& result, const CalibrationOptions& options, const CalibrationFlags& flags,
-                      const io::UncertaintyRequest& request, int argc, char** argv);
+                      const UncertaintyRequest& request, int argc, char** argv);
 
 }  // namespace vstcal::tools

@@ -8,7 +8,7 @@
 
 #include "vstcal/core/error.h"
 #include "vstcal/core/version.h"
-#include "vstcal/json/input_protection.h"
+#include "vstcal/files/input_protection.h"
 
 namespace vstcal::tools {
 namespace {
@@ -58,7 +58,7 @@ int RunTool(CLI::App& app, int argc, char** argv, const std::function<int()>& bo
     return static_cast<int>(ExitCode::kBadInput);
   }
   try {
-    const io::InputProtection protection;  // no output may be an input (json/input_protection.h)
+    const InputProtection protection;  // no output may be an input (files/input_protection.h)
     return body();
   } catch (const Error& e) {
     if (e.code() == ExitCode::kInternal) {

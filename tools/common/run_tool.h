@@ -7,21 +7,21 @@
 
 #include <CLI/CLI.hpp>
 
-#include "vstcal/json/input_protection.h"
+#include "vstcal/files/input_protection.h"
 
 namespace vstcal::tools {
 
-// Adds --version, parses argv with `app`, then runs `body` under an io::InputProtection: no file
+// Adds --version, parses argv with `app`, then runs `body` under an InputProtection: no file
 // the body reads can be written by it (docs/reliability.md#inputs). A body should first declare
 // its outputs, so that a clash is refused before any work:
 //   return RunTool(app, argc, argv, [&] {
-//     io::DeclareOutputs({output, residuals});  // empty names (an unused flag) are skipped
-//     const Correspondences c = io::ReadCorrespondences(input);  // refused if it is an output
+//     DeclareOutputs({output, residuals});  // empty names (an unused flag) are skipped
+//     const Correspondences c = ReadCorrespondences(input);  // refused if it is an output
 //     ...
-//     io::WriteFilesAtomically({{output, ...}, {residuals, ...}});  // checked again
+//     WriteFilesAtomically({{output, ...}, {residuals, ...}});  // checked again
 //   });
-// Files read without io::ReadInputFile (images through OpenCV) are recorded with
-// io::NoteInputFile(path) before they are read.
+// Files read without ReadInputFile (images through OpenCV) are recorded with
+// NoteInputFile(path) before they are read.
 // Returns the process exit code:
 //  0 ok (also for --help and --version), 2 bad usage or input, 3 degenerate data, 1 internal error.
 // Every failure prints exactly one line on stderr, "<tool>: error: <message>" (or "<tool>:

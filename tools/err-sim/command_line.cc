@@ -62,13 +62,13 @@ ErrSimCommandLine::ErrSimCommandLine(CLI::App& app) {
   normalize->add_option("--html", html_, "refused: a chain has no page (run, merge, sweep, sobol and linear have one)");
 }
 
-errsim::Outcome ErrSimCommandLine::Run(int argc, char** argv) {
+app::ErrSimDocument ErrSimCommandLine::Run(int argc, char** argv) {
   CLI::App* used = run_->get_parent()->get_subcommands().front();
   if (used->get_option_no_throw("--samples") && used->count("--samples")) chain_.samples = samples_;
   if (used->get_option_no_throw("--seed") && used->count("--seed")) chain_.seed = seed_;
-  const io::Provenance provenance = io::MakeProvenance("err-sim", argc, argv, chain_.seed);
+  const Provenance provenance = MakeProvenance("err-sim", argc, argv, chain_.seed);
   if (used == run_) {
-    errsim::RunRequest run;
+    app::RunRequest run;
     run.chain = chain_;
     run.budget = !no_budget_;
     if (run_->count("--budget-samples")) run.budget_samples = budget_samples_;
@@ -80,20 +80,20 @@ errsim::Outcome ErrSimCommandLine::Run(int argc, char** argv) {
       throw InputError("--html: a shard file is not a report; give --html to `err-sim merge` of the shards");
     }
     ProgressBar bar("err-sim run", !quiet_);
-    return errsim::RunErrSim(run, provenance, [&](double f) { bar.Update(f); });
+    return app::RunErrSim(run, provenance, [&](double f) { bar.Update(f); });
   }
-  if (used == merge_) return errsim::MergeErrSim(chain_.chain, shards_, provenance);
+  if (used == merge_) return app::MergeErrSim(chain_.chain, shards_, provenance);
   if (used == sweep_) {
     sweep_request_.chain = chain_;
-    return errsim::SweepErrSim(sweep_request_, provenance);
+    return app::SweepErrSim(sweep_request_, provenance);
   }
   if (used == sobol_) {
     sobol_request_.chain = chain_;
-    return errsim::SobolErrSim(sobol_request_, provenance);
+    return app::SobolErrSim(sobol_request_, provenance);
   }
-  if (used == linear_) return errsim::LinearErrSim(chain_, provenance);
+  if (used == linear_) return app::LinearErrSim(chain_, provenance);
   if (!html_.empty()) throw InputError("--html: normalize writes a chain, which has no page; give --html to run, merge, sweep, sobol or linear");
-  return errsim::NormalizeErrSim(chain_.chain, output_, provenance);
+  return app::NormalizeErrSim(chain_.chain, output_, provenance);
 }
 
 }  // namespace vstcal::tools

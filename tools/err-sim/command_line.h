@@ -1,5 +1,5 @@
 // err-sim's command line (docs/tools/err-sim.md): its six subcommands and their flags declared on
-// one CLI11 app, and, once the app has parsed argv, the library call (errsim/commands.h) that the
+// one CLI11 app, and, once the app has parsed argv, the library call (app/err_sim.h) that the
 // chosen subcommand names. main only parses and writes the returned file.
 #pragma once
 
@@ -9,7 +9,7 @@
 
 #include <CLI/CLI.hpp>
 
-#include "vstcal/errsim/commands.h"
+#include "vstcal/app/err_sim.h"
 
 namespace vstcal::tools {
 
@@ -19,7 +19,7 @@ class ErrSimCommandLine {
   explicit ErrSimCommandLine(CLI::App& app);
 
   // After app.parse: runs the chosen subcommand. InputError for flags that contradict each other.
-  errsim::Outcome Run(int argc, char** argv);
+  app::ErrSimDocument Run(int argc, char** argv);
   const std::string& output() const { return output_; }
   bool quiet() const { return quiet_; }
   const std::string& html() const { return html_; }  // run, merge, sweep, sobol, linear: the page to write too (empty: none)
@@ -29,7 +29,7 @@ class ErrSimCommandLine {
 
   CLI::App *run_ = nullptr, *merge_ = nullptr, *sweep_ = nullptr, *sobol_ = nullptr, *linear_ = nullptr;
   // Shared by every subcommand: the chain, which sources, samples, seed, threads, output.
-  errsim::ChainRequest chain_;
+  app::ChainRequest chain_;
   uint64_t samples_ = 0, seed_ = 0;
   std::string output_, html_;
   bool quiet_ = false;
@@ -39,8 +39,8 @@ class ErrSimCommandLine {
   bool no_budget_ = false;
   // merge, sweep, sobol
   std::vector<std::string> shards_;
-  errsim::SweepRequest sweep_request_;
-  errsim::SobolRequest sobol_request_;
+  app::SweepRequest sweep_request_;
+  app::SobolRequest sobol_request_;
 };
 
 }  // namespace vstcal::tools

@@ -4,9 +4,9 @@
 
 #include "common/run_tool.h"
 #include "err-sim/command_line.h"
-#include "vstcal/json/input_protection.h"
+#include "vstcal/files/input_protection.h"
 #include "vstcal/json/json_writer.h"
-#include "vstcal/report/errsim_html.h"
+#include "vstcal/pages/errsim_html.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"Propagates the seven VST error sources (tracker_alignment, tracking, camera_extrinsic, camera_intrinsic, "
@@ -17,11 +17,11 @@ int main(int argc, char** argv) {
                "err-sim"};
   vstcal::tools::ErrSimCommandLine command_line(app);
   return vstcal::tools::RunTool(app, argc, argv, [&] {
-    vstcal::io::DeclareOutputs({command_line.output(), command_line.html()});
-    const vstcal::errsim::Outcome outcome = command_line.Run(argc, argv);
+    vstcal::DeclareOutputs({command_line.output(), command_line.html()});
+    const vstcal::app::ErrSimDocument outcome = command_line.Run(argc, argv);
     std::vector<std::pair<std::filesystem::path, std::string>> files = {{command_line.output(), outcome.Text()}};
     if (!command_line.html().empty()) files.emplace_back(command_line.html(), vstcal::ErrSimHtml(outcome.json));
-    vstcal::io::WriteFilesAtomically(files);
+    vstcal::WriteFilesAtomically(files);
     if (!command_line.quiet()) std::cerr << outcome.text << "  wrote " << command_line.output() << (command_line.html().empty() ? "" : " and " + command_line.html()) << "\n";
     return 0;
   });

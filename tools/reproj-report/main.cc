@@ -5,11 +5,11 @@
 #include "common/run_tool.h"
 #include "common/validators.h"
 #include "vstcal/core/error.h"
-#include "vstcal/io/correspondences_io.h"
-#include "vstcal/io/stereo_io.h"
-#include "vstcal/report/html.h"
-#include "vstcal/report/report_format.h"
-#include "vstcal/report/stereo_html.h"
+#include "vstcal/formats/camera/correspondences_io.h"
+#include "vstcal/formats/stereo/stereo_io.h"
+#include "vstcal/pages/html.h"
+#include "vstcal/formats/report/report_format.h"
+#include "vstcal/pages/stereo_html.h"
 
 int main(int argc, char** argv) {
   CLI::App app{
@@ -44,37 +44,37 @@ int main(int argc, char** argv) {
 
   return vstcal::tools::RunTool(app, argc, argv, [&] {
     using namespace vstcal;
-    io::DeclareOutputs({output, html});
+    DeclareOutputs({output, html});
     ReprojReportOptions options;
     std::tie(options.grid_cols, options.grid_rows) = tools::ParseSize(grid, "--grid", "8x6", 64);
-    const io::JsonDocument first = io::JsonDocument::Load(inputs.front());
-    if (io::IsStereoRigDocument(first)) {  // RIG LEFT RIGHT: the triangulated 3-D error
+    const JsonDocument first = JsonDocument::Load(inputs.front());
+    if (IsStereoRigDocument(first)) {  // RIG LEFT RIGHT: the triangulated 3-D error
       if (inputs.size() != 3) {
         throw InputError(inputs.front() + ": a stereo rig takes two correspondences files after it, LEFT then RIGHT; got " +
                          std::to_string(inputs.size() - 1));
       }
-      const StereoReport report = BuildStereoReport(io::StereoRigFromJson(first), io::ReadCorrespondences(inputs[1]),
-                                                    io::ReadCorrespondences(inputs[2]), inputs[0], inputs[1], inputs[2],
+      const StereoReport report = BuildStereoReport(StereoRigFromJson(first), ReadCorrespondences(inputs[1]),
+                                                    ReadCorrespondences(inputs[2]), inputs[0], inputs[1], inputs[2],
                                                     {match_views, options.grid_cols, options.grid_rows});
       std::vector<std::pair<std::filesystem::path, std::string>> files = {
-          {output, io::DumpJson(io::StereoReportToJson(report, io::MakeProvenance("reproj-report", argc, argv)))}};
+          {output, DumpJson(StereoReportToJson(report, MakeProvenance("reproj-report", argc, argv)))}};
       if (!html.empty()) files.emplace_back(html, StereoReportHtml(report, std::filesystem::path(inputs[1]).parent_path(),
                                                                  std::filesystem::path(inputs[2]).parent_path()));
-      io::WriteFilesAtomically(files);
-      if (format == "text") std::fputs(io::StereoReportText(report).c_str(), stdout);
+      WriteFilesAtomically(files);
+      if (format == "text") std::fputs(StereoReportText(report).c_str(), stdout);
       return 0;
     }
     if (!match_views.empty()) throw InputError("--match-views: goes with a stereo rig (RIG LEFT RIGHT); leave it out");
     const std::string corr_file = inputs.back();
     inputs.pop_back();
     std::vector<ReportCamera> cameras;
-    for (const std::string& file : inputs) cameras.push_back(io::ReadReportCamera(file));
-    const ReprojReport report = BuildReprojReport(cameras, io::ReadCorrespondences(corr_file), corr_file, options);
+    for (const std::string& file : inputs) cameras.push_back(ReadReportCamera(file));
+    const ReprojReport report = BuildReprojReport(cameras, ReadCorrespondences(corr_file), corr_file, options);
     std::vector<std::pair<std::filesystem::path, std::string>> files = {
-        {output, io::DumpJson(io::ReprojReportToJson(report, io::MakeProvenance("reproj-report", argc, argv)))}};
+        {output, DumpJson(ReprojReportToJson(report, MakeProvenance("reproj-report", argc, argv)))}};
     if (!html.empty()) files.emplace_back(html, ReprojReportHtml(report, std::filesystem::path(corr_file).parent_path()));
-    io::WriteFilesAtomically(files);
-    if (format == "text") std::fputs(io::ReprojReportText(report).c_str(), stdout);
+    WriteFilesAtomically(files);
+    if (format == "text") std::fputs(ReprojReportText(report).c_str(), stdout);
     return 0;
   });
 }

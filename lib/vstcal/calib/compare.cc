@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "vstcal/calib/measured_volume.h"
+#include "vstcal/scene/measured_volume.h"
 #include "vstcal/core/error.h"
 
 namespace vstcal {

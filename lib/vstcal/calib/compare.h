@@ -4,8 +4,8 @@
 
 #include <optional>
 
-#include "vstcal/calib/calibrated_camera.h"
-#include "vstcal/calib/correspondences.h"
+#include "vstcal/scene/calibrated_camera.h"
+#include "vstcal/scene/correspondences.h"
 
 namespace vstcal {
 

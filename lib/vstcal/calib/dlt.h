@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "vstcal/calib/calibrated_camera.h"
-#include "vstcal/calib/correspondences.h"
+#include "vstcal/scene/calibrated_camera.h"
+#include "vstcal/scene/correspondences.h"
 #include "vstcal/core/error.h"
 
 namespace vstcal {

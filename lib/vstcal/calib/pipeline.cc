@@ -6,7 +6,7 @@
 
 #include <Eigen/Geometry>
 
-#include "vstcal/calib/information.h"
+#include "vstcal/estimators/information.h"
 
 namespace vstcal {
 namespace {

@@ -7,9 +7,9 @@
 #include <string>
 #include <vector>
 
-#include "vstcal/calib/calibrated_camera.h"
-#include "vstcal/calib/correspondences.h"
-#include "vstcal/calib/decompose.h"
+#include "vstcal/scene/calibrated_camera.h"
+#include "vstcal/scene/correspondences.h"
+#include "vstcal/estimators/decompose.h"
 #include "vstcal/calib/dlt.h"
 #include "vstcal/calib/refine.h"
 #include "vstcal/calib/tsai.h"

@@ -5,10 +5,10 @@
 #include <algorithm>
 #include <cmath>
 
-#include "vstcal/calib/information.h"
-#include "vstcal/calib/linear_manifold.h"
-#include "vstcal/calib/reprojection_cost.h"
-#include "vstcal/calib/robust_loss.h"
+#include "vstcal/estimators/information.h"
+#include "vstcal/estimators/linear_manifold.h"
+#include "vstcal/estimators/reprojection_cost.h"
+#include "vstcal/estimators/robust_loss.h"
 #include "vstcal/core/error.h"
 
 namespace vstcal {

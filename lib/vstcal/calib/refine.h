@@ -1,21 +1,21 @@
 // Maximum-likelihood refinement shared by every solver (DLT, Tsai, Zhang's planar views): Ceres
 // trust-region least squares with Powell's dogleg (refine.cc says why) over the free intrinsics
-// (calib/free_intrinsics.h: free, held or tied lens parameters) and one pose per rig (volume) or per
+// (estimators/free_intrinsics.h: free, held or tied lens parameters) and one pose per rig (volume) or per
 // view (planar views), the poses eliminated by the Schur complement (Ceres's DENSE_SCHUR, the
 // intrinsics the last elimination group), with per-point weights, an optional robust loss,
 // outliers listed (never dropped), and the parameter covariance at the optimum
-// (calib/information.h). Cost and memory are linear in the number of views. Objective and
-// parameter blocks: calib/reprojection_cost.h; covariance, its degrees of freedom and the
+// (estimators/information.h). Cost and memory are linear in the number of views. Objective and
+// parameter blocks: estimators/reprojection_cost.h; covariance, its degrees of freedom and the
 // observability test: docs/math/uncertainty.md.
 #pragma once
 
 #include <string>
 #include <vector>
 
-#include "vstcal/calib/calibrated_camera.h"
-#include "vstcal/calib/correspondences.h"
-#include "vstcal/calib/free_intrinsics.h"
-#include "vstcal/calib/refine_options.h"
+#include "vstcal/scene/calibrated_camera.h"
+#include "vstcal/scene/correspondences.h"
+#include "vstcal/estimators/free_intrinsics.h"
+#include "vstcal/estimators/refine_options.h"
 
 namespace vstcal {
 
@@ -44,7 +44,7 @@ struct Refinement {
   FreeIntrinsics free;              // what was estimated
   std::vector<HeldIntrinsic> held;  // what was not, its value and why
 
-  // Covariance of the estimate, σ̂² (JᵀWJ)⁻¹ at the optimum (calib/information.h): over the lens
+  // Covariance of the estimate, σ̂² (JᵀWJ)⁻¹ at the optimum (estimators/information.h): over the lens
   // parameters that moved and the poses, named as ParameterCovariance documents. Empty when a
   // parameter is unobservable (the message names it).
   ParameterCovariance covariance;

@@ -14,7 +14,7 @@
 #include <span>
 #include <string>
 
-#include "vstcal/calib/correspondences.h"
+#include "vstcal/scene/correspondences.h"
 #include "vstcal/camera/camera.h"
 #include "vstcal/core/error.h"
 #include "vstcal/geometry/rigid3.h"

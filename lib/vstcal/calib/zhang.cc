@@ -3,7 +3,7 @@
 #include <Eigen/SVD>
 #include <cmath>
 
-#include "vstcal/calib/homography.h"
+#include "vstcal/estimators/homography.h"
 
 namespace vstcal {
 namespace {

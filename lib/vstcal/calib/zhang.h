@@ -7,13 +7,11 @@
 #include <string>
 #include <vector>
 
-#include "vstcal/calib/correspondences.h"
+#include "vstcal/scene/correspondences.h"
 #include "vstcal/camera/camera.h"
 #include "vstcal/geometry/rigid3.h"
 
 namespace vstcal {
-
-inline constexpr size_t kMinPointsPerPlanarView = 6;
 
 struct ZhangResult {
   bool ok = false;

@@ -9,6 +9,7 @@
 
 #include <optional>
 #include <span>
+#include <string_view>
 #include <vector>
 
 #include <Eigen/Core>
@@ -40,5 +41,10 @@ std::vector<double> OpenCvDistortion(const Camera& camera, int n);
 // The shortest OpenCV length that reads back as the camera's own model and holds every non-zero
 // coefficient: "radial-tangential" with k3 = 0 gives 4, otherwise the model's own count.
 int ShortestOpenCvLength(const Camera& camera);
+
+// OpenCV's and mrcal's projections have no skew term: a camera with K[0][1] ≠ 0 would project
+// differently there. Throws InputError "<source>: K[0][1]: ..." saying by how many pixels at most
+// (|s|·|v − cy|/fy over the image rows) and what to do; `peer` names the other tool.
+void RefuseSkew(const Camera& camera, std::string_view source, std::string_view peer);
 
 }  // namespace vstcal

@@ -11,7 +11,7 @@ extern "C" {
 
 #include "vstcal/core/error.h"
 
-namespace vstcal::capture {
+namespace vstcal {
 
 AprilTagFamilyPtr CreateAprilTagFamily(std::string_view name) {
   if (name == "tag36h11") return AprilTagFamilyPtr(tag36h11_create(), {tag36h11_destroy});
@@ -21,4 +21,4 @@ AprilTagFamilyPtr CreateAprilTagFamily(std::string_view name) {
   VSTCAL_CHECK(false, "unknown AprilTag family " + std::string(name));
 }
 
-}  // namespace vstcal::capture
+}  // namespace vstcal

@@ -9,7 +9,7 @@ extern "C" {
 #include <apriltag/apriltag.h>
 }
 
-namespace vstcal::capture {
+namespace vstcal {
 
 struct AprilTagFamilyDeleter {
   void (*destroy)(apriltag_family_t*);
@@ -20,4 +20,4 @@ using AprilTagFamilyPtr = std::unique_ptr<apriltag_family_t, AprilTagFamilyDelet
 // One of AprilTagFamilies(); an internal error for another name (targets are checked first).
 AprilTagFamilyPtr CreateAprilTagFamily(std::string_view name);
 
-}  // namespace vstcal::capture
+}  // namespace vstcal

@@ -5,11 +5,11 @@
 #include <cmath>
 #include <cstdio>
 
-#include "vstcal/capture/image_sampling.h"
+#include "vstcal/image/image_sampling.h"
 #include "vstcal/core/error.h"
 #include "vstcal/geometry/rotation.h"
 
-namespace vstcal::capture {
+namespace vstcal {
 namespace {
 
 // Squares darker than the others by less than this (grey levels) do not tell the colours apart.
@@ -125,4 +125,4 @@ GridOrientation OrientChessboard(const GrayImage& image, const Target& target, c
   return out;
 }
 
-}  // namespace vstcal::capture
+}  // namespace vstcal

@@ -19,10 +19,10 @@
 
 #include <Eigen/Core>
 
-#include "vstcal/capture/image.h"
+#include "vstcal/image/image.h"
 #include "vstcal/capture/target.h"
 
-namespace vstcal::capture {
+namespace vstcal {
 
 struct GridOrientation {
   // corner id (r·cols + c) → index into the detected grid; empty when `problem` is set.
@@ -36,4 +36,4 @@ struct GridOrientation {
 GridOrientation OrientChessboard(const GrayImage& image, const Target& target, const std::vector<Eigen::Vector2d>& grid,
                                  bool refuse_ambiguous, double ambiguity_deg = 15);
 
-}  // namespace vstcal::capture
+}  // namespace vstcal

@@ -7,9 +7,9 @@
 
 #include <Eigen/Dense>
 
-#include "vstcal/capture/image_sampling.h"
+#include "vstcal/image/image_sampling.h"
 
-namespace vstcal::capture {
+namespace vstcal {
 namespace {
 
 constexpr int kMaxIterations = 12;
@@ -221,4 +221,4 @@ std::optional<double> EdgeBlur(const GrayImage& image, const Eigen::Vector2d& a,
   return std::sqrt(std::max(0.0, spread * spread - 0.25));
 }
 
-}  // namespace vstcal::capture
+}  // namespace vstcal

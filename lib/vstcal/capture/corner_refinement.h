@@ -17,9 +17,9 @@
 
 #include <Eigen/Core>
 
-#include "vstcal/capture/image.h"
+#include "vstcal/image/image.h"
 
-namespace vstcal::capture {
+namespace vstcal {
 
 struct SymmetryRefinement {
   Eigen::Vector2d corner;  // refined position, px
@@ -38,9 +38,9 @@ std::optional<SymmetryRefinement> RefineCornerBySymmetry(const GrayImage& image,
 // leaves the image.
 std::optional<double> EdgeBlur(const GrayImage& image, const Eigen::Vector2d& a, const Eigen::Vector2d& b, double reach);
 
-}  // namespace vstcal::capture
+}  // namespace vstcal
 
-namespace vstcal::capture {
+namespace vstcal {
 
 // How far the image around c is from point symmetry: the weighted RMS of L(c + p) − L(c − p)
 // over the refinement's window, divided by the window's grey range (max − min). About 0 at an
@@ -48,4 +48,4 @@ namespace vstcal::capture {
 // image or is flat.
 std::optional<double> Asymmetry(const GrayImage& image, const Eigen::Vector2d& c, double radius);
 
-}  // namespace vstcal::capture
+}  // namespace vstcal

@@ -3,7 +3,7 @@
 #include "vstcal/capture/detectors.h"
 #include "vstcal/core/error.h"
 
-namespace vstcal::capture {
+namespace vstcal {
 
 std::string_view DetectionStatusName(DetectionStatus status) {
   switch (status) {
@@ -25,4 +25,4 @@ Detection DetectTarget(const GrayImage& image, const Target& target, const Detec
   VSTCAL_CHECK(false, "unknown target type");
 }
 
-}  // namespace vstcal::capture
+}  // namespace vstcal

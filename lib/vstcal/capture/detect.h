@@ -12,10 +12,10 @@
 
 #include <Eigen/Core>
 
-#include "vstcal/capture/image.h"
+#include "vstcal/image/image.h"
 #include "vstcal/capture/target.h"
 
-namespace vstcal::capture {
+namespace vstcal {
 
 enum class DetectionStatus {
   kFound,     // corners usable for calibration
@@ -62,4 +62,4 @@ struct DetectorOptions {
 // is a status with its reason.
 Detection DetectTarget(const GrayImage& image, const Target& target, const DetectorOptions& options);
 
-}  // namespace vstcal::capture
+}  // namespace vstcal

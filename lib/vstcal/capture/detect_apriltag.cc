@@ -10,7 +10,7 @@
 #include "vstcal/capture/detectors.h"
 #include "vstcal/core/error.h"
 
-namespace vstcal::capture {
+namespace vstcal {
 namespace {
 
 // libapriltag's corner k is the tag frame's (−1, +1), (+1, +1), (+1, −1), (−1, −1); its tag frame
@@ -109,4 +109,4 @@ Detection DetectAprilTagGrid(const GrayImage& image, const Target& target, const
   return d;
 }
 
-}  // namespace vstcal::capture
+}  // namespace vstcal

@@ -9,7 +9,7 @@
 #include "vstcal/capture/detect_steps.h"
 #include "vstcal/capture/detectors.h"
 
-namespace vstcal::capture {
+namespace vstcal {
 namespace {
 
 // The window around a ChArUco corner must stay clear of the markers' data cells: the markers'
@@ -76,4 +76,4 @@ Detection DetectCharuco(const GrayImage& image, const Target& target, const Dete
   return d;
 }
 
-}  // namespace vstcal::capture
+}  // namespace vstcal

@@ -8,7 +8,7 @@
 #include "vstcal/capture/detect_steps.h"
 #include "vstcal/capture/detectors.h"
 
-namespace vstcal::capture {
+namespace vstcal {
 
 // Window of the refinement and reach of the blur profile, as fractions of the local square size:
 // the four squares around a corner reach one square away, and the blur (a few px) must fit too.
@@ -51,4 +51,4 @@ Detection DetectChessboard(const GrayImage& image, const Target& target, const D
   return d;
 }
 
-}  // namespace vstcal::capture
+}  // namespace vstcal

@@ -1,5 +1,5 @@
 #include "vstcal/capture/detect_run.h"
-#include "vstcal/json/input_protection.h"
+#include "vstcal/files/input_protection.h"
 
 #include <algorithm>
 #include <cmath>
@@ -15,12 +15,11 @@
 #include <opencv2/imgproc.hpp>
 #include <opencv2/videoio.hpp>
 
-#include "vstcal/capture/image_io.h"
-#include "vstcal/capture/target_io.h"
+#include "vstcal/image/image_io.h"
 #include "vstcal/core/error.h"
-#include "vstcal/sensitivity/parallel.h"
+#include "vstcal/core/parallel.h"
 
-namespace vstcal::capture {
+namespace vstcal {
 namespace {
 
 constexpr size_t kMaxImages = 100000;
@@ -186,7 +185,7 @@ CaptureResult DetectInFiles(const std::vector<CaptureInput>& inputs, const Detec
   {
     const OpenCvSingleThreaded single;
     SharedProgress shared(progress, inputs.size());
-    sensitivity::ParallelFor(inputs.size(), request.threads, [&](size_t k) {
+    ParallelFor(inputs.size(), request.threads, [&](size_t k) {
       LoadedImage loaded = LoadImageFile(inputs[k].path);
       Slot& s = slots[k];
       s.problem = std::move(loaded.problem);
@@ -252,7 +251,7 @@ CaptureResult DetectInVideo(const VideoRequest& video, const DetectRequest& requ
     std::error_code ec;
     if (!std::filesystem::exists(video.file, ec)) throw InputError(video.file + ": no such file; check the path");
     if (std::filesystem::is_directory(video.file, ec)) throw InputError(video.file + ": is a directory, not a video; give the video file");
-    io::NoteInputFile(video.file);
+    NoteInputFile(video.file);
     // The file backends only, in OpenCV's own order: CAP_ANY also offers the name to libgphoto2,
     // which enumerates the USB bus for a camera of that name (and leaks what it enumerated).
     for (const int api : {cv::CAP_FFMPEG, cv::CAP_GSTREAMER, cv::CAP_OPENCV_MJPEG}) {
@@ -265,7 +264,7 @@ CaptureResult DetectInVideo(const VideoRequest& video, const DetectRequest& requ
                                       "(e.g. an MJPG AVI, or a format FFmpeg reads) and not truncated"));
   }
   const size_t limit = video.max_frames > 0 ? static_cast<size_t>(video.max_frames) : kMaxImages;
-  const unsigned threads = sensitivity::ResolveThreads(request.threads);
+  const unsigned threads = ResolveThreads(request.threads);
   std::vector<ImageRecord> records;
   std::vector<Detection> detections;
   int width = 0, height = 0;
@@ -294,7 +293,7 @@ CaptureResult DetectInVideo(const VideoRequest& video, const DetectRequest& requ
     }
     if (batch.empty()) break;
     std::vector<Detection> found(batch.size());
-    sensitivity::ParallelFor(batch.size(), threads, [&](size_t k) {
+    ParallelFor(batch.size(), threads, [&](size_t k) {
       found[k] = DetectTarget(batch[k].second, request.target, request.detector);
       shared.Tick();
     });
@@ -316,4 +315,4 @@ CaptureResult DetectInVideo(const VideoRequest& video, const DetectRequest& requ
                 {width, height});
 }
 
-}  // namespace vstcal::capture
+}  // namespace vstcal

@@ -11,12 +11,12 @@
 #include <string>
 #include <vector>
 
-#include "vstcal/calib/correspondences.h"
+#include "vstcal/scene/correspondences.h"
 #include "vstcal/capture/detect.h"
-#include "vstcal/capture/image.h"
+#include "vstcal/image/image.h"
 #include "vstcal/capture/target.h"
 
-namespace vstcal::capture {
+namespace vstcal {
 
 using Progress = std::function<void(double fraction)>;
 
@@ -75,4 +75,4 @@ CaptureResult DetectInVideo(const VideoRequest& video, const DetectRequest& requ
 // "14 images: 12 found, 1 not found, 1 rejected (1 blurred)".
 std::string DescribeCounts(const std::vector<ImageRecord>& images);
 
-}  // namespace vstcal::capture
+}  // namespace vstcal

@@ -10,7 +10,7 @@
 
 #include "vstcal/capture/corner_refinement.h"
 
-namespace vstcal::capture {
+namespace vstcal {
 namespace {
 
 constexpr double kMaxWindowPx = 6;
@@ -171,4 +171,4 @@ void Conclude(const DetectorOptions& options, Detection* d) {
   }
 }
 
-}  // namespace vstcal::capture
+}  // namespace vstcal

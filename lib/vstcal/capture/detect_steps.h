@@ -14,7 +14,7 @@
 
 #include "vstcal/capture/detect.h"
 
-namespace vstcal::capture {
+namespace vstcal {
 
 // The distance from each corner to its nearest detected grid neighbour (ids r·cols + c, one
 // step along a row or a column), px; `corners` by increasing id. Infinity where none is detected.
@@ -53,4 +53,4 @@ std::pair<int, int> InconsistentMarkers(const std::vector<std::array<Eigen::Vect
 // Status from the corners found: rejected with too few corners or too much blur; found otherwise.
 void Conclude(const DetectorOptions& options, Detection* detection);
 
-}  // namespace vstcal::capture
+}  // namespace vstcal

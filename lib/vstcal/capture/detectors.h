@@ -3,10 +3,10 @@
 
 #include "vstcal/capture/detect.h"
 
-namespace vstcal::capture {
+namespace vstcal {
 
 Detection DetectChessboard(const GrayImage& image, const Target& target, const DetectorOptions& options);
 Detection DetectCharuco(const GrayImage& image, const Target& target, const DetectorOptions& options);
 Detection DetectAprilTagGrid(const GrayImage& image, const Target& target, const DetectorOptions& options);
 
-}  // namespace vstcal::capture
+}  // namespace vstcal

@@ -8,7 +8,7 @@
 
 #include "vstcal/core/error.h"
 
-namespace vstcal::capture {
+namespace vstcal {
 
 std::string OverlayPng(const GrayImage& image, const Target& target, const Detection& detection) {
   const cv::Mat gray(image.height, image.width, CV_8U, const_cast<uint8_t*>(image.pixels.data()));
@@ -38,4 +38,4 @@ std::string OverlayPng(const GrayImage& image, const Target& target, const Detec
   return std::string(bytes.begin(), bytes.end());
 }
 
-}  // namespace vstcal::capture
+}  // namespace vstcal

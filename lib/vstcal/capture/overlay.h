@@ -6,12 +6,12 @@
 #include <string>
 
 #include "vstcal/capture/detect.h"
-#include "vstcal/capture/image.h"
+#include "vstcal/image/image.h"
 #include "vstcal/capture/target.h"
 
-namespace vstcal::capture {
+namespace vstcal {
 
 // PNG bytes (colour) of the overlay.
 std::string OverlayPng(const GrayImage& image, const Target& target, const Detection& detection);
 
-}  // namespace vstcal::capture
+}  // namespace vstcal

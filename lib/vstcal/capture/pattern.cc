@@ -6,7 +6,7 @@
 
 #include "vstcal/core/error.h"
 
-namespace vstcal::capture {
+namespace vstcal {
 namespace {
 
 // A pixel footprint has 4 vertices; each of the rectangle's four sides can add at most as many
@@ -144,4 +144,4 @@ double Pattern::BlackArea(std::span<const Eigen::Vector2d> polygon) const {
   return area;
 }
 
-}  // namespace vstcal::capture
+}  // namespace vstcal

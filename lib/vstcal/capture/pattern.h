@@ -13,7 +13,7 @@
 
 #include <Eigen/Core>
 
-namespace vstcal::capture {
+namespace vstcal {
 
 struct Rect {
   double x0 = 0, y0 = 0, x1 = 0, y1 = 0;  // x0 < x1, y0 < y1
@@ -49,4 +49,4 @@ double SignedArea(std::span<const Eigen::Vector2d> polygon);
 // Area of polygon ∩ rect (absolute), by clipping against the rectangle's four sides.
 double ClippedArea(std::span<const Eigen::Vector2d> polygon, const Rect& rect);
 
-}  // namespace vstcal::capture
+}  // namespace vstcal

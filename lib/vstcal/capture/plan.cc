@@ -4,12 +4,12 @@
 #include <cmath>
 #include <cstdio>
 
-#include "vstcal/calib/uncertainty.h"
+#include "vstcal/estimators/uncertainty.h"
 #include "vstcal/core/error.h"
 #include "vstcal/core/limits.h"
 #include "vstcal/geometry/rotation.h"
 
-namespace vstcal::capture {
+namespace vstcal {
 namespace {
 
 using Polygon = std::vector<Eigen::Vector2d>;
@@ -311,4 +311,4 @@ CapturePlan PlanCapture(const PlanRequest& request) {
   return plan;
 }
 
-}  // namespace vstcal::capture
+}  // namespace vstcal

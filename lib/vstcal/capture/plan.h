@@ -5,9 +5,9 @@
 // fraction the printed pattern covers (over the whole image and a 3 × 3 grid of regions), the
 // shortest projected square side, the corners outside the image, the foreshortening, and
 // warnings with the fix. Prediction: the Fisher information of the planned corners at a stated
-// pixel noise through CovarianceAt (calib/information.h), the code the solvers' covariance uses,
+// pixel noise through CovarianceAt (estimators/information.h), the code the solvers' covariance uses,
 // with the free parameters of the solve the user will run; then the projection uncertainty at
-// test points through calib/uncertainty.h.
+// test points through estimators/uncertainty.h.
 #pragma once
 
 #include <optional>
@@ -16,13 +16,13 @@
 
 #include <Eigen/Core>
 
-#include "vstcal/calib/information.h"
-#include "vstcal/calib/refine_options.h"
+#include "vstcal/estimators/information.h"
+#include "vstcal/estimators/refine_options.h"
 #include "vstcal/capture/synthetic_views.h"
 #include "vstcal/capture/synthetic_volume.h"
 #include "vstcal/capture/target.h"
 
-namespace vstcal::capture {
+namespace vstcal {
 
 // The smallest square side (px) at which the compare-detectors experiment found every view of
 // every condition (docs/experiments/corners.md: 12 px was its smallest size, 10/10 found with
@@ -99,4 +99,4 @@ struct CapturePlan {
 // Throws InputError for an impossible request (the field named as calib-capture plan's flag).
 CapturePlan PlanCapture(const PlanRequest& request);
 
-}  // namespace vstcal::capture
+}  // namespace vstcal

@@ -7,7 +7,7 @@
 #include "vstcal/core/error.h"
 #include "vstcal/random/philox.h"
 
-namespace vstcal::capture {
+namespace vstcal {
 namespace {
 
 // Separable Gaussian blur of a W × H image of doubles, border pixels replicated.
@@ -118,4 +118,4 @@ GrayImage RenderView(const PixelCornerRays& rays, const Pattern& pattern, const 
   return out;
 }
 
-}  // namespace vstcal::capture
+}  // namespace vstcal

@@ -19,11 +19,11 @@
 #include <Eigen/Core>
 
 #include "vstcal/camera/camera.h"
-#include "vstcal/capture/image.h"
+#include "vstcal/image/image.h"
 #include "vstcal/capture/pattern.h"
 #include "vstcal/geometry/rigid3.h"
 
-namespace vstcal::capture {
+namespace vstcal {
 
 struct RenderOptions {
   double white = 220;       // grey level of the paper
@@ -63,4 +63,4 @@ GrayImage RenderView(const PixelCornerRays& rays, const Pattern& pattern, const 
 std::vector<double> RenderCoverage(const PixelCornerRays& rays, const Pattern& pattern, const Rigid3d& camera_from_board,
                                    const RenderOptions& options);
 
-}  // namespace vstcal::capture
+}  // namespace vstcal

@@ -3,13 +3,13 @@
 #include <cmath>
 #include <cstdio>
 
-#include "vstcal/calib/fit.h"
-#include "vstcal/capture/image_io.h"
+#include "vstcal/scene/fit.h"
+#include "vstcal/image/image_io.h"
 #include "vstcal/capture/target_pattern.h"
 #include "vstcal/core/error.h"
-#include "vstcal/sensitivity/parallel.h"
+#include "vstcal/core/parallel.h"
 
-namespace vstcal::capture {
+namespace vstcal {
 namespace {
 
 constexpr int kMaxImages = 1000;
@@ -110,7 +110,7 @@ RenderedScene RenderScene(const Camera& camera, const Target& target, const Scen
   const Pattern pattern = TargetPattern(target);
   const PixelCornerRays rays(camera);
   scene.images.resize(scene.names.size());
-  sensitivity::ParallelFor(scene.names.size(), spec.threads, [&](size_t k) {
+  ParallelFor(scene.names.size(), spec.threads, [&](size_t k) {
     scene.images[k] = RenderView(rays, pattern, scene.camera_from_board[k], spec.render, static_cast<uint32_t>(k));
   });
   CalibratedCamera& cam = scene.truth_camera;
@@ -126,4 +126,4 @@ RenderedScene RenderScene(const Camera& camera, const Target& target, const Scen
   return scene;
 }
 
-}  // namespace vstcal::capture
+}  // namespace vstcal

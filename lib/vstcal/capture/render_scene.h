@@ -7,15 +7,15 @@
 #include <string>
 #include <vector>
 
-#include "vstcal/calib/calibrated_camera.h"
-#include "vstcal/calib/correspondences.h"
-#include "vstcal/capture/image.h"
+#include "vstcal/scene/calibrated_camera.h"
+#include "vstcal/scene/correspondences.h"
+#include "vstcal/image/image.h"
 #include "vstcal/capture/render.h"
 #include "vstcal/capture/synthetic_views.h"
 #include "vstcal/capture/synthetic_volume.h"
 #include "vstcal/capture/target.h"
 
-namespace vstcal::capture {
+namespace vstcal {
 
 struct SceneSpec {
   Rig rig = Rig::kVolume;
@@ -46,4 +46,4 @@ RenderedScene RenderScene(const Camera& camera, const Target& target, const Scen
 // The number of template positions of a volume spec: near, near + interval, … ≤ far.
 int NumPlanes(const VolumeSpec& spec);
 
-}  // namespace vstcal::capture
+}  // namespace vstcal

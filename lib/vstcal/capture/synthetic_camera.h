@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "vstcal/calib/calibrated_camera.h"
+#include "vstcal/scene/calibrated_camera.h"
 #include "vstcal/camera/camera.h"
 
 namespace vstcal {

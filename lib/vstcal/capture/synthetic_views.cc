@@ -3,8 +3,8 @@
 #include <cmath>
 #include <cstdio>
 
-#include "vstcal/calib/zhang.h"
-#include "vstcal/calib/fit.h"
+#include "vstcal/scene/correspondences.h"
+#include "vstcal/scene/fit.h"
 #include "vstcal/capture/synthetic_camera.h"
 #include "vstcal/core/error.h"
 #include "vstcal/core/limits.h"

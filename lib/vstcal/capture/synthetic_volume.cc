@@ -3,7 +3,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "vstcal/calib/fit.h"
+#include "vstcal/scene/fit.h"
 #include "vstcal/capture/synthetic_camera.h"
 #include "vstcal/core/error.h"
 #include "vstcal/core/limits.h"

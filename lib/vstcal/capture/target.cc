@@ -6,7 +6,7 @@
 
 #include "vstcal/core/error.h"
 
-namespace vstcal::capture {
+namespace vstcal {
 namespace {
 
 // OpenCV 4.6's cv::aruco::PREDEFINED_DICTIONARY_NAME in enum order (the index is the enum value).
@@ -224,4 +224,4 @@ Rect SheetExtent(const Target& t) {
 
 bool IsHalfTurnSymmetric(const Target& t) { return t.type == TargetType::kChessboard && (t.rows + t.cols) % 2 == 0; }
 
-}  // namespace vstcal::capture
+}  // namespace vstcal

@@ -30,7 +30,7 @@
 #include "vstcal/capture/pattern.h"
 #include "vstcal/core/units.h"
 
-namespace vstcal::capture {
+namespace vstcal {
 
 enum class TargetType { kChessboard, kCharuco, kAprilTagGrid };
 
@@ -105,4 +105,4 @@ std::string DescribeTarget(const Target& target);
 // be numbered from either end, and only the view's geometry can tell which (docs/tools/calib-capture.md#orientation).
 bool IsHalfTurnSymmetric(const Target& target);
 
-}  // namespace vstcal::capture
+}  // namespace vstcal

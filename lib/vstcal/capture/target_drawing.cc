@@ -6,12 +6,11 @@
 
 #include <opencv2/imgcodecs.hpp>
 
-#include "vstcal/capture/target_io.h"
 #include "vstcal/capture/target_pattern.h"
 #include "vstcal/core/error.h"
 #include "vstcal/json/json_writer.h"
 
-namespace vstcal::capture {
+namespace vstcal {
 namespace {
 
 constexpr double kMaxMegapixels = 200;
@@ -114,4 +113,4 @@ std::string EncodePng(const GrayImage& image, double dpi) {
   return out;
 }
 
-}  // namespace vstcal::capture
+}  // namespace vstcal

@@ -4,10 +4,10 @@
 
 #include <string>
 
-#include "vstcal/capture/image.h"
+#include "vstcal/image/image.h"
 #include "vstcal/capture/target.h"
 
-namespace vstcal::capture {
+namespace vstcal {
 
 // An SVG whose width and height are the sheet's size in millimetres, with a viewBox in
 // millimetres: printed at 100 % (no "fit to page"), every square has its stated size.
@@ -23,4 +23,4 @@ GrayImage RasterizeTarget(const Target& target, double dpi);
 // physical size (0: no pHYs).
 std::string EncodePng(const GrayImage& image, double dpi = 0);
 
-}  // namespace vstcal::capture
+}  // namespace vstcal

@@ -5,7 +5,7 @@
 #include "vstcal/capture/apriltag_family.h"
 #include "vstcal/core/error.h"
 
-namespace vstcal::capture {
+namespace vstcal {
 
 MarkerCells ArucoMarkerCells(std::string_view dictionary, int id) {
   const cv::Ptr<cv::aruco::Dictionary> dict = cv::aruco::getPredefinedDictionary(ArucoDictionaryIndex(dictionary));
@@ -69,4 +69,4 @@ Pattern TargetPattern(const Target& t) {
   return Pattern(SheetExtent(t), std::move(black));
 }
 
-}  // namespace vstcal::capture
+}  // namespace vstcal

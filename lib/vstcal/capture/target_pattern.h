@@ -8,7 +8,7 @@
 #include "vstcal/capture/pattern.h"
 #include "vstcal/capture/target.h"
 
-namespace vstcal::capture {
+namespace vstcal {
 
 // A square marker as cells, row-major from its top-left cell, true = black: ArUco marker `id`
 // of an OpenCV dictionary with its 1-bit black border ((bits + 2)² cells), or AprilTag `id` of a
@@ -26,4 +26,4 @@ Pattern TargetPattern(const Target& target);
 // Adds a marker's black cells to `black`, its top-left cell's corner at (x0, y0), cells of side `cell`.
 void AddMarkerCells(const MarkerCells& marker, double x0, double y0, double cell, std::vector<Rect>* black);
 
-}  // namespace vstcal::capture
+}  // namespace vstcal

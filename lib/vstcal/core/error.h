@@ -43,6 +43,9 @@ class DegenerateError : public Error {
   explicit DegenerateError(const std::string& message) : Error(ExitCode::kDegenerate, message) {}
 };
 
+// A number as messages quote it: six significant digits ("%.6g": 61.3, 1e+06, -0.00125).
+std::string MessageNumber(double v);
+
 }  // namespace vstcal
 
 // Checks an internal invariant; on failure throws InternalError with the location.

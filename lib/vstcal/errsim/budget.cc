@@ -7,12 +7,12 @@
 
 #include "vstcal/core/error.h"
 
-namespace vstcal::errsim {
+namespace vstcal {
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-const sensitivity::MonteCarloSummary& ScenarioSummary(const SimulationResult& result, const std::string& name) {
+const MonteCarloSummary& ScenarioSummary(const SimulationResult& result, const std::string& name) {
   for (size_t i = 0; i < result.scenarios.size(); ++i) {
     if (result.scenarios[i] == name) return result.summaries[i];
   }
@@ -31,7 +31,7 @@ double Share(double a, double b) {
 
 }  // namespace
 
-ScenarioTotals Totals(const ChainModel& model, const sensitivity::MonteCarloSummary& summary, OutputSet set) {
+ScenarioTotals Totals(const ChainModel& model, const MonteCarloSummary& summary, OutputSet set) {
   const ErrorOutputs outputs(model, set);
   double image = 0, misregistration = 0, misperception = 0, wrong = 0;
   int n_wrong = 0;
@@ -102,4 +102,4 @@ ErrorBudget Budget(const ChainModel& model, const SimulationResult& result) {
   return budget;
 }
 
-}  // namespace vstcal::errsim
+}  // namespace vstcal

@@ -11,7 +11,7 @@
 #include "vstcal/errsim/simulation.h"
 #include "vstcal/sensitivity/mc_summary.h"
 
-namespace vstcal::errsim {
+namespace vstcal {
 
 // Aggregates of one scenario; NaN (null in files) where undefined: a test point without a defined
 // sample, or no occlusion points.
@@ -22,7 +22,7 @@ struct ScenarioTotals {
   double wrong_occlusion_rate;  // mean over occlusion points and eyes
 };
 // `summary` holds the outputs of ErrorOutputs(model, set).
-ScenarioTotals Totals(const ChainModel& model, const sensitivity::MonteCarloSummary& summary, OutputSet set);
+ScenarioTotals Totals(const ChainModel& model, const MonteCarloSummary& summary, OutputSet set);
 
 // √(mean over test points of the systematic misperception's linear term²).
 double SystematicMisperceptionRms(const ChainEvaluator& chain);
@@ -44,4 +44,4 @@ struct ErrorBudget {
 };
 ErrorBudget Budget(const ChainModel& model, const SimulationResult& result);
 
-}  // namespace vstcal::errsim
+}  // namespace vstcal

@@ -2,7 +2,7 @@
 
 #include "vstcal/core/error.h"
 
-namespace vstcal::errsim {
+namespace vstcal {
 
 const char* UndefinedName(Undefined why) {
   switch (why) {
@@ -51,7 +51,7 @@ ChainEvaluator::ChainEvaluator(const ChainModel& model) : model_(model), layout_
                    g.camera_from_hmd[e].R == Eigen::Matrix3d::Identity(), -0.5, camera.image_size.width - 0.5, -0.5,
                    camera.image_size.height - 0.5};
   }
-  for (const TestPoint& tp : g.test_points) {
+  for (const ChainTestPoint& tp : g.test_points) {
     point_in_object_.push_back(object_from_world * tp.point_in_world);
     point_in_hmd_.push_back(hmd_from_world * tp.point_in_world);
     for (int e = 0; e < kNumEyes; ++e) {
@@ -86,4 +86,4 @@ ChainEvaluator::ChainEvaluator(const ChainModel& model) : model_(model), layout_
   }
 }
 
-}  // namespace vstcal::errsim
+}  // namespace vstcal

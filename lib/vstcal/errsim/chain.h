@@ -10,7 +10,7 @@
 // term of θ (schema.h). The display shows eye e its composited video: pixel q on a virtual image
 // plane at distance D (chain_model.h, DisplayGeometry), seen from the eye's actual eyepoint E_e. So
 // the eyes see the overlay along the rays through q̂_l, q̂_r and the video image of the physical
-// point along the rays through q_l, q_r; each pair is triangulated (report/registration_error.h):
+// point along the rays through q_l, q_r; each pair is triangulated (geometry/registration_error.h):
 //   overlay P̂' and seen P' — misregistration = P̂' − P' (what the user sees as misalignment; the
 //   display moves both together), misperception = P' − P (where the user perceives the point
 //   against where it is at display time), measured relative to the error-free chain's own
@@ -28,12 +28,12 @@
 #include <Eigen/Core>
 
 #include "vstcal/errsim/chain_model.h"
-#include "vstcal/errsim/point_registration.h"
+#include "vstcal/geometry/point_registration.h"
 #include "vstcal/geometry/fixed_order.h"
 #include "vstcal/geometry/rigid3.h"
-#include "vstcal/report/registration_error.h"
+#include "vstcal/geometry/registration_error.h"
 
-namespace vstcal::errsim {
+namespace vstcal {
 
 template <typename T>
 using Vec2 = Eigen::Matrix<T, 2, 1>;
@@ -101,7 +101,7 @@ class ChainEvaluator {
   template <typename T>
   void Evaluate(const T* theta, ChainSample<T>* out) const;
 
-  // Vector outputs for linear propagation (sensitivity::Model::Templated): per test point
+  // Vector outputs for linear propagation (Model::Templated): per test point
   // [du_left, dv_left, du_right, dv_right] (px), the misregistration P̂' − P' (3) and the
   // misperception relative to the systematic one (3), hmd frame. False when a point is undefined.
   static constexpr int kOutputsPerPoint = 10;
@@ -338,4 +338,4 @@ bool ChainEvaluator::operator()(const T* theta, T* y) const {
   return true;
 }
 
-}  // namespace vstcal::errsim
+}  // namespace vstcal

@@ -2,7 +2,7 @@
 
 #include "vstcal/core/error.h"
 
-namespace vstcal::errsim {
+namespace vstcal {
 
 double ChainGeometry::CameraBaseline() const {
   return (camera_from_hmd[1].inverse().t - camera_from_hmd[0].inverse().t).norm();
@@ -23,7 +23,7 @@ ChainModel ChainModel::WithZeroErrors(ChainGeometry geometry, std::vector<Eigen:
                                       const std::optional<std::array<AnyLensModel, kNumEyes>>& renderer_lens) {
   ChainModel m;
   ChainShape shape;
-  for (const TestPoint& tp : geometry.test_points) shape.test_points.push_back(tp.name);
+  for (const ChainTestPoint& tp : geometry.test_points) shape.test_points.push_back(tp.name);
   shape.fiducials = fiducials_in_object.size();
   shape.length_unit = geometry.length_unit;
   for (int e = 0; e < kNumEyes; ++e) {
@@ -84,4 +84,4 @@ bool ChainModel::SourceActive(Source source) const {
   return false;
 }
 
-}  // namespace vstcal::errsim
+}  // namespace vstcal

@@ -19,9 +19,9 @@
 #include "vstcal/geometry/rigid3.h"
 #include "vstcal/sensitivity/distribution.h"
 
-namespace vstcal::errsim {
+namespace vstcal {
 
-struct TestPoint {
+struct ChainTestPoint {
   std::string name;
   Eigen::Vector3d point_in_world = Eigen::Vector3d::Zero();
   // For the occlusion decision (rendering): camera depth of the real surface seen behind the point
@@ -62,7 +62,7 @@ struct ChainGeometry {
   // Head motion for the dynamic errors: body rates in the hmd frame.
   Eigen::Vector3d head_angular_velocity = Eigen::Vector3d::Zero();  // rad/s
   Eigen::Vector3d head_linear_velocity = Eigen::Vector3d::Zero();   // length unit / s
-  std::vector<TestPoint> test_points;
+  std::vector<ChainTestPoint> test_points;
 
   // Distance between the two camera centres (length unit).
   double CameraBaseline() const;
@@ -70,7 +70,6 @@ struct ChainGeometry {
   Eigen::Vector3d CameraCentre() const;
 };
 
-using sensitivity::Distribution;
 
 // The distribution of s·θ, for θ ~ d (halving a source is Scaled(d, 0.5)); s ≥ 0.
 Distribution Scaled(const Distribution& d, double s);
@@ -122,4 +121,4 @@ struct ChainModel {
   bool SourceActive(Source source) const;  // some parameter of the source is not fixed at 0
 };
 
-}  // namespace vstcal::errsim
+}  // namespace vstcal

@@ -6,13 +6,13 @@
 
 #include "vstcal/errsim/sample_measurer.h"
 #include "vstcal/errsim/sampler.h"
-#include "vstcal/sensitivity/parallel.h"
+#include "vstcal/core/parallel.h"
 
-namespace vstcal::errsim {
+namespace vstcal {
 
-sensitivity::SummaryPlan ChainPlan(const ChainModel& model, const ChainMonteCarloOptions& options) {
+SummaryPlan ChainPlan(const ChainModel& model, const ChainMonteCarloOptions& options) {
   const ErrorOutputs outputs(model, options.outputs);
-  sensitivity::SummaryPlan plan;
+  SummaryPlan plan;
   plan.output_names = outputs.names();
   plan.all_percentiles = false;
   plan.higher_moments = false;  // the report gives no standard error of σ
@@ -26,18 +26,18 @@ sensitivity::SummaryPlan ChainPlan(const ChainModel& model, const ChainMonteCarl
   return plan;
 }
 
-sensitivity::MonteCarloSummary RunChainMonteCarlo(const ChainModel& model, const ChainMonteCarloOptions& options) {
-  const sensitivity::SummaryPlan plan = ChainPlan(model, options);
-  const sensitivity::BlockRange range = sensitivity::ShardBlocks(plan, options.shard, options.shards);
+MonteCarloSummary RunChainMonteCarlo(const ChainModel& model, const ChainMonteCarloOptions& options) {
+  const SummaryPlan plan = ChainPlan(model, options);
+  const BlockRange range = ShardBlocks(plan, options.shard, options.shards);
   const ChainEvaluator chain(model);
   const ErrorOutputs outputs(model, options.outputs);
   const ThetaSampler sampler(model, options.seed);
   const size_t n = sampler.size(), m = outputs.size();
   constexpr size_t kLanes = SampleMeasurer::kLanes;
 
-  sensitivity::MonteCarloSummary summary(plan);
+  MonteCarloSummary summary(plan);
   std::mutex summary_mutex;
-  sensitivity::ParallelFor(range.end - range.begin, options.threads, [&](size_t task) {
+  ParallelFor(range.end - range.begin, options.threads, [&](size_t task) {
     const uint64_t block = range.begin + task;
     const uint64_t first = block * plan.block_size;
     const size_t count = static_cast<size_t>(std::min(plan.block_size, plan.total_samples - first));
@@ -50,7 +50,7 @@ sensitivity::MonteCarloSummary RunChainMonteCarlo(const ChainModel& model, const
     std::vector<double> y(kLanes * m);
     std::vector<uint8_t> defined(m);
     SampleMeasurer measurer(chain, outputs);
-    sensitivity::BlockAccumulator accumulator(plan);
+    BlockAccumulator accumulator(plan);
     for (size_t g = 0; g < groups; ++g) {
       if (g % kGroupsPerDraw == 0) sampler.FillLanes(first + kLanes * g, std::min(kGroupsPerDraw, groups - g), theta.data());
       const size_t lanes = std::min(kLanes, count - g * kLanes);
@@ -73,4 +73,4 @@ sensitivity::MonteCarloSummary RunChainMonteCarlo(const ChainModel& model, const
   return summary;
 }
 
-}  // namespace vstcal::errsim
+}  // namespace vstcal

@@ -2,7 +2,7 @@
 // measures four samples at a time (sample_measurer.h), accumulated four lanes at a time into the
 // sensitivity module's mergeable summary in fixed blocks — so the numbers depend only on (samples,
 // block size, seed), never on the thread count or the shard split. Equivalent to
-// sensitivity::RunMonteCarlo over ErrorModel, without a std::function call and a buffer lookup per
+// RunMonteCarlo over ErrorModel, without a std::function call and a buffer lookup per
 // sample, and with the faster sampler. Memory: one block's buffers per thread and the summary's
 // (mc_summary.h), independent of the number of samples.
 #pragma once
@@ -14,7 +14,7 @@
 #include "vstcal/errsim/measures.h"
 #include "vstcal/sensitivity/mc_summary.h"
 
-namespace vstcal::errsim {
+namespace vstcal {
 
 struct ChainMonteCarloOptions {
   uint64_t samples = 0;
@@ -27,9 +27,9 @@ struct ChainMonteCarloOptions {
 };
 
 // The summary's plan: the outputs of `options.outputs`, percentiles for those that want them.
-sensitivity::SummaryPlan ChainPlan(const ChainModel& model, const ChainMonteCarloOptions& options);
+SummaryPlan ChainPlan(const ChainModel& model, const ChainMonteCarloOptions& options);
 
 // Runs the blocks of shard `shard` of `shards`.
-sensitivity::MonteCarloSummary RunChainMonteCarlo(const ChainModel& model, const ChainMonteCarloOptions& options);
+MonteCarloSummary RunChainMonteCarlo(const ChainModel& model, const ChainMonteCarloOptions& options);
 
-}  // namespace vstcal::errsim
+}  // namespace vstcal

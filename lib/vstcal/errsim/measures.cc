@@ -1,13 +1,13 @@
 #include "vstcal/errsim/measures.h"
 
-namespace vstcal::errsim {
+namespace vstcal {
 
 ErrorOutputs::ErrorOutputs(const ChainModel& model, OutputSet set) : set_(set) {
   const std::vector<std::string> measures =
       set == OutputSet::kFull ? std::vector<std::string>{"linear", "lateral", "depth", "depth_abs", "angular_deg"}
                               : std::vector<std::string>{"linear"};
   for (size_t k = 0; k < model.geometry.test_points.size(); ++k) {
-    const TestPoint& tp = model.geometry.test_points[k];
+    const ChainTestPoint& tp = model.geometry.test_points[k];
     offsets_.push_back(names_.size());
     occlusion_.push_back(tp.surface_behind.has_value());
     auto add = [&](const std::string& name, bool percentiles) {
@@ -25,4 +25,4 @@ ErrorOutputs::ErrorOutputs(const ChainModel& model, OutputSet set) : set_(set) {
   }
 }
 
-}  // namespace vstcal::errsim
+}  // namespace vstcal

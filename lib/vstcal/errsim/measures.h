@@ -5,7 +5,7 @@
 //  - misperception: where the eyes see the point, P', against where it is, P, relative to the
 //    error-free chain's systematic misperception (ChainEvaluator::systematic);
 //  - the occlusion decision of the rendering source.
-// Holloway's linear/lateral/depth/angular terms are report/registration_error.h's, shared with
+// Holloway's linear/lateral/depth/angular terms are geometry/registration_error.h's, shared with
 // the reports.
 #pragma once
 
@@ -18,7 +18,7 @@
 #include "vstcal/core/simd_double.h"
 #include "vstcal/errsim/chain.h"
 
-namespace vstcal::errsim {
+namespace vstcal {
 
 // T is double, or SimdDouble for four samples at once; the same code either way.
 template <typename T>
@@ -148,4 +148,4 @@ void ErrorOutputs::Measure(const ChainEvaluator& chain, const ChainSample<T>& sa
   }
 }
 
-}  // namespace vstcal::errsim
+}  // namespace vstcal

@@ -6,20 +6,20 @@
 #include "vstcal/errsim/chain.h"
 #include "vstcal/errsim/measures.h"
 
-namespace vstcal::errsim {
+namespace vstcal {
 
-sensitivity::ParameterSpace MakeParameterSpace(const ChainModel& model) {
-  sensitivity::ParameterSpace space;
+ParameterSpace MakeParameterSpace(const ChainModel& model) {
+  ParameterSpace space;
   for (const ChainParameter& p : model.parameters) {
     space.Add({p.name(), std::string(SourceKey(p.source)), p.distribution, 0.0});
   }
   return space;
 }
 
-sensitivity::Model ErrorModel(const ChainModel& model) {
+Model ErrorModel(const ChainModel& model) {
   auto chain = std::make_shared<const ChainEvaluator>(model);
   auto outputs = std::make_shared<const ErrorOutputs>(model);
-  return sensitivity::Model(model.parameters.size(), outputs->names(), [chain, outputs](const double* theta, double* y) {
+  return Model(model.parameters.size(), outputs->names(), [chain, outputs](const double* theta, double* y) {
     // Buffers per thread: the model is called concurrently and must not allocate per sample.
     thread_local ChainSample<double> sample(0);
     thread_local std::unique_ptr<bool[]> defined;
@@ -34,13 +34,13 @@ sensitivity::Model ErrorModel(const ChainModel& model) {
   });
 }
 
-sensitivity::Model VectorModel(const ChainModel& model) {
-  return sensitivity::Model::Templated(model.parameters.size(), VectorOutputNames(model), ChainEvaluator(model));
+Model VectorModel(const ChainModel& model) {
+  return Model::Templated(model.parameters.size(), VectorOutputNames(model), ChainEvaluator(model));
 }
 
 std::vector<std::string> VectorOutputNames(const ChainModel& model) {
   std::vector<std::string> names;
-  for (const TestPoint& tp : model.geometry.test_points) {
+  for (const ChainTestPoint& tp : model.geometry.test_points) {
     for (const char* n : {".left.du_px", ".left.dv_px", ".right.du_px", ".right.dv_px", ".misregistration.dx",
                           ".misregistration.dy", ".misregistration.dz", ".misperception.dx", ".misperception.dy",
                           ".misperception.dz"}) {
@@ -50,4 +50,4 @@ std::vector<std::string> VectorOutputNames(const ChainModel& model) {
   return names;
 }
 
-}  // namespace vstcal::errsim
+}  // namespace vstcal

@@ -10,19 +10,19 @@
 #include "vstcal/sensitivity/model.h"
 #include "vstcal/sensitivity/parameter_space.h"
 
-namespace vstcal::errsim {
+namespace vstcal {
 
 // One parameter per θ slot, named as the slot, group = its source key, nominal 0 (an error's
 // nominal value: a bias or a non-zero mean then shows as a mean shift in linear propagation).
-sensitivity::ParameterSpace MakeParameterSpace(const ChainModel& model);
+ParameterSpace MakeParameterSpace(const ChainModel& model);
 
 // Undefined (false) when any test point is undefined.
-sensitivity::Model ErrorModel(const ChainModel& model);
-sensitivity::Model VectorModel(const ChainModel& model);
+Model ErrorModel(const ChainModel& model);
+Model VectorModel(const ChainModel& model);
 
 // Names of VectorModel's outputs, per test point "<point>." followed by left.du_px, left.dv_px,
 // right.du_px, right.dv_px, misregistration.{dx,dy,dz}, misperception.{dx,dy,dz} (hmd frame; the
 // misperception relative to the systematic one).
 std::vector<std::string> VectorOutputNames(const ChainModel& model);
 
-}  // namespace vstcal::errsim
+}  // namespace vstcal

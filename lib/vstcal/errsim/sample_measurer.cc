@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <bit>
 
-namespace vstcal::errsim {
+namespace vstcal {
 namespace {
 
 // The whole group in one function body (flatten inlines the chain, the measures and Eigen's
@@ -61,4 +61,4 @@ void SampleMeasurer::MeasureOne(const double* theta, double* y, bool* defined) {
   outputs_.Measure(chain_, sample_, theta, y, defined);
 }
 
-}  // namespace vstcal::errsim
+}  // namespace vstcal

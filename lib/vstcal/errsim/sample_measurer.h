@@ -28,7 +28,7 @@
 #define VSTCAL_FLATTEN_LANES gnu::flatten
 #endif
 
-namespace vstcal::errsim {
+namespace vstcal {
 
 class SampleMeasurer {
  public:
@@ -59,4 +59,4 @@ class SampleMeasurer {
   size_t divergent_groups_ = 0;
 };
 
-}  // namespace vstcal::errsim
+}  // namespace vstcal

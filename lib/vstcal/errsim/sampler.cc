@@ -8,7 +8,7 @@
 #include <cmath>
 #include <cstring>
 
-namespace vstcal::errsim {
+namespace vstcal {
 namespace {
 
 #include "vstcal/errsim/ziggurat_table.inc"
@@ -428,4 +428,4 @@ void ThetaSampler::Fill(uint64_t first, size_t count, double* theta) const {
   }
 }
 
-}  // namespace vstcal::errsim
+}  // namespace vstcal

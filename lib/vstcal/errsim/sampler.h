@@ -20,7 +20,7 @@
 #include "vstcal/errsim/chain_model.h"
 #include "vstcal/random/philox.h"
 
-namespace vstcal::errsim {
+namespace vstcal {
 
 // A standard normal deviate from one 64-bit word and, rarely, further words of `rng` at
 // (index, lanes 2³¹ + (parameter << 7) + k).
@@ -65,4 +65,4 @@ class ThetaSampler {
   CounterRng rng_;
 };
 
-}  // namespace vstcal::errsim
+}  // namespace vstcal

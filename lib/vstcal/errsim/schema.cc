@@ -3,7 +3,7 @@
 #include "vstcal/core/error.h"
 #include "vstcal/geometry/rotation.h"
 
-namespace vstcal::errsim {
+namespace vstcal {
 namespace {
 
 constexpr std::array<std::string_view, 3> kXyz = {"x", "y", "z"};
@@ -99,4 +99,4 @@ int ParameterLayout::End(Source source) const {
   return next == kNumSources ? size_total_ : Begin(static_cast<Source>(next));
 }
 
-}  // namespace vstcal::errsim
+}  // namespace vstcal

@@ -20,7 +20,7 @@
 #include "vstcal/core/units.h"
 #include "vstcal/errsim/sources.h"
 
-namespace vstcal::errsim {
+namespace vstcal {
 
 inline constexpr int kNumEyes = 2;
 inline constexpr std::array<std::string_view, kNumEyes> kEyeNames = {"left", "right"};
@@ -173,4 +173,4 @@ class ParameterLayout {
 std::string FileUnit(TermUnit unit, LengthUnit length_unit, int component);
 double FilePerInternal(TermUnit unit);
 
-}  // namespace vstcal::errsim
+}  // namespace vstcal

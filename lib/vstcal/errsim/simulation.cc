@@ -6,7 +6,7 @@
 #include "vstcal/core/error.h"
 #include "vstcal/errsim/engine.h"
 
-namespace vstcal::errsim {
+namespace vstcal {
 
 std::vector<Scenario> MakeScenarios(const ChainModel& model, bool budget) {
   std::vector<Scenario> out = {{"all", model}};
@@ -85,7 +85,7 @@ std::string ChainDigest(const ChainModel& model) {
   h.Add(g.display.inverse_image_distance);
   h.Add(g.head_angular_velocity);
   h.Add(g.head_linear_velocity);
-  for (const TestPoint& tp : g.test_points) {
+  for (const ChainTestPoint& tp : g.test_points) {
     h.Add(tp.name);
     h.Add(tp.point_in_world);
     h.Add(tp.surface_behind ? *tp.surface_behind : 0.0);
@@ -142,10 +142,10 @@ SimulationResult RunSimulation(const std::vector<Scenario>& scenarios, const Sim
   for (const Scenario& s : scenarios) total += static_cast<double>(s.name == "all" ? options.samples : options.budget_samples);
   for (const Scenario& scenario : scenarios) {
     ChainMonteCarloOptions mc = ScenarioOptions(scenario, options, digest);
-    const sensitivity::SummaryPlan plan = ChainPlan(scenario.model, mc);
-    const sensitivity::BlockRange range = sensitivity::ShardBlocks(plan, options.shard, options.shards);
+    const SummaryPlan plan = ChainPlan(scenario.model, mc);
+    const BlockRange range = ShardBlocks(plan, options.shard, options.shards);
     const uint64_t pieces = std::clamp<uint64_t>((range.end - range.begin) / 16, 1, 50);
-    sensitivity::MonteCarloSummary summary(plan);
+    MonteCarloSummary summary(plan);
     for (uint64_t piece = 0; piece < pieces; ++piece) {
       mc.shard = options.shard * pieces + piece;
       mc.shards = options.shards * pieces;
@@ -166,4 +166,4 @@ void MergeSimulation(SimulationResult* into, const SimulationResult& other) {
   for (size_t i = 0; i < into->summaries.size(); ++i) into->summaries[i].Merge(other.summaries[i]);
 }
 
-}  // namespace vstcal::errsim
+}  // namespace vstcal

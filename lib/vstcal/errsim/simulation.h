@@ -14,7 +14,7 @@
 #include "vstcal/errsim/chain_model.h"
 #include "vstcal/sensitivity/mc_summary.h"
 
-namespace vstcal::errsim {
+namespace vstcal {
 
 struct Scenario {
   std::string name;  // "all", "alone:<source>", "halved:<source>"
@@ -52,7 +52,7 @@ struct RunDescription {
 
 struct SimulationResult {
   std::vector<std::string> scenarios;
-  std::vector<sensitivity::MonteCarloSummary> summaries;  // one per scenario
+  std::vector<MonteCarloSummary> summaries;  // one per scenario
   bool complete() const;
 };
 
@@ -70,4 +70,4 @@ SimulationResult EmptySimulation(const std::vector<Scenario>& scenarios, const S
 // Adds `other`'s blocks (InputError for shards of a different run or overlapping blocks).
 void MergeSimulation(SimulationResult* into, const SimulationResult& other);
 
-}  // namespace vstcal::errsim
+}  // namespace vstcal

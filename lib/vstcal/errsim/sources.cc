@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <vector>
 
-namespace vstcal::errsim {
+namespace vstcal {
 
 std::optional<Source> SourceFromKey(std::string_view key) {
   for (int i = 0; i < kNumSources; ++i) {
@@ -39,4 +39,4 @@ std::string_view SourceCorrection(Source source) {
   return "";
 }
 
-}  // namespace vstcal::errsim
+}  // namespace vstcal

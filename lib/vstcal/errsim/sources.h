@@ -7,7 +7,7 @@
 #include <string>
 #include <string_view>
 
-namespace vstcal::errsim {
+namespace vstcal {
 
 enum class Source : int {
   kTrackerAlignment = 0,      // §4.1: tracker_from_virtual
@@ -30,4 +30,4 @@ std::optional<Source> SourceFromKey(std::string_view key);
 // The correction seed 001 suggests for a source, with the section it comes from.
 std::string_view SourceCorrection(Source source);
 
-}  // namespace vstcal::errsim
+}  // namespace vstcal

@@ -45,6 +45,11 @@ struct Rigid3 {
 
 using Rigid3d = Rigid3<double>;
 
+// A pose's tangent (ω, ρ) and the blocks of its covariance (docs/conventions.md#poses-in-optimisation).
+using Vector6d = Eigen::Matrix<double, 6, 1>;
+using Matrix6d = Eigen::Matrix<double, 6, 6>;
+using Matrix6Xd = Eigen::Matrix<double, 6, Eigen::Dynamic>;
+
 // Left perturbation in the destination frame (docs/conventions.md#poses-in-optimisation):
 // a_from_b' = (Exp(omega), rho) · a_from_b, i.e. R' = Exp(ω)R, t' = Exp(ω)t + ρ. Perturbations
 // are small: RotationFromSmallRotvec (the same rotation, faster below 0.1 rad).

@@ -6,7 +6,7 @@
 #include "vstcal/geometry/rotation.h"
 #include "vstcal/json/reader_common.h"
 
-namespace vstcal::io {
+namespace vstcal {
 namespace {
 
 // A rotation read is kept as written when ‖RᵀR − I‖_max is below this (rounding of a computed R).
@@ -50,4 +50,4 @@ void ExpectKeys(const JsonNode& node, const std::vector<std::string_view>& allow
   }
 }
 
-}  // namespace vstcal::io
+}  // namespace vstcal

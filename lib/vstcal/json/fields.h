@@ -12,7 +12,7 @@
 #include "vstcal/geometry/rigid3.h"
 #include "vstcal/json/json_reader.h"
 
-namespace vstcal::io {
+namespace vstcal {
 
 // image_size [width, height]: two positive integers (px).
 ImageSize ReadImageSize(const JsonNode& node);
@@ -29,4 +29,4 @@ Rigid3d ReadRigid(const JsonNode& node);
 // for formats where a mistyped key would otherwise silently mean nothing.
 void ExpectKeys(const JsonNode& node, const std::vector<std::string_view>& allowed, const std::string& what);
 
-}  // namespace vstcal::io
+}  // namespace vstcal

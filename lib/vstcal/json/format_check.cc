@@ -2,7 +2,7 @@
 
 #include <string>
 
-namespace vstcal::io {
+namespace vstcal {
 
 void CheckFormat(const JsonNode& root, std::string_view expected) {
   const JsonNode format = root.at("format");
@@ -19,4 +19,4 @@ void CheckFormat(const JsonNode& root, std::string_view expected) {
   format.Fail("unknown format \"" + got + "\"", "expected \"" + std::string(expected) + "\" (docs/formats.md)");
 }
 
-}  // namespace vstcal::io
+}  // namespace vstcal

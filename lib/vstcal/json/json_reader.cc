@@ -9,7 +9,7 @@
 #include "vstcal/core/limits.h"
 #include "vstcal/json/reader_common.h"
 
-namespace vstcal::io {
+namespace vstcal {
 namespace {
 
 bool IsTokenChar(char c) {
@@ -362,4 +362,4 @@ std::string JsonNode::Describe() const {
   }
 }
 
-}  // namespace vstcal::io
+}  // namespace vstcal

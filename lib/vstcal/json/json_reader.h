@@ -12,7 +12,7 @@
 #include <Eigen/Core>
 #include <nlohmann/json.hpp>
 
-namespace vstcal::io {
+namespace vstcal {
 
 class JsonNode;
 
@@ -91,4 +91,4 @@ class JsonNode {
   const std::string* file_;
 };
 
-}  // namespace vstcal::io
+}  // namespace vstcal

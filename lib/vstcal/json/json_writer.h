@@ -1,5 +1,5 @@
 // Writing JSON: ordered objects (fields in the order the format documents them), Eigen helpers,
-// and an atomic file write so a failing tool never leaves a partial output behind.
+// and WriteJsonFile (files/atomic_write.h: a failing tool never leaves a partial output behind).
 #pragma once
 
 #include <filesystem>
@@ -10,9 +10,10 @@
 #include <Eigen/Core>
 #include <nlohmann/json.hpp>
 
+#include "vstcal/files/atomic_write.h"
 #include "vstcal/geometry/rigid3.h"
 
-namespace vstcal::io {
+namespace vstcal {
 
 using OrderedJson = nlohmann::ordered_json;
 
@@ -48,20 +49,8 @@ std::string DumpJson(const OrderedJson& json);
 // (err-sim's shard files), where the indentation would triple it.
 std::string DumpJsonCompact(const OrderedJson& json);
 
-// Writes text to `path` through a temporary file in the same directory and a rename, so the
-// path either holds the complete new file or is untouched. Throws InputError when the directory
-// does not exist or is not writable.
-void WriteFileAtomically(const std::filesystem::path& path, const std::string& text);
-
-// Writes several files all-or-nothing: every text goes to a temporary file first; only when all
-// are written are they renamed into place, so a failure leaves none of the outputs behind (if a
-// rename fails midway, the outputs already renamed are removed). Refuses, before writing, an
-// empty name, one file named for two outputs, or an output that is an input (CheckOutputs,
-// input_protection.h).
-void WriteFilesAtomically(const std::vector<std::pair<std::filesystem::path, std::string>>& files);
-
 inline void WriteJsonFile(const std::filesystem::path& path, const OrderedJson& json) {
   WriteFileAtomically(path, DumpJson(json));
 }
 
-}  // namespace vstcal::io
+}  // namespace vstcal

@@ -2,7 +2,7 @@
 
 #include "vstcal/core/version.h"
 
-namespace vstcal::io {
+namespace vstcal {
 
 Provenance MakeProvenance(std::string tool, int argc, const char* const* argv, std::optional<uint64_t> seed) {
   Provenance p;
@@ -21,4 +21,4 @@ OrderedJson ProvenanceToJson(const Provenance& p) {
   return j;
 }
 
-}  // namespace vstcal::io
+}  // namespace vstcal

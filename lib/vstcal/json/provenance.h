@@ -9,7 +9,7 @@
 
 #include "vstcal/json/json_writer.h"
 
-namespace vstcal::io {
+namespace vstcal {
 
 struct Provenance {
   std::string tool;
@@ -20,4 +20,4 @@ struct Provenance {
 Provenance MakeProvenance(std::string tool, int argc, const char* const* argv, std::optional<uint64_t> seed = {});
 OrderedJson ProvenanceToJson(const Provenance& provenance);
 
-}  // namespace vstcal::io
+}  // namespace vstcal

@@ -8,9 +8,9 @@
 
 #include "vstcal/core/error.h"
 #include "vstcal/core/limits.h"
-#include "vstcal/json/input_protection.h"
+#include "vstcal/files/input_protection.h"
 
-namespace vstcal::io {
+namespace vstcal {
 
 std::string ReadInputFile(const std::filesystem::path& path, std::string_view kind) {
   const std::string name = path.string();
@@ -70,12 +70,6 @@ std::optional<FieldProblem> ImageSideProblem(double v, std::string_view what) {
   return std::nullopt;
 }
 
-std::string MessageNumber(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.6g", v);
-  return buf;
-}
-
 void FailField(std::string_view file, std::string_view field, std::string_view reason, std::string_view fix) {
   throw InputError(std::string(file) + ": " + (field.empty() ? std::string("(top level)") : std::string(field)) + ": " +
                    std::string(reason) + "; " + std::string(fix));
@@ -87,4 +81,4 @@ void FailSyntax(std::string_view file, std::string_view text, size_t offset, std
                    std::string(fix));
 }
 
-}  // namespace vstcal::io
+}  // namespace vstcal

@@ -10,7 +10,7 @@
 #include <string>
 #include <string_view>
 
-namespace vstcal::io {
+namespace vstcal {
 
 // The whole file as bytes. `kind` completes "is a directory, not <kind>" (e.g. "a JSON file").
 // Errors: no such file, a directory, cannot open.
@@ -21,9 +21,6 @@ bool IsBlank(std::string_view text);
 
 // 1-based "line L, column C" of a byte offset in a text (columns count bytes).
 std::string LineColumn(std::string_view text, size_t offset);
-
-// A number as messages quote it: six significant digits ("%.6g": 61.3, 1e+06, -0.00125).
-std::string MessageNumber(double v);
 
 // A value's problem, before it is tied to a file and a field.
 struct FieldProblem {
@@ -41,4 +38,4 @@ std::optional<FieldProblem> ImageSideProblem(double v, std::string_view what);
 [[noreturn]] void FailSyntax(std::string_view file, std::string_view text, size_t offset, std::string_view reason,
                              std::string_view fix);
 
-}  // namespace vstcal::io
+}  // namespace vstcal

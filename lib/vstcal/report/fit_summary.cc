@@ -2,7 +2,7 @@
 
 #include <cstdio>
 
-#include "vstcal/calib/measured_volume.h"
+#include "vstcal/scene/measured_volume.h"
 #include "vstcal/camera/intrinsics.h"
 
 namespace vstcal {

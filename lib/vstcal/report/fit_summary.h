@@ -3,7 +3,7 @@
 
 #include <string>
 
-#include "vstcal/calib/calibrated_camera.h"
+#include "vstcal/scene/calibrated_camera.h"
 
 namespace vstcal {
 

@@ -5,9 +5,9 @@
 
 #include <Eigen/Eigenvalues>
 
-#include "vstcal/calib/uncertainty.h"
+#include "vstcal/estimators/uncertainty.h"
 #include "vstcal/core/error.h"
-#include "vstcal/report/registration_error.h"
+#include "vstcal/geometry/registration_error.h"
 
 namespace vstcal {
 namespace {

@@ -9,7 +9,7 @@
 //   point and where it was seen;
 //   lateral error at the point's depth: the offset Δ from X_c to where the ray through m crosses the
 //   plane through X_c normal to the line of sight, Holloway's lateral term |Δ × ℓ| of
-//   report/registration_error.h (= d·tan θ at distance d = |X_c|), in the correspondences' length unit;
+//   geometry/registration_error.h (= d·tan θ at distance d = |X_c|), in the correspondences' length unit;
 //   normalized residual z = √(rᵀ Σ_r⁻¹ r) where the camera carries a covariance and σ̂:
 //   Σ_r = σ̂²/w·I − Σ_p for the points the camera was fit to (the residual of a least-squares fit
 //   is smaller than the noise by the projection's own uncertainty Σ_p), Σ_r = σ̂²·I + Σ_p for
@@ -25,9 +25,9 @@
 
 #include <Eigen/Core>
 
-#include "vstcal/calib/calibrated_camera.h"
-#include "vstcal/calib/correspondences.h"
-#include "vstcal/calib/measured_volume.h"
+#include "vstcal/scene/calibrated_camera.h"
+#include "vstcal/scene/correspondences.h"
+#include "vstcal/scene/measured_volume.h"
 #include "vstcal/report/statistics.h"
 
 namespace vstcal {

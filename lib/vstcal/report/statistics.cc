@@ -1,19 +1,13 @@
 #include "vstcal/report/statistics.h"
 
+#include "vstcal/sensitivity/bootstrap.h"
+
 #include <algorithm>
 #include <cmath>
 
 #include "vstcal/core/error.h"
 
 namespace vstcal {
-
-double SortedQuantile(std::span<const double> sorted, double q) {
-  VSTCAL_CHECK(!sorted.empty() && q >= 0 && q <= 1, "a quantile of at least one value, q in [0, 1]");
-  const double h = q * static_cast<double>(sorted.size() - 1);
-  const size_t lo = static_cast<size_t>(std::floor(h));
-  if (lo + 1 >= sorted.size()) return sorted.back();
-  return sorted[lo] + (h - static_cast<double>(lo)) * (sorted[lo + 1] - sorted[lo]);
-}
 
 std::optional<ErrorStats> ComputeErrorStats(std::span<const double> values) {
   if (values.empty()) return std::nullopt;

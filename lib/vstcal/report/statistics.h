@@ -27,9 +27,6 @@ struct ErrorStats {
 // cannot measure and count it).
 std::optional<ErrorStats> ComputeErrorStats(std::span<const double> values);
 
-// Type-7 quantile of values already sorted ascending, q ∈ [0, 1]; at least one value.
-double SortedQuantile(std::span<const double> sorted, double q);
-
 // A cols × rows grid over the image: cell (c, r) covers u ∈ [−0.5 + c·W/cols, −0.5 + (c+1)·W/cols)
 // and likewise v (pixel centres at integers, docs/conventions.md); a pixel outside the image
 // belongs to no cell.

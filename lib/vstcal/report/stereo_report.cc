@@ -6,9 +6,9 @@
 
 #include "vstcal/core/error.h"
 #include "vstcal/geometry/rotation.h"
-#include "vstcal/report/registration_error.h"
-#include "vstcal/stereo/pose_refine.h"
-#include "vstcal/stereo/stereo_solve.h"
+#include "vstcal/geometry/registration_error.h"
+#include "vstcal/estimators/pose_refine.h"
+#include "vstcal/scene/view_keys.h"
 
 namespace vstcal {
 namespace {

@@ -8,7 +8,7 @@
 // left pixels alone (pose_refine.h SolvePnp: one pose for a volume, one per view for planar
 // views), which puts the known point in the left frame: X = left_from_<frame> · X_target. The
 // point the rig sees, P, is the midpoint of the closest approach of the two measured pixels' rays
-// (TriangulateMidpoint, report/registration_error.h), the left ray from the origin and the right
+// (TriangulateMidpoint, geometry/registration_error.h), the left ray from the origin and the right
 // one from the right camera's centre c_r = −Rᵀt along Rᵀ·ray_r. Then, in the rig's length unit:
 //   per axis    Δ = P − X, in the left camera's frame (x right, y down, z forward);
 //   Holloway    linear, lateral, depth, angular of Δ seen from the cyclopean eye c = c_r/2
@@ -23,11 +23,11 @@
 
 #include <Eigen/Core>
 
-#include "vstcal/calib/correspondences.h"
-#include "vstcal/calib/measured_volume.h"
+#include "vstcal/scene/correspondences.h"
+#include "vstcal/scene/measured_volume.h"
 #include "vstcal/report/reprojection_report.h"
 #include "vstcal/report/statistics.h"
-#include "vstcal/stereo/stereo_rig.h"
+#include "vstcal/scene/stereo_rig.h"
 
 namespace vstcal {
 

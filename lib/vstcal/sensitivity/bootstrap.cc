@@ -7,7 +7,7 @@
 #include "vstcal/random/philox.h"
 #include "vstcal/sensitivity/unit_points.h"
 
-namespace vstcal::sensitivity {
+namespace vstcal {
 
 void BootstrapRows(uint64_t seed, uint64_t replicate, size_t num_rows, std::vector<size_t>& rows) {
   VSTCAL_CHECK(num_rows > 0, "bootstrap of no rows");
@@ -25,12 +25,12 @@ void BootstrapRows(uint64_t seed, uint64_t replicate, size_t num_rows, std::vect
   }
 }
 
-double SortedQuantile(const std::vector<double>& sorted, double p) {
+double SortedQuantile(std::span<const double> sorted, double p) {
   VSTCAL_CHECK(!sorted.empty() && p >= 0 && p <= 1, "quantile of an empty sample or p outside [0, 1]");
   const double h = p * static_cast<double>(sorted.size() - 1);
   const size_t lo = static_cast<size_t>(std::floor(h));
-  const size_t hi = std::min(lo + 1, sorted.size() - 1);
-  return sorted[lo] + (h - static_cast<double>(lo)) * (sorted[hi] - sorted[lo]);
+  if (lo + 1 >= sorted.size()) return sorted.back();
+  return sorted[lo] + (h - static_cast<double>(lo)) * (sorted[lo + 1] - sorted[lo]);
 }
 
 Estimate SummarizeReplicates(double value, std::vector<double> replicates, double confidence) {
@@ -49,4 +49,4 @@ Estimate SummarizeReplicates(double value, std::vector<double> replicates, doubl
   return e;
 }
 
-}  // namespace vstcal::sensitivity
+}  // namespace vstcal

@@ -5,9 +5,10 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <span>
 #include <vector>
 
-namespace vstcal::sensitivity {
+namespace vstcal {
 
 struct Interval {
   double lo = 0;
@@ -26,10 +27,10 @@ void BootstrapRows(uint64_t seed, uint64_t replicate, size_t num_rows, std::vect
 
 // Sample quantile of `sorted` (ascending, non-empty) at probability p ∈ [0, 1], linear
 // interpolation between order statistics (Hyndman & Fan type 7, R's and NumPy's default).
-double SortedQuantile(const std::vector<double>& sorted, double p);
+double SortedQuantile(std::span<const double> sorted, double p);
 
 // value ± the replicates' spread: SE = their standard deviation, interval = their
 // (1 − confidence)/2 and (1 + confidence)/2 quantiles (the percentile interval).
 Estimate SummarizeReplicates(double value, std::vector<double> replicates, double confidence);
 
-}  // namespace vstcal::sensitivity
+}  // namespace vstcal

@@ -7,7 +7,7 @@
 
 #include "vstcal/core/error.h"
 
-namespace vstcal::sensitivity {
+namespace vstcal {
 namespace {
 
 bool Autodiff(const Model& model, const std::vector<double>& theta, const std::vector<size_t>& wanted,
@@ -85,4 +85,4 @@ JacobianResult ComputeJacobian(const ParameterSpace& space, const Model& model, 
   return out;
 }
 
-}  // namespace vstcal::sensitivity
+}  // namespace vstcal

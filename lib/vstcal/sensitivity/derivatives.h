@@ -16,7 +16,7 @@
 #include "vstcal/sensitivity/model.h"
 #include "vstcal/sensitivity/parameter_space.h"
 
-namespace vstcal::sensitivity {
+namespace vstcal {
 
 enum class DerivativeMethod { kAutodiff, kCentralDifference };
 std::string DerivativeMethodName(DerivativeMethod method);  // "autodiff" / "central-difference"
@@ -33,4 +33,4 @@ struct JacobianResult {
 JacobianResult ComputeJacobian(const ParameterSpace& space, const Model& model, const std::vector<double>& theta,
                                const std::vector<size_t>& parameters = {});
 
-}  // namespace vstcal::sensitivity
+}  // namespace vstcal

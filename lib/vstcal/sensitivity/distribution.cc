@@ -6,7 +6,7 @@
 #include "vstcal/core/error.h"
 #include "vstcal/sensitivity/normal_quantile.h"
 
-namespace vstcal::sensitivity {
+namespace vstcal {
 namespace {
 
 template <class... Ts>
@@ -83,4 +83,4 @@ std::string Distribution::Describe() const {
   return out.str();
 }
 
-}  // namespace vstcal::sensitivity
+}  // namespace vstcal

@@ -6,7 +6,7 @@
 #include <string>
 #include <variant>
 
-namespace vstcal::sensitivity {
+namespace vstcal {
 
 class Distribution {
  public:
@@ -45,4 +45,4 @@ class Distribution {
   std::variant<Normal, Uniform, Fixed> form_;
 };
 
-}  // namespace vstcal::sensitivity
+}  // namespace vstcal

@@ -5,7 +5,7 @@
 
 #include "vstcal/core/error.h"
 
-namespace vstcal::sensitivity {
+namespace vstcal {
 namespace {
 
 Eigen::VectorXd ToEigen(const std::vector<double>& v) {
@@ -88,4 +88,4 @@ std::vector<OutputComparison> CompareLinearWithMonteCarlo(const LinearPropagatio
   return rows;
 }
 
-}  // namespace vstcal::sensitivity
+}  // namespace vstcal

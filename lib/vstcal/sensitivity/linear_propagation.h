@@ -22,7 +22,7 @@
 #include "vstcal/sensitivity/model.h"
 #include "vstcal/sensitivity/parameter_space.h"
 
-namespace vstcal::sensitivity {
+namespace vstcal {
 
 struct LinearPropagation {
   bool defined = false;  // false: the model is undefined at θ₀ (message says so); nothing else is set
@@ -66,4 +66,4 @@ std::vector<OutputComparison> CompareLinearWithMonteCarlo(const LinearPropagatio
                                                           const MonteCarloSummary& monte_carlo,
                                                           const ComparisonOptions& options = {});
 
-}  // namespace vstcal::sensitivity
+}  // namespace vstcal

@@ -6,7 +6,7 @@
 
 #include "vstcal/core/error.h"
 
-namespace vstcal::sensitivity {
+namespace vstcal {
 namespace {
 
 constexpr uint64_t kMagnitude = 0x7fffffffffffffffull;
@@ -146,4 +146,4 @@ Percentile LogHistogram::Quantile(double p, double observed_min, double observed
   return out;
 }
 
-}  // namespace vstcal::sensitivity
+}  // namespace vstcal

@@ -24,7 +24,7 @@
 #include <memory>
 #include <vector>
 
-namespace vstcal::sensitivity {
+namespace vstcal {
 
 struct HistogramSpec {
   int min_exponent = -30;  // 2^−30 ≈ 9.3e-10
@@ -117,4 +117,4 @@ class LogHistogram {
   uint64_t total_ = 0;
 };
 
-}  // namespace vstcal::sensitivity
+}  // namespace vstcal

@@ -7,7 +7,7 @@
 
 #include "vstcal/core/error.h"
 
-namespace vstcal::sensitivity {
+namespace vstcal {
 namespace {
 
 constexpr size_t kLanes = BlockAccumulator::kLanes;
@@ -416,4 +416,4 @@ size_t MonteCarloSummary::MemoryBytes() const {
   return bytes;
 }
 
-}  // namespace vstcal::sensitivity
+}  // namespace vstcal

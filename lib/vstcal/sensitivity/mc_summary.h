@@ -26,7 +26,7 @@
 #include "vstcal/sensitivity/log_histogram.h"
 #include "vstcal/sensitivity/moments.h"
 
-namespace vstcal::sensitivity {
+namespace vstcal {
 
 // What fixes the bits: shards merge only when their plans are equal.
 struct SummaryPlan {
@@ -153,4 +153,4 @@ class MonteCarloSummary {
   uint64_t undefined_ = 0;
 };
 
-}  // namespace vstcal::sensitivity
+}  // namespace vstcal

@@ -5,7 +5,7 @@
 #include "vstcal/core/error.h"
 #include "vstcal/sensitivity/parameter_space.h"
 
-namespace vstcal::sensitivity {
+namespace vstcal {
 
 Model::Model(size_t num_parameters, std::vector<std::string> output_names, Function function)
     : num_parameters_(num_parameters), output_names_(std::move(output_names)), function_(std::move(function)) {
@@ -38,4 +38,4 @@ void RequireCompatible(const ParameterSpace& space, const Model& model) {
   }
 }
 
-}  // namespace vstcal::sensitivity
+}  // namespace vstcal

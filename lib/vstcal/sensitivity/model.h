@@ -26,7 +26,7 @@
 
 #include <ceres/jet.h>
 
-namespace vstcal::sensitivity {
+namespace vstcal {
 
 // Partial derivatives carried per forward-mode pass: n parameters take ⌈n/8⌉ passes (8 for n = 60).
 inline constexpr int kJetChunk = 8;
@@ -71,4 +71,4 @@ class Model {
 class ParameterSpace;
 void RequireCompatible(const ParameterSpace& space, const Model& model);
 
-}  // namespace vstcal::sensitivity
+}  // namespace vstcal

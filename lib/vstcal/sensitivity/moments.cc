@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-namespace vstcal::sensitivity {
+namespace vstcal {
 
 void Moments::Add(double x) {
   const double n1 = static_cast<double>(count);
@@ -63,4 +63,4 @@ double Moments::StandardDeviationStandardError() const {
   return std::sqrt(var_s2) / (2 * std::sqrt(variance));
 }
 
-}  // namespace vstcal::sensitivity
+}  // namespace vstcal

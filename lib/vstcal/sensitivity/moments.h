@@ -8,7 +8,7 @@
 #include <cstdint>
 #include <limits>
 
-namespace vstcal::sensitivity {
+namespace vstcal {
 
 struct Moments {
   uint64_t count = 0;
@@ -28,4 +28,4 @@ struct Moments {
   double StandardDeviationStandardError() const;
 };
 
-}  // namespace vstcal::sensitivity
+}  // namespace vstcal

@@ -3,9 +3,9 @@
 #include <mutex>
 #include <vector>
 
-#include "vstcal/sensitivity/parallel.h"
+#include "vstcal/core/parallel.h"
 
-namespace vstcal::sensitivity {
+namespace vstcal {
 
 SummaryPlan MakePlan(const Model& model, const MonteCarloOptions& options) {
   SummaryPlan plan;
@@ -49,4 +49,4 @@ MonteCarloSummary RunMonteCarlo(const ParameterSpace& space, const Model& model,
   return summary;
 }
 
-}  // namespace vstcal::sensitivity
+}  // namespace vstcal

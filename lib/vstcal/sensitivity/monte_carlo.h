@@ -10,7 +10,7 @@
 #include "vstcal/sensitivity/parameter_space.h"
 #include "vstcal/sensitivity/unit_points.h"
 
-namespace vstcal::sensitivity {
+namespace vstcal {
 
 struct MonteCarloOptions {
   uint64_t samples = 100000;
@@ -30,4 +30,4 @@ SummaryPlan MakePlan(const Model& model, const MonteCarloOptions& options);
 // counted in undefined_samples() and left out of every statistic.
 MonteCarloSummary RunMonteCarlo(const ParameterSpace& space, const Model& model, const MonteCarloOptions& options);
 
-}  // namespace vstcal::sensitivity
+}  // namespace vstcal

@@ -5,7 +5,7 @@
 
 #include "vstcal/core/error.h"
 
-namespace vstcal::sensitivity {
+namespace vstcal {
 namespace {
 
 // Horner evaluation of c[0] + c[1] r + … + c[7] r⁷, in the nesting order of the published
@@ -61,4 +61,4 @@ double NormalQuantile(double p) {
   return q < 0 ? -value : value;
 }
 
-}  // namespace vstcal::sensitivity
+}  // namespace vstcal

@@ -4,11 +4,11 @@
 // are bit-identical on every x86-64 machine — unlike std::normal_distribution.
 #pragma once
 
-namespace vstcal::sensitivity {
+namespace vstcal {
 
 // Φ⁻¹(p) for 0 < p < 1, relative error about 1e-16 (docs/math/sensitivity.md#normal-quantile).
 // Symmetric: NormalQuantile(1 − p) == −NormalQuantile(p) whenever 1 − p is exact.
 // Throws InputError for p outside (0, 1) (including NaN): ±∞ would poison every sum downstream.
 double NormalQuantile(double p);
 
-}  // namespace vstcal::sensitivity
+}  // namespace vstcal

@@ -4,7 +4,7 @@
 
 #include "vstcal/core/error.h"
 
-namespace vstcal::sensitivity {
+namespace vstcal {
 namespace {
 
 struct Range {
@@ -68,4 +68,4 @@ SweepResult SweepParameter(const ParameterSpace& space, const Model& model, size
   return out;
 }
 
-}  // namespace vstcal::sensitivity
+}  // namespace vstcal

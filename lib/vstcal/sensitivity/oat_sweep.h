@@ -15,7 +15,7 @@
 #include "vstcal/sensitivity/model.h"
 #include "vstcal/sensitivity/parameter_space.h"
 
-namespace vstcal::sensitivity {
+namespace vstcal {
 
 struct SweepOptions {
   size_t points = 41;  // ≥ 2, evenly spaced from lo to hi inclusive
@@ -40,4 +40,4 @@ struct SweepResult {
 SweepResult SweepParameter(const ParameterSpace& space, const Model& model, size_t parameter,
                            const SweepOptions& options = {});
 
-}  // namespace vstcal::sensitivity
+}  // namespace vstcal

@@ -5,7 +5,7 @@
 
 #include "vstcal/core/error.h"
 
-namespace vstcal::sensitivity {
+namespace vstcal {
 
 ParameterSpace::ParameterSpace(std::vector<Parameter> parameters) {
   for (Parameter& p : parameters) Add(std::move(p));
@@ -66,4 +66,4 @@ void ParameterSpace::ToParameters(const double* u, double* theta) const {
   for (size_t i = 0; i < size(); ++i) theta[i] = parameters_[i].distribution.Quantile(u[i]);
 }
 
-}  // namespace vstcal::sensitivity
+}  // namespace vstcal

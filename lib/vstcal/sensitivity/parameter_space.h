@@ -11,7 +11,7 @@
 
 #include "vstcal/sensitivity/distribution.h"
 
-namespace vstcal::sensitivity {
+namespace vstcal {
 
 struct Parameter {
   std::string name;   // unique in the space
@@ -56,4 +56,4 @@ class ParameterSpace {
   std::vector<std::vector<size_t>> group_members_;
 };
 
-}  // namespace vstcal::sensitivity
+}  // namespace vstcal

@@ -4,9 +4,9 @@
 #include <limits>
 
 #include "vstcal/core/error.h"
-#include "vstcal/sensitivity/parallel.h"
+#include "vstcal/core/parallel.h"
 
-namespace vstcal::sensitivity {
+namespace vstcal {
 namespace {
 
 // Samples per parallel task: large enough to amortise the Sobol engine's set-up, small enough to
@@ -182,4 +182,4 @@ SobolResult EstimateSobolIndices(const ParameterSpace& space, const Model& model
   return result;
 }
 
-}  // namespace vstcal::sensitivity
+}  // namespace vstcal

@@ -29,7 +29,7 @@
 #include "vstcal/sensitivity/parameter_space.h"
 #include "vstcal/sensitivity/unit_points.h"
 
-namespace vstcal::sensitivity {
+namespace vstcal {
 
 struct SobolOptions {
   uint64_t samples = 8192;  // N; with kSobol a power of two keeps the points a net
@@ -69,4 +69,4 @@ struct SobolResult {
 // InputError for N < 2, a confidence outside (0, 1), or a model that does not fit the space.
 SobolResult EstimateSobolIndices(const ParameterSpace& space, const Model& model, const SobolOptions& options);
 
-}  // namespace vstcal::sensitivity
+}  // namespace vstcal

@@ -5,7 +5,7 @@
 #include "vstcal/core/error.h"
 #include "vstcal/random/philox.h"
 
-namespace vstcal::sensitivity {
+namespace vstcal {
 namespace {
 
 // Lane of the Philox blocks that hold the Sobol digital shifts: far above any lane a sample uses
@@ -77,4 +77,4 @@ void UnitPoints::FillSobol(uint64_t first, size_t count, double* out) const {
   }
 }
 
-}  // namespace vstcal::sensitivity
+}  // namespace vstcal

@@ -20,7 +20,7 @@
 #include <string>
 #include <vector>
 
-namespace vstcal::sensitivity {
+namespace vstcal {
 
 enum class SamplingMethod { kPseudoRandom, kSobol };
 
@@ -55,4 +55,4 @@ class UnitPoints {
 // (k + ½)/2^53 for the top 53 bits k of a 64-bit word.
 inline double ToOpenUnit(uint64_t bits) { return (static_cast<double>(bits >> 11) + 0.5) * 0x1.0p-53; }
 
-}  // namespace vstcal::sensitivity
+}  // namespace vstcal

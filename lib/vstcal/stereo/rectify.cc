@@ -4,7 +4,7 @@
 
 #include "vstcal/camera/opencv_mat.h"
 #include "vstcal/core/error.h"
-#include "vstcal/io/peer_formats.h"
+#include "vstcal/camera/opencv_distortion.h"
 
 namespace vstcal {
 namespace {
@@ -30,8 +30,8 @@ Rectification Rectify(const StereoRig& rig, const RectifyOptions& options, std::
     throw InputError("alpha: must be -1 or lie in [0, 1], got " + std::to_string(options.alpha) +
                      "; give OpenCV's free scaling parameter");
   }
-  io::RefuseSkew(rig.left.camera, std::string(source) + ": left", "OpenCV's stereoRectify");
-  io::RefuseSkew(rig.right.camera, std::string(source) + ": right", "OpenCV's stereoRectify");
+  RefuseSkew(rig.left.camera, std::string(source) + ": left", "OpenCV's stereoRectify");
+  RefuseSkew(rig.right.camera, std::string(source) + ": right", "OpenCV's stereoRectify");
   cv::Mat R1, R2, P1, P2, Q;
   cv::Rect roi1, roi2;
   cv::stereoRectify(ToCvMat(rig.left.camera.K()), OpenCvDistortionMat(rig.left.camera), ToCvMat(rig.right.camera.K()),

@@ -5,7 +5,7 @@
 
 #include <string_view>
 
-#include "vstcal/stereo/stereo_rig.h"
+#include "vstcal/scene/stereo_rig.h"
 
 namespace vstcal {
 

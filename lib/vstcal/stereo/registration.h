@@ -17,11 +17,11 @@
 #include <string_view>
 #include <vector>
 
-#include "vstcal/calib/fit.h"
-#include "vstcal/stereo/pnp.h"
-#include "vstcal/stereo/pose_refine.h"
-#include "vstcal/stereo/stereo_rig.h"
-#include "vstcal/stereo/tracks.h"
+#include "vstcal/scene/fit.h"
+#include "vstcal/estimators/pnp.h"
+#include "vstcal/estimators/pose_refine.h"
+#include "vstcal/scene/stereo_rig.h"
+#include "vstcal/scene/tracks.h"
 
 namespace vstcal {
 

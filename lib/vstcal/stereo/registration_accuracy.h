@@ -7,7 +7,7 @@
 #include <span>
 #include <vector>
 
-#include "vstcal/calib/fit.h"
+#include "vstcal/scene/fit.h"
 #include "vstcal/stereo/registration.h"
 
 namespace vstcal {

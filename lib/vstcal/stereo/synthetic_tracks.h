@@ -6,8 +6,8 @@
 
 #include <cstdint>
 
-#include "vstcal/stereo/stereo_rig.h"
-#include "vstcal/stereo/tracks.h"
+#include "vstcal/scene/stereo_rig.h"
+#include "vstcal/scene/tracks.h"
 
 namespace vstcal {
 

@@ -1,0 +1,217 @@
+#include "vstcal/app/calib_capture.h"
+
+#include <glob.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cstdio>
+#include <set>
+
+#include "vstcal/formats/capture/capture_io.h"
+#include "vstcal/image/image_io.h"
+#include "vstcal/capture/overlay.h"
+#include "vstcal/capture/target_drawing.h"
+#include "vstcal/formats/capture/target_io.h"
+#include "vstcal/formats/capture/volume_manifest.h"
+#include "vstcal/core/error.h"
+#include "vstcal/formats/camera/camera_io.h"
+#include "vstcal/formats/camera/correspondences_io.h"
+
+namespace vstcal::app {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr size_t kMaxOverlays = 2000;
+
+bool IsImageName(const fs::path& p) {
+  std::string ext = p.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  for (const char* known : {".png", ".jpg", ".jpeg", ".bmp", ".tif", ".tiff", ".pgm", ".ppm", ".pnm", ".webp"}) {
+    if (ext == known) return true;
+  }
+  return false;
+}
+
+fs::path Canonical(const fs::path& p) {
+  std::error_code ec;
+  fs::path c = fs::weakly_canonical(p, ec);
+  return ec ? p.lexically_normal() : c;
+}
+
+// Outputs never replace an input.
+void RefuseOverwriting(const Outcome& outputs, const std::vector<fs::path>& inputs) {
+  std::set<fs::path> in;
+  for (const fs::path& p : inputs) in.insert(Canonical(p));
+  for (const auto& [path, bytes] : outputs.files) {
+    if (in.count(Canonical(path))) {
+      throw InputError(path.string() + ": is an input of this run; writing it would destroy the input: choose another output");
+    }
+  }
+}
+
+std::string Join(const std::vector<std::pair<fs::path, std::string>>& files, size_t max) {
+  std::string out;
+  for (size_t k = 0; k < files.size() && k < max; ++k) out += (k ? ", " : "") + files[k].first.string();
+  if (files.size() > max) out += " and " + std::to_string(files.size() - max) + " more";
+  return out;
+}
+
+std::string Flag(std::string field) {
+  std::replace(field.begin(), field.end(), '_', '-');
+  return "--" + field;
+}
+
+}  // namespace
+
+Outcome MakeTarget(const TargetRequest& request, const Provenance& provenance) {
+  if (const auto problem = CheckTarget(request.target)) throw InputError(Flag(problem->field) + ": " + problem->reason + "; " + problem->fix);
+  if (request.output.empty()) throw InputError("-o/--output: give the output's name (e.g. board)");
+  if (!(request.dpi >= 0)) throw InputError("--dpi: must be ≥ 0 (0: no PNG)");
+  Outcome out;
+  out.create_folders = true;
+  out.files.emplace_back(request.output + ".target.json", DumpJson(TargetToJson(request.target, provenance)));
+  out.files.emplace_back(request.output + ".svg", TargetSvg(request.target));
+  std::string png;
+  if (request.dpi > 0) {
+    const GrayImage image = RasterizeTarget(request.target, request.dpi);
+    out.files.emplace_back(request.output + ".png", EncodePng(image, request.dpi));
+    char buf[96];
+    std::snprintf(buf, sizeof buf, " (%g dpi, %d × %d px)", request.dpi, image.width, image.height);
+    png = buf;
+  }
+  const Rect sheet = SheetExtent(request.target);
+  const double mm = MetresPer(request.target.length_unit) * 1000;
+  char size[96];
+  std::snprintf(size, sizeof size, "%.1f × %.1f mm", sheet.width() * mm, sheet.height() * mm);
+  out.summary = "calib-capture: " + DescribeTarget(request.target) + " on a " + size + " sheet; wrote " + Join(out.files, 3) + png +
+                "; print at 100 % (actual size)";
+  return out;
+}
+
+std::vector<std::string> ExpandImageArguments(const std::vector<std::string>& arguments) {
+  std::vector<std::string> images;
+  for (const std::string& arg : arguments) {
+    std::error_code ec;
+    if (arg.empty()) throw InputError("an image argument is empty; give an image file, a folder or a glob");
+    if (fs::is_directory(arg, ec)) {
+      std::vector<std::string> found;
+      for (const fs::directory_entry& e : fs::directory_iterator(arg, ec)) {
+        if (e.is_regular_file(ec) && IsImageName(e.path())) found.push_back(e.path().string());
+      }
+      if (found.empty()) throw InputError(arg + ": no images (.png, .jpg, .jpeg, .bmp, .tif, .pgm …) in this folder; give the folder of the images");
+      std::sort(found.begin(), found.end());
+      images.insert(images.end(), found.begin(), found.end());
+    } else if (fs::exists(arg, ec)) {
+      images.push_back(arg);
+    } else if (arg.find_first_of("*?[") != std::string::npos) {
+      glob_t matches{};
+      const int status = glob(arg.c_str(), 0, nullptr, &matches);
+      std::vector<std::string> found;
+      if (status == 0) {
+        for (size_t k = 0; k < matches.gl_pathc; ++k) {
+          if (!fs::is_directory(matches.gl_pathv[k], ec)) found.emplace_back(matches.gl_pathv[k]);
+        }
+      }
+      globfree(&matches);
+      if (found.empty()) throw InputError(arg + ": no file matches this pattern; check the folder and the pattern (quote it for the shell)");
+      std::sort(found.begin(), found.end());
+      images.insert(images.end(), found.begin(), found.end());
+    } else {
+      throw InputError(arg + ": no such file or folder; check the path");
+    }
+  }
+  return images;
+}
+
+Outcome RunDetect(DetectCommand command, const Provenance& provenance, const Progress& progress) {
+  const int sources = !command.images.empty() + !command.manifest.empty() + !command.video.file.empty() + (command.video.camera_index >= 0);
+  if (sources != 1) {
+    throw InputError(std::string(sources == 0 ? "no images: give" : "several image sources: give only one of") +
+                     " image files/folders/globs, --manifest, --video or --camera-index");
+  }
+  if (!command.offset_pattern.empty() && command.images.empty()) {
+    throw InputError("--offset-from-name: reads offsets from image file names; give the images, or use --manifest");
+  }
+  if (!command.overlay_folder.empty() && (!command.video.file.empty() || command.video.camera_index >= 0)) {
+    throw InputError("--overlay: draws on image files; it does not apply to --video or --camera-index");
+  }
+  DetectRequest& request = command.detect;
+  request.target_file = command.target_file;
+  request.target = ReadTarget(command.target_file);
+  request.rig = !command.manifest.empty() || !command.offset_pattern.empty() ? Rig::kVolume : Rig::kPlanarViews;
+  // One world frame for every view: a numbering flipped in one view would put its corners at the
+  // wrong world points, so an ambiguous orientation is refused (chessboard_orientation.h).
+  request.detector.refuse_ambiguous_orientation = request.rig == Rig::kVolume;
+
+  std::vector<fs::path> inputs = {command.target_file};
+  std::vector<CaptureInput> files;
+  if (!command.manifest.empty()) {
+    inputs.push_back(command.manifest);
+    const VolumeManifest manifest = ReadVolumeManifest(command.manifest);
+    const double to_target = MetresPer(manifest.length_unit) / MetresPer(request.target.length_unit);
+    for (const ManifestImage& m : manifest.images) files.push_back({m.path.lexically_normal().string(), m.path, m.plane_offset * to_target});
+  } else {
+    for (const std::string& image : ExpandImageArguments(command.images)) {
+      std::optional<double> offset;
+      if (!command.offset_pattern.empty()) offset = OffsetFromName(image, command.offset_pattern, "--offset-from-name");
+      files.push_back({image, image, offset});
+    }
+  }
+  // Overlays are written with the output, all-or-nothing, so they are held in memory until then.
+  if (!command.overlay_folder.empty() && files.size() > kMaxOverlays) {
+    throw InputError("--overlay: " + std::to_string(files.size()) + " images; overlays are drawn for at most " + std::to_string(kMaxOverlays) +
+                     " at a time: run without --overlay, or on fewer images");
+  }
+  for (const CaptureInput& f : files) inputs.push_back(f.path);
+  if (!command.video.file.empty()) inputs.push_back(command.video.file);
+
+  if (command.output.empty()) throw InputError("-o/--output: give the correspondences file to write");
+  RefuseOverwriting({{{command.output, ""}}, ""}, inputs);  // before the work, not only after it
+  const CaptureResult result = files.empty() ? DetectInVideo(command.video, request, progress) : DetectInFiles(files, request, progress);
+  Outcome out;
+  out.create_folders = true;
+  out.files.emplace_back(command.output, DumpJson(CaptureToJson(result, request, provenance)));
+  if (!command.overlay_folder.empty()) {
+    for (size_t k = 0; k < result.images.size(); ++k) {
+      if (result.detections[k].corners.empty()) continue;
+      const LoadedImage loaded = LoadImageFile(files[k].path);
+      if (!loaded.problem.empty()) continue;
+      const std::string name = result.images[k].view.empty() ? fs::path(files[k].image).stem().string() : result.images[k].view;
+      out.files.emplace_back(fs::path(command.overlay_folder) / (name + ".png"), OverlayPng(loaded.image, request.target, result.detections[k]));
+    }
+  }
+  RefuseOverwriting(out, inputs);
+  out.summary = "calib-capture: " + DescribeCounts(result.images) + "; " + std::to_string(NumObservations(result.correspondences)) +
+                " corners in " + std::to_string(result.correspondences.views.size()) + " views (rig " +
+                (request.rig == Rig::kVolume ? "volume" : "planar-views") + "); wrote " + Join(out.files, 2);
+  return out;
+}
+
+Outcome RunRender(const RenderCommand& command, const Provenance& provenance) {
+  const Target target = ReadTarget(command.target_file);
+  const CalibratedCamera camera = ReadCamera(command.camera_file);
+  if (command.output_folder.empty()) throw InputError("-o/--output: give the folder to write the images to");
+  const RenderedScene scene = RenderScene(camera.camera, target, command.scene);
+  const fs::path folder(command.output_folder);
+  Outcome out;
+  out.create_folders = true;
+  for (size_t k = 0; k < scene.names.size(); ++k) out.files.emplace_back(folder / (scene.names[k] + ".png"), EncodePng(scene.images[k]));
+  out.files.emplace_back(folder / "truth.json", DumpJson(CorrespondencesToJson(scene.truth, provenance)));
+  CalibratedCamera truth = scene.truth_camera;
+  truth.name = camera.name;
+  out.files.emplace_back(folder / "camera.truth.json", DumpJson(CameraToJson(truth, provenance)));
+  if (command.scene.rig == Rig::kVolume) {
+    VolumeManifest manifest;
+    manifest.length_unit = target.length_unit;
+    for (const View& v : scene.truth.views) manifest.images.push_back({v.image, folder / v.image, *v.plane_offset});
+    out.files.emplace_back(folder / "manifest.json", DumpJson(VolumeManifestToJson(manifest, provenance)));
+  }
+  RefuseOverwriting(out, {command.target_file, command.camera_file});
+  out.summary = "calib-capture: rendered " + std::to_string(scene.names.size()) + " " + std::to_string(camera.camera.image_size.width) + "×" +
+                std::to_string(camera.camera.image_size.height) + " images of the " + DescribeTarget(target) + "; wrote " + Join(out.files, 2) +
+                " … in " + folder.string();
+  return out;
+}
+
+}  // namespace vstcal::app

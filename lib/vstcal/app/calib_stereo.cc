@@ -1,0 +1,219 @@
+#include "vstcal/app/calib_stereo.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <initializer_list>
+
+#include "vstcal/core/error.h"
+#include "vstcal/formats/camera/camera_convert.h"
+#include "vstcal/formats/camera/correspondences_io.h"
+#include "vstcal/formats/stereo/display_plan_io.h"
+#include "vstcal/formats/stereo/registration_io.h"
+#include "vstcal/formats/stereo/stereo_io.h"
+#include "vstcal/formats/stereo/stereo_peer_formats.h"
+
+namespace vstcal::app {
+namespace {
+
+std::string Format(const char* format, auto... values) {
+  char buf[512];
+  std::snprintf(buf, sizeof buf, format, values...);
+  return buf;
+}
+
+ImportedCamera ReadAnyCamera(const std::string& path, std::optional<LengthUnit> unit) {
+  const auto format = CameraFileFormatFromPath(path);
+  if (!format) {
+    throw InputError(path + ": cannot tell the format from the file name; name it .json (vstcal/camera@1), .yaml or "
+                            ".yml (OpenCV) or .cameramodel (mrcal)");
+  }
+  ImportedCamera in = ReadCameraFile(path, *format, {unit, std::nullopt});
+  // mrcal's all-zero extrinsics mean "this camera is the reference".
+  if (*format == CameraFileFormat::kMrcal && !in.camera.camera_from_world) in.camera.camera_from_world = Rigid3d::Identity();
+  return in;
+}
+
+std::string RigSummary(const StereoRig& rig) {
+  const std::string unit(LengthUnitName(rig.length_unit));
+  const Eigen::Vector3d c = rig.right_from_left.inverse().t;  // right camera centre in the left frame
+  std::string s = Format("baseline %.6g %s; right camera centre in the left frame (%.6g, %.6g, %.6g) %s; rotation %.4g deg\n",
+                         rig.baseline(), unit.c_str(), c.x(), c.y(), c.z(), unit.c_str(),
+                         RadToDeg(AngleBetween(rig.right_from_left.R, Eigen::Matrix3d::Identity())));
+  if (const auto sigma = BaselineSigma(rig)) s += Format("baseline sigma %.3g %s\n", *sigma, unit.c_str());
+  return s;
+}
+
+}  // namespace
+
+Outcome Assemble(const AssembleRequest& request, const Provenance& provenance) {
+  AssembleInput input;
+  ImportedCamera left = ReadAnyCamera(request.left, request.length_unit);
+  ImportedCamera right = ReadAnyCamera(request.right, request.length_unit);
+  input.left = std::move(left.camera);
+  input.right = std::move(right.camera);
+  input.left_name = request.left;
+  input.right_name = request.right;
+  input.right_from_left = request.right_from_left;
+  input.length_unit = request.length_unit.value_or(LengthUnit::kMillimetre);
+  StereoRig rig = AssembleRig(input);
+  if (request.rectify) rig.rectification = Rectify(rig, *request.rectify, request.output);
+  Outcome out;
+  out.files.emplace_back(request.output, DumpJson(StereoRigToJson(rig, provenance)));
+  for (const auto& note : left.notes) out.summary += "note: " + note + "\n";
+  for (const auto& note : right.notes) out.summary += "note: " + note + "\n";
+  out.summary += RigSummary(rig);
+  return out;
+}
+
+Outcome Solve(const SolveRequest& request, const Provenance& provenance) {
+  const Correspondences left = ReadCorrespondences(request.left), right = ReadCorrespondences(request.right);
+  StereoSolveOptions options = request.options;
+  Outcome out;
+  for (auto [file, camera] : {std::pair{&request.left_camera, &options.left_camera}, std::pair{&request.right_camera, &options.right_camera}}) {
+    if (file->empty()) continue;
+    ImportedCamera in = ReadAnyCamera(*file, left.length_unit);
+    *camera = in.camera.camera;
+    for (const auto& note : in.notes) out.summary += "note: " + note + "\n";
+  }
+  if ((options.hold_left && !options.left_camera) || (options.hold_right && !options.right_camera)) {
+    out.summary += "note: a held camera without --left-camera/--right-camera is held at its own calibration from its file\n";
+  }
+  StereoSolveResult solved = SolveStereo(left, right, options, request.left, request.right);
+  if (solved.exit_code != ExitCode::kOk) throw Error(solved.exit_code, solved.message);
+  StereoRig& rig = solved.rig;
+  if (request.rectify) rig.rectification = Rectify(rig, *request.rectify, request.output);
+  out.files.emplace_back(request.output, DumpJson(StereoRigToJson(rig, provenance)));
+  for (const auto& note : solved.notes) out.summary += "note: " + note + "\n";
+  // A volume is one board pose (the world) whatever its planes; say so rather than "1 views".
+  const std::string seen = left.rig == Rig::kVolume
+                               ? Format("the volume (one pose, %zu planes) seen by both cameras", left.views.size())
+                               : Format("%zu views seen by both cameras", solved.common_views.size());
+  out.summary += Format("%s; reprojection RMS %.3g px (left), %.3g px (right); sigma %.3g px; epipolar RMS %.3g px; "
+                     "%d iterations\n",
+                     seen.c_str(), solved.rms_left_px, solved.rms_right_px, solved.sigma_px,
+                     rig.fit ? rig.fit->epipolar.rms_px : 0.0, solved.iterations);
+  out.summary += RigSummary(rig);
+  return out;
+}
+
+Outcome Export(const ExportRequest& request, const Provenance& provenance) {
+  StereoRig rig = ReadStereoRig(request.rig);
+  if (request.rectify) rig.rectification = Rectify(rig, *request.rectify, request.rig);
+  Outcome out;
+  std::vector<std::string> notes;
+  if (!request.opencv.empty()) {
+    const ExportedCamera yaml = OpenCvStereoYamlText(rig, request.rig, provenance);
+    out.files.emplace_back(request.opencv, yaml.text);
+    notes.insert(notes.end(), yaml.notes.begin(), yaml.notes.end());
+  }
+  if (!request.mrcal_left.empty()) {
+    MrcalWriteOptions options;
+    options.length_unit = request.mrcal_length_unit;
+    const auto [l, r] = MrcalStereoTexts(rig, request.rig, options, provenance);
+    out.files.emplace_back(request.mrcal_left, l.text);
+    out.files.emplace_back(request.mrcal_right, r.text);
+    for (const auto* e : {&l, &r}) notes.insert(notes.end(), e->notes.begin(), e->notes.end());
+  }
+  for (const auto& note : notes) out.summary += "note: " + note + "\n";
+  return out;
+}
+
+Outcome Simulate(const SimulateRequest& request, const Provenance& provenance) {
+  const StereoRig rig = ReadStereoRig(request.rig);
+  const Tracks tracks = SyntheticTracks(rig, request.spec);
+  Outcome out;
+  out.files.emplace_back(request.output, DumpJson(TracksToJson(tracks, provenance)));
+  out.summary = Format("%zu frames, %zu embedded points, %zu virtual points, noise %.3g px\n", tracks.frames.size(),
+                    tracks.embedded.size(), tracks.virtual_points.size(), request.spec.noise_px);
+  return out;
+}
+
+Outcome Register(const RegisterRequest& request, const Provenance& provenance) {
+  const StereoRig rig = ReadStereoRig(request.rig);
+  const Tracks tracks = ReadTracks(request.tracks);
+  CheckTracksAgainstRig(rig, tracks, request.rig, request.tracks);
+  if (request.options.mode == RegistrationMode::kPerEye) {
+    for (size_t i = 0; i < tracks.frames.size(); ++i) {
+      if (tracks.frames[i].right.empty()) {
+        throw InputError(request.tracks + ": frames[" + std::to_string(i) +
+                         "].right: missing; per-eye registration needs the right image's pixels in every frame "
+                         "(or use --mode left)");
+      }
+    }
+  }
+  const auto start = std::chrono::steady_clock::now();
+  const std::vector<FrameRegistration> frames = RegisterSequence(rig, tracks, request.options);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  size_t registered = 0;
+  for (const auto& f : frames) registered += f.status == PoseStatus::kOk;
+  if (registered == 0) {
+    throw DegenerateError(request.tracks + ": frames: no frame could be registered (frame \"" + tracks.frames[0].name +
+                          "\": " + frames[0].failed_eye + " eye: " + std::string(PoseStatusText(frames[0].status)) +
+                          "); track at least 4 embedded points, not on one line, in each frame");
+  }
+  Outcome out;
+  const OrderedJson json = RegistrationToJson({request.rig, request.tracks, request.options}, rig, tracks, frames, provenance);
+  out.files.emplace_back(request.output, DumpJson(json));
+  out.summary = Format("%s registration: %zu of %zu frames registered, %.1f us per frame (%s start)\n",
+                    std::string(RegistrationModeName(request.options.mode)).c_str(), registered, frames.size(),
+                    1e6 * seconds / static_cast<double>(frames.size()),
+                    request.options.warm_start ? "previous-frame" : "closed-form");
+  for (const auto& f : json["frames"]) {
+    if (f["status"] == "excluded") out.summary += "excluded " + f["name"].get<std::string>() + ": " + f["reason"].get<std::string>() + "\n";
+  }
+  const auto& accuracy = json["summary"]["accuracy"];
+  if (!accuracy.is_null()) {
+    for (const char* eye : {"left", "right"}) {
+      out.summary += Format("%-5s vs truth: rotation RMS %.3g deg, centre RMS %.3g %s, virtual points RMS %.3g px (max %.3g)\n",
+                         eye, accuracy[eye]["rotation_deg"]["rms"].get<double>(),
+                         accuracy[eye]["centre_error"]["rms"].get<double>(), std::string(LengthUnitName(rig.length_unit)).c_str(),
+                         accuracy[eye]["virtual_px"]["rms"].get<double>(), accuracy[eye]["virtual_px"]["max"].get<double>());
+    }
+  }
+  return out;
+}
+
+Outcome Plan(const DisplayPlanRequest& request, const Provenance& provenance) {
+  DisplayPlanInput input = request.input;
+  LengthUnit unit = request.length_unit;
+  std::string text;
+  if (!request.rig.empty()) {
+    if (input.baseline != 0 || input.focal_px || input.hfov_rad || input.capture_width) {
+      throw InputError("--rig: the rig gives the baseline, the focal length and the capture width; drop --baseline, "
+                       "--focal-px, --hfov-deg and --capture-width, or drop --rig");
+    }
+    const StereoRig rig = ReadStereoRig(request.rig);
+    unit = rig.length_unit;
+    input.baseline = rig.baseline();
+    input.focal_px = rig.left.camera.params[0];
+    input.capture_width = rig.left.camera.image_size.width;
+    const double converge = RadToDeg(AngleBetween(rig.right_from_left.R, Eigen::Matrix3d::Identity()));
+    if (converge > 0.5) {
+      text += Format("note: %s: the cameras are rotated %.3g deg from each other; the plan assumes parallel cameras\n",
+                     request.rig.c_str(), converge);
+    }
+  }
+  const DisplayPlan plan = PlanDisplay(input);
+  Outcome out;
+  out.files.emplace_back(request.output, DumpJson(DisplayPlanToJson(input, plan, unit, provenance)));
+  const std::string u(LengthUnitName(unit));
+  text += Format("focal %.6g px, translation %.4g px, capture width needed %.6g px", plan.focal_px, plan.translation_px,
+                 plan.capture_width_needed);
+  if (plan.capture_margin_px) text += Format(" (margin %d px)", *plan.capture_margin_px);
+  text += "\n";
+  if (plan.diverges_beyond) text += Format("the viewer's eyes diverge beyond %.6g %s\n", *plan.diverges_beyond, u.c_str());
+  for (const DepthRow& r : plan.rows) {
+    text += Format("depth %10.6g %s: disparity %9.4g px, parallax %9.4g px (%s)", r.depth, u.c_str(), r.disparity_px,
+                   r.parallax_px, r.side < 0 ? "in front" : r.side > 0 ? "behind" : "on the screen");
+    if (input.viewer != Viewer::kNone) {
+      text += r.perceived_depth ? Format(", perceived at %.6g %s", *r.perceived_depth, u.c_str()) : std::string(", diverges");
+    }
+    text += "\n";
+  }
+  out.summary = text;
+  return out;
+}
+
+}  // namespace vstcal::app

@@ -1,0 +1,25 @@
+// What every command of the application layer returns (docs/architecture.md): the files it writes,
+// all or nothing, and the summary a tool prints on stderr. A tool's main only parses its flags into
+// a request, calls the command and hands the Outcome to WriteOutcome.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace vstcal::app {
+
+struct Outcome {
+  std::vector<std::pair<std::filesystem::path, std::string>> files;  // path, bytes
+  std::string summary;                                               // for stderr
+  // A missing folder of an output is created when its parent exists (calib-capture's overlay and
+  // render folders), and removed again if writing fails. Otherwise a missing folder is refused.
+  bool create_folders = false;
+};
+
+// Writes every file all-or-nothing (WriteFilesAtomically: no output may be an input, no two
+// outputs one file).
+void WriteOutcome(const Outcome& outcome);
+
+}  // namespace vstcal::app

@@ -1,0 +1,130 @@
+#include "vstcal/estimators/free_intrinsics.h"
+
+#include <algorithm>
+
+#include "vstcal/core/error.h"
+#include "vstcal/core/suggest.h"
+
+namespace vstcal {
+namespace {
+
+bool Named(const std::vector<std::string>& list, std::string_view name) {
+  return std::find(list.begin(), list.end(), name) != list.end();
+}
+
+// Every distortion term any model has: the largest model's (layouts are prefixes of each other,
+// camera.h), in its order.
+std::vector<std::string_view> AllDistortionTerms() {
+  using Largest = std::variant_alternative_t<std::variant_size_v<AnyLensModel> - 1, AnyLensModel>;
+  return {Largest::kParamNames.begin() + kNumIntrinsicParams, Largest::kParamNames.end()};
+}
+
+}  // namespace
+
+AnyLensModel RefinedModel(const AnyLensModel& initial, const RefineOptions& options) {
+  const std::vector<std::string_view> known = AllDistortionTerms();
+  for (const std::string& term : options.free_distortion) {
+    if (std::find(known.begin(), known.end(), term) == known.end()) {
+      throw InputError("--distortion: unknown term \"" + term + "\"; " + SuggestKey(term, known) +
+                       ", or none for no distortion");
+    }
+  }
+  std::optional<AnyLensModel> chosen;
+  ForEachLensModel([&](auto model) {
+    if (chosen || LensModelNumParams(model) < LensModelNumParams(initial)) return;
+    const auto names = LensModelParamNames(model);
+    const bool has_all = std::all_of(options.free_distortion.begin(), options.free_distortion.end(), [&](const std::string& t) {
+      return std::find(names.begin() + kNumIntrinsicParams, names.end(), t) != names.end();
+    });
+    if (has_all) chosen = model;
+  });
+  VSTCAL_CHECK(chosen.has_value(), "the largest model has every known term");
+  return *chosen;
+}
+
+std::vector<double> PromotedParams(const Camera& initial, const AnyLensModel& model) {
+  // Layouts are prefixes of each other (lens_models.h): a larger model starts with a smaller one.
+  std::vector<double> params(LensModelNumParams(model), 0.0);
+  VSTCAL_CHECK(initial.params.size() <= params.size(), "promotion never drops parameters");
+  std::copy(initial.params.begin(), initial.params.end(), params.begin());
+  return params;
+}
+
+std::vector<std::string> FreeIntrinsics::MovedParams(const AnyLensModel& model) const {
+  const auto all = LensModelParamNames(model);
+  std::vector<std::string> moved;
+  for (Eigen::Index i = 0; i < basis.rows(); ++i) {
+    if (!basis.row(i).isZero(0)) moved.emplace_back(all[i]);
+  }
+  return moved;
+}
+
+Eigen::MatrixXd FreeIntrinsics::MovedBasis() const {
+  std::vector<Eigen::Index> moved;
+  for (Eigen::Index i = 0; i < basis.rows(); ++i) {
+    if (!basis.row(i).isZero(0)) moved.push_back(i);
+  }
+  Eigen::MatrixXd B(static_cast<Eigen::Index>(moved.size()), basis.cols());
+  for (size_t k = 0; k < moved.size(); ++k) B.row(static_cast<Eigen::Index>(k)) = basis.row(moved[k]);
+  return B;
+}
+
+FreeIntrinsics MakeFreeIntrinsics(const AnyLensModel& model, const RefineOptions& options) {
+  VSTCAL_CHECK(!options.focal_aspect || (options.free_focal && *options.focal_aspect > 0),
+               "a held aspect ties two free focal lengths by a positive ratio");
+  const auto all = LensModelParamNames(model);
+  std::vector<std::pair<std::string, Eigen::VectorXd>> columns;
+  auto unit = [&](int i) {
+    Eigen::VectorXd c = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(all.size()));
+    c(i) = 1;
+    return c;
+  };
+  if (options.free_focal && options.focal_aspect) {
+    Eigen::VectorXd c = unit(1);
+    c(0) = *options.focal_aspect;
+    columns.emplace_back("f", c);
+  } else if (options.free_focal) {
+    columns.emplace_back("fx", unit(0));
+    columns.emplace_back("fy", unit(1));
+  }
+  if (options.free_principal_point) {
+    columns.emplace_back("cx", unit(2));
+    columns.emplace_back("cy", unit(3));
+  }
+  if (options.free_skew) columns.emplace_back("s", unit(4));
+  for (size_t i = kNumIntrinsicParams; i < all.size(); ++i) {
+    if (Named(options.free_distortion, all[i])) columns.emplace_back(std::string(all[i]), unit(static_cast<int>(i)));
+  }
+  FreeIntrinsics free;
+  free.basis.resize(static_cast<Eigen::Index>(all.size()), static_cast<Eigen::Index>(columns.size()));
+  for (size_t k = 0; k < columns.size(); ++k) {
+    free.names.push_back(columns[k].first);
+    free.basis.col(static_cast<Eigen::Index>(k)) = columns[k].second;
+  }
+  return free;
+}
+
+std::vector<HeldIntrinsic> HeldIntrinsics(const AnyLensModel& model, const std::vector<double>& params,
+                                          const RefineOptions& options) {
+  const auto all = LensModelParamNames(model);
+  std::vector<HeldIntrinsic> held;
+  if (!options.free_focal) {
+    held.push_back({"fx", params[0], "held by the caller (RefineOptions::free_focal)"});
+    held.push_back({"fy", params[1], "held by the caller (RefineOptions::free_focal)"});
+  } else if (options.focal_aspect) {
+    held.push_back({"fx/fy", *options.focal_aspect, options.focal_aspect_held_because});
+  }
+  if (!options.free_principal_point) {
+    held.push_back({"cx", params[2], options.principal_point_held_because});
+    held.push_back({"cy", params[3], options.principal_point_held_because});
+  }
+  if (!options.free_skew) held.push_back({"s", params[4], "not estimated (--skew frees it)"});
+  for (size_t i = kNumIntrinsicParams; i < all.size(); ++i) {
+    if (!Named(options.free_distortion, all[i])) {
+      held.push_back({std::string(all[i]), params[i], "not named by --distortion"});
+    }
+  }
+  return held;
+}
+
+}  // namespace vstcal

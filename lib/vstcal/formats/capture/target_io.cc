@@ -1,0 +1,113 @@
+#include "vstcal/formats/capture/target_io.h"
+
+#include <array>
+#include <cstdio>
+
+#include "vstcal/formats/camera/correspondences_io.h"
+#include "vstcal/json/fields.h"
+#include "vstcal/json/format_check.h"
+
+namespace vstcal {
+namespace {
+
+constexpr std::string_view kFormat = "vstcal/target@1";
+
+// The fields of each type beyond format, type, length_unit, rows, cols, margin.
+struct TypeFields {
+  TargetType type;
+  std::array<std::string_view, 4> fields;
+};
+constexpr std::array<TypeFields, 3> kTypeFields = {{
+    {TargetType::kChessboard, {"square_size"}},
+    {TargetType::kCharuco, {"square_size", "marker_size", "dictionary"}},
+    {TargetType::kAprilTagGrid, {"tag_size", "tag_gap", "family", "first_id"}},
+}};
+
+bool HasField(TargetType type, std::string_view field) {
+  for (const TypeFields& t : kTypeFields) {
+    if (t.type != type) continue;
+    for (std::string_view f : t.fields) {
+      if (f == field) return true;
+    }
+  }
+  return false;
+}
+
+}  // namespace
+
+Target TargetFromJson(const JsonDocument& doc) {
+  const JsonNode root = doc.root();
+  root.ExpectObject();
+  CheckFormat(root, kFormat);
+  Target t;
+  t.type = *TargetTypeFromName(root.at("type").OneOf({"chessboard", "charuco", "apriltag-grid"}));
+  // A field of another type means the file describes another board than it says: refuse it
+  // rather than print or detect the wrong thing.
+  for (const TypeFields& other : kTypeFields) {
+    for (std::string_view f : other.fields) {
+      if (f.empty() || HasField(t.type, f)) continue;
+      if (auto node = root.find(f)) {
+        node->Fail("is not a field of a " + std::string(TargetTypeName(t.type)) + " target",
+                   "remove it, or set \"type\" to the board's type (" + std::string(TargetTypeName(other.type)) + " has it)");
+      }
+    }
+  }
+  t.length_unit = ReadLengthUnit(root.at("length_unit"));
+  t.rows = root.at("rows").Integer();
+  t.cols = root.at("cols").Integer();
+  if (t.type == TargetType::kAprilTagGrid) {
+    t.tag_size = root.at("tag_size").Number();
+    t.tag_gap = root.at("tag_gap").Number();
+    t.family = root.at("family").String();
+    t.first_id = root.at("first_id").Integer();
+  } else {
+    t.square_size = root.at("square_size").Number();
+  }
+  if (t.type == TargetType::kCharuco) {
+    t.marker_size = root.at("marker_size").Number();
+    t.dictionary = root.at("dictionary").String();
+  }
+  const auto margin = root.find("margin");
+  t.margin = margin ? margin->Number() : (t.type == TargetType::kAprilTagGrid ? t.tag_gap : t.square_size);
+  if (const auto problem = CheckTarget(t)) {
+    const std::string field = problem->field == "margin" && !margin ? "" : problem->field;
+    (field.empty() ? root : root.at(field)).Fail(problem->reason, problem->fix);
+  }
+  return t;
+}
+
+Target ReadTarget(const std::filesystem::path& path) { return TargetFromJson(JsonDocument::Load(path)); }
+
+OrderedJson TargetToJson(const Target& t, const Provenance& provenance) {
+  OrderedJson j;
+  j["format"] = kFormat;
+  j["type"] = TargetTypeName(t.type);
+  j["length_unit"] = LengthUnitName(t.length_unit);
+  j["rows"] = t.rows;
+  j["cols"] = t.cols;
+  if (t.type == TargetType::kAprilTagGrid) {
+    j["tag_size"] = t.tag_size;
+    j["tag_gap"] = t.tag_gap;
+    j["family"] = t.family;
+    j["first_id"] = t.first_id;
+  } else {
+    j["square_size"] = t.square_size;
+  }
+  if (t.type == TargetType::kCharuco) {
+    j["marker_size"] = t.marker_size;
+    j["dictionary"] = t.dictionary;
+  }
+  j["margin"] = t.margin;
+  const Rect sheet = SheetExtent(t);
+  j["sheet"] = {{"width", sheet.width()}, {"height", sheet.height()}};
+  j["board_frame"] = t.type == TargetType::kAprilTagGrid
+                         ? "origin at the top-left corner of tag (0, 0)'s black square; X right along cols, Y down along "
+                           "rows, Z into the board; tag (r, c) has id first_id + r*cols + c and corners 4*(r*cols + c) + "
+                           "k, k = 0 top-left, 1 top-right, 2 bottom-right, 3 bottom-left"
+                         : "origin at the top-left inner corner; X right along cols, Y down along rows, Z into the board; "
+                           "corner (r, c) has id r*cols + c at (c, r) * square_size; the top-left square is black";
+  j["provenance"] = ProvenanceToJson(provenance);
+  return j;
+}
+
+}  // namespace vstcal

@@ -1,0 +1,493 @@
+#include "vstcal/formats/errsim/chain_reader.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <set>
+#include <system_error>
+
+#include "vstcal/core/suggest.h"
+#include "vstcal/geometry/point_registration.h"
+#include "vstcal/formats/camera/camera_io.h"
+#include "vstcal/formats/stereo/stereo_io.h"
+#include "vstcal/json/fields.h"
+#include "vstcal/json/format_check.h"
+#include "vstcal/json/json_writer.h"
+
+namespace vstcal {
+namespace {
+
+
+// Built by appending: GCC 12's -Wrestrict misfires on "literal" + std::string.
+std::string Quoted(std::string_view s) { return std::string("\"").append(s).append("\""); }
+std::string Number(double v) { return ShortestDecimal(v); }
+
+// {"R", "t"} or {"rotvec_deg", "t"} (docs/conventions.md#rotations).
+TransformSpec ReadTransform(const JsonNode& node) {
+  ExpectKeys(node, {"R", "t", "rotvec_deg"}, "field of a transform");
+  const bool has_r = node.find("R").has_value(), has_rotvec = node.find("rotvec_deg").has_value();
+  if (has_r == has_rotvec) node.Fail("needs exactly one of \"R\" and \"rotvec_deg\"", "give the rotation once, as R (3×3) or rotvec_deg");
+  TransformSpec spec;
+  if (has_r) {
+    spec.value = ReadRigid(node);
+    spec.R = node.at("R").Matrix<3, 3>();
+  } else {
+    spec.rotvec_deg = node.at("rotvec_deg").Vector<3>();
+    if (spec.rotvec_deg.norm() > 1e6) node.at("rotvec_deg").Fail("is beyond 10⁶ degrees", "write the rotation vector in degrees, |r| ≤ 360");
+    spec.value = Rigid3d::FromRotvec(DegToRad(1.0) * spec.rotvec_deg, node.at("t").Vector<3>());
+  }
+  spec.t = node.at("t").Vector<3>();
+  return spec;
+}
+
+// A whole number in [lo, hi] (JSON integers beyond 2^31 are legitimate for samples and seeds).
+uint64_t ReadCount(const JsonNode& node, double lo, double hi, const std::string& hi_text) {
+  const double v = node.Number();
+  if (v != std::floor(v) || v < lo || v > hi) {
+    const std::string lo_text = std::to_string(static_cast<uint64_t>(lo));
+    node.Fail("expected a whole number from " + lo_text + " to " + hi_text + ", got " + node.json().dump(),
+              "write a whole number between " + lo_text + " and " + hi_text);
+  }
+  return static_cast<uint64_t>(v);
+}
+
+// A {"file": "<path>"} reference: the path as written and the document it names, relative to the
+// chain's folder. Checked here, where the chain's field can be named; the referenced file's own
+// problems name that file.
+std::pair<std::string, JsonDocument> ReadReference(const JsonNode& node, const std::filesystem::path& directory,
+                                                       std::string_view format) {
+  ExpectKeys(node, {"file"}, "field of a " + std::string(format) + " reference");
+  const JsonNode file = node.at("file");
+  std::string written = file.String();
+  const std::string fix = "give the " + std::string(format) + " file's path, relative to the chain's folder";
+  if (written.empty()) file.Fail("is empty", fix);
+  const std::filesystem::path path = directory / written;
+  std::error_code error;
+  if (!std::filesystem::exists(path, error)) file.Fail("names " + path.string() + ", which does not exist", fix);
+  if (std::filesystem::is_directory(path, error)) file.Fail("names " + path.string() + ", a directory", fix);
+  return {std::move(written), JsonDocument::Load(path)};
+}
+
+// {"file": "<camera@1 path>"} or an inline {image_size, K, distortion[, covariance]}.
+CameraSpec ReadCameraSpec(const JsonNode& node, const std::filesystem::path& directory) {
+  node.ExpectObject();
+  CameraSpec out;
+  if (node.find("file")) {
+    auto [file, document] = ReadReference(node, directory, "camera@1");
+    out.file = std::move(file);
+    CalibratedCamera calibrated = CameraFromJson(document);
+    out.camera = std::move(calibrated.camera);
+    out.covariance = std::move(calibrated.covariance);
+    return out;
+  }
+  ExpectKeys(node, {"image_size", "K", "intrinsics", "distortion", "covariance"}, "field of an inline camera");
+  out.camera = ReadCameraIntrinsics(node);
+  if (const auto cov = node.find("covariance")) out.covariance = ReadCovariance(*cov, out.camera, std::nullopt);  // inline: no poses
+  return out;
+}
+
+// {"file": "<stereo@1 path>"}: the rig's cameras go into `cameras`, right_from_left and its
+// covariance into the returned spec. The rig's length unit must be the chain's.
+RigSpec ReadRigSpec(const JsonNode& node, const std::filesystem::path& directory, LengthUnit chain_unit,
+                    std::array<CameraSpec, kNumEyes>* cameras) {
+  node.ExpectObject();
+  auto [file, document] = ReadReference(node, directory, "stereo@1");
+  StereoRig rig = StereoRigFromJson(document);
+  if (rig.length_unit != chain_unit) {
+    node.at("file").Fail("names a rig in \"" + std::string(LengthUnitName(rig.length_unit)) + "\", but the chain is in \"" +
+                             std::string(LengthUnitName(chain_unit)) + "\"",
+                         "write the chain in the rig's length unit");
+  }
+  (*cameras)[0] = {"", std::move(rig.left.camera), std::move(rig.left.covariance)};
+  (*cameras)[1] = {"", std::move(rig.right.camera), std::move(rig.right.covariance)};
+  return {std::move(file), rig.right_from_left, std::move(rig.covariance)};
+}
+
+// A number, or one number per component.
+double Component(const JsonNode& node, int i, int n) {
+  if (node.json().is_array()) {
+    node.ArraySize(n);
+    return node.at(i).Number();
+  }
+  return node.Number();
+}
+
+// A distribution object for n components (docs/formats.md#vst-chain-distributions), file units.
+DistributionSpec ReadDistribution(const JsonNode& node, int n) {
+  node.ExpectObject();
+  const JsonNode kind_node = node.at("distribution");
+  const std::string kind = kind_node.String();
+  static const std::vector<std::string_view> kKinds = {"normal", "uniform", "fixed"};
+  DistributionSpec out;
+  out.first.resize(n);
+  out.second.resize(n);
+  if (kind == "normal") {
+    ExpectKeys(node, {"distribution", "sigma", "mean"}, "field of a normal distribution");
+    out.kind = DistributionSpec::Kind::kNormal;
+    const JsonNode sigma = node.at("sigma");
+    const auto mean = node.find("mean");
+    for (int i = 0; i < n; ++i) {
+      out.first[i] = mean ? Component(*mean, i, n) : 0.0;
+      out.second[i] = Component(sigma, i, n);
+      if (out.second[i] < 0) {
+        (sigma.json().is_array() ? sigma.at(i) : sigma)
+            .Fail("must not be negative, got " + Number(out.second[i]), "give a standard deviation ≥ 0");
+      }
+    }
+  } else if (kind == "uniform") {
+    out.kind = DistributionSpec::Kind::kUniform;
+    if (node.find("half_width")) {
+      ExpectKeys(node, {"distribution", "half_width"}, "field of a uniform distribution");
+      const JsonNode hw = node.at("half_width");
+      for (int i = 0; i < n; ++i) {
+        const double h = Component(hw, i, n);
+        if (h < 0) hw.Fail("must not be negative, got " + Number(h), "give a half width ≥ 0");
+        out.first[i] = -h;
+        out.second[i] = h;
+      }
+    } else {
+      ExpectKeys(node, {"distribution", "min", "max"}, "field of a uniform distribution");
+      const JsonNode lo = node.at("min"), hi = node.at("max");
+      for (int i = 0; i < n; ++i) {
+        out.first[i] = Component(lo, i, n);
+        out.second[i] = Component(hi, i, n);
+        if (out.first[i] > out.second[i]) {
+          hi.Fail("is below min (" + Number(out.first[i]) + " > " + Number(out.second[i]) + ")", "give min ≤ max");
+        }
+      }
+    }
+  } else if (kind == "fixed") {
+    ExpectKeys(node, {"distribution", "value"}, "field of a fixed distribution");
+    out.kind = DistributionSpec::Kind::kFixed;
+    const JsonNode value = node.at("value");
+    for (int i = 0; i < n; ++i) out.first[i] = Component(value, i, n);
+  } else {
+    kind_node.Fail("unknown distribution " + Quoted(kind), SuggestKey(kind, kKinds));
+  }
+  return out;
+}
+
+// Every lens parameter name any model of the variant has, in layout order (the largest model's).
+std::vector<std::string_view> AllLensParameterNames() {
+  std::vector<std::string_view> names;
+  ForEachLensModel([&](auto model) {
+    const auto& n = decltype(model)::kParamNames;
+    if (n.size() > names.size()) names.assign(n.begin(), n.end());
+  });
+  return names;
+}
+
+constexpr std::array<std::string_view, 4> kEyeKeys = {"", "both", "left", "right"};
+int EyeKeyRank(const std::string& key) {
+  return static_cast<int>(std::find(kEyeKeys.begin(), kEyeKeys.end(), key) - kEyeKeys.begin());
+}
+
+class SourcesReader {
+ public:
+  explicit SourcesReader(ChainSpec* spec) : spec_(spec) {}
+
+  void Read(const JsonNode& sources) {
+    const std::vector<std::string_view> keys(kSourceKeys.begin(), kSourceKeys.end());
+    ExpectKeys(sources, keys, "error source");
+    for (int s = 0; s < kNumSources; ++s) {
+      const Source source = static_cast<Source>(s);
+      const auto node = sources.find(SourceKey(source));
+      if (!node) continue;
+      node->ExpectObject();
+      if (source == Source::kCameraIntrinsic) {
+        ReadIntrinsics(*node);
+      } else if (source == Source::kVirtualObjectAlignment && node->find("fiducials")) {
+        ReadFiducials(*node);
+      } else {
+        ReadSource(*node, source);
+      }
+    }
+    std::stable_sort(spec_->terms.begin(), spec_->terms.end(), [](const TermSpec& a, const TermSpec& b) {
+      if (a.term != b.term) return a.term < b.term;
+      return EyeKeyRank(a.eye_key) < EyeKeyRank(b.eye_key);
+    });
+  }
+
+ private:
+  // Terms a file object may hold: those of `source` with this scope and group (kFiducial's form
+  // and kLens are read on their own).
+  static std::vector<const TermDecl*> TermsOf(Source source, TermScope scope, std::string_view group) {
+    std::vector<const TermDecl*> out;
+    for (const TermDecl& d : kTerms) {
+      if (d.source == source && d.scope == scope && d.group == group && d.extent != TermExtent::kPerFiducial &&
+          d.extent != TermExtent::kLens) {
+        out.push_back(&d);
+      }
+    }
+    return out;
+  }
+
+  void ReadTerms(const JsonNode& node, const std::vector<const TermDecl*>& terms, const std::string& eye_key) {
+    for (const TermDecl* d : terms) {
+      if (const auto term = node.find(d->file_key)) {
+        spec_->terms.push_back({d->term, eye_key, std::string(d->file_key), ReadDistribution(*term, d->components)});
+      }
+    }
+  }
+
+  // "left" / "right" / "both" sub-objects: read(node, key) for each one given.
+  template <typename Read>
+  void PerEye(const JsonNode& node, Read read) {
+    const auto both = node.find("both");
+    for (const std::string_view eye : kEyeNames) {
+      if (both && node.find(eye)) {
+        node.at(eye).Fail("both \"both\" and " + Quoted(eye) + " are given", "give either \"both\" or \"left\"/\"right\"");
+      }
+    }
+    for (const std::string_view key : {"both", "left", "right"}) {
+      if (const auto n = node.find(key)) read(*n, std::string(key));
+    }
+  }
+
+  void ReadSource(const JsonNode& node, Source source) {
+    const std::string what = "term of " + std::string(SourceKey(source));
+    const auto once = TermsOf(source, TermScope::kOnce, "");
+    const auto per_eye = TermsOf(source, TermScope::kPerEye, "");
+    std::vector<std::string_view> allowed, groups;
+    for (const TermDecl* d : once) allowed.push_back(d->file_key);
+    for (const TermDecl& d : kTerms) {
+      if (d.source == source && !d.group.empty() && std::find(groups.begin(), groups.end(), d.group) == groups.end()) {
+        groups.push_back(d.group);
+      }
+    }
+    allowed.insert(allowed.end(), groups.begin(), groups.end());
+    if (!per_eye.empty()) allowed.insert(allowed.end(), {"left", "right", "both"});
+    ExpectKeys(node, allowed, what);
+    ReadTerms(node, once, "");
+    for (const std::string_view group : groups) {
+      if (const auto g = node.find(group)) {
+        const auto terms = TermsOf(source, TermScope::kOnce, group);
+        std::vector<std::string_view> keys;
+        for (const TermDecl* d : terms) keys.push_back(d->file_key);
+        ExpectKeys(*g, keys, what + "." + std::string(group));
+        ReadTerms(*g, terms, "");
+      }
+    }
+    if (per_eye.empty()) return;
+    std::vector<std::string_view> keys;
+    for (const TermDecl* d : per_eye) keys.push_back(d->file_key);
+    PerEye(node, [&](const JsonNode& eye, const std::string& key) {
+      if (source == Source::kCameraExtrinsic && eye.find("covariance")) return ReadExtrinsicCovariance(eye, key);
+      ExpectKeys(eye, keys, what + " (per eye)");
+      ReadTerms(eye, per_eye, key);
+    });
+  }
+
+  // camera_extrinsic.right.covariance: "rig" or inline over right_from_left's six tangents.
+  void ReadExtrinsicCovariance(const JsonNode& eye, const std::string& key) {
+    const JsonNode cov = eye.at("covariance");
+    if (key != "right") {
+      cov.Fail("a camera_extrinsic covariance is that of a rig's right_from_left, an error of the right camera",
+               "move it to sources.camera_extrinsic.right (the left camera is the rig's reference)");
+    }
+    ExpectKeys(eye, {"covariance"}, "term of camera_extrinsic.right with a covariance (rotation_deg and translation do not mix with it)");
+    ExtrinsicCovarianceSpec c;
+    if (cov.json().is_string()) {
+      if (cov.String() != "rig") {
+        cov.Fail("unknown value " + Quoted(cov.String()),
+                 "write \"rig\" (the rig file's covariance) or an object {\"parameters\", \"matrix\"} over right_from_left.rx … .tz");
+      }
+      if (!spec_->rig) cov.Fail("the chain references no rig", "add \"rig\": {\"file\": \"<stereo@1 file>\"}, or give the covariance inline");
+      if (!spec_->rig->covariance) {
+        cov.Fail("the rig " + spec_->rig->file + " has no covariance",
+                 "reference a rig solved by calib-stereo solve (it writes one), or give σ's per component");
+      }
+      c.from_rig = true;
+      c.covariance = *spec_->rig->covariance;
+    } else {
+      c.covariance = ReadRelativePoseCovariance(cov);
+    }
+    spec_->extrinsic_covariance = std::move(c);
+  }
+
+  // σ's per lens parameter, or a calibration covariance (the camera file's or inline).
+  void ReadIntrinsics(const JsonNode& node) {
+    ExpectKeys(node, {"left", "right", "both"}, "term of camera_intrinsic");
+    const std::vector<std::string_view> names = AllLensParameterNames();
+    PerEye(node, [&](const JsonNode& eye, const std::string& key) {
+      const auto cov = eye.find("covariance");
+      if (!cov) {
+        ExpectKeys(eye, names, "lens parameter of camera_intrinsic");
+        for (const std::string_view name : names) {
+          if (const auto term = eye.find(name)) spec_->terms.push_back({Term::kLens, key, std::string(name), ReadDistribution(*term, 1)});
+        }
+        return;
+      }
+      ExpectKeys(eye, {"covariance"}, "term of camera_intrinsic with a covariance");
+      IntrinsicCovarianceSpec c;
+      c.eye_key = key;
+      for (int e = 0; e < kNumEyes; ++e) {
+        if (key != "both" && key != kEyeNames[e]) continue;
+        if (cov->json().is_string()) {
+          if (cov->String() != "camera") {
+            cov->Fail("unknown value " + Quoted(cov->String()),
+                      "write \"camera\" (the camera file's covariance) or an object {\"parameters\", \"matrix\"}");
+          }
+          if (!spec_->cameras[e].covariance) {
+            if (spec_->rig) {
+              cov->Fail("the rig " + spec_->rig->file + "'s " + std::string(kEyeNames[e]) + " camera has no covariance",
+                        "reference a rig assembled from camera@1 files that have \"covariance\" (calib-stereo assemble keeps their lens part), or give σ's per parameter");
+            }
+            cov->Fail("the " + std::string(kEyeNames[e]) + " camera has no covariance",
+                      "reference a camera@1 file that has \"covariance\", or give σ's per parameter");
+          }
+          c.from_camera = true;
+        } else {
+          c.covariance = ReadCovariance(*cov, spec_->cameras[e].camera, std::nullopt);  // inline: no poses to name
+        }
+        const ParameterCovariance& used = c.from_camera ? *spec_->cameras[e].covariance : c.covariance;
+        const auto lens = LensModelParamNames(spec_->cameras[e].camera.model);
+        if (std::none_of(used.parameters.begin(), used.parameters.end(),
+                         [&](const std::string& p) { return std::find(lens.begin(), lens.end(), p) != lens.end(); })) {
+          cov->Fail("names none of the lens parameters", "name them as fx, fy, cx, cy, s and the lens model's coefficients");
+        }
+      }
+      spec_->intrinsic_covariances.push_back(std::move(c));
+    });
+  }
+
+  void ReadFiducials(const JsonNode& node) {
+    ExpectKeys(node, {"fiducials", "fle_rms"}, "term of virtual_object_alignment with fiducials (the pose terms "
+                                               "rotation_deg/translation do not mix with them)");
+    const JsonNode layout = node.at("fiducials");
+    const size_t n = layout.ArraySize();
+    if (n < 3) layout.Fail("has " + std::to_string(n) + " fiducials", "give at least 3, not all on one line");
+    if (n > kMaxFiducials) {
+      layout.Fail("has " + std::to_string(n) + " fiducials, more than the " + std::to_string(kMaxFiducials) + " err-sim takes",
+                  "give at most " + std::to_string(kMaxFiducials));
+    }
+    for (size_t i = 0; i < n; ++i) spec_->fiducials.push_back(layout.at(i).Vector<3>());
+    if (!RegistrationFrame::For(spec_->fiducials)) {
+      layout.Fail("the fiducials lie on one line (the rotation about it is free)", "give at least 3 fiducials not on one line");
+    }
+    spec_->fle_rms = node.at("fle_rms").NonNegativeNumber();
+  }
+
+  ChainSpec* spec_;
+};
+
+}  // namespace
+
+ChainSpec ChainSpecFromJson(const JsonDocument& doc, const std::filesystem::path& directory) {
+  const JsonNode root = doc.root();
+  root.ExpectObject();
+  CheckFormat(root, kChainFormat);
+  ExpectKeys(root, {"format", "name", "length_unit", "samples", "seed", "frames", "rig", "cameras", "display", "head_motion",
+                    "test_points", "sources", "provenance"},
+             "field of a chain");
+  ChainSpec spec;
+  spec.file = doc.name();
+  if (const auto name = root.find("name")) spec.name = name->String();
+  spec.length_unit = ReadLengthUnit(root.at("length_unit"));
+  spec.samples = ReadCount(root.at("samples"), 1, 1e12, "10^12");
+  spec.seed = ReadCount(root.at("seed"), 0, 9007199254740992.0, "2^53");
+
+  const JsonNode frames = root.at("frames");
+  ExpectKeys(frames, {"tracker_from_world", "hmd_from_tracker", "camera_from_hmd", "world_from_virtual", "world_from_object"},
+             "frame");
+  spec.tracker_from_world = ReadTransform(frames.at("tracker_from_world"));
+  spec.hmd_from_tracker = ReadTransform(frames.at("hmd_from_tracker"));
+  const JsonNode camera_from_hmd = frames.at("camera_from_hmd");
+  ExpectKeys(camera_from_hmd, {"left", "right"}, "eye");
+  if (const auto rig = root.find("rig")) {
+    // The rig holds the cameras and their relative pose: the chain giving them too would be two
+    // answers to one question.
+    if (const auto cameras = root.find("cameras")) {
+      cameras->Fail("given with \"rig\", which holds both cameras", "delete \"cameras\" (or \"rig\", to give the cameras here)");
+    }
+    if (const auto right = camera_from_hmd.find("right")) {
+      right->Fail("given with \"rig\", which sets it to right_from_left · camera_from_hmd.left",
+                  "delete frames.camera_from_hmd.right (or \"rig\")");
+    }
+    spec.rig = ReadRigSpec(*rig, directory, spec.length_unit, &spec.cameras);
+    spec.camera_from_hmd[0] = ReadTransform(camera_from_hmd.at("left"));
+    const Rigid3d right = spec.rig->right_from_left * spec.camera_from_hmd[0].value;
+    spec.camera_from_hmd[1].R = right.R;
+    spec.camera_from_hmd[1].t = right.t;
+    spec.camera_from_hmd[1].value = right;
+  } else {
+    for (int e = 0; e < kNumEyes; ++e) spec.camera_from_hmd[e] = ReadTransform(camera_from_hmd.at(kEyeNames[e]));
+  }
+  if (const auto v = frames.find("world_from_virtual")) spec.world_from_virtual = ReadTransform(*v);
+  spec.world_from_object = ReadTransform(frames.at("world_from_object"));
+  const Eigen::Vector3d left = spec.camera_from_hmd[0].value.inverse().t, right = spec.camera_from_hmd[1].value.inverse().t;
+  const double baseline = (right - left).norm();
+  if (!(baseline > 0)) camera_from_hmd.Fail("the two cameras are at the same place", "give each eye's camera its own position");
+
+  if (!spec.rig) {
+    const JsonNode cameras = root.at("cameras");
+    ExpectKeys(cameras, {"left", "right"}, "eye");
+    for (int e = 0; e < kNumEyes; ++e) spec.cameras[e] = ReadCameraSpec(cameras.at(kEyeNames[e]), directory);
+  }
+
+  const JsonNode display = root.at("display");
+  ExpectKeys(display, {"ipd", "eye_centre", "camera_baseline", "virtual_image_distance"}, "field of display");
+  spec.ipd = display.at("ipd").PositiveNumber();
+  spec.eye_centre = (0.5 * (left + right)).array() + 0.0;  // + 0.0: no −0 in a written chain
+  if (const auto c = display.find("eye_centre")) spec.eye_centre = c->Vector<3>();
+  if (const auto b = display.find("camera_baseline")) {
+    spec.camera_baseline = b->PositiveNumber();
+    if (std::abs(*spec.camera_baseline - baseline) > 1e-6 * baseline) {
+      b->Fail("disagrees with the distance between the cameras in frames.camera_from_hmd (" + Number(baseline) + ")",
+              "fix one of them, or delete camera_baseline");
+    }
+  }
+  spec.virtual_image_distance = DefaultVirtualImageDistance(spec.length_unit);
+  if (const auto d = display.find("virtual_image_distance")) {
+    if (d->json().is_string()) {
+      if (d->String() != "infinity") d->Fail("unknown value " + d->json().dump(), "give a distance > 0 or \"infinity\" (a collimated display)");
+      spec.virtual_image_distance = 0;
+    } else {
+      spec.virtual_image_distance = d->PositiveNumber();
+    }
+  }
+
+  if (const auto motion = root.find("head_motion")) {
+    ExpectKeys(*motion, {"angular_velocity_deg_s", "linear_velocity"}, "field of head_motion");
+    if (const auto w = motion->find("angular_velocity_deg_s")) spec.angular_velocity_deg_s = w->Vector<3>();
+    if (const auto v = motion->find("linear_velocity")) spec.linear_velocity = v->Vector<3>();
+  }
+
+  const JsonNode points = root.at("test_points");
+  const size_t n = points.ArraySize();
+  if (n == 0) points.Fail("no test points", "add at least one test point {\"name\", \"world\"}");
+  if (n > kMaxTestPoints) {
+    points.Fail("has " + std::to_string(n) + " test points, more than the " + std::to_string(kMaxTestPoints) + " err-sim takes",
+                "give at most " + std::to_string(kMaxTestPoints) + " (split the chain)");
+  }
+  std::set<std::string> names;
+  for (size_t k = 0; k < n; ++k) {
+    const JsonNode p = points.at(k);
+    ExpectKeys(p, {"name", "world", "surface_behind"}, "field of a test point");
+    ChainTestPoint tp;
+    tp.name = p.at("name").String();
+    if (tp.name.empty()) p.at("name").Fail("empty test point name", "give every test point a unique name");
+    if (!names.insert(tp.name).second) p.at("name").Fail("duplicate test point name \"" + tp.name + "\"", "give every test point a unique name");
+    tp.point_in_world = p.at("world").Vector<3>();
+    if (const auto s = p.find("surface_behind")) {
+      tp.surface_behind = s->Number();
+      if (*tp.surface_behind == 0) s->Fail("must not be 0 (the overlay would be exactly on the surface)", "give the signed depth gap: > 0 in front, < 0 hidden");
+    }
+    spec.test_points.push_back(std::move(tp));
+  }
+
+  SourcesReader(&spec).Read(root.at("sources"));
+  if (const auto provenance = root.find("provenance")) {
+    provenance->ExpectObject();
+    spec.provenance = OrderedJson::parse(provenance->json().dump());
+  }
+  return spec;
+}
+
+ChainSpec ReadChainSpec(const std::filesystem::path& path) {
+  return ChainSpecFromJson(JsonDocument::Load(path), path.parent_path());
+}
+
+ChainModel ReadChain(const std::filesystem::path& path) { return BuildChainModel(ReadChainSpec(path)); }
+
+}  // namespace vstcal

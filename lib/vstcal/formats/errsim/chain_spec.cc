@@ -1,0 +1,229 @@
+#include "vstcal/formats/errsim/chain_spec.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include <Eigen/Eigenvalues>
+
+#include "vstcal/core/error.h"
+#include "vstcal/errsim/chain.h"
+#include "vstcal/json/json_writer.h"
+#include "vstcal/json/reader_common.h"
+#include "vstcal/scene/stereo_rig.h"
+
+namespace vstcal {
+namespace {
+
+
+std::string PointField(size_t k) { return "test_points[" + std::to_string(k) + "].world"; }
+
+// Every test point must be seen by both cameras: in front, within the lens's valid domain and
+// inside the image.
+void CheckTestPointsVisible(const ChainSpec& spec, const ChainGeometry& g) {
+  const Rigid3d hmd_from_world = g.hmd_from_tracker * g.tracker_from_world;
+  // Once per camera: each is a search over the image plane (tens of thousands of Jacobians).
+  std::array<double, kNumEyes> valid_r2;
+  for (int e = 0; e < kNumEyes; ++e) valid_r2[e] = g.cameras[e].ValidRadiusSquared();
+  for (size_t k = 0; k < g.test_points.size(); ++k) {
+    for (int e = 0; e < kNumEyes; ++e) {
+      const Camera& camera = g.cameras[e];
+      const Eigen::Vector3d x = g.camera_from_hmd[e] * (hmd_from_world * g.test_points[k].point_in_world);
+      const std::string eye(kEyeNames[e]);
+      const auto q = camera.Project(x);
+      if (!q) {
+        FailField(spec.file, PointField(k),
+                      "lies behind the " + eye + " camera (depth " + MessageNumber(x.z()) + " " + std::string(LengthUnitName(g.length_unit)) + ")",
+                      "move the point in front of both cameras, or check frames (x_a = a_from_b · x_b)");
+      }
+      const double r2 = (x.x() * x.x() + x.y() * x.y()) / (x.z() * x.z());
+      if (!(r2 <= valid_r2[e])) {
+        FailField(spec.file, PointField(k),
+                      "lies " + MessageNumber(RadToDeg(std::atan(std::sqrt(r2)))) + "° off the " + eye +
+                          " camera's axis, outside its lens model's valid domain (the distortion folds over beyond " +
+                          MessageNumber(RadToDeg(std::atan(std::sqrt(valid_r2[e])))) + "°)",
+                      "move the point into both cameras' field of view");
+      }
+      if (!camera.InImage(*q)) {
+        FailField(spec.file, PointField(k),
+                      "projects outside the " + eye + " image, at (" + MessageNumber(q->x()) + ", " + MessageNumber(q->y()) + ") px in " +
+                          std::to_string(camera.image_size.width) + "×" + std::to_string(camera.image_size.height),
+                      "move the point into both cameras' field of view");
+      }
+    }
+  }
+}
+
+Distribution ToInternal(const DistributionSpec& d, size_t i, double scale) {
+  switch (d.kind) {
+    case DistributionSpec::Kind::kNormal: return Distribution::MakeNormal(scale * d.first[i], scale * d.second[i]);
+    case DistributionSpec::Kind::kUniform: return Distribution::MakeUniform(scale * d.first[i], scale * d.second[i]);
+    case DistributionSpec::Kind::kFixed: return Distribution::MakeFixed(scale * d.first[i]);
+  }
+  return Distribution::MakeFixed(0);
+}
+
+std::vector<int> EyesOf(const std::string& eye_key) {
+  if (eye_key == "left") return {0};
+  if (eye_key == "right") return {1};
+  if (eye_key == "both") return {0, 1};
+  return {0};
+}
+
+// V Λ^½ of Σ = V Λ Vᵀ: column j the j-th principal direction scaled by its σ, so that V Λ^½ z
+// has covariance Σ for standard normals z. InputError at `field` unless Σ is positive semi-definite.
+Eigen::MatrixXd PrincipalRoots(const Eigen::MatrixXd& covariance, const ChainSpec& spec, const std::string& field,
+                               const std::string& what) {
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(covariance);
+  const double largest = std::max(0.0, eig.eigenvalues().maxCoeff());
+  if (eig.eigenvalues().minCoeff() < -1e-9 * largest) {
+    FailField(spec.file, field, what + " is not positive semi-definite", "give a valid covariance matrix");
+  }
+  Eigen::MatrixXd roots = eig.eigenvectors();
+  for (int j = 0; j < roots.cols(); ++j) roots.col(j) *= std::sqrt(std::max(0.0, eig.eigenvalues()(j)));
+  return roots;
+}
+
+// The right eye's camera_extrinsic from a rig covariance over right_from_left's tangent (ω, ρ):
+// θ's right rotation and translation slots hold six standard normals, mixed by V Λ^½.
+void ApplyExtrinsicCovariance(const ChainSpec& spec, const ParameterCovariance& cov, ChainModel* model) {
+  const auto& names = RelativePoseTangentNames();
+  Eigen::MatrixXd ordered(6, 6);
+  std::array<int, 6> index{};
+  for (int i = 0; i < 6; ++i) {
+    const auto it = std::find(cov.parameters.begin(), cov.parameters.end(), names[i]);
+    VSTCAL_CHECK(it != cov.parameters.end(), "a rig covariance without " + names[i]);  // the reader requires all six
+    index[i] = static_cast<int>(it - cov.parameters.begin());
+  }
+  for (int a = 0; a < 6; ++a)
+    for (int b = 0; b < 6; ++b) ordered(a, b) = cov.matrix(index[a], index[b]);
+  constexpr int kRight = 1;
+  model->extrinsic_mixing[kRight] = PrincipalRoots(ordered, spec, "sources.camera_extrinsic.right.covariance", "the covariance");
+  int j = 0;
+  for (const Term term : {Term::kCameraRotation, Term::kCameraTranslation}) {
+    const int offset = model->layout.Offset(term, kRight);
+    for (int i = 0; i < model->layout.Size(term, kRight); ++i, ++j) {
+      ChainParameter& p = model->parameters[offset + i];
+      p.slot.name = "camera_extrinsic.right.mode[" + std::to_string(j) + "]";
+      p.slot.file_unit = FileUnit(TermUnit::kRelative, LengthUnit::kMillimetre, 0);  // "1"
+      p.slot.file_per_internal = 1;
+      p.distribution = Distribution::MakeNormal(0, 1);
+    }
+  }
+}
+
+// The covariance's lens block as a mixing matrix over standard normals: δ = V Λ^½ z with
+// Σ = V Λ Vᵀ over the lens parameters it names, placed in the renderer's rows.
+void ApplyCovariance(const ChainSpec& spec, const ParameterCovariance& cov, int eye, ChainModel* model) {
+  const auto names = LensModelParamNames(model->renderer[eye].model);
+  std::vector<int> rows, used;
+  for (size_t i = 0; i < cov.parameters.size(); ++i) {
+    const auto it = std::find(names.begin(), names.end(), cov.parameters[i]);
+    if (it != names.end()) rows.push_back(static_cast<int>(it - names.begin())), used.push_back(static_cast<int>(i));
+  }
+  const int m = static_cast<int>(rows.size());
+  Eigen::MatrixXd sub(m, m);
+  for (int a = 0; a < m; ++a)
+    for (int b = 0; b < m; ++b) sub(a, b) = cov.matrix(used[a], used[b]);
+  const Eigen::MatrixXd roots = PrincipalRoots(sub, spec, "sources.camera_intrinsic",
+                                               "the " + std::string(kEyeNames[eye]) + " covariance's lens block");
+  Eigen::MatrixXd& mixing = model->intrinsic_mixing[eye];
+  mixing.setZero();
+  for (int j = 0; j < m; ++j) {
+    for (int a = 0; a < m; ++a) mixing(rows[a], j) = roots(a, j);
+  }
+  // θ's lens slots of this eye now hold the standard normals z_j of the principal directions.
+  const int offset = model->layout.Offset(Term::kLens, eye);
+  for (int j = 0; j < model->layout.Size(Term::kLens, eye); ++j) {
+    ChainParameter& p = model->parameters[offset + j];
+    p.slot.name = std::string("camera_intrinsic.").append(kEyeNames[eye]).append(".mode[").append(std::to_string(j)).append("]");
+    p.slot.file_unit = FileUnit(TermUnit::kRelative, LengthUnit::kMillimetre, 0);  // "1" (GCC 12 -Wrestrict misfires on = "1")
+    p.distribution = j < m ? Distribution::MakeNormal(0, 1) : Distribution::MakeFixed(0);
+  }
+}
+
+}  // namespace
+
+double DefaultVirtualImageDistance(LengthUnit unit) { return 1.5 / MetresPer(unit); }
+
+std::array<AnyLensModel, kNumEyes> ChainSpec::RendererLenses() const {
+  std::array<AnyLensModel, kNumEyes> out;
+  for (int e = 0; e < kNumEyes; ++e) {
+    int needed = LensModelNumParams(cameras[e].camera.model);
+    for (const TermSpec& t : terms) {
+      if (t.term != Term::kLens || (t.eye_key != "both" && t.eye_key != kEyeNames[e])) continue;
+      ForEachLensModel([&](auto model) {
+        const auto& names = decltype(model)::kParamNames;
+        const auto it = std::find(names.begin(), names.end(), t.key);
+        if (it != names.end()) needed = std::max(needed, static_cast<int>(it - names.begin()) + 1);
+      });
+    }
+    // The smallest model with that many parameters (the variant lists models by size).
+    bool found = false;
+    ForEachLensModel([&](auto model) {
+      if (!found && decltype(model)::kNumParams >= needed) out[e] = model, found = true;
+    });
+  }
+  return out;
+}
+
+ChainModel BuildChainModel(const ChainSpec& spec) {
+  ChainGeometry g;
+  g.length_unit = spec.length_unit;
+  g.tracker_from_world = spec.tracker_from_world.value;
+  g.hmd_from_tracker = spec.hmd_from_tracker.value;
+  for (int e = 0; e < kNumEyes; ++e) {
+    g.camera_from_hmd[e] = spec.camera_from_hmd[e].value;
+    g.cameras[e] = spec.cameras[e].camera;
+  }
+  g.world_from_virtual = spec.world_from_virtual.value;
+  g.world_from_object = spec.world_from_object.value;
+  g.display.ipd = spec.ipd;
+  g.display.eye_centre_in_hmd = spec.eye_centre;
+  g.display.inverse_image_distance = spec.virtual_image_distance > 0 ? 1.0 / spec.virtual_image_distance : 0.0;
+  g.head_angular_velocity = DegToRad(1.0) * spec.angular_velocity_deg_s;
+  g.head_linear_velocity = spec.linear_velocity;
+  g.test_points = spec.test_points;
+  CheckTestPointsVisible(spec, g);
+
+  ChainModel model = ChainModel::WithZeroErrors(std::move(g), spec.fiducials, spec.RendererLenses());
+  model.samples = spec.samples;
+  model.seed = spec.seed;
+  for (const TermSpec& t : spec.terms) {
+    const TermDecl& d = Declaration(t.term);
+    const double scale = 1.0 / FilePerInternal(d.unit);
+    for (const int e : EyesOf(t.eye_key)) {
+      const int offset = model.layout.Offset(t.term, e), size = model.layout.Size(t.term, e);
+      if (t.term == Term::kLens) {
+        const auto names = LensModelParamNames(model.renderer[e].model);
+        const int i = static_cast<int>(std::find(names.begin(), names.end(), t.key) - names.begin());
+        model.parameters[offset + i].distribution = ToInternal(t.distribution, 0, scale);
+        continue;
+      }
+      const int components = d.components;
+      for (int j = 0; j < size; ++j) model.parameters[offset + j].distribution = ToInternal(t.distribution, j % components, scale);
+    }
+  }
+  if (!spec.fiducials.empty()) {
+    // FLE is the RMS of the 3-D localization error: σ = FLE/√3 on each axis (Fitzpatrick 1998).
+    const int offset = model.layout.Offset(Term::kFiducial), size = model.layout.Size(Term::kFiducial);
+    for (int j = 0; j < size; ++j) model.parameters[offset + j].distribution = Distribution::MakeNormal(0, spec.fle_rms / std::sqrt(3.0));
+  }
+  for (const IntrinsicCovarianceSpec& c : spec.intrinsic_covariances) {
+    for (const int e : EyesOf(c.eye_key)) {
+      ApplyCovariance(spec, c.from_camera ? *spec.cameras[e].covariance : c.covariance, e, &model);
+    }
+  }
+  if (spec.extrinsic_covariance) ApplyExtrinsicCovariance(spec, spec.extrinsic_covariance->covariance, &model);
+  const ChainEvaluator chain(model);
+  for (size_t k = 0; k < chain.num_points(); ++k) {
+    if (chain.nominal_undefined(k) != Undefined::kNone) {
+      FailField(spec.file, PointField(k),
+                    std::string("the error-free chain does not see it (") + UndefinedName(chain.nominal_undefined(k)) + ")",
+                    "move the point nearer: the eyes' rays to it must meet");
+    }
+  }
+  return model;
+}
+
+}  // namespace vstcal

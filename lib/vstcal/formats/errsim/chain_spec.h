@@ -1,0 +1,125 @@
+// A vstcal/vst-chain@1 file as read (docs/formats.md#vst-chain): every value as the file gives it,
+// in file units, transforms in their written form, referenced camera and rig files by their path
+// (with what they hold), defaults made explicit. The reader (chain_reader.h) checks every field and
+// fills it; the writer (chain_writer.h) writes it back in one canonical layout, so that reading a
+// written chain gives the same ChainSpec and writing it again the same bytes; BuildChainModel
+// turns it into the model the simulation runs.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "vstcal/scene/calibrated_camera.h"
+#include "vstcal/camera/camera.h"
+#include "vstcal/core/units.h"
+#include "vstcal/errsim/chain_model.h"
+#include "vstcal/errsim/schema.h"
+#include "vstcal/json/json_writer.h"
+
+namespace vstcal {
+
+inline constexpr std::string_view kChainFormat = "vstcal/vst-chain@1";
+
+// {"R": 3×3, "t": [3]} or {"rotvec_deg": [3], "t": [3]}, as written; `value` the transform.
+struct TransformSpec {
+  std::optional<Eigen::Matrix3d> R;  // as written (the transform uses its nearest rotation)
+  Eigen::Vector3d rotvec_deg = Eigen::Vector3d::Zero();  // when R is absent
+  Eigen::Vector3d t = Eigen::Vector3d::Zero();
+  Rigid3d value;
+
+  static TransformSpec Identity() { return TransformSpec{}; }
+};
+
+struct CameraSpec {
+  std::string file;  // as written, relative to the chain's folder; empty for an inline camera
+  Camera camera;     // image_size, K and distortion (the file's or the inline ones)
+  std::optional<ParameterCovariance> covariance;
+};
+
+// One distribution of a term, per component, in the file's units (docs/formats.md#vst-chain-distributions).
+struct DistributionSpec {
+  enum class Kind { kNormal, kUniform, kFixed };
+  Kind kind = Kind::kFixed;
+  // normal: mean, sigma; uniform: min, max (half_width h is read as −h, h); fixed: value (second unused).
+  std::vector<double> first, second;
+};
+
+// A term's distribution where the file puts it: sources.<source>[.<eye_key>][.<group>].<key>.
+struct TermSpec {
+  Term term;
+  std::string eye_key;  // "", "left", "right" or "both"
+  std::string key;      // the file key ("rotation_deg"; a lens parameter name for kLens)
+  DistributionSpec distribution;
+};
+
+// "rig": {"file": "<stereo@1 path>"}: a calib-stereo rig gives both cameras (their intrinsics and
+// covariances) and camera_from_hmd's relative part: camera_from_hmd.right = right_from_left ·
+// camera_from_hmd.left (docs/formats.md#vst-chain-rig).
+struct RigSpec {
+  std::string file;  // as written, relative to the chain's folder
+  Rigid3d right_from_left;
+  std::optional<ParameterCovariance> covariance;  // over RelativePoseTangentNames(): ω rad, ρ length unit
+};
+
+// camera_extrinsic.right.covariance: "rig" (the rig file's) or an inline covariance over
+// right_from_left.rx … .tz. A left perturbation of right_from_left in the right camera's frame is
+// one of camera_from_hmd.right (the left camera held), so it is the right eye's camera_extrinsic
+// rotation and translation, correlated.
+struct ExtrinsicCovarianceSpec {
+  bool from_rig = false;
+  ParameterCovariance covariance;  // the inline one (from_rig: the rig's)
+};
+
+// camera_intrinsic.<eye_key>.covariance: "camera" (the camera file's) or an inline covariance.
+struct IntrinsicCovarianceSpec {
+  std::string eye_key;
+  bool from_camera = false;
+  ParameterCovariance covariance;  // the inline one (from_camera: each eye's camera file's)
+};
+
+struct ChainSpec {
+  std::string file;  // the chain file's name as given, for messages
+  std::string name;  // free text
+  LengthUnit length_unit = LengthUnit::kMillimetre;
+  uint64_t samples = 0;
+  uint64_t seed = 0;
+  TransformSpec tracker_from_world, hmd_from_tracker, world_from_virtual, world_from_object;
+  std::array<TransformSpec, kNumEyes> camera_from_hmd;
+  std::array<CameraSpec, kNumEyes> cameras;  // with a rig: its cameras (file empty)
+  std::optional<RigSpec> rig;                 // with it, camera_from_hmd[1] is derived, not written
+  double ipd = 0;
+  Eigen::Vector3d eye_centre = Eigen::Vector3d::Zero();  // hmd frame (default: the cameras' midpoint)
+  std::optional<double> camera_baseline;                  // documents the baseline when given
+  double virtual_image_distance = 0;                      // length unit; 0 stands for "infinity"
+  Eigen::Vector3d angular_velocity_deg_s = Eigen::Vector3d::Zero();
+  Eigen::Vector3d linear_velocity = Eigen::Vector3d::Zero();
+  std::vector<ChainTestPoint> test_points;
+  std::vector<TermSpec> terms;  // in kTerms order, then eye key and key
+  std::vector<IntrinsicCovarianceSpec> intrinsic_covariances;
+  std::optional<ExtrinsicCovarianceSpec> extrinsic_covariance;  // the right eye's
+  std::vector<Eigen::Vector3d> fiducials;  // the fiducial form of virtual_object_alignment (empty: pose form)
+  double fle_rms = 0;
+  // The file's own provenance, kept as written: a normalised chain says the same as its input.
+  std::optional<OrderedJson> provenance;
+
+  // The renderer's lens model of each eye: the camera's, or the smallest model of the variant
+  // that also holds every lens parameter the chain names for that eye.
+  std::array<AnyLensModel, kNumEyes> RendererLenses() const;
+};
+
+// The default virtual image distance: 1.5 m in the chain's length unit (docs/math/vst-chain.md#display:
+// fixed-focus consumer HMDs put it at 1.3–2 m).
+double DefaultVirtualImageDistance(LengthUnit unit);
+
+// The model of a chain: geometry from the frames, cameras, display and test points, the θ layout
+// from the shape, every term's distribution converted to internal units, the covariance mixing.
+// InputError naming the file and field for geometry the simulation cannot use (a test point the
+// error-free chain does not see).
+ChainModel BuildChainModel(const ChainSpec& spec);
+
+}  // namespace vstcal

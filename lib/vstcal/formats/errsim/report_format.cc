@@ -1,0 +1,260 @@
+#include "vstcal/formats/errsim/report_format.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+#include "vstcal/core/error.h"
+#include "vstcal/errsim/budget.h"
+#include "vstcal/errsim/measures.h"
+
+namespace vstcal {
+namespace {
+
+
+constexpr double kDeg = 180.0 / kPi;
+
+OrderedJson NumberOrNull(double v) { return std::isfinite(v) ? OrderedJson(v) : OrderedJson(nullptr); }
+
+OrderedJson StatsToJson(const OutputStatistics& s) {
+  if (s.count == 0) return nullptr;
+  OrderedJson j;
+  j["mean"] = NumberOrNull(s.mean);
+  j["rms"] = NumberOrNull(s.rms);
+  j["standard_deviation"] = NumberOrNull(s.standard_deviation);
+  j["mean_standard_error"] = NumberOrNull(s.mean_standard_error);
+  j["max"] = NumberOrNull(s.max);
+  if (s.has_percentiles) {
+    j["p50"] = NumberOrNull(s.p50.value);
+    j["p95"] = NumberOrNull(s.p95.value);
+    j["p99"] = NumberOrNull(s.p99.value);
+    if (!s.p50.in_range || !s.p95.in_range || !s.p99.in_range) j["percentiles_out_of_range"] = true;
+  }
+  return j;
+}
+
+OrderedJson RateToJson(const OutputStatistics& s) {
+  if (s.count == 0) return nullptr;
+  // A rate p from N decisions: standard error √(p(1 − p)/N).
+  return {{"wrong_rate", s.mean}, {"standard_error", std::sqrt(s.mean * (1 - s.mean) / static_cast<double>(s.count))}};
+}
+
+OrderedJson TotalsToJson(const ScenarioTotals& t) {
+  return {{"image_rms_px", NumberOrNull(t.image_rms_px)},
+          {"misregistration_rms", NumberOrNull(t.misregistration_rms)},
+          {"misperception_rms", NumberOrNull(t.misperception_rms)},
+          {"wrong_occlusion_rate", NumberOrNull(t.wrong_occlusion_rate)}};
+}
+
+OrderedJson MeasureToJson(const std::vector<OutputStatistics>& stats, size_t first) {
+  OrderedJson j;
+  j["linear"] = StatsToJson(stats[first + ErrorOutputs::kLinear]);
+  j["lateral"] = StatsToJson(stats[first + ErrorOutputs::kLateral]);
+  j["depth"] = StatsToJson(stats[first + ErrorOutputs::kDepth]);
+  j["depth_abs"] = StatsToJson(stats[first + ErrorOutputs::kDepthAbs]);
+  j["angular_deg"] = StatsToJson(stats[first + ErrorOutputs::kAngular]);
+  return j;
+}
+
+const MonteCarloSummary& AllScenario(const SimulationResult& result) {
+  VSTCAL_CHECK(!result.scenarios.empty() && result.scenarios[0] == "all", "the first scenario is \"all\"");
+  return result.summaries[0];
+}
+
+std::string Fixed(double v, int digits) {
+  if (!std::isfinite(v)) return "—";
+  char buf[48];
+  std::snprintf(buf, sizeof buf, "%.*f", digits, v);
+  return buf;
+}
+
+std::string Pad(const std::string& s, size_t width) {
+  // Count UTF-8 code points, not bytes, for alignment.
+  size_t n = 0;
+  for (const unsigned char c : s) n += (c & 0xc0) != 0x80;
+  return s + std::string(width > n ? width - n : 0, ' ');
+}
+
+std::string Percent(double share) { return Fixed(100 * share, 1) + " %"; }
+
+}  // namespace
+
+OrderedJson ReportToJson(const ChainEvaluator& chain, const SimulationResult& result, const RunDescription& run,
+                         const Provenance& provenance) {
+  VSTCAL_CHECK(result.complete(), "the report needs every block of every scenario");
+  const ChainModel& model = chain.model();
+  const MonteCarloSummary& all = AllScenario(result);
+  const ErrorOutputs outputs(model);
+  const auto stats = all.AllStatistics();
+  OrderedJson j;
+  j["format"] = kReportFormat;
+  j["chain"] = run.chain_path;
+  j["chain_digest"] = run.digest;
+  j["length_unit"] = LengthUnitName(model.geometry.length_unit);
+  j["samples"] = run.options.samples;
+  j["budget_samples"] = run.options.budget ? OrderedJson(run.options.budget_samples) : OrderedJson(nullptr);
+  j["seed"] = run.options.seed;
+  OrderedJson active = OrderedJson::array();
+  for (int s = 0; s < kNumSources; ++s) {
+    if (model.SourceActive(static_cast<Source>(s))) active.push_back(kSourceKeys[s]);
+  }
+  j["sources"] = {{"active", active}, {"only", run.only}, {"without", run.without}};
+  j["undefined_samples"] = all.undefined_samples();
+
+  OrderedJson points = OrderedJson::array();
+  for (size_t k = 0; k < outputs.num_points(); ++k) {
+    const ChainTestPoint& tp = model.geometry.test_points[k];
+    const size_t o = outputs.offset(k);
+    const uint64_t defined = stats[o].count;
+    OrderedJson p;
+    p["name"] = tp.name;
+    p["world"] = MatrixToJson(tp.point_in_world);
+    p["undefined"] = {{"samples", run.options.samples - defined},
+                      {"rate", static_cast<double>(run.options.samples - defined) / static_cast<double>(run.options.samples)}};
+    p["image"] = {{"left", {{"pixel_px", StatsToJson(stats[o + ErrorOutputs::kPixel])}}},
+                  {"right", {{"pixel_px", StatsToJson(stats[o + ErrorOutputs::kPixel + 1])}}}};
+    p["misregistration"] = MeasureToJson(stats, o + outputs.misregistration());
+    const Systematic& systematic = chain.systematic(k);
+    OrderedJson misperception;
+    misperception["systematic"] = {{"offset", MatrixToJson(systematic.offset)},
+                                   {"linear", systematic.error.linear},
+                                   {"lateral", systematic.error.lateral},
+                                   {"depth", systematic.error.depth},
+                                   {"angular_deg", kDeg * systematic.error.angular}};
+    misperception.update(MeasureToJson(stats, o + outputs.misperception()));
+    p["misperception"] = std::move(misperception);
+    p["occlusion"] = outputs.has_occlusion(k) ? OrderedJson{{"surface_behind", *tp.surface_behind},
+                                                             {"left", RateToJson(stats[o + outputs.occlusion()])},
+                                                             {"right", RateToJson(stats[o + outputs.occlusion() + 1])}}
+                                               : OrderedJson(nullptr);
+    points.push_back(std::move(p));
+  }
+  j["test_points"] = std::move(points);
+  OrderedJson totals = TotalsToJson(Totals(model, all, OutputSet::kFull));
+  totals["systematic_misperception_rms"] = SystematicMisperceptionRms(chain);
+  j["totals"] = std::move(totals);
+
+  if (run.options.budget) {
+    const ErrorBudget budget = Budget(model, result);
+    OrderedJson entries = OrderedJson::array();
+    for (const BudgetEntry& e : budget.entries) {
+      OrderedJson b;
+      b["source"] = SourceKey(e.source);
+      b["share_of_misregistration_ms"] = NumberOrNull(e.share_of_misregistration_ms);
+      b["share_of_image_ms"] = NumberOrNull(e.share_of_image_ms);
+      b["share_of_misperception_ms"] = NumberOrNull(e.share_of_misperception_ms);
+      b["alone"] = TotalsToJson(e.alone);
+      b["halved"] = TotalsToJson(e.halved);
+      b["correction"] = SourceCorrection(e.source);
+      entries.push_back(std::move(b));
+    }
+    auto ranking = [&](const std::vector<size_t>& order) {
+      OrderedJson list = OrderedJson::array();
+      for (const size_t i : order) list.push_back(SourceKey(budget.entries[i].source));
+      return list;
+    };
+    j["budget"] = {{"samples", run.options.budget_samples},
+                   {"ranking", {{"misregistration", ranking(budget.by_misregistration)},
+                                {"misperception", ranking(budget.by_misperception)}}},
+                   {"entries", std::move(entries)}};
+  } else {
+    j["budget"] = nullptr;
+  }
+  j["provenance"] = ProvenanceToJson(provenance);
+  return j;
+}
+
+std::string ReportText(const ChainEvaluator& chain, const SimulationResult& result, const RunDescription& run) {
+  const ChainModel& model = chain.model();
+  const MonteCarloSummary& all = AllScenario(result);
+  const ErrorOutputs outputs(model);
+  const auto stats = all.AllStatistics();
+  const std::string unit(LengthUnitName(model.geometry.length_unit));
+  std::ostringstream out;
+  out << "err-sim: " << run.chain_path << ": " << run.options.samples << " samples, seed " << run.options.seed;
+  if (all.undefined_samples() > 0) out << ", " << all.undefined_samples() << " with some test point undefined";
+  out << "\n  image misregistration (px, overlay − video in each eye's frame):\n";
+  out << "    " << Pad("test point", 16) << Pad("eye", 7) << Pad("mean", 9) << Pad("rms", 9) << Pad("p95", 9) << Pad("p99", 9)
+      << Pad("max", 9) << "undefined\n";
+  for (size_t k = 0; k < outputs.num_points(); ++k) {
+    for (int e = 0; e < kNumEyes; ++e) {
+      const OutputStatistics& s = stats[outputs.offset(k) + ErrorOutputs::kPixel + e];
+      const double undefined = 1 - static_cast<double>(s.count) / static_cast<double>(run.options.samples);
+      out << "    " << Pad(model.geometry.test_points[k].name, 16) << Pad(std::string(kEyeNames[e]), 7)
+          << Pad(Fixed(s.count ? s.mean : NAN, 2), 9) << Pad(Fixed(s.count ? s.rms : NAN, 2), 9)
+          << Pad(Fixed(s.count ? s.p95.value : NAN, 2), 9) << Pad(Fixed(s.count ? s.p99.value : NAN, 2), 9)
+          << Pad(Fixed(s.count ? s.max : NAN, 2), 9) << Fixed(100 * undefined, 2) << " %\n";
+    }
+  }
+  auto measure_table = [&](const char* title, size_t first, bool systematic) {
+    out << "  " << title << " (" << unit << "; Holloway's terms seen from the cyclopean eye, degrees):\n";
+    out << "    " << Pad("test point", 16);
+    if (systematic) out << Pad("systematic", 12);
+    out << Pad("linear rms", 12) << Pad("p95", 9) << Pad("lateral rms", 13) << Pad("depth mean", 12) << Pad("depth rms", 11)
+        << "angular rms\n";
+    for (size_t k = 0; k < outputs.num_points(); ++k) {
+      const size_t o = outputs.offset(k) + first;
+      auto v = [&](size_t i, double OutputStatistics::*field) { return stats[o + i].count ? stats[o + i].*field : NAN; };
+      out << "    " << Pad(model.geometry.test_points[k].name, 16);
+      if (systematic) out << Pad(Fixed(chain.systematic(k).error.linear, 2), 12);
+      out << Pad(Fixed(v(ErrorOutputs::kLinear, &OutputStatistics::rms), 2), 12)
+          << Pad(Fixed(stats[o].count ? stats[o].p95.value : NAN, 2), 9)
+          << Pad(Fixed(v(ErrorOutputs::kLateral, &OutputStatistics::rms), 2), 13)
+          << Pad(Fixed(v(ErrorOutputs::kDepth, &OutputStatistics::mean), 2), 12)
+          << Pad(Fixed(v(ErrorOutputs::kDepth, &OutputStatistics::rms), 2), 11)
+          << Fixed(v(ErrorOutputs::kAngular, &OutputStatistics::rms), 3) << "\n";
+    }
+  };
+  measure_table("misregistration, the overlay against the video image of the point as the eyes see both",
+                outputs.misregistration(), false);
+  measure_table("misperception, where the eyes see the point against where it is: systematic, then from the errors",
+                outputs.misperception(), true);
+  const ScenarioTotals t = Totals(model, all, OutputSet::kFull);
+  out << "  totals: image " << Fixed(t.image_rms_px, 2) << " px rms, misregistration " << Fixed(t.misregistration_rms, 2)
+      << " " << unit << " rms, misperception " << Fixed(t.misperception_rms, 2) << " " << unit << " rms (systematic "
+      << Fixed(SystematicMisperceptionRms(chain), 2) << " " << unit << ")";
+  if (std::isfinite(t.wrong_occlusion_rate)) out << ", wrong occlusion " << Fixed(100 * t.wrong_occlusion_rate, 2) << " %";
+  out << "\n";
+  if (run.options.budget) {
+    const ErrorBudget budget = Budget(model, result);
+    auto table = [&](const char* what, const std::vector<size_t>& order, double BudgetEntry::*share,
+                     double ScenarioTotals::*total, const std::string& total_unit, bool with_image) {
+      out << "  error budget of the " << what << " (" << run.options.budget_samples
+          << " samples per scenario), ranked by share of its mean square:\n";
+      out << "    " << Pad("#", 3) << Pad("source", 26) << Pad("share", 9);
+      if (with_image) out << Pad("image", 9);
+      out << Pad("alone", 22) << "all, this halved\n";
+      int rank = 1, silent = 0;
+      for (const size_t i : order) {
+        const BudgetEntry& e = budget.entries[i];
+        if (!with_image && e.alone.*total == 0) {  // the misperception table: sources that do not touch what the eyes see
+          ++silent;
+          continue;
+        }
+        out << "    " << Pad(std::to_string(rank++), 3) << Pad(std::string(SourceKey(e.source)), 26) << Pad(Percent(e.*share), 9);
+        if (with_image) out << Pad(Percent(e.share_of_image_ms), 9);
+        // Built by appending: GCC 12's -Wrestrict misfires on "literal" + std::string.
+        std::string alone = Fixed(e.alone.*total, 2).append(" ").append(total_unit);
+        std::string halved = Fixed(e.halved.*total, 2).append(" ").append(total_unit);
+        if (with_image) {
+          alone.append(" ").append(Fixed(e.alone.image_rms_px, 2)).append(" px");
+          halved.append(" ").append(Fixed(e.halved.image_rms_px, 2)).append(" px");
+        }
+        out << Pad(alone, 22) << halved << "\n";
+        if (rank <= 4) out << "       → " << SourceCorrection(e.source) << "\n";
+      }
+      if (silent > 0) {
+        out << "    (" << silent << " other source" << (silent > 1 ? "s do" : " does")
+            << " not move what the eyes see of the physical world: 0 here)\n";
+      }
+    };
+    table("misregistration", budget.by_misregistration, &BudgetEntry::share_of_misregistration_ms,
+          &ScenarioTotals::misregistration_rms, unit, true);
+    table("misperception (from the errors, beside the systematic part)", budget.by_misperception,
+          &BudgetEntry::share_of_misperception_ms, &ScenarioTotals::misperception_rms, unit, false);
+  }
+  return out.str();
+}
+
+}  // namespace vstcal

@@ -1,0 +1,183 @@
+#include "vstcal/formats/errsim/sensitivity_format.h"
+
+#include <cmath>
+#include <cstdio>
+
+#include "vstcal/errsim/chain.h"
+#include "vstcal/errsim/models.h"
+
+namespace vstcal {
+namespace {
+
+
+OrderedJson NumberOrNull(double v) { return std::isfinite(v) ? OrderedJson(v) : OrderedJson(nullptr); }
+
+OrderedJson Header(std::string_view format, const RunDescription& run, const ChainModel& model) {
+  OrderedJson j;
+  j["format"] = format;
+  j["chain"] = run.chain_path;
+  j["chain_digest"] = run.digest;
+  j["length_unit"] = LengthUnitName(model.geometry.length_unit);
+  j["only"] = run.only;
+  j["without"] = run.without;
+  return j;
+}
+
+// RMS over test points (and eyes) of a row of VectorModel outputs: pixels, misregistration,
+// misperception (ChainEvaluator::kOutputsPerPoint per point).
+struct RowRms {
+  double image_px, misregistration, misperception;
+};
+RowRms Rms(const Eigen::Ref<const Eigen::VectorXd>& row, size_t points) {
+  constexpr int kPer = ChainEvaluator::kOutputsPerPoint;
+  double px = 0, reg = 0, per = 0;
+  for (size_t t = 0; t < points; ++t) {
+    px += row.segment(kPer * t, 4).squaredNorm();
+    reg += row.segment(kPer * t + 4, 3).squaredNorm();
+    per += row.segment(kPer * t + 7, 3).squaredNorm();
+  }
+  return {std::sqrt(px / (2.0 * points)), std::sqrt(reg / points), std::sqrt(per / points)};
+}
+
+}  // namespace
+
+TextAndJson SweepOutput(const ChainModel& model, const RunDescription& run, const std::vector<ParameterSweep>& sweeps,
+                        const Provenance& provenance) {
+  const size_t points = model.geometry.test_points.size();
+  const std::string unit(LengthUnitName(model.geometry.length_unit));
+  OrderedJson j = Header("vstcal/err-sim-sweep@2", run, model);
+  j["outputs"] = VectorOutputNames(model);
+  OrderedJson list = OrderedJson::array();
+  std::string text = "err-sim sweep: " + run.chain_path + ": " + std::to_string(sweeps.size()) +
+                     " parameters, slope at nominal of the RMS errors per unit of the parameter\n" +
+                     "  parameter                                    image          misregistration      misperception\n";
+  for (const ParameterSweep& sweep : sweeps) {
+    const ChainParameter& p = model.parameters[sweep.parameter];
+    const SweepResult& r = sweep.result;
+    const double per = p.slot.file_per_internal;
+    OrderedJson values = OrderedJson::array(), image = OrderedJson::array(), reg = OrderedJson::array(),
+                perc = OrderedJson::array();
+    for (size_t k = 0; k < r.values.size(); ++k) {
+      values.push_back(r.values[k] * per);
+      if (!r.defined[k]) {
+        image.push_back(nullptr);
+        reg.push_back(nullptr);
+        perc.push_back(nullptr);
+        continue;
+      }
+      const RowRms rms = Rms(r.outputs.row(k).transpose(), points);
+      image.push_back(NumberOrNull(rms.image_px));
+      reg.push_back(NumberOrNull(rms.misregistration));
+      perc.push_back(NumberOrNull(rms.misperception));
+    }
+    OrderedJson e;
+    e["name"] = p.name();
+    e["source"] = SourceKey(p.source);
+    e["unit"] = p.slot.file_unit;
+    e["values"] = std::move(values);
+    e["image_rms_px"] = std::move(image);
+    e["misregistration_rms"] = std::move(reg);
+    e["misperception_rms"] = std::move(perc);
+    OrderedJson slope = nullptr;
+    if (r.slope_defined) {
+      slope = OrderedJson::array();
+      for (Eigen::Index o = 0; o < r.slope.size(); ++o) slope.push_back(NumberOrNull(r.slope(o) / per));
+      const RowRms rms = Rms(r.slope, points);
+      char line[320];
+      std::snprintf(line, sizeof line, "  %-44s %10.4g px/%-4s %10.4g %s/%-4s %10.4g %s/%s\n", p.name().c_str(),
+                    rms.image_px / per, p.slot.file_unit.c_str(), rms.misregistration / per, unit.c_str(),
+                    p.slot.file_unit.c_str(), rms.misperception / per, unit.c_str(), p.slot.file_unit.c_str());
+      text += line;
+    }
+    e["slope_per_unit"] = std::move(slope);
+    list.push_back(std::move(e));
+  }
+  j["parameters"] = std::move(list);
+  j["provenance"] = ProvenanceToJson(provenance);
+  return {std::move(j), std::move(text)};
+}
+
+TextAndJson SobolOutput(const ChainModel& model, const RunDescription& run, const std::string& sampling,
+                        const SobolResult& r, const Provenance& provenance) {
+  OrderedJson j = Header("vstcal/err-sim-sobol@2", run, model);
+  j["samples"] = run.options.samples;
+  j["sampling"] = sampling;
+  j["seed"] = run.options.seed;
+  j["evaluations"] = r.evaluations;
+  j["groups"] = r.group_names;
+  auto estimate = [](const Estimate& e) {
+    return OrderedJson{{"value", NumberOrNull(e.value)},
+                       {"standard_error", NumberOrNull(e.standard_error)},
+                       {"interval", {NumberOrNull(e.interval.lo), NumberOrNull(e.interval.hi)}}};
+  };
+  OrderedJson outputs = OrderedJson::array();
+  std::string text = "err-sim sobol: " + run.chain_path + ": N = " + std::to_string(run.options.samples) + " (" + sampling +
+                     "), " + std::to_string(r.evaluations) + " evaluations; total index S_T per source\n";
+  text += "  " + std::string(34, ' ');
+  for (const std::string& g : r.group_names) text += g.substr(0, 11) + std::string(g.size() < 12 ? 12 - std::min<size_t>(g.size(), 11) : 1, ' ');
+  text += "\n";
+  for (const OutputSensitivity& o : r.outputs) {
+    OrderedJson groups;
+    for (size_t g = 0; g < r.group_names.size(); ++g) {
+      groups[r.group_names[g]] = {{"first", estimate(o.groups[g].first_order)}, {"total", estimate(o.groups[g].total)}};
+    }
+    outputs.push_back({{"name", o.name}, {"mean", NumberOrNull(o.mean)}, {"variance", NumberOrNull(o.variance)}, {"indices", groups}});
+    if (o.name.find("pixel_px") != std::string::npos || o.name.ends_with(".linear")) {
+      char line[64];
+      std::snprintf(line, sizeof line, "  %-34s", o.name.substr(0, 33).c_str());
+      text += line;
+      for (const auto& g : o.groups) {
+        std::snprintf(line, sizeof line, "%-12.3f", g.total.value);
+        text += line;
+      }
+      text += "\n";
+    }
+  }
+  j["outputs"] = std::move(outputs);
+  j["provenance"] = ProvenanceToJson(provenance);
+  return {std::move(j), std::move(text)};
+}
+
+TextAndJson LinearOutput(const ChainModel& model, const RunDescription& run, const LinearPropagation& linear,
+                         const MonteCarloSummary& monte_carlo, const Provenance& provenance) {
+  const auto comparison = CompareLinearWithMonteCarlo(linear, monte_carlo);
+  OrderedJson j = Header("vstcal/err-sim-linear@2", run, model);
+  j["samples"] = run.options.samples;
+  j["seed"] = run.options.seed;
+  j["derivatives"] = DerivativeMethodName(linear.method);
+  j["undefined_samples"] = monte_carlo.undefined_samples();
+  OrderedJson outputs = OrderedJson::array();
+  int disagreements = 0;
+  std::string text = "err-sim linear: " + run.chain_path + ": first-order σ (J Σ Jᵀ, autodiff) vs Monte Carlo (" +
+                     std::to_string(run.options.samples) + " samples)\n  output                                  linear σ     MC σ         rel. diff\n";
+  for (size_t k = 0; k < comparison.size(); ++k) {
+    const auto& c = comparison[k];
+    OrderedJson groups;
+    for (size_t g = 0; g < linear.group_names.size(); ++g) groups[linear.group_names[g]] = NumberOrNull(std::sqrt(linear.group_variance(k, g)));
+    outputs.push_back({{"name", c.name},
+                       {"linear_mean", NumberOrNull(c.linear_mean)},
+                       {"monte_carlo_mean", NumberOrNull(c.monte_carlo_mean)},
+                       {"mean_standard_error", NumberOrNull(c.mean_standard_error)},
+                       {"linear_sigma", NumberOrNull(c.linear_sigma)},
+                       {"monte_carlo_sigma", NumberOrNull(c.monte_carlo_sigma)},
+                       {"sigma_standard_error", NumberOrNull(c.sigma_standard_error)},
+                       {"sigma_relative_difference", NumberOrNull(c.sigma_relative_difference)},
+                       {"mean_disagrees", c.mean_disagrees},
+                       {"sigma_disagrees", c.sigma_disagrees},
+                       {"linear_sigma_by_source", groups}});
+    disagreements += c.mean_disagrees || c.sigma_disagrees;
+    char line[200];
+    std::snprintf(line, sizeof line, "  %-38s %-12.4g %-12.4g %+8.2f %%%s\n", c.name.substr(0, 38).c_str(), c.linear_sigma,
+                  c.monte_carlo_sigma, 100 * c.sigma_relative_difference,
+                  c.mean_disagrees || c.sigma_disagrees ? "  ← not linear here" : "");
+    text += line;
+  }
+  text += "  " + std::to_string(disagreements) + " of " + std::to_string(comparison.size()) +
+          " outputs differ by more than the Monte Carlo error explains (3 standard errors)\n";
+  j["outputs"] = std::move(outputs);
+  j["disagreements"] = disagreements;
+  j["provenance"] = ProvenanceToJson(provenance);
+  return {std::move(j), std::move(text)};
+}
+
+}  // namespace vstcal

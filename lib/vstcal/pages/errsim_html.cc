@@ -1,0 +1,185 @@
+#include "vstcal/pages/errsim_html.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include "vstcal/core/error.h"
+
+#include "vstcal/pages/errsim_charts.h"
+#include "vstcal/pages/errsim_page_parts.h"
+#include "vstcal/pages/html_page.h"
+
+namespace vstcal {
+namespace {
+
+
+constexpr std::array<const char*, 2> kEyes = {"left", "right"};
+
+// Cells of one statistics object (mean, rms, p50, p95, p99, max), dashes when it is null.
+std::string StatsCells(const OrderedJson& report, const std::string& pointer) {
+  std::string s;
+  for (const char* field : {"mean", "rms", "p50", "p95", "p99", "max"}) s += ValueCell(report, pointer + "/" + field);
+  return s;
+}
+constexpr const char* kStatsHeads = "<th>mean</th><th>rms</th><th>p50</th><th>p95</th><th>p99</th><th>max</th>";
+
+std::string Summary(const OrderedJson& r) {
+  const std::string unit = r.at("length_unit").get<std::string>();
+  std::string active;
+  for (const auto& s : r.at("sources").at("active")) active += (active.empty() ? "" : ", ") + s.get<std::string>();
+  std::string s = "<p>" + std::to_string(r.at("samples").get<uint64_t>()) + " samples, seed " +
+                  std::to_string(r.at("seed").get<uint64_t>()) + ", lengths in " + Escape(unit) + ", " +
+                  std::to_string(r.at("test_points").size()) + " test points. Active sources: " + Escape(active) +
+                  ". Definitions: docs/math/vst-chain.md and docs/math/registration-error.md.</p>\n";
+  std::string rows;
+  const std::pair<const char*, std::string> totals[] = {{"image_rms_px", "image misregistration RMS (px)"},
+                                                        {"misregistration_rms", "3-D misregistration RMS (" + unit + ")"},
+                                                        {"misperception_rms", "misperception RMS (" + unit + ")"},
+                                                        {"systematic_misperception_rms", "systematic misperception RMS (" + unit + ")"},
+                                                        {"wrong_occlusion_rate", "wrong occlusion rate"}};
+  for (const auto& [key, label] : totals) rows += "<tr><th>" + Escape(label) + "</th>" + ValueCell(r, std::string("/totals/") + key) + "</tr>\n";
+  rows += "<tr><th>samples with some test point undefined</th>" + ValueCell(r, "/undefined_samples") + "</tr>\n";
+  return s + Table("whole chain", "<th></th><th>value</th>", rows);
+}
+
+std::string Distributions(const OrderedJson& r) {
+  const OrderedJson& points = r.at("test_points");
+  const std::string unit = r.at("length_unit").get<std::string>();
+  std::vector<QuantileBar> image, misregistration, misperception;
+  std::string image_rows, misregistration_rows, misperception_rows;
+  for (size_t k = 0; k < points.size(); ++k) {
+    const OrderedJson& p = points[k];
+    const std::string name = p.at("name").get<std::string>(), key = "/test_points/" + std::to_string(k);
+    for (size_t e = 0; e < kEyes.size(); ++e) {
+      image.push_back({name + " " + kEyes[e], &p.at("image").at(kEyes[e]).at("pixel_px"), e});
+      const std::string pk = key + "/image/" + kEyes[e] + "/pixel_px";
+      image_rows += "<tr><th>" + Escape(name) + "</th><th>" + kEyes[e] + "</th>" + StatsCells(r, pk) + "</tr>\n";
+    }
+    misregistration.push_back({name, &p.at("misregistration").at("linear"), 2});
+    misperception.push_back({name, &p.at("misperception").at("linear"), 3});
+    misregistration_rows += "<tr><th>" + Escape(name) + "</th>" + ValueCell(r, key + "/undefined/rate") +
+                            StatsCells(r, key + "/misregistration/linear") + "</tr>\n";
+    misperception_rows += "<tr><th>" + Escape(name) + "</th>" + ValueCell(r, key + "/misperception/systematic/linear") +
+                          StatsCells(r, key + "/misperception/linear") + "</tr>\n";
+  }
+  std::string s = "<section><h2>Error distributions</h2>\n";
+  s += ChartOrNote(QuantileBarsScript(image, "image misregistration |overlay - video| (px)"), "image misregistration per test point and eye",
+                   "Image misregistration of each test point in each eye (px): box from the median to p95, whisker to p99, "
+                   "mean and maximum marked; left eye blue, right eye red.");
+  s += ChartOrNote(QuantileBarsScript(misregistration, "3-D misregistration, linear (" + unit + ")"),
+                   "3-D misregistration per test point",
+                   "3-D misregistration (Holloway's linear error, " + unit + ") of each test point, the same quantiles.");
+  s += ChartOrNote(QuantileBarsScript(misperception, "misperception, linear (" + unit + ")"), "misperception per test point",
+                   "Misperception (linear, relative to the error-free chain's systematic one, " + unit +
+                       ") of each test point, the same quantiles.");
+  s += Table("image misregistration (px)", std::string("<th>test point</th><th>eye</th>") + kStatsHeads, image_rows);
+  s += Table("3-D misregistration, linear (" + unit + ")", std::string("<th>test point</th><th>undefined rate</th>") + kStatsHeads,
+             misregistration_rows);
+  s += Table("misperception, linear (" + unit + "), beside the error-free chain's systematic one",
+             std::string("<th>test point</th><th>systematic</th>") + kStatsHeads, misperception_rows);
+  return s + "</section>\n";
+}
+
+std::string Budget(const OrderedJson& r) {
+  const OrderedJson& budget = r.at("budget");
+  if (budget.is_null()) return "<section><h2>Error budget</h2>\n<p>Not computed (--no-budget).</p></section>\n";
+  const std::string unit = r.at("length_unit").get<std::string>();
+  std::string s = "<section><h2>Error budget</h2>\n<p>Each source alone and the whole chain with that source halved (" +
+                  std::to_string(budget.at("samples").get<uint64_t>()) +
+                  " samples a scenario, common random numbers); ranked by its share of the mean square "
+                  "(docs/math/vst-chain.md#budget).</p>\n";
+  for (const std::string measure : {"misregistration", "misperception"}) {
+    s += ChartOrNote(BudgetScript(r, measure), "error budget, " + measure,
+                     "Error budget of the " + measure + " (" + unit + "), sources ranked largest share first.");
+    std::string rows;
+    size_t rank = 0;
+    for (const auto& source : budget.at("ranking").at(measure)) {
+      const OrderedJson& entries = budget.at("entries");
+      for (size_t i = 0; i < entries.size(); ++i) {
+        if (entries[i].at("source") != source) continue;
+        const std::string key = "/budget/entries/" + std::to_string(i);
+        rows += "<tr><th>" + std::to_string(++rank) + ". " + Escape(source.get<std::string>()) + "</th>" +
+                ValueCell(r, key + "/share_of_" + measure + "_ms") + ValueCell(r, key + "/alone/" + measure + "_rms") +
+                ValueCell(r, key + "/halved/" + measure + "_rms") + ValueCell(r, key + "/share_of_image_ms") +
+                ValueCell(r, key + "/halved/image_rms_px") + "<td style=\"text-align:left\">" +
+                Escape(entries[i].at("correction").get<std::string>()) + "</td></tr>\n";
+      }
+    }
+    s += Table("ranked by " + measure,
+               "<th>source</th><th>share of mean square</th><th>alone RMS (" + unit + ")</th><th>whole chain, halved (" +
+                   unit + ")</th><th>share of image mean square</th><th>image RMS halved (px)</th><th>correction</th>",
+               rows);
+  }
+  return s + "</section>\n";
+}
+
+}  // namespace
+
+std::string ErrSimReportHtml(const OrderedJson& r) {
+  std::string s = PageStart("err-sim: " + r.at("chain").get<std::string>());
+  s += "<h1>err-sim run: " + Escape(r.at("chain").get<std::string>()) + "</h1>\n";
+  s += Summary(r) + Distributions(r) + Budget(r);
+  return s + kPageEnd;
+}
+
+std::string ErrSimSweepHtml(const OrderedJson& r) {
+  const std::string unit = r.at("length_unit").get<std::string>();
+  std::string s = PageStart("err-sim sweep: " + r.at("chain").get<std::string>());
+  s += "<h1>err-sim sweep: " + Escape(r.at("chain").get<std::string>()) + "</h1>\n<p>Each parameter swept on its own, "
+       "every other at its mean; the slope is d(output)/d(parameter) at the middle of the range, by automatic "
+       "differentiation (docs/tools/err-sim.md).</p>\n";
+  const OrderedJson& parameters = r.at("parameters");
+  std::vector<std::string> sources;
+  for (const auto& p : parameters) {
+    const std::string source = p.at("source").get<std::string>();
+    if (std::find(sources.begin(), sources.end(), source) == sources.end()) sources.push_back(source);
+  }
+  for (const std::string& source : sources) {
+    s += "<section><h2>" + Escape(source) + "</h2>\n";
+    s += ChartOrNote(SweepCurvesScript(r, source, "image_rms_px", "image misregistration RMS (px)"),
+                     "image misregistration along the sweeps of " + source,
+                     "Image misregistration RMS over the test points and eyes along each parameter's sweep.");
+    s += ChartOrNote(SweepCurvesScript(r, source, "misregistration_rms", "3-D misregistration RMS (" + unit + ")"),
+                     "3-D misregistration along the sweeps of " + source,
+                     "3-D misregistration RMS over the test points along each parameter's sweep.");
+    std::string rows;
+    for (size_t i = 0; i < parameters.size(); ++i) {
+      const OrderedJson& p = parameters[i];
+      if (p.at("source") != source) continue;
+      const std::string key = "/parameters/" + std::to_string(i), last = std::to_string(p.at("values").size() - 1);
+      const OrderedJson& slopes = p.at("slope_per_unit");
+      size_t steepest = 0;
+      for (size_t j = 1; j < slopes.size(); ++j) {
+        if (slopes[j].is_number() && (!slopes[steepest].is_number() ||
+                                      std::abs(slopes[j].get<double>()) > std::abs(slopes[steepest].get<double>()))) {
+          steepest = j;
+        }
+      }
+      rows += "<tr><th>" + Name(p.at("name").get<std::string>()) + "</th><td>" + Escape(p.at("unit").get<std::string>()) +
+              "</td>" + ValueCell(r, key + "/values/0") + ValueCell(r, key + "/values/" + last) +
+              ValueCell(r, key + "/image_rms_px/0") + ValueCell(r, key + "/image_rms_px/" + last) +
+              ValueCell(r, key + "/misregistration_rms/0") + ValueCell(r, key + "/misregistration_rms/" + last) +
+              (slopes.empty() ? EmptyCells(1) : ValueCell(r, key + "/slope_per_unit/" + std::to_string(steepest))) +
+              "<td style=\"text-align:left\">" + (slopes.empty() ? "" : Name(r.at("outputs").at(steepest).get<std::string>())) +
+              "</td></tr>\n";
+    }
+    s += Table("the sweeps of " + source,
+               "<th>parameter</th><th>unit</th><th>lo</th><th>hi</th><th>image RMS at lo (px)</th><th>at hi</th>"
+               "<th>3-D RMS at lo (" + unit + ")</th><th>at hi</th><th>largest slope (output unit per unit)</th><th>of output</th>",
+               rows);
+    s += "</section>\n";
+  }
+  return s + kPageEnd;
+}
+
+std::string ErrSimHtml(const OrderedJson& output) {
+  const std::string format = output.value("format", "");
+  if (format == "vstcal/err-sim-sweep@2") return ErrSimSweepHtml(output);
+  if (format == "vstcal/err-sim-sobol@2") return ErrSimSobolHtml(output);
+  if (format == "vstcal/err-sim-linear@2") return ErrSimLinearHtml(output);
+  VSTCAL_CHECK(format == "vstcal/err-sim-report@2", "--html is offered for run, merge, sweep, sobol and linear only");
+  return ErrSimReportHtml(output);
+}
+
+}  // namespace vstcal

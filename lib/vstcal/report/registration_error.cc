@@ -1,9 +1,0 @@
-#include "vstcal/report/registration_error.h"
-
-namespace vstcal {
-
-template RegistrationErrorOf<double> RegistrationError(const Vec3<double>&, const Vec3<double>&, const Vec3<double>&);
-template bool TriangulateMidpoint(const Vec3<double>&, const Vec3<double>&, const Vec3<double>&, const Vec3<double>&,
-                                  Vec3<double>*);
-
-}  // namespace vstcal
