@@ -26,7 +26,7 @@ int main(int argc, char** argv) {
   app.add_option("CORNERS", input, "vstcal/correspondences@1 file")->required()->check(vstcal::tools::kNonEmpty);
   app.add_option("-o,--output", output, "camera file to write (vstcal/camera@1)")->required()->check(vstcal::tools::kNonEmpty);
   app.add_option("--variant", variant, "Tsai's variant for volumes: auto, coplanar or non-coplanar")
-      ->check(CLI::IsMember({"auto", "coplanar", "non-coplanar"}))
+      ->check(CLI::IsMember(vstcal::NamesOf(vstcal::TsaiOptions::kVariantNames)))
       ->capture_default_str();
   app.add_option("--principal-point", principal_point, "U,V in px for Tsai's stages (default: the image centre)")
       ->delimiter(',')
@@ -39,7 +39,7 @@ int main(int argc, char** argv) {
   app.add_option("--free-principal-point", free_pp,
                  "one plane, refined: no (hold it where Tsai assumed it), yes, or auto (free it when the scaled "
                  "information determines it to 0.5% of the image diagonal)")
-      ->check(CLI::IsMember({"no", "yes", "auto"}))
+      ->check(CLI::IsMember(vstcal::NamesOf(vstcal::CalibrationOptions::kPlanePrincipalPointNames)))
       ->capture_default_str()
       ->excludes(raw);
   for (CLI::Option* o : flags.AddRefinement(app)) o->excludes(raw);
@@ -51,15 +51,11 @@ int main(int argc, char** argv) {
     DeclareOutputs({output, flags.residuals});
     options.refine = !no_refine;
     options.refinement = flags.Refinement();
-    options.tsai.variant = variant == "coplanar"       ? TsaiOptions::Variant::kCoplanar
-                           : variant == "non-coplanar" ? TsaiOptions::Variant::kNonCoplanar
-                                                       : TsaiOptions::Variant::kAuto;
+    options.tsai.variant = *FromName(TsaiOptions::kVariantNames, variant);
     if (app.count("--principal-point") > 0) {
       options.tsai.principal_point = Eigen::Vector2d(principal_point[0], principal_point[1]);
     }
-    options.plane_principal_point = free_pp == "yes"    ? CalibrationOptions::PlanePrincipalPoint::kFree
-                                    : free_pp == "auto" ? CalibrationOptions::PlanePrincipalPoint::kAuto
-                                                        : CalibrationOptions::PlanePrincipalPoint::kHold;
+    options.plane_principal_point = *FromName(CalibrationOptions::kPlanePrincipalPointNames, free_pp);
     Correspondences corners = ReadCorrespondences(input);
     if (corners.rig == Rig::kPlanarViews) {
       for (const char* flag : {"--variant", "--principal-point", "--sx", "--free-principal-point"}) {

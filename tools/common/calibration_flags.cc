@@ -65,7 +65,7 @@ std::vector<CLI::Option*> CalibrationFlags::AddRefinement(CLI::App& app) {
           ->capture_default_str(),
       app.add_flag("--skew", skew, "also estimate the skew s (K[0][1])"),
       app.add_option("--loss", loss, "robust loss: none, huber or cauchy")
-          ->check(CLI::IsMember({"none", "huber", "cauchy"}))
+          ->check(CLI::IsMember(NamesOf(RefineOptions::kLossNames)))
           ->capture_default_str()};
   loss_scale_option = app.add_option("--loss-scale", loss_scale_px, "where the robust loss departs from the square, px")
                           ->check(kPositiveFinite)
@@ -113,7 +113,7 @@ RefineOptions CalibrationFlags::Refinement() const {
     }
   }
   o.free_skew = skew;
-  o.loss = loss == "huber" ? RefineOptions::Loss::kHuber : loss == "cauchy" ? RefineOptions::Loss::kCauchy : RefineOptions::Loss::kNone;
+  o.loss = *FromName(RefineOptions::kLossNames, loss);
   if (o.loss == RefineOptions::Loss::kNone && loss_scale_option != nullptr && loss_scale_option->count() > 0) {
     throw InputError("--loss-scale: has no effect with --loss none; give --loss huber or --loss cauchy, or drop it");
   }

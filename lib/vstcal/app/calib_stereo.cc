@@ -187,7 +187,7 @@ Outcome Plan(const DisplayPlanRequest& request, const Provenance& provenance) {
     const StereoRig rig = ReadStereoRig(request.rig);
     unit = rig.length_unit;
     input.baseline = rig.baseline();
-    input.focal_px = rig.left.camera.params[0];
+    input.focal_px = rig.left.camera.params[intrinsic::kFx];
     input.capture_width = rig.left.camera.image_size.width;
     const double converge = RadToDeg(AngleBetween(rig.right_from_left.R, Eigen::Matrix3d::Identity()));
     if (converge > 0.5) {
