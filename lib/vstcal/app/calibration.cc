@@ -54,7 +54,9 @@ Outcome CalibrationOutcome(const CalibrationResult& result, const CalibrationOpt
   std::string& text = outcome.summary;
   text = files.tool + ": " + files.input + ": " + std::to_string(NumObservations(result.used)) + " points in " +
          std::to_string(result.used.views.size()) + " views, method " + result.camera.method + "\n" +
-         FitSummaryText(result.camera);
+         FitSummaryText(result.camera) +
+         ParametersText(result.camera, result.refinement ? std::span<const HeldIntrinsic>(result.refinement->held)
+                                                         : std::span<const HeldIntrinsic>());
   if (result.refinement) {
     const Refinement& r = *result.refinement;
     char buf[200];
