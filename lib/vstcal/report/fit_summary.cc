@@ -52,7 +52,7 @@ std::string FitSummaryText(const CalibratedCamera& c) {
 
 std::string ParametersText(const CalibratedCamera& c, std::span<const HeldIntrinsic> held, size_t worst) {
   std::string out;
-  if (!c.fit) return out;
+  if (!c.fit && !c.covariance) return out;
   const auto names = LensModelParamNames(c.camera.model);
   Append(&out, "  %-6s %16s %14s   %s\n", "param", "estimate", "1-sigma", "3-sigma interval (or why held)");
   for (size_t i = 0; i < names.size(); ++i) {
@@ -69,6 +69,7 @@ std::string ParametersText(const CalibratedCamera& c, std::span<const HeldIntrin
       Append(&out, "  %-6s %16.8g %14s\n", name.c_str(), value, c.covariance ? "(not estimated)" : "(no covariance)");
     }
   }
+  if (!c.fit) return out;
   const std::vector<ViewFit>& views = c.fit->views;
   if (views.size() > 1 && worst > 0) {
     std::vector<size_t> order(views.size());

@@ -15,7 +15,7 @@ std::string FitSummaryText(const CalibratedCamera& camera);
 // Every lens parameter as Bouguet's toolbox and mrcal show them: the estimate ± 1σ (from the
 // camera's covariance) and the 3σ interval; a held parameter with its reason instead; a parameter
 // neither estimated with a σ nor held (no covariance) with its value alone. Then the views'
-// RMS, the `worst` largest first. Empty for a camera without a fit.
+// RMS, the `worst` largest first (with a fit). Empty for a camera with neither fit nor covariance.
 std::string ParametersText(const CalibratedCamera& camera, std::span<const HeldIntrinsic> held, size_t worst = 3);
 
 }  // namespace vstcal
