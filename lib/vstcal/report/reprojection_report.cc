@@ -127,6 +127,13 @@ CameraReport ReportOne(const ReportCamera& rc, const Correspondences& c, const I
   out.file = rc.file;
   out.name = rc.camera.name;
   out.method = rc.camera.method;
+  const auto names = LensModelParamNames(rc.camera.camera.model);
+  for (size_t i = 0; i < names.size(); ++i) {
+    ParameterEstimate& p = out.parameters.emplace_back(ParameterEstimate{std::string(names[i]), rc.camera.camera.params[i], {}});
+    if (const auto k = rc.camera.covariance ? rc.camera.covariance->Find(p.name) : std::nullopt) {
+      p.sigma = std::sqrt(std::max(0.0, rc.camera.covariance->matrix(*k, *k)));
+    }
+  }
   const Normalization norm = NormalizationFor(rc, c);
   out.normalization = norm.description;
   Collected all;

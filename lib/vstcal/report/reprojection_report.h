@@ -82,8 +82,17 @@ struct MeasureStats {
   std::optional<ErrorStats> error_px, lateral, angular_deg;
 };
 
+// A lens parameter as the camera file gives it: its value and, when the file's covariance names
+// it, its 1σ.
+struct ParameterEstimate {
+  std::string name;  // "fx", "k1", … in the model's layout order
+  double value = 0;
+  std::optional<double> sigma;
+};
+
 struct CameraReport {
   std::string file, name, method;
+  std::vector<ParameterEstimate> parameters;  // every lens parameter, in layout order
   std::vector<ViewReport> views;
   MeasureStats overall;  // calibration points
   std::optional<ErrorStats> normalized;
