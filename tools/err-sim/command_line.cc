@@ -8,6 +8,7 @@
 #include "common/scheduler.h"
 #include "common/validators.h"
 #include "vstcal/core/error.h"
+#include "vstcal/sensitivity/unit_points.h"
 
 namespace vstcal::tools {
 
@@ -52,7 +53,7 @@ ErrSimCommandLine::ErrSimCommandLine(CLI::App& app) {
   sweep_->add_option("--points", sweep_request_.points, "points per sweep (2 … 1001)")->capture_default_str();
 
   sobol_ = AddCommon(app.add_subcommand("sobol", "first-order and total Sobol indices per source"), true, true);
-  sobol_->add_option("--sampling", sobol_request_.sampling, "sobol or pseudo-random")->check(CLI::IsMember({"sobol", "pseudo-random"}))->capture_default_str();
+  sobol_->add_option("--sampling", sobol_request_.sampling, "sobol or pseudo-random")->check(CLI::IsMember(vstcal::NamesOf(kSamplingMethodNames)))->capture_default_str();
   sobol_->add_option("--bootstrap", sobol_request_.bootstrap, "bootstrap resamples for the intervals (0: none; at most 10000)")->capture_default_str();
   sobol_->add_option("--html", html_, html_help)->check(kNonEmpty);
 

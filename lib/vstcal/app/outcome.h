@@ -13,6 +13,10 @@ namespace vstcal::app {
 struct Outcome {
   std::vector<std::pair<std::filesystem::path, std::string>> files;  // path, bytes
   std::string summary;                                               // for stderr
+  // Lines for stderr that a tool prints even when quiet, before it writes the files.
+  std::vector<std::string> warnings;
+  // What a tool prints on stdout after writing the files (a report's text table); empty: nothing.
+  std::string stdout_text;
   // A missing folder of an output is created when its parent exists (calib-capture's overlay and
   // render folders), and removed again if writing fails. Otherwise a missing folder is refused.
   bool create_folders = false;

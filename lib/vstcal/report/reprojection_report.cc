@@ -226,14 +226,7 @@ CameraDifference Compare(const ReprojReport& report, size_t k) {
 double PointError::angular_deg() const { return angular_rad * kDegPerRad; }
 
 std::string_view ExclusionName(Exclusion e) {
-  switch (e) {
-    case Exclusion::kNone: return "none";
-    case Exclusion::kBehindCamera: return "behind-camera";
-    case Exclusion::kNoPose: return "no-pose";
-    case Exclusion::kNotMeasured: return "not-measured";
-    case Exclusion::kNoRay: return "no-ray";
-  }
-  return "none";
+  return NameOf(kExclusionNames, e);
 }
 
 ReprojReport BuildReprojReport(std::span<const ReportCamera> cameras, Correspondences c, std::string corr_file,

@@ -29,6 +29,7 @@
 #include "vstcal/scene/correspondences.h"
 #include "vstcal/scene/measured_volume.h"
 #include "vstcal/report/statistics.h"
+#include "vstcal/core/enum_names.h"
 
 namespace vstcal {
 
@@ -46,6 +47,7 @@ struct ReprojReportOptions {
 
 // Why a point has no error: it is left out of every statistic and counted.
 enum class Exclusion { kNone, kBehindCamera, kNoPose, kNotMeasured, kNoRay };
+inline constexpr EnumNames<Exclusion, 5> kExclusionNames = {{{Exclusion::kNone, "none"}, {Exclusion::kBehindCamera, "behind-camera"}, {Exclusion::kNoPose, "no-pose"}, {Exclusion::kNotMeasured, "not-measured"}, {Exclusion::kNoRay, "no-ray"}}};
 std::string_view ExclusionName(Exclusion e);  // "behind-camera", "no-pose", "not-measured", "no-ray"
 
 struct PointError {
