@@ -13,6 +13,10 @@ namespace vstcal::app {
 struct Outcome {
   std::vector<std::pair<std::filesystem::path, std::string>> files;  // path, bytes
   std::string summary;                                               // for stderr
+  std::string printed = {};  // for stdout: a tool whose result is text (calib-compare, err-sim check)
+  // A check the user asked for failed (calib-compare --max-px, err-sim check): the files are still
+  // written and the text printed; the tool exits with ExitCode::kCheckFailed.
+  bool check_failed = false;
   // A missing folder of an output is created when its parent exists (calib-capture's overlay and
   // render folders), and removed again if writing fails. Otherwise a missing folder is refused.
   bool create_folders = false;
