@@ -1,10 +1,11 @@
 # The house plan of docs/architecture.md, checked over the include graph: every
-# `#include "vstcal/<folder>/…"` of lib/ and tools/ must go down a floor, or sideways where the
+# `#include "vstcal/<folder>/…"` of lib/, tools/ and python/ must go down a floor, or sideways where the
 # floor allows it. Run by the build before anything compiles (target vstcal_layers), so a broken
 # rule fails the build with the file, the line and the rule:
 #   cmake -DROOT=<source dir> [-DSTAMP=<file>] -P cmake/CheckLayers.cmake
 #
-# Nodes are lib/vstcal's folders (formats/<domain> each a node of its own), and `tools`. Each has a
+# Nodes are lib/vstcal's folders (formats/<domain> each a node of its own), `tools` and `python`
+# (the Python module's bindings, a main of their own). Each has a
 # floor and a rank; an include from A to B is allowed when
 #   floor(B) < floor(A), or
 #   A == B, or
@@ -26,7 +27,7 @@ set(floor_2 calib stereo capture handeye errsim report)
 set(floor_3 formats/camera formats/calib formats/stereo formats/capture formats/handeye formats/report
             formats/errsim pages)
 set(floor_4 app)
-set(floor_5 tools)
+set(floor_5 tools python)
 set(sideways_floors 1 3)
 
 foreach(floor 1 2 3 4 5)
@@ -50,7 +51,8 @@ function(node_of path out)
 endfunction()
 
 file(GLOB_RECURSE lib_files RELATIVE "${ROOT}/lib/vstcal" "${ROOT}/lib/vstcal/*.h" "${ROOT}/lib/vstcal/*.cc")
-file(GLOB_RECURSE tool_files RELATIVE "${ROOT}" "${ROOT}/tools/*.h" "${ROOT}/tools/*.cc")
+file(GLOB_RECURSE tool_files RELATIVE "${ROOT}" "${ROOT}/tools/*.h" "${ROOT}/tools/*.cc" "${ROOT}/python/*.h"
+     "${ROOT}/python/*.cc")
 
 set(broken "")
 set(files "")
@@ -62,6 +64,8 @@ list(APPEND files ${tool_files})
 foreach(file IN LISTS files)
   if(file MATCHES "^tools/")
     set(from tools)
+  elseif(file MATCHES "^python/")
+    set(from python)
   else()
     string(REGEX REPLACE "^lib/vstcal/" "" rel "${file}")
     node_of("${rel}" from)

@@ -12,11 +12,15 @@
 //   BM_EngineSample       the whole Monte Carlo loop of `err-sim run` per sample, with the mergeable
 //                         statistics (moments of 64 outputs, histograms of 30), one thread
 //   BM_EngineBudgetSample the same for a budget scenario (the totals' 26 outputs, no histograms)
+//   BM_ErrSimRun          the library call of `err-sim run` (app::RunErrSim: the chain read, every
+//                         scenario of the budget, the report document), 16,384 samples, one thread:
+//                         the C++ side of the Python binding's vstcal.err_sim (python/bench.py)
 // The NumPy peer (scripts/bench-errsim-numpy.py) runs the same chain; scripts/bench prints both.
 #include <benchmark/benchmark.h>
 
 #include <memory>
 
+#include "vstcal/app/err_sim.h"
 #include "vstcal/errsim/chain.h"
 #include "vstcal/errsim/engine.h"
 #include "vstcal/formats/errsim/chain_reader.h"
@@ -136,6 +140,17 @@ void BM_EngineSample(benchmark::State& state) { EngineSample(state, OutputSet::k
 void BM_EngineBudgetSample(benchmark::State& state) { EngineSample(state, OutputSet::kTotals); }
 BENCHMARK(BM_EngineSample)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_EngineBudgetSample)->Unit(benchmark::kMillisecond);
+
+void BM_ErrSimRun(benchmark::State& state) {
+  app::RunRequest request;
+  request.chain.chain = std::string(VSTCAL_SOURCE_DIR) + "/datasets/vst/seed001.json";
+  request.chain.samples = 16384;
+  request.chain.seed = 1;
+  request.chain.threads = 1;
+  for (auto _ : state) benchmark::DoNotOptimize(app::RunErrSim(request, Provenance{"bench", {}, {}}));
+  state.SetItemsProcessed(state.iterations() * 16384);
+}
+BENCHMARK(BM_ErrSimRun)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 

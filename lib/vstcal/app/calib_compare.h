@@ -20,7 +20,7 @@ struct CompareRequest {
   std::string junit;               // JUnit XML of the checks; empty: none
 };
 
-// The comparison (and the checks' verdicts) in `printed`; the JUnit file in `files`;
+// The comparison (and the checks' verdicts) in `stdout_text`; the JUnit file in `files`;
 // `check_failed` when a threshold is exceeded. InputError for a bad file, a threshold that is not
 // a positive finite number, --max-sigma with a camera without covariance, --junit without a check.
 Outcome Compare(const CompareRequest& request);

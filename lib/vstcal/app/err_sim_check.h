@@ -27,7 +27,7 @@ struct ErrSimCheckRequest {
   std::string junit;  // JUnit XML of the verdicts; empty: none
 };
 
-// `printed`: one line per metric (accepted, new, rise, allowed, noise, verdict) and a count;
+// `stdout_text`: one line per metric (accepted, new, rise, allowed, noise, verdict) and a count;
 // `check_failed` when a metric failed; the JUnit file in `files`. InputError for bad reports,
 // reports in different length units, an allowance or z that is not a positive finite number, an
 // unknown metric name; DegenerateError as `err-sim run` for a re-run chain.

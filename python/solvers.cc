@@ -1,0 +1,256 @@
+// The solvers from Python (docs/python.md#solvers): DLT on NumPy arrays; a calibration of a
+// correspondences@1 file or document as calib-dlt and calib-tsai make it (DLT, Tsai, planar views by
+// Zhang's method, refined with covariance); a stereo rig as calib-stereo solve makes it. Failures
+// raise the exception of the exit code the tool returns, with its one-line message.
+#include <algorithm>
+#include <cmath>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <pybind11/stl.h>
+
+#include "bindings.h"
+#include "vstcal/app/calib_stereo.h"
+#include "vstcal/calib/dlt.h"
+#include "vstcal/calib/pipeline.h"
+#include "vstcal/core/error.h"
+#include "vstcal/estimators/decompose.h"
+#include "vstcal/formats/calib/calibration_io.h"
+#include "vstcal/formats/camera/camera_io.h"
+#include "vstcal/formats/camera/correspondences_io.h"
+
+namespace vstcal::python {
+namespace {
+
+// 3-D ↔ 2-D correspondences held in vstcal's own layout, so that a solver called many times on
+// one set does not convert the arrays each time (what tests/bench/bench_dlt.cc times is the solve).
+struct Observations {
+  std::vector<Observation> list;
+};
+
+Observations MakeObservations(const py::handle& points, const py::handle& pixels, const py::object& weights) {
+  const Rows p = CheckedRows(points, "points", 3, false);
+  const Rows q = CheckedRows(pixels, "pixels", 2, false);
+  if (q.n != p.n) {
+    throw InputError("pixels: " + std::to_string(q.n) + " rows for " + std::to_string(p.n) +
+                     " points; give one pixel per point, in the same order");
+  }
+  std::optional<Rows> w;
+  if (!weights.is_none()) {
+    w = CheckedVector(weights, "weights", p.n);
+    for (py::ssize_t i = 0; i < p.n; ++i) {
+      if (!(w->data[i] > 0)) throw InputError("weights[" + std::to_string(i) + "]: must be positive; drop the point instead");
+    }
+  }
+  Observations o;
+  o.list.resize(static_cast<size_t>(p.n));
+  for (py::ssize_t i = 0; i < p.n; ++i) {
+    Observation& ob = o.list[static_cast<size_t>(i)];
+    ob.point = Eigen::Vector3d(p.data[3 * i], p.data[3 * i + 1], p.data[3 * i + 2]);
+    ob.pixel = Eigen::Vector2d(q.data[2 * i], q.data[2 * i + 1]);
+    if (w) ob.weight = w->data[i];
+  }
+  return o;
+}
+
+// SolveDlt and the decomposition of its P (what bench_dlt times), kept in C++ until read.
+struct DltSolution {
+  DltResult result;
+  ProjectionDecomposition decomposition;
+};
+
+DltOptions::Solver SolverNamed(const std::string& name) {
+  if (name == "normal-equations") return DltOptions::Solver::kNormalEquations;
+  if (name == "svd") return DltOptions::Solver::kFullSvd;
+  throw InputError("solver: unknown DLT solver \"" + name + "\"; use normal-equations or svd");
+}
+
+// Raises the tool's exception when the DLT failed; otherwise P's decomposition.
+DltSolution Solve(std::span<const Observation> observations, const DltOptions& options) {
+  DltSolution s{SolveDlt(observations, options), {}};
+  if (s.result.status != DltStatus::kOk) throw Error(DltStatusExitCode(s.result.status), s.result.message);
+  const std::optional<ProjectionDecomposition> d = DecomposeProjection(s.result.P);
+  if (!d) throw DegenerateError("P: its left 3×3 block is singular or mirrored; check the points' coordinates");
+  s.decomposition = *d;
+  return s;
+}
+
+// The refinement options as calib-dlt and calib-tsai read their flags (tools/common/calibration_flags.cc).
+RefineOptions RefineOptionsOf(const std::string& distortion, bool skew, const std::string& loss,
+                         const std::optional<double>& loss_scale, int max_iterations) {
+  RefineOptions o;
+  o.free_distortion.clear();
+  if (distortion != "none") {
+    size_t start = 0;
+    while (start <= distortion.size()) {
+      const size_t comma = std::min(distortion.find(',', start), distortion.size());
+      const std::string term = distortion.substr(start, comma - start);
+      if (term.empty()) throw InputError("distortion: empty term in \"" + distortion + "\"; give names like k1,k2,p1,p2 or none");
+      if (std::find(o.free_distortion.begin(), o.free_distortion.end(), term) != o.free_distortion.end()) {
+        throw InputError("distortion: \"" + term + "\" is named twice in \"" + distortion + "\"; name each term once");
+      }
+      o.free_distortion.push_back(term);
+      start = comma + 1;
+    }
+  }
+  o.free_skew = skew;
+  if (loss != "none" && loss != "huber" && loss != "cauchy") {
+    throw InputError("loss: unknown robust loss \"" + loss + "\"; use none, huber or cauchy");
+  }
+  o.loss = loss == "huber" ? RefineOptions::Loss::kHuber : loss == "cauchy" ? RefineOptions::Loss::kCauchy : RefineOptions::Loss::kNone;
+  if (loss_scale) {
+    if (o.loss == RefineOptions::Loss::kNone) {
+      throw InputError("loss_scale: has no effect with loss \"none\"; give loss=\"huber\" or \"cauchy\", or drop it");
+    }
+    if (!(*loss_scale > 0) || !std::isfinite(*loss_scale)) throw InputError("loss_scale: must be a positive number of pixels");
+    o.loss_scale_px = *loss_scale;
+  }
+  if (max_iterations < 1 || max_iterations > 100000) throw InputError("max_iterations: must be in [1, 100000]");
+  o.max_iterations = max_iterations;
+  return o;
+}
+
+// The name a correspondences argument goes by in messages: its path, as the tools name their input.
+std::string SourceName(const py::handle& source) {
+  return py::isinstance<py::dict>(source) ? "<correspondences>" : PathOf(source, "correspondences");
+}
+
+py::object Calibrate(const py::object& source, const std::string& method, std::optional<bool> refine,
+                     const std::string& distortion, bool skew, const std::string& loss, std::optional<double> loss_scale,
+                     int max_iterations, const std::string& solver, const std::string& variant,
+                     const std::optional<std::pair<double, double>>& principal_point, std::optional<double> sx,
+                     const std::string& free_principal_point) {
+  if (method != "dlt" && method != "tsai") throw InputError("method: unknown method \"" + method + "\"; use dlt or tsai");
+  const std::string input = SourceName(source);
+  CalibrationOptions options;
+  options.start = method == "dlt" ? CalibrationOptions::Start::kDlt : CalibrationOptions::Start::kTsai;
+  options.refine = refine.value_or(method == "tsai");  // the tools' defaults: calib-dlt --refine, calib-tsai --no-refine
+  options.refinement = RefineOptionsOf(distortion, skew, loss, loss_scale, max_iterations);
+  options.dlt.exact_diagnostics = true;  // as calib-dlt: the camera file reports sigma_11
+  options.dlt.solver = SolverNamed(solver);
+  if (variant != "auto" && variant != "coplanar" && variant != "non-coplanar") {
+    throw InputError("variant: unknown Tsai variant \"" + variant + "\"; use auto, coplanar or non-coplanar");
+  }
+  options.tsai.variant = variant == "coplanar"       ? TsaiOptions::Variant::kCoplanar
+                         : variant == "non-coplanar" ? TsaiOptions::Variant::kNonCoplanar
+                                                     : TsaiOptions::Variant::kAuto;
+  if (principal_point) options.tsai.principal_point = Eigen::Vector2d(principal_point->first, principal_point->second);
+  if (sx) options.tsai.sx = *sx;
+  if (free_principal_point != "no" && free_principal_point != "yes" && free_principal_point != "auto") {
+    throw InputError("free_principal_point: \"" + free_principal_point + "\"; use no, yes or auto");
+  }
+  options.plane_principal_point = free_principal_point == "yes"    ? CalibrationOptions::PlanePrincipalPoint::kFree
+                                  : free_principal_point == "auto" ? CalibrationOptions::PlanePrincipalPoint::kAuto
+                                                                   : CalibrationOptions::PlanePrincipalPoint::kHold;
+  Correspondences corners = CorrespondencesFromJson(DocumentOf(source, "correspondences"));
+  if (method == "dlt" && corners.rig != Rig::kVolume) {
+    throw InputError(input + ": rig: DLT needs one world frame (rig \"volume\"), got \"planar-views\"; "
+                     "calibrate planar views with method \"tsai\"");
+  }
+  if (method == "tsai" && corners.rig == Rig::kPlanarViews && (variant != "auto" || principal_point || sx || free_principal_point != "no")) {
+    throw InputError("variant, principal_point, sx, free_principal_point: apply to rig \"volume\" only (planar views start "
+                     "from Zhang's method); remove them");
+  }
+  OrderedJson camera;
+  std::vector<std::string> warnings;
+  {
+    py::gil_scoped_release unlocked;
+    const CalibrationResult result = vstcal::Calibrate(std::move(corners), options);
+    if (result.exit_code != ExitCode::kOk) throw Error(result.exit_code, input + ": " + result.message);
+    OrderedJson blocks = CalibrationBlocksToJson(result, options);
+    if (result.camera.covariance) blocks["projection_uncertainty"] = UncertaintyToJson(result.camera, UncertaintyRequest{});
+    camera = CameraToJson(result.camera, PythonProvenance("calibrate"), blocks);
+    warnings = result.warnings;
+  }
+  // The tool prints these on stderr; Python's way is a warning each.
+  for (const std::string& w : warnings) {
+    if (PyErr_WarnEx(PyExc_UserWarning, (input + ": " + w).c_str(), 1) < 0) throw py::error_already_set();
+  }
+  return ToPython(camera);
+}
+
+py::object SolveStereoRig(const py::object& left, const py::object& right, const py::object& left_camera,
+                          const py::object& right_camera, bool hold_left, bool hold_right, const std::string& match_views,
+                          size_t min_common_views, const std::string& distortion, bool skew, int max_iterations,
+                          const std::optional<double>& rectify_alpha) {
+  app::SolveRequest r;
+  r.left = PathOf(left, "left");
+  r.right = PathOf(right, "right");
+  r.output = "<stereo>";
+  if (!left_camera.is_none()) r.left_camera = PathOf(left_camera, "left_camera");
+  if (!right_camera.is_none()) r.right_camera = PathOf(right_camera, "right_camera");
+  r.options.hold_left = hold_left;
+  r.options.hold_right = hold_right;
+  r.options.view_key_pattern = match_views;
+  if (min_common_views < 1) throw InputError("min_common_views: must be at least 1");
+  r.options.min_common_views = min_common_views;
+  r.options.calibration.refinement = RefineOptionsOf(distortion, skew, "none", std::nullopt, max_iterations);
+  if (rectify_alpha) r.rectify = RectifyOptions{*rectify_alpha, true};
+  app::Outcome out;
+  {
+    py::gil_scoped_release unlocked;
+    out = app::Solve(r, PythonProvenance("solve_stereo"));
+  }
+  return ToPython(OrderedJson::parse(out.files.front().second));
+}
+
+}  // namespace
+
+void RegisterSolvers(py::module_& m) {
+  py::class_<Observations>(m, "Observations",
+                           "3-D points (N, 3) and their pixels (N, 2), optionally weighted, held in vstcal's layout.")
+      .def(py::init(&MakeObservations), py::arg("points"), py::arg("pixels"), py::arg("weights") = py::none())
+      .def("__len__", [](const Observations& o) { return o.list.size(); });
+
+  py::class_<DltSolution>(m, "DltSolution", "A DLT solve: P (normalized), its decomposition K, R, t, and diagnostics.")
+      .def_property_readonly("P", [](const DltSolution& s) { return ToArray(s.result.P); })
+      .def_property_readonly("K", [](const DltSolution& s) { return ToArray(s.decomposition.K); })
+      .def_property_readonly("R", [](const DltSolution& s) { return ToArray(s.decomposition.camera_from_world.R); },
+                             "camera_from_world's rotation")
+      .def_property_readonly("t", [](const DltSolution& s) { return ToVector(s.decomposition.camera_from_world.t); },
+                             "camera_from_world's translation")
+      .def_property_readonly("sigma_11", [](const DltSolution& s) { return s.result.sigma_11; })
+      .def_property_readonly("sigma_12", [](const DltSolution& s) { return s.result.sigma_12; })
+      .def_property_readonly("conditioning", [](const DltSolution& s) { return s.result.conditioning; })
+      .def_property_readonly("extents", [](const DltSolution& s) { return s.result.extents; })
+      .def_property_readonly("warnings", [](const DltSolution& s) { return s.result.warnings; })
+      .def_property_readonly("n_points", [](const DltSolution& s) { return s.result.n_points; });
+
+  m.def(
+      "solve_dlt",
+      [](const py::object& points, const py::object& pixels, const std::string& solver, bool exact_diagnostics) {
+        DltOptions options;
+        options.solver = SolverNamed(solver);
+        options.exact_diagnostics = exact_diagnostics;
+        if (py::isinstance<Observations>(points)) {
+          if (!pixels.is_none()) throw InputError("pixels: already in the Observations; leave it out");
+          return Solve(points.cast<const Observations&>().list, options);
+        }
+        if (pixels.is_none()) throw InputError("pixels: missing; give the (N, 2) pixels of the (N, 3) points");
+        return Solve(MakeObservations(points, pixels, py::none()).list, options);
+      },
+      py::arg("points"), py::arg("pixels") = py::none(), py::arg("solver") = "normal-equations",
+      py::arg("exact_diagnostics") = false,
+      "P from ≥ 6 non-coplanar world points (N, 3) and their pixels (N, 2), or from an Observations "
+      "(docs/math/dlt.md). Raises vstcal.DegenerateError (coplanar, collinear, ill-conditioned) or InputError.");
+
+  m.def("calibrate", &Calibrate, py::arg("correspondences"), py::arg("method") = "tsai", py::arg("refine") = py::none(),
+        py::arg("distortion") = "k1,k2,p1,p2", py::arg("skew") = false, py::arg("loss") = "none",
+        py::arg("loss_scale") = py::none(), py::arg("max_iterations") = 100, py::arg("solver") = "normal-equations",
+        py::arg("variant") = "auto", py::arg("principal_point") = py::none(), py::arg("sx") = py::none(),
+        py::arg("free_principal_point") = "no",
+        "A camera from a vstcal/correspondences@1 file (path) or document (dict), as calib-dlt (method \"dlt\", refine "
+        "False by default) or calib-tsai (method \"tsai\": Tsai for a volume, Zhang for planar views; refined by "
+        "default) write it: the vstcal/camera@1 document as a dict, with the covariance when refined; the tool's warnings "
+        "as Python UserWarnings.");
+
+  m.def("solve_stereo", &SolveStereoRig, py::arg("left"), py::arg("right"), py::arg("left_camera") = py::none(),
+        py::arg("right_camera") = py::none(), py::arg("hold_left") = false, py::arg("hold_right") = false,
+        py::arg("match_views") = "", py::arg("min_common_views") = 3, py::arg("distortion") = "k1,k2,p1,p2",
+        py::arg("skew") = false, py::arg("max_iterations") = 100, py::arg("rectify_alpha") = py::none(),
+        "calib-stereo solve: a rig from the left and right correspondences@1 files; the vstcal/stereo@1 document "
+        "(right_from_left with its covariance) as a dict.");
+}
+
+}  // namespace vstcal::python

@@ -1,0 +1,148 @@
+// Checked arrays and JSON ↔ Python conversion for the binding files (bindings.h).
+#include <cmath>
+
+#include "bindings.h"
+#include "vstcal/core/error.h"
+
+namespace vstcal::python {
+namespace {
+
+std::string ShapeText(const py::array& a) {
+  std::string s = "(";
+  for (py::ssize_t i = 0; i < a.ndim(); ++i) s += (i ? ", " : "") + std::to_string(a.shape(i));
+  return s + (a.ndim() == 1 ? ",)" : ")");
+}
+
+// The array behind `h`, float64 and C-contiguous, or an InputError naming the argument and the fix.
+py::array CheckedArray(const py::handle& h, const char* name, const std::string& wanted) {
+  if (!py::isinstance<py::array>(h)) {
+    throw InputError(std::string(name) + ": expected a NumPy array of shape " + wanted + ", got a " +
+                     std::string(py::str(h.get_type().attr("__name__"))) + "; pass np.asarray(" + name +
+                     ", dtype=np.float64)");
+  }
+  py::array a = py::reinterpret_borrow<py::array>(h);
+  const py::dtype dtype = a.dtype();
+  if (dtype.kind() != 'f' || dtype.itemsize() != 8 || dtype.byteorder() == '>') {
+    throw InputError(std::string(name) + ": expected dtype float64, got " + dtype.attr("name").cast<std::string>() + "; pass " +
+                     name + ".astype(np.float64)");
+  }
+  if (!(a.flags() & py::array::c_style)) {
+    throw InputError(std::string(name) + ": the array is not C-contiguous (a slice or a transpose); pass "
+                     "np.ascontiguousarray(" + name + ")");
+  }
+  return a;
+}
+
+void CheckFinite(const double* data, py::ssize_t count, py::ssize_t cols, const char* name) {
+  for (py::ssize_t i = 0; i < count; ++i) {
+    if (std::isfinite(data[i])) continue;
+    const std::string where = cols > 0 ? "[" + std::to_string(i / cols) + ", " + std::to_string(i % cols) + "]"
+                                       : "[" + std::to_string(i) + "]";
+    throw InputError(std::string(name) + where + ": " + (std::isnan(data[i]) ? "NaN" : "an infinite value") +
+                     "; every value must be finite (drop or fix that row)");
+  }
+}
+
+}  // namespace
+
+Rows CheckedRows(const py::handle& h, const char* name, py::ssize_t cols, bool one_row_ok) {
+  const std::string wanted = "(N, " + std::to_string(cols) + ")" + (one_row_ok ? " or (" + std::to_string(cols) + ",)" : "");
+  const py::array a = CheckedArray(h, name, wanted);
+  Rows rows;
+  if (one_row_ok && a.ndim() == 1 && a.shape(0) == cols) {
+    rows.n = 1;
+    rows.one_row = true;
+  } else if (a.ndim() == 2 && a.shape(1) == cols) {
+    rows.n = a.shape(0);
+  } else {
+    throw InputError(std::string(name) + ": expected shape " + wanted + ", got " + ShapeText(a) +
+                     "; one row per point, " + std::to_string(cols) + " coordinates each");
+  }
+  rows.data = static_cast<const double*>(a.data());
+  CheckFinite(rows.data, rows.n * cols, cols, name);
+  return rows;
+}
+
+Rows CheckedVector(const py::handle& h, const char* name, py::ssize_t size) {
+  const std::string wanted = size < 0 ? "(N,)" : "(" + std::to_string(size) + ",)";
+  const py::array a = CheckedArray(h, name, wanted);
+  if (a.ndim() != 1 || (size >= 0 && a.shape(0) != size)) {
+    throw InputError(std::string(name) + ": expected shape " + wanted + ", got " + ShapeText(a) +
+                     (size >= 0 ? "; give " + std::to_string(size) + " values" : "; give a 1-D array"));
+  }
+  Rows rows{static_cast<const double*>(a.data()), a.shape(0), false};
+  CheckFinite(rows.data, rows.n, 0, name);
+  return rows;
+}
+
+py::array_t<double> NewArray(std::vector<py::ssize_t> shape) { return py::array_t<double>(shape); }
+
+namespace {
+
+template <typename Json>
+py::object Convert(const Json& j) {
+  switch (j.type()) {
+    case nlohmann::json::value_t::object: {
+      py::dict d;
+      for (auto it = j.begin(); it != j.end(); ++it) d[py::str(it.key())] = Convert(it.value());
+      return d;
+    }
+    case nlohmann::json::value_t::array: {
+      py::list l(j.size());
+      size_t i = 0;
+      for (const auto& item : j) l[i++] = Convert(item);
+      return l;
+    }
+    case nlohmann::json::value_t::string:
+      return py::str(j.template get_ref<const std::string&>());
+    case nlohmann::json::value_t::boolean:
+      return py::bool_(j.template get<bool>());
+    case nlohmann::json::value_t::number_integer:
+      return py::int_(j.template get<int64_t>());
+    case nlohmann::json::value_t::number_unsigned:
+      return py::int_(j.template get<uint64_t>());
+    case nlohmann::json::value_t::number_float:
+      return py::float_(j.template get<double>());
+    default:
+      return py::none();
+  }
+}
+
+}  // namespace
+
+py::object ToPython(const OrderedJson& json) { return Convert(json); }
+py::object ToPython(const nlohmann::json& json) { return Convert(json); }
+
+std::string PathOf(const py::handle& source, const char* name) {
+  if (py::isinstance<py::str>(source)) return source.cast<std::string>();
+  const py::module_ os = py::module_::import("os");
+  if (py::isinstance(source, os.attr("PathLike"))) return py::str(os.attr("fspath")(source)).cast<std::string>();
+  throw InputError(std::string(name) + ": expected a file path (str or os.PathLike), got a " +
+                   std::string(py::str(source.get_type().attr("__name__"))));
+}
+
+JsonDocument DocumentOf(const py::handle& source, const char* name) {
+  if (py::isinstance<py::dict>(source)) {
+    std::string text;
+    try {
+      text = py::module_::import("json").attr("dumps")(source, py::arg("allow_nan") = false).cast<std::string>();
+    } catch (py::error_already_set& e) {
+      throw InputError(std::string(name) + ": not a JSON document: " + std::string(py::str(e.value())) +
+                       "; give str, int, float (finite), bool, None, list and dict values only");
+    }
+    return JsonDocument::Parse(text, std::string("<") + name + ">");
+  }
+  if (py::isinstance<py::str>(source) || py::isinstance(source, py::module_::import("os").attr("PathLike"))) {
+    return JsonDocument::Load(PathOf(source, name));
+  }
+  throw InputError(std::string(name) + ": expected a file path or a dict, got a " +
+                   std::string(py::str(source.get_type().attr("__name__"))));
+}
+
+Provenance PythonProvenance(const std::string& function) {
+  Provenance p;
+  p.tool = "python:vstcal." + function;
+  return p;
+}
+
+}  // namespace vstcal::python

@@ -1,0 +1,128 @@
+"""The solvers from Python against the tools on the same files (calib-dlt, calib-tsai, calib-stereo
+solve), and the planar calibration with its covariance against OpenCV's cv2.calibrateCameraExtended."""
+import shutil
+
+import cv2
+import numpy as np
+import pytest
+
+from conftest import DATASETS, OPENCV_DATA, load, run_tool, tool_error, without_provenance
+
+
+def arrays(corners):
+    rows = np.array([p for v in corners["views"] for p in v["points"]])
+    return np.ascontiguousarray(rows[:, :3]), np.ascontiguousarray(rows[:, 3:5])
+
+
+def test_solve_dlt_is_calib_dlts_p(vstcal, tmp_path):
+    source = DATASETS / "seed000" / "noisy.json"
+    run_tool("calib-dlt", source, "-o", tmp_path / "camera.json")
+    camera = load(tmp_path / "camera.json")
+    points, pixels = arrays(vstcal.read(source))
+    for solver in ("normal-equations", "svd"):
+        s = vstcal.solve_dlt(points, pixels, solver=solver)
+        np.testing.assert_allclose(s.P, np.array(camera["P"]), rtol=1e-9, atol=0)
+        np.testing.assert_allclose(s.K, np.array(camera["K"]), rtol=1e-9, atol=1e-9)
+        np.testing.assert_allclose(s.R, np.array(camera["camera_from_world"]["R"]), rtol=0, atol=1e-9)
+        np.testing.assert_allclose(s.t, np.array(camera["camera_from_world"]["t"]), rtol=1e-9, atol=0)
+    kept = vstcal.Observations(points, pixels)
+    assert len(kept) == len(points)
+    np.testing.assert_array_equal(vstcal.solve_dlt(kept).P, vstcal.solve_dlt(points, pixels).P)
+
+
+def test_calibrate_is_calib_dlt_and_calib_tsai(vstcal, tmp_path):
+    source = DATASETS / "seed000" / "distorted-noisy.json"
+    for tool, method, flags, kwargs in [
+        ("calib-dlt", "dlt", [], {}),
+        ("calib-dlt", "dlt", ["--refine", "--distortion", "k1,k2"], {"refine": True, "distortion": "k1,k2"}),
+        ("calib-tsai", "tsai", [], {}),
+        ("calib-tsai", "tsai", ["--no-refine"], {"refine": False}),
+    ]:
+        run_tool(tool, source, "-o", tmp_path / "camera.json", *flags)
+        assert without_provenance(vstcal.calibrate(str(source), method=method, **kwargs)) == \
+            without_provenance(load(tmp_path / "camera.json")), (tool, flags)
+    # a dict in memory is the same input
+    refined = vstcal.calibrate(vstcal.read(source), method="tsai")
+    assert refined["covariance"]["parameters"][:4] == ["fx", "fy", "cx", "cy"]
+
+
+def test_failures_raise_the_tools_message_and_exit_code(vstcal, tmp_path):
+    corners = vstcal.read(DATASETS / "seed000" / "clean.json")
+    corners["views"] = corners["views"][:1]  # one plane: coplanar for DLT
+    vstcal.write(tmp_path / "plane.json", corners)
+    message = tool_error("calib-dlt", tmp_path / "plane.json", "-o", tmp_path / "camera.json", code=3)
+    with pytest.raises(vstcal.DegenerateError) as e:
+        vstcal.calibrate(str(tmp_path / "plane.json"), method="dlt")
+    assert str(e.value) == message and e.value.exit_code == 3
+    points, pixels = arrays(corners)
+    with pytest.raises(vstcal.DegenerateError) as e:
+        vstcal.solve_dlt(points, pixels)
+    assert str(e.value) in message  # the tool prefixes its input file
+
+    planar = DATASETS / "zedmini" / "planar-noisy.json"
+    message = tool_error("calib-dlt", planar, "-o", tmp_path / "camera.json")
+    with pytest.raises(vstcal.InputError) as e:
+        vstcal.calibrate(str(planar), method="dlt")
+    assert str(e.value).split("; ")[0] == message.split("; ")[0]  # the fix names the binding's method
+
+
+def test_bad_solver_arguments_name_the_argument(vstcal):
+    points = np.zeros((10, 3))
+    with pytest.raises(vstcal.InputError, match=r"^pixels: 9 rows for 10 points"):
+        vstcal.solve_dlt(points, np.zeros((9, 2)))
+    with pytest.raises(vstcal.InputError, match=r"^pixels\[2, 0\]: NaN"):
+        vstcal.solve_dlt(points, np.array([[1.0, 2.0]] * 2 + [[np.nan, 0.0]] + [[1.0, 2.0]] * 7))
+    with pytest.raises(vstcal.InputError, match=r"^points: expected dtype float64, got int64"):
+        vstcal.solve_dlt(np.zeros((10, 3), dtype=np.int64), np.zeros((10, 2)))
+    with pytest.raises(vstcal.InputError, match=r"^weights\[0\]: must be positive"):
+        vstcal.Observations(points, np.zeros((10, 2)), np.zeros(10))
+    with pytest.raises(vstcal.InputError, match=r'^loss_scale: has no effect with loss "none"'):
+        vstcal.calibrate(str(DATASETS / "seed000" / "noisy.json"), loss_scale=2.0)
+    with pytest.raises(vstcal.InputError, match=r'^distortion: "k1" is named twice'):
+        vstcal.calibrate(str(DATASETS / "seed000" / "noisy.json"), distortion="k1,k1")
+
+
+def test_planar_views_against_calib_tsai_and_opencv_calibrate_camera(vstcal, tmp_path):
+    """Zhang's start and the refinement with covariance, against calib-tsai on the same file and against
+    cv2.calibrateCameraExtended on the same points: the same least-squares problem (k1, k2, p1, p2 free,
+    k3 and skew fixed), so the same optimum, and OpenCV's standard deviations of the intrinsics are the
+    square roots of the covariance's diagonal."""
+    source = DATASETS / "zedmini" / "planar-noisy.json"
+    run_tool("calib-tsai", source, "-o", tmp_path / "camera.json")
+    camera = vstcal.calibrate(str(source))
+    assert without_provenance(camera) == without_provenance(load(tmp_path / "camera.json"))
+
+    corners = vstcal.read(source)
+    object_points = [np.array(v["points"], dtype=np.float32)[:, :3] for v in corners["views"]]
+    image_points = [np.array(v["points"], dtype=np.float32)[:, 3:5] for v in corners["views"]]
+    size = tuple(corners["image_size"])
+    flags = cv2.CALIB_FIX_K3
+    criteria = (cv2.TERM_CRITERIA_COUNT | cv2.TERM_CRITERIA_EPS, 200, 1e-15)
+    rms, K, dist, _, _, std_intrinsics, _, _ = cv2.calibrateCameraExtended(
+        object_points, image_points, size, None, None, flags=flags, criteria=criteria)
+    np.testing.assert_allclose(np.array(camera["K"]), K, rtol=1e-5, atol=1e-3)
+    coefficients = camera["distortion"]
+    np.testing.assert_allclose([coefficients[k] for k in ("k1", "k2", "p1", "p2")], dist.ravel()[:4], rtol=1e-3, atol=1e-5)
+    names = camera["covariance"]["parameters"]
+    sigma = np.sqrt(np.diag(np.array(camera["covariance"]["matrix"])))
+    opencv_sigma = dict(zip(["fx", "fy", "cx", "cy", "k1", "k2", "p1", "p2"], std_intrinsics.ravel()[:8]))
+    for name in ("fx", "fy", "cx", "cy", "k1", "k2", "p1", "p2"):
+        assert sigma[names.index(name)] == pytest.approx(opencv_sigma[name], rel=0.02), name
+
+
+@pytest.mark.skipif(not (OPENCV_DATA / "left01.jpg").exists(), reason="needs Debian's opencv-doc")
+def test_solve_stereo_is_calib_stereo_solve(vstcal, tmp_path):
+    run_tool("calib-capture", "target", "--rows", "6", "--cols", "9", "--square-size", "25", "--dpi", "0",
+             "-o", tmp_path / "board")
+    for side in ("left", "right"):
+        images = sorted(str(p) for p in OPENCV_DATA.glob(f"{side}0[1-6].jpg"))
+        run_tool("calib-capture", "detect", tmp_path / "board.target.json", *images, "--camera-name", side,
+                 "-o", tmp_path / f"{side}.json")
+    left, right = str(tmp_path / "left.json"), str(tmp_path / "right.json")
+    run_tool("calib-stereo", "solve", left, right, "--match-views", "([0-9]+)$", "-o", tmp_path / "rig.json")
+    rig = vstcal.solve_stereo(left, right, match_views="([0-9]+)$")
+    assert without_provenance(rig) == without_provenance(load(tmp_path / "rig.json"))
+    assert len(rig["covariance"]["parameters"]) == 6
+    with pytest.raises(vstcal.InputError) as e:
+        vstcal.solve_stereo(left, right, match_views="(x)")
+    assert str(e.value) == tool_error("calib-stereo", "solve", left, right, "--match-views", "(x)", "-o", tmp_path / "r.json")
