@@ -7,6 +7,8 @@ find_package(CLI11 REQUIRED)
 find_package(apriltag REQUIRED)
 find_package(Threads REQUIRED)
 find_package(Qhull REQUIRED CONFIG)  # the measured volume: the calibration points' convex hull (libqhull_r)
+find_package(PkgConfig REQUIRED)
+pkg_check_modules(YAML REQUIRED IMPORTED_TARGET yaml-0.1)  # libyaml: ROS camera_info and Kalibr camchain YAML
 find_package(ZLIB REQUIRED)  # tests: an independent CRC-32 for the PNG chunks vstcal writes
 # Boost.Random (header-only) for the Sobol quasi-random sequence of lib/vstcal/sensitivity.
 find_package(Boost 1.74 REQUIRED)

@@ -1,5 +1,6 @@
 #include "browser_fixture.h"
 
+#include <cmath>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <sstream>
@@ -45,6 +46,18 @@ size_t BrowserTest::ExpectInlinePictures(const std::string& dom) {
   return sources.size();
 }
 
+// Half a unit in the last digit a number is shown with ("15.82" → 0.005, "1.5e-05" → 5e-7, "12"
+// → 0.5), slightly widened for the binary value the text was printed from: how far a correctly
+// rounded text may lie from its value.
+static double HalfLastDigit(const std::string& shown) {
+  const size_t e = shown.find_first_of("eE");
+  const std::string mantissa = shown.substr(0, e);
+  const size_t dot = mantissa.find('.');
+  const int decimals = dot == std::string::npos ? 0 : static_cast<int>(mantissa.size() - dot - 1);
+  const int exponent = e == std::string::npos ? 0 : std::stoi(shown.substr(e + 1));
+  return 0.5 * std::pow(10.0, exponent - decimals) * (1 + 1e-9);
+}
+
 size_t BrowserTest::ExpectNumbersOf(const Json& report, const std::string& dom) {
   const std::string marker = " data-key=\"", value_open = "\" data-value=\"";
   size_t numbers = 0;
@@ -63,7 +76,7 @@ size_t BrowserTest::ExpectNumbersOf(const Json& report, const std::string& dom) 
     }
     const double expected = report.at(pointer).get<double>();
     EXPECT_EQ(std::stod(value), expected) << key;
-    EXPECT_NEAR(std::stod(shown), expected, 5.001e-4) << key << " shown as " << shown;
+    EXPECT_NEAR(std::stod(shown), expected, HalfLastDigit(shown)) << key << " shown as " << shown;
   }
   return numbers;
 }

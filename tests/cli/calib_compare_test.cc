@@ -95,5 +95,102 @@ TEST_F(CliCalibCompare, NonPositiveDepth) {
   EXPECT_TRUE(FailsWith(r, "calib-compare", kBadInput, "--depth", {}));
 }
 
+// --- Thresholds for CI: --max-px, --max-sigma, --junit ---------------------------------------------
+
+// A 1280×720 pinhole with fx = fy = 1000 and the principal point (cx, 360), 2 m in front of the
+// world origin; with σ > 0 a covariance of cx and cy, each σ² and uncorrelated.
+Json CheckCamera(double cx, double sigma) {
+  Json c;
+  c["format"] = "vstcal/camera@1";
+  c["image_size"] = {1280, 720};
+  c["length_unit"] = "mm";
+  c["method"] = "hand";
+  c["K"] = {{1000.0, 0.0, cx}, {0.0, 1000.0, 360.0}, {0.0, 0.0, 1.0}};
+  c["distortion"] = {{"model", "none"}};
+  c["camera_from_world"] = {{"R", {{1.0, 0.0, 0.0}, {0.0, 1.0, 0.0}, {0.0, 0.0, 1.0}}}, {"t", {0.0, 0.0, 2000.0}}};
+  if (sigma > 0) c["covariance"] = {{"parameters", {"cx", "cy"}}, {"matrix", {{sigma * sigma, 0.0}, {0.0, sigma * sigma}}}};
+  return c;
+}
+
+// The principal points 1.5 px apart: every grid point disagrees by exactly 1.5 px. Each camera knows
+// cx and cy to σ = 0.5 px, so the difference has σ = √(0.25 + 0.25) = 0.707 px per axis and is
+// 1.5/0.707 = 2.12 σ: beyond a 1 px bound, but within what the two calibrations' noise explains.
+TEST_F(CliCalibCompare, MaxPxAndMaxSigmaOnAPrincipalPointShift) {
+  WriteJson("in/a.json", CheckCamera(640, 0.5));
+  WriteJson("in/b.json", CheckCamera(641.5, 0.5));
+  CommandResult r = Run("calib-compare", {"in/a.json", "in/b.json", "--max-px", "2"});
+  ASSERT_EQ(r.exit_code, kOk) << r.err;
+  EXPECT_NE(r.out.find("check grid px: pass: max over 81 grid points: 1.5000 px ≤ limit 2 px"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("checks: 1, failed 0\n"), std::string::npos) << r.out;
+
+  r = Run("calib-compare", {"in/a.json", "in/b.json", "--max-px", "1"});
+  EXPECT_EQ(r.exit_code, kCheckFailed) << r.err;
+  EXPECT_TRUE(r.err.empty()) << r.err;
+  EXPECT_NE(r.out.find("check grid px: fail: max over 81 grid points: 1.5000 px > limit 1 px"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("checks: 1, failed 1 (exit code 4)"), std::string::npos) << r.out;
+
+  r = Run("calib-compare", {"in/a.json", "in/b.json", "--max-sigma", "3"});
+  ASSERT_EQ(r.exit_code, kOk) << r.err;
+  EXPECT_NE(r.out.find("check grid sigma: pass: max over 81 grid points: 2.1213 σ ≤ limit 3 σ"), std::string::npos) << r.out;
+
+  r = Run("calib-compare", {"in/a.json", "in/b.json", "--max-sigma", "2"});
+  EXPECT_EQ(r.exit_code, kCheckFailed) << r.err;
+  EXPECT_NE(r.out.find("check grid sigma: fail: max over 81 grid points: 2.1213 σ > limit 2 σ"), std::string::npos) << r.out;
+
+  // Both, with JUnit: two testcases, the pixel bound failed.
+  r = Run("calib-compare", {"in/a.json", "in/b.json", "--max-px", "1", "--max-sigma", "3", "--junit", "out/compare.xml"});
+  EXPECT_EQ(r.exit_code, kCheckFailed) << r.err;
+  EXPECT_EQ(JUnitCounts(Path("out/compare.xml")), "2 1 1\n");
+  EXPECT_NE(ReadText("out/compare.xml").find("<testcase classname=\"calib-compare\" name=\"grid sigma\">"), std::string::npos);
+}
+
+// Two DLT refinements of one volume with independent pixel noise: their disagreement at the grid
+// and at the test points is what their covariances predict — within 5 σ everywhere — while a
+// pixel bound far below the noise fails at every test point.
+TEST_F(CliCalibCompare, TwoNoisyCalibrationsAgreeWithinTheirCovariances) {
+  std::vector<std::string> args = Override(Remove(DefaultSynthArgs(), "--no-test-points", false), "--noise", "0.3");
+  Synth("in/one.json", Override(args, "--seed", "1"));
+  Synth("in/two.json", Override(args, "--seed", "2"));
+  ASSERT_EQ(Run("calib-dlt", {"in/one.json", "-o", "out/one.cam.json", "--refine", "-q"}).exit_code, kOk);
+  ASSERT_EQ(Run("calib-dlt", {"in/two.json", "-o", "out/two.cam.json", "--refine", "-q"}).exit_code, kOk);
+  CommandResult r = Run("calib-compare", {"out/one.cam.json", "out/two.cam.json", "--test-points", "in/one.json",
+                                          "--max-sigma", "5", "--junit", "out/sigma.xml"});
+  ASSERT_EQ(r.exit_code, kOk) << r.out << r.err;
+  for (const char* name : {"grid sigma: pass", "test point Left sigma: pass", "test point Middle 2 sigma: pass"}) {
+    EXPECT_NE(r.out.find(std::string("check ") + name), std::string::npos) << name << "\n" << r.out;
+  }
+  EXPECT_EQ(JUnitCounts(Path("out/sigma.xml")), "6 0 0\n");
+  r = Run("calib-compare", {"out/one.cam.json", "out/two.cam.json", "--test-points", "in/one.json", "--max-px", "0.0001"});
+  EXPECT_EQ(r.exit_code, kCheckFailed);
+  EXPECT_NE(r.out.find("checks: 6, failed 6 (exit code 4)"), std::string::npos) << r.out;
+}
+
+TEST_F(CliCalibCompare, ThresholdsMustBePositiveAndFinite) {
+  WriteJson("in/a.json", CheckCamera(640, 0.5));
+  for (const char* bad : {"0", "-1", "inf", "nan"}) {
+    EXPECT_TRUE(FailsWith(Run("calib-compare", {"in/a.json", "in/a.json", "--max-px=" + std::string(bad), "--junit", "out/c.xml"}),
+                          "calib-compare", kBadInput, "--max-px", {}))
+        << bad;
+    EXPECT_TRUE(FailsWith(Run("calib-compare", {"in/a.json", "in/a.json", "--max-sigma=" + std::string(bad)}), "calib-compare", kBadInput,
+                          "--max-sigma", {}))
+        << bad;
+  }
+  EXPECT_TRUE(FailsWith(Run("calib-compare", {"in/a.json", "in/a.json", "--max-px", "0"}), "calib-compare", kBadInput,
+                        "--max-px: 0 is not a positive number", {"give a bound > 0 in px"}));
+  EXPECT_TRUE(OutDirEmpty());
+}
+
+TEST_F(CliCalibCompare, MaxSigmaNeedsBothCovariances) {
+  WriteJson("in/a.json", CheckCamera(640, 0.5));
+  WriteJson("in/truth.json", CheckCamera(640, 0));
+  EXPECT_TRUE(FailsWith(Run("calib-compare", {"in/a.json", "in/truth.json", "--max-sigma", "3", "--junit", "out/c.xml"}),
+                        "calib-compare", kBadInput, "in/truth.json: covariance: none; ", {"--max-sigma", "--max-px"}));
+  EXPECT_TRUE(FailsWith(Run("calib-compare", {"in/a.json", "in/a.json", "--junit", "out/c.xml"}), "calib-compare",
+                        kBadInput, "--junit: ", {"no check", "--max-px or --max-sigma"}));
+  EXPECT_TRUE(FailsWith(Run("calib-compare", {"in/a.json", "in/a.json", "--max-px", "1", "--junit", "in/a.json"}),
+                        "calib-compare", kBadInput, "in/a.json", {"input"}));
+  EXPECT_TRUE(OutDirEmpty());
+}
+
 }  // namespace
 }  // namespace vstcal::cli_test

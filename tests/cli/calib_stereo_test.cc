@@ -2,6 +2,7 @@
 // assembled from two cameras and exported to OpenCV and mrcal, binocular registration of tracked
 // sequences, display planning; every bad input gives its documented exit code, one line naming the
 // file, the field and the fix, and no output file.
+#include <sstream>
 #include <Eigen/Cholesky>
 
 #include "cli_fixture.h"
@@ -314,6 +315,37 @@ TEST_F(CliCalibStereo, SolveWritesTheRigWithItsCovarianceAndFit) {
   EXPECT_LT(std::abs(rig.baseline() - truth.baseline()), 5 * sigma) << "σ " << sigma;
   // The solved rig exports like any other.
   Ok({"export", "out/rig.json", "--opencv", "out/rig.yaml"});
+}
+
+// The summary shows both cameras' lens parameters ± σ and right_from_left's σ, each equal to the
+// square root of the written covariance's diagonal.
+TEST_F(CliCalibStereo, SolveSummaryShowsEachEstimateWithItsSigma) {
+  WriteStereoViews(testing::SyntheticStereoViews(SolvableRig(), 8, 11));
+  const CommandResult r = Ok({"solve", "in/l.json", "in/r.json", "-o", "out/rig.json"});
+  const StereoRig rig = ReadStereoRig(Path("out/rig.json"));
+  const size_t right = r.err.find("right camera:\n");
+  ASSERT_NE(r.err.find("left camera:\n"), std::string::npos) << r.err;
+  ASSERT_NE(right, std::string::npos) << r.err;
+  for (const auto& [camera, from] : {std::pair{&rig.right, right}, std::pair{&rig.left, size_t{0}}}) {
+    ASSERT_TRUE(camera->covariance);
+    const size_t line = r.err.find("\n  fx ", from);
+    ASSERT_NE(line, std::string::npos) << r.err;
+    std::istringstream words(r.err.substr(line + 5));
+    double estimate = 0, sigma = 0;
+    words >> estimate >> sigma;
+    const double fx = camera->camera.params[intrinsic::kFx];
+    const double truth_sigma = std::sqrt(camera->covariance->matrix(*camera->covariance->Find("fx"), *camera->covariance->Find("fx")));
+    EXPECT_NEAR(estimate, fx, 1e-7 * fx);
+    EXPECT_NEAR(sigma, truth_sigma, 1e-3 * truth_sigma);
+  }
+  ASSERT_TRUE(rig.covariance);
+  const size_t pose = r.err.find("right_from_left 1-sigma: rx ");
+  ASSERT_NE(pose, std::string::npos) << r.err;
+  std::istringstream words(r.err.substr(pose + 28));
+  double rx = 0;
+  words >> rx;
+  const size_t k = *rig.covariance->Find("right_from_left.rx");
+  EXPECT_NEAR(rx, std::sqrt(rig.covariance->matrix(k, k)), 1e-2 * std::sqrt(rig.covariance->matrix(k, k)));
 }
 
 TEST_F(CliCalibStereo, SolveUsesViewsOfOneCameraAndMatchesByPattern) {

@@ -7,6 +7,7 @@
 #include <functional>
 #include <map>
 #include <ostream>
+#include <sstream>
 
 #include "calibration_checks.h"
 #include "cli_fixture.h"
@@ -45,6 +46,49 @@ class CliCalibTsai : public CliTest {
 
   CommandResult last_;
 };
+
+// ---------------------------------------------------------------------------------------------
+// The summary shows every lens parameter ± σ, the held ones with their reason, and the worst views
+// (issue 24): each figure read back against the camera file the same run wrote.
+
+TEST_F(CliCalibTsai, SummaryListsEveryParameterWithItsSigmaAndTheWorstViews) {
+  Synth("in/views.json", PlanarArgs());
+  const Json camera = Calibrate("in/views.json");
+  const Json& K = camera.at("K");
+  const std::map<std::string, double> values = {
+      {"fx", K[0][0]}, {"fy", K[1][1]}, {"cx", K[0][2]}, {"cy", K[1][2]},
+      {"k1", camera.at("distortion").at("k1")}, {"k2", camera.at("distortion").at("k2")},
+      {"p1", camera.at("distortion").at("p1")}, {"p2", camera.at("distortion").at("p2")}};
+  std::map<std::string, std::string> lines;  // parameter → the rest of its summary line
+  std::istringstream err(last_.err);
+  for (std::string line; std::getline(err, line);) {
+    std::istringstream words(line);
+    std::string first;
+    words >> first;
+    std::string rest;
+    std::getline(words, rest);
+    lines[first] = rest;
+  }
+  for (const auto& [name, value] : values) {
+    ASSERT_TRUE(lines.count(name)) << name << " missing from:\n" << last_.err;
+    std::istringstream words(lines[name]);
+    double estimate = 0, sigma = 0;
+    words >> estimate >> sigma;
+    EXPECT_NEAR(estimate, value, 1e-7 * std::max(1.0, std::abs(value))) << name;
+    EXPECT_NEAR(sigma, Sigma(camera, name), 1e-3 * Sigma(camera, name)) << name;
+    EXPECT_NE(lines[name].find('['), std::string::npos) << name << ": no 3-sigma interval";
+  }
+  EXPECT_NE(lines["s"].find("held: "), std::string::npos) << lines["s"];
+  EXPECT_NE(lines["k3"].find("held: "), std::string::npos) << lines["k3"];
+  // The worst view by RMS in the file comes first.
+  const Json& views = camera.at("fit").at("views");
+  size_t worst = 0;
+  for (size_t v = 1; v < views.size(); ++v) {
+    if (views[v].at("rms_px").get<double>() > views[worst].at("rms_px").get<double>()) worst = v;
+  }
+  const std::string prefix = "  worst views by RMS: " + views[worst].at("name").get<std::string>() + " ";
+  EXPECT_NE(last_.err.find(prefix), std::string::npos) << last_.err;
+}
 
 // ---------------------------------------------------------------------------------------------
 // Volumes: Tsai's method, then the refinement.

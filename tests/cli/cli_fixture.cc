@@ -117,6 +117,21 @@ Json CliTest::Synth(const std::string& relative, std::vector<std::string> args) 
   return ReadJson(relative);
 }
 
+std::string JUnitCounts(const fs::path& file) {
+  const CommandResult r = RunCommand(
+      {"/usr/bin/python3", "-c",
+       "import sys, xml.etree.ElementTree as ET\n"
+       "root = ET.parse(sys.argv[1]).getroot()\n"
+       "assert root.tag == 'testsuites', root.tag\n"
+       "suite = root.find('testsuite')\n"
+       "cases = suite.findall('testcase')\n"
+       "assert suite.get('tests') == str(len(cases))\n"
+       "print(len(cases), suite.get('failures'), sum(len(c.findall('failure')) for c in cases))\n",
+       file.string()});
+  EXPECT_EQ(r.exit_code, 0) << file << ": " << r.err;
+  return r.out;
+}
+
 ::testing::AssertionResult CliTest::FailsWith(const CommandResult& r, std::string_view tool, int exit_code,
                                               const std::string& location, const std::vector<std::string>& phrases) {
   std::vector<std::string> problems;

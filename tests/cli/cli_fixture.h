@@ -25,6 +25,7 @@ using Json = nlohmann::ordered_json;
 inline constexpr int kOk = 0;
 inline constexpr int kBadInput = 2;
 inline constexpr int kDegenerate = 3;
+inline constexpr int kCheckFailed = 4;  // calib-compare --max-px/--max-sigma, err-sim check
 
 // ${VSTCAL_TOOLS_DIR}/<tool>, or $VSTCAL_CLI_TOOLS_DIR/<tool> when that environment variable is set.
 std::string ToolPath(std::string_view tool);
@@ -54,6 +55,10 @@ struct Pinhole {
 // again on purpose, not taken from json/reader_common: the expected message must not come from
 // the code under test.
 std::string LineColumn(const std::string& text, size_t offset);
+
+// A JUnit XML file as Debian's Python reads it (xml.etree; a file that is not well-formed fails the
+// test): "<testcases> <the testsuite's failures attribute> <failure elements>\n".
+std::string JUnitCounts(const fs::path& file);
 
 class CliTest : public ::testing::Test {
  protected:

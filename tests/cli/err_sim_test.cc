@@ -4,6 +4,8 @@
 // is undefined exits 3; any lens model runs; good runs are reproducible for any thread count and
 // shard split; a normalised chain is a fixed point.
 #include <cmath>
+#include <cstring>
+#include <map>
 
 #include "cli_fixture.h"
 
@@ -603,6 +605,162 @@ TEST_F(CliErrSim, NormalizedChainIsAFixedPoint) {
     ASSERT_EQ(Run("err-sim", {"run", a, "-o", "out/r2.json", "--samples", "300", "--no-budget", "-q"}).exit_code, kOk);
     EXPECT_EQ(ReadJson("out/r1.json")["chain_digest"], ReadJson("out/r2.json")["chain_digest"]) << chains[i];
   }
+}
+
+// --- err-sim check ----------------------------------------------------------------------------------
+
+// The verdict docs/tools/err-sim.md#check defines, stated here from the two reports' numbers.
+std::string RiseVerdict(double accepted, double se_a, double fresh, double se_n, double allowed, double z) {
+  const double excess = fresh - accepted - allowed;
+  if (excess <= 0) return "pass";
+  return excess <= z * std::sqrt(se_a * se_a + se_n * se_n) ? "within noise" : "fail";
+}
+
+struct ReportMetricValue {
+  std::string name;
+  double value, se;
+};
+
+// Every metric err-sim check compares, read from a report by this test (the means with their
+// standard errors, the signed depth left out; the occlusion rates).
+std::vector<ReportMetricValue> CheckedMetrics(const Json& report) {
+  std::vector<ReportMetricValue> out;
+  for (const Json& p : report["test_points"]) {
+    const std::string n = p["name"];
+    for (const char* eye : {"left", "right"}) {
+      const Json& s = p["image"][eye]["pixel_px"];
+      out.push_back({n + ".image." + eye + ".pixel_px", s["mean"], s["mean_standard_error"]});
+    }
+    for (const char* measure : {"misregistration", "misperception"}) {
+      for (const char* term : {"linear", "lateral", "depth_abs", "angular_deg"}) {
+        const Json& s = p[measure][term];
+        out.push_back({n + "." + measure + "." + term, s["mean"], s["mean_standard_error"]});
+      }
+    }
+    if (p["occlusion"].is_null()) continue;
+    for (const char* eye : {"left", "right"}) {
+      const Json& o = p["occlusion"][eye];
+      out.push_back({n + ".occlusion." + eye + ".wrong_rate", o["wrong_rate"], o["standard_error"]});
+    }
+  }
+  return out;
+}
+
+// The verdict err-sim check printed for a metric (its table row ends with it).
+std::string PrintedVerdict(const std::string& out, const std::string& metric) {
+  const size_t at = out.find("\n  " + metric + " ");
+  if (at == std::string::npos) return "(no row)";
+  const std::string row = out.substr(at + 1, out.find('\n', at + 1) - at - 1);
+  for (const char* v : {"within noise", "pass", "fail"}) {
+    if (row.size() >= std::strlen(v) && row.compare(row.size() - std::strlen(v), std::string::npos, v) == 0) return v;
+  }
+  return "(no verdict in \"" + row + "\")";
+}
+
+// Checks every printed verdict against RiseVerdict with a relative allowance; returns the counts
+// of pass, within noise and fail.
+std::map<std::string, int> ExpectVerdicts(const Json& accepted, const Json& fresh, const std::string& out, double fraction,
+                                          double z) {
+  std::map<std::string, double> value, se;
+  for (const ReportMetricValue& m : CheckedMetrics(fresh)) value[m.name] = m.value, se[m.name] = m.se;
+  std::map<std::string, int> counts;
+  for (const ReportMetricValue& m : CheckedMetrics(accepted)) {
+    const std::string expected = RiseVerdict(m.value, m.se, value.at(m.name), se.at(m.name), fraction * m.value, z);
+    EXPECT_EQ(PrintedVerdict(out, m.name), expected) << m.name;
+    ++counts[expected];
+  }
+  return counts;
+}
+
+// The accepted report against a re-run of its own chain (same samples and seed): every rise is 0.
+TEST_F(CliErrSim, CheckAgainstAReRunOfItsChainPasses) {
+  WriteJson("in/chain.json", SmallChain());
+  ASSERT_EQ(Run("err-sim", {"run", "in/chain.json", "-o", "in/accepted.json", "--no-budget", "-q"}).exit_code, kOk);
+  const CommandResult r = Run("err-sim", {"check", "in/accepted.json", "--junit", "out/check.xml"});
+  ASSERT_EQ(r.exit_code, kOk) << r.err;
+  // Point a has surface_behind: 12 metrics; b and c 10 each.
+  EXPECT_NE(r.out.find("err-sim check: 32 metrics: 32 pass, 0 within noise, 0 fail\n"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("the same chain"), std::string::npos) << r.out;
+  EXPECT_EQ(JUnitCounts(Path("out/check.xml")), "32 0 0\n");
+  const Json accepted = ReadJson("in/accepted.json");
+  ExpectVerdicts(accepted, accepted, r.out, 0.10, 3);
+}
+
+// Tracking four times as noisy: the misregistration rises far beyond 10 % and its noise; the check
+// fails — from a given report and from a re-run of the changed chain alike.
+TEST_F(CliErrSim, CheckFailsWhenAMetricRisesBeyondNoise) {
+  WriteJson("in/chain.json", SmallChain());
+  Json worse = SmallChain();
+  worse["sources"]["tracking"]["translation"] = Normal(4.0);
+  WriteJson("in/worse.json", worse);
+  ASSERT_EQ(Run("err-sim", {"run", "in/chain.json", "-o", "in/accepted.json", "--no-budget", "-q"}).exit_code, kOk);
+  ASSERT_EQ(Run("err-sim", {"run", "in/worse.json", "-o", "in/new.json", "--no-budget", "-q"}).exit_code, kOk);
+  CommandResult r = Run("err-sim", {"check", "in/accepted.json", "--report", "in/new.json", "--junit", "out/check.xml"});
+  EXPECT_EQ(r.exit_code, kCheckFailed) << r.err;
+  EXPECT_TRUE(r.err.empty()) << r.err;
+  const auto counts = ExpectVerdicts(ReadJson("in/accepted.json"), ReadJson("in/new.json"), r.out, 0.10, 3);
+  ASSERT_GT(counts.count("fail"), 0u);
+  EXPECT_EQ(PrintedVerdict(r.out, "b.misregistration.linear"), "fail");
+  EXPECT_NE(r.out.find(" fail (exit code 4)\n"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("the chain changed"), std::string::npos) << r.out;
+  EXPECT_EQ(JUnitCounts(Path("out/check.xml")), "32 " + std::to_string(counts.at("fail")) + " " + std::to_string(counts.at("fail")) + "\n");
+
+  // The same through a re-run of the changed chain (same samples and seed as the accepted run).
+  r = Run("err-sim", {"check", "in/accepted.json", "--chain", "in/worse.json", "-q"});
+  EXPECT_EQ(r.exit_code, kCheckFailed) << r.err;
+  EXPECT_TRUE(r.out.empty()) << r.out;  // -q: the exit code says it
+  // A generous allowance for misregistration passes those metrics.
+  r = Run("err-sim", {"check", "in/accepted.json", "--report", "in/new.json", "--max-rise", "misregistration.linear=50",
+                      "--max-rise", "b.misregistration.lateral=1000%"});
+  EXPECT_EQ(PrintedVerdict(r.out, "b.misregistration.linear"), "pass");
+  EXPECT_EQ(PrintedVerdict(r.out, "c.misregistration.linear"), "pass");
+  EXPECT_EQ(PrintedVerdict(r.out, "b.misregistration.lateral"), "pass");
+}
+
+// The same chain with another seed: the metrics move by sampling noise only. With almost no
+// allowance (0.001 %) every metric that rose is "within noise", and none fails: noise fails no build.
+TEST_F(CliErrSim, CheckCallsASampleNoiseRiseWithinNoise) {
+  WriteJson("in/chain.json", SmallChain());
+  ASSERT_EQ(Run("err-sim", {"run", "in/chain.json", "-o", "in/accepted.json", "--no-budget", "-q"}).exit_code, kOk);
+  ASSERT_EQ(Run("err-sim", {"run", "in/chain.json", "-o", "in/new.json", "--no-budget", "-q", "--seed", "8"}).exit_code, kOk);
+  const CommandResult r =
+      Run("err-sim", {"check", "in/accepted.json", "--report", "in/new.json", "--max-rise", "0.001%", "--junit", "out/c.xml"});
+  ASSERT_EQ(r.exit_code, kOk) << r.out << r.err;
+  const auto counts = ExpectVerdicts(ReadJson("in/accepted.json"), ReadJson("in/new.json"), r.out, 0.00001, 3);
+  EXPECT_EQ(counts.count("fail"), 0u);
+  EXPECT_GT(counts.count("within noise"), 0u);
+  EXPECT_EQ(JUnitCounts(Path("out/c.xml")), "32 0 0\n");
+  // At z = 0.5 the same rises are no longer explained by noise: some fail.
+  const CommandResult strict = Run("err-sim", {"check", "in/accepted.json", "--report", "in/new.json", "--max-rise", "0.001%", "--z", "0.5"});
+  EXPECT_EQ(strict.exit_code, kCheckFailed);
+  EXPECT_GT(ExpectVerdicts(ReadJson("in/accepted.json"), ReadJson("in/new.json"), strict.out, 0.00001, 0.5).count("fail"), 0u);
+}
+
+TEST_F(CliErrSim, CheckRefusesBadThresholdsAndNames) {
+  WriteJson("in/chain.json", SmallChain());
+  ASSERT_EQ(Run("err-sim", {"run", "in/chain.json", "-o", "in/accepted.json", "--no-budget", "-q"}).exit_code, kOk);
+  for (const char* bad : {"0", "-5%", "nan", "inf", "0%", "ten", "b.misregistration.linear=0"}) {
+    EXPECT_TRUE(FailsWith(Run("err-sim", {"check", "in/accepted.json", "--report", "in/accepted.json",
+                                          "--max-rise=" + std::string(bad), "--junit", "out/c.xml"}),
+                          "err-sim", kBadInput, "--max-rise: \"" + std::string(bad) + "\": not a positive amount",
+                          {"PERCENT%"}))
+        << bad;
+  }
+  EXPECT_TRUE(FailsWith(Run("err-sim", {"check", "in/accepted.json", "--report", "in/accepted.json", "--max-rise", "5%",
+                                        "--max-rise", "0.5"}),
+                        "err-sim", kBadInput, "--max-rise: \"0.5\": a second default", {}));
+  EXPECT_TRUE(FailsWith(Run("err-sim", {"check", "in/accepted.json", "--report", "in/accepted.json", "--max-rise",
+                                        "misregistration.linaer=10%"}),
+                        "err-sim", kBadInput, "--max-rise: \"misregistration.linaer\": no such metric",
+                        {"did you mean \"misregistration.linear\""}));
+  EXPECT_TRUE(FailsWith(Run("err-sim", {"check", "in/accepted.json", "--report", "in/accepted.json", "--z", "0"}), "err-sim",
+                        kBadInput, "--z: 0 is not a positive number", {}));
+  EXPECT_TRUE(FailsWith(Run("err-sim", {"check", "in/chain.json", "--junit", "out/c.xml"}), "err-sim", kBadInput,
+                        "in/chain.json: format: ", {"vstcal/err-sim-report@2"}));
+  EXPECT_TRUE(FailsWith(Run("err-sim", {"check", "in/accepted.json", "--report", "in/accepted.json", "--junit",
+                                        "in/accepted.json"}),
+                        "err-sim", kBadInput, "in/accepted.json", {"input"}));
+  EXPECT_TRUE(OutDirEmpty());
 }
 
 }  // namespace

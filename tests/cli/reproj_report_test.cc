@@ -2,6 +2,10 @@
 // normalized residuals of a refined camera are consistent with its covariance, several cameras
 // side by side, points behind the camera marked, and every bad input refused with one line, exit
 // code 2 and no report left behind (issue 13 item 8).
+#include <algorithm>
+#include <cmath>
+#include <map>
+
 #include "cli_fixture.h"
 
 namespace vstcal::cli_test {
@@ -42,6 +46,24 @@ TEST_F(CliReprojReport, AgreesWithTheSolversOwnFit) {
   EXPECT_NEAR(c["normalized"]["chi2_per_dof"].get<double>(), 1.0, 0.15);
   EXPECT_EQ(report["volume"]["hull"], "ok");
   EXPECT_EQ(report["grid"]["cols"].get<int>() * report["grid"]["rows"].get<int>(), static_cast<int>(c["grid"].size()));
+  // Every lens parameter with the camera file's value and the square root of its covariance's
+  // diagonal; the held skew has no σ.
+  const Json& K = cam["K"];
+  const std::map<std::string, double> shown_in_k = {{"fx", K[0][0]}, {"fy", K[1][1]}, {"cx", K[0][2]}, {"cy", K[1][2]}, {"s", K[0][1]}};
+  const Json& names = cam["covariance"]["parameters"];
+  ASSERT_EQ(c["parameters"].size(), 10u);  // radial-tangential: fx fy cx cy s k1 k2 p1 p2 k3
+  for (const Json& p : c["parameters"]) {
+    const std::string name = p["name"];
+    const double expected = shown_in_k.count(name) ? shown_in_k.at(name) : cam["distortion"][name].get<double>();
+    EXPECT_EQ(p["value"].get<double>(), expected) << name;
+    const auto it = std::find(names.begin(), names.end(), Json(name));
+    if (it == names.end()) {
+      EXPECT_TRUE(p["sigma"].is_null()) << name;
+      continue;
+    }
+    const size_t k = static_cast<size_t>(it - names.begin());
+    EXPECT_EQ(p["sigma"].get<double>(), std::sqrt(cam["covariance"]["matrix"][k][k].get<double>())) << name;
+  }
 }
 
 TEST_F(CliReprojReport, CamerasSideBySideAndATable) {

@@ -42,7 +42,7 @@ void TargetFlags::Add(CLI::App* app) {
   t.dictionary = "DICT_5X5_1000";
   t.family = "tag36h11";
   app->add_option("--type", type, "chessboard, charuco or apriltag-grid")
-      ->check(CLI::IsMember({"chessboard", "charuco", "apriltag-grid"}))
+      ->check(CLI::IsMember(NamesOf(kTargetTypeNames)))
       ->capture_default_str();
   app->add_option("--rows", t.rows, "inner corners (tags for apriltag-grid) along Y, down the sheet")->required();
   app->add_option("--cols", t.cols, "inner corners (tags) along X, across the sheet")->required();
@@ -86,10 +86,10 @@ void DetectFlags::Add(CLI::App* app) {
   app->add_option("--every", c.video.every, "video/camera: keep every k-th frame")->check(CLI::PositiveNumber)->capture_default_str();
   app->add_option("--frames", c.video.max_frames, "video/camera: frames to keep (0: the whole video)")->check(CLI::NonNegativeNumber);
   app->add_option("--finder", finder, "chessboard: classic, sector-based or classic+sector-based (the second where the first fails)")
-      ->check(CLI::IsMember({"classic", "sector-based", "classic+sector-based"}))
+      ->check(CLI::IsMember(NamesOf(kChessboardFinderNames)))
       ->capture_default_str();
   app->add_option("--refine", refiner, "symmetry (vstcal), cornersubpix (OpenCV) or none")
-      ->check(CLI::IsMember({"symmetry", "cornersubpix", "none"}))
+      ->check(CLI::IsMember(NamesOf(kCornerRefinerNames)))
       ->capture_default_str();
   app->add_option("--min-corners", c.detect.detector.min_corners, "a view with fewer corners is rejected")->capture_default_str();
   app->add_option("--max-blur-px", c.detect.detector.max_blur_px, "a view whose edges are blurrier (σ, px) is rejected")
@@ -106,12 +106,8 @@ void DetectFlags::Add(CLI::App* app) {
 
 app::DetectCommand DetectFlags::Finish() {
   DetectorOptions& d = command.detect.detector;
-  d.finder = finder == "classic" ? ChessboardFinder::kClassic
-             : finder == "sector-based" ? ChessboardFinder::kSectorBased
-                                        : ChessboardFinder::kClassicThenSectorBased;
-  d.refiner = refiner == "symmetry" ? CornerRefiner::kSymmetry
-              : refiner == "cornersubpix" ? CornerRefiner::kCornerSubPix
-                                          : CornerRefiner::kNone;
+  d.finder = *FromName(kChessboardFinderNames, finder);
+  d.refiner = *FromName(kCornerRefinerNames, refiner);
   if (d.min_corners < 4) throw InputError("--min-corners: must be at least 4 (a homography needs 4 points)");
   if (command.detect.min_views < 1) throw InputError("--min-views: must be at least 1");
   return command;

@@ -25,7 +25,7 @@ int main(int argc, char** argv) {
       ->check(vstcal::tools::kNonEmpty);
   app.add_option("-o,--output", output, "camera file to write (vstcal/camera@1)")->required()->check(vstcal::tools::kNonEmpty);
   app.add_option("--solver", solver, "normal-equations (fast, default) or svd (2N×12 SVD, reference)")
-      ->check(CLI::IsMember({"normal-equations", "svd"}));
+      ->check(CLI::IsMember(vstcal::NamesOf(vstcal::DltOptions::kSolverNames)));
   app.add_option("--min-extent-ratio", options.dlt.min_extent_ratio,
                  "refuse point clouds thinner than this along a principal axis (coplanar/collinear)")
       ->check(vstcal::tools::kPositiveFinite)
@@ -43,7 +43,7 @@ int main(int argc, char** argv) {
     using namespace vstcal;
     DeclareOutputs({output, flags.residuals});
     options.dlt.exact_diagnostics = true;  // the camera file reports sigma_11
-    options.dlt.solver = solver == "svd" ? DltOptions::Solver::kFullSvd : DltOptions::Solver::kNormalEquations;
+    options.dlt.solver = *FromName(DltOptions::kSolverNames, solver);
     options.refinement = flags.Refinement();
     Correspondences corners = ReadCorrespondences(input);
     if (corners.rig != Rig::kVolume) {

@@ -181,12 +181,12 @@ Subcommand AddRegister(CLI::App& parent) {
   app->add_option("TRACKS", f->request.tracks, "tracks file (vstcal/tracks@1)")->required()->check(kNonEmpty);
   app->add_option("-o,--output", f->request.output, "registration to write (vstcal/registration@1)")->required()->check(kNonEmpty);
   app->add_option("--mode", f->mode, "left (seed 000), per-eye or joint")
-      ->check(CLI::IsMember({"left", "per-eye", "joint"}))->capture_default_str();
+      ->check(CLI::IsMember(NamesOf(kRegistrationModeNames)))->capture_default_str();
   app->add_flag("--warm-start", f->request.options.warm_start,
                 "start each frame from the previous frame's pose instead of the closed form (tracking)");
   return {app, [f](const Provenance& provenance) {
             app::RegisterRequest r = f->request;
-            r.options.mode = *RegistrationModeFromName(f->mode);
+            r.options.mode = *FromName(kRegistrationModeNames, f->mode);
             return app::Register(r, provenance);
           }};
 }
@@ -216,7 +216,7 @@ Subcommand AddPlan(CLI::App& parent) {
   app->add_option("--z0", f->z0, "zero-parallax depth (default: none, the images shown as captured)")->check(kPositiveFinite);
   app->add_option("--depths", in.depths, "depths to tabulate: z1,z2,...")->delimiter(',')->check(kPositiveFinite);
   app->add_option("--viewer", f->viewer, "none, hmd (each eye its own display at the camera's field of view, as err-sim) or screen")
-      ->check(CLI::IsMember({"none", "hmd", "screen"}))->capture_default_str();
+      ->check(CLI::IsMember(NamesOf(kViewerNames)))->capture_default_str();
   app->add_option("--ipd", in.ipd, "the viewer's interpupillary distance")->check(kPositiveFinite);
   app->add_option("--screen-width", in.screen_width, "screen viewer: the screen's width")->check(kPositiveFinite);
   app->add_option("--viewing-distance", in.viewing_distance, "screen viewer: the eyes' distance from the screen")->check(kPositiveFinite);
@@ -228,7 +228,7 @@ Subcommand AddPlan(CLI::App& parent) {
             if (app->count("--hfov-deg")) r.input.hfov_rad = DegToRad(f->hfov_deg);
             if (app->count("--capture-width")) r.input.capture_width = f->capture_width;
             if (app->count("--z0")) r.input.z0 = f->z0;
-            r.input.viewer = f->viewer == "hmd" ? Viewer::kHmd : f->viewer == "screen" ? Viewer::kScreen : Viewer::kNone;
+            r.input.viewer = *FromName(kViewerNames, f->viewer);
             if (r.input.viewer == Viewer::kNone && app->count("--ipd")) throw InputError("--ipd: applies with --viewer hmd or screen; add --viewer");
             if (r.input.viewer != Viewer::kScreen && (app->count("--screen-width") || app->count("--viewing-distance"))) {
               throw InputError("--screen-width, --viewing-distance: apply with --viewer screen only; drop them or add --viewer screen");

@@ -1,8 +1,7 @@
 // calib-tsai: camera by Tsai's two-stage method (volumes) or Zhang's method (planar views), refined
 // to maximum likelihood with covariance and projection uncertainty (docs/tools/calib-tsai.md).
-#include "common/calibration_flags.h"
 #include "common/run_tool.h"
-#include "common/validators.h"
+#include "flags.h"
 #include "vstcal/formats/camera/correspondences_io.h"
 
 int main(int argc, char** argv) {
@@ -18,63 +17,17 @@ int main(int argc, char** argv) {
       "no convergence. One plane is refined with Tsai's sx held, and the principal point held unless "
       "--free-principal-point frees it.",
       "calib-tsai"};
-  std::string input, output, variant = "auto", free_pp = "no";
-  std::array<double, 2> principal_point{};
-  bool no_refine = false;
-  vstcal::CalibrationOptions options;
-  vstcal::tools::CalibrationFlags flags;
-  app.add_option("CORNERS", input, "vstcal/correspondences@1 file")->required()->check(vstcal::tools::kNonEmpty);
-  app.add_option("-o,--output", output, "camera file to write (vstcal/camera@1)")->required()->check(vstcal::tools::kNonEmpty);
-  app.add_option("--variant", variant, "Tsai's variant for volumes: auto, coplanar or non-coplanar")
-      ->check(CLI::IsMember({"auto", "coplanar", "non-coplanar"}))
-      ->capture_default_str();
-  app.add_option("--principal-point", principal_point, "U,V in px for Tsai's stages (default: the image centre)")
-      ->delimiter(',')
-      ->check(vstcal::tools::kFinite)
-      ->type_name("U,V");
-  app.add_option("--sx", options.tsai.sx, "the coplanar variant's fixed horizontal scale factor")
-      ->check(vstcal::tools::kPositiveFinite)
-      ->capture_default_str();
-  CLI::Option* raw = app.add_flag("--no-refine", no_refine, "write the closed-form camera without refinement");
-  app.add_option("--free-principal-point", free_pp,
-                 "one plane, refined: no (hold it where Tsai assumed it), yes, or auto (free it when the scaled "
-                 "information determines it to 0.5% of the image diagonal)")
-      ->check(CLI::IsMember({"no", "yes", "auto"}))
-      ->capture_default_str()
-      ->excludes(raw);
-  for (CLI::Option* o : flags.AddRefinement(app)) o->excludes(raw);
-  for (CLI::Option* o : flags.AddUncertainty(app)) o->excludes(raw);
-  flags.AddOutput(app);
-
+  vstcal::tools::TsaiFlags f;
+  f.Add(app);
   return vstcal::tools::RunTool(app, argc, argv, [&] {
     using namespace vstcal;
-    DeclareOutputs({output, flags.residuals});
-    options.refine = !no_refine;
-    options.refinement = flags.Refinement();
-    options.tsai.variant = variant == "coplanar"       ? TsaiOptions::Variant::kCoplanar
-                           : variant == "non-coplanar" ? TsaiOptions::Variant::kNonCoplanar
-                                                       : TsaiOptions::Variant::kAuto;
-    if (app.count("--principal-point") > 0) {
-      options.tsai.principal_point = Eigen::Vector2d(principal_point[0], principal_point[1]);
-    }
-    options.plane_principal_point = free_pp == "yes"    ? CalibrationOptions::PlanePrincipalPoint::kFree
-                                    : free_pp == "auto" ? CalibrationOptions::PlanePrincipalPoint::kAuto
-                                                        : CalibrationOptions::PlanePrincipalPoint::kHold;
-    Correspondences corners = ReadCorrespondences(input);
-    if (corners.rig == Rig::kPlanarViews) {
-      for (const char* flag : {"--variant", "--principal-point", "--sx", "--free-principal-point"}) {
-        if (app.count(flag) > 0) {
-          throw InputError(std::string(flag) + ": applies to rig \"volume\" only (planar views start from Zhang's "
-                           "method); remove it");
-        }
-      }
-    }
-    const UncertaintyRequest request = flags.Uncertainty(corners);
+    DeclareOutputs({f.output, f.calibration.residuals});
+    const CalibrationOptions options = f.Options(app);
+    Correspondences corners = ReadCorrespondences(f.input);
+    f.CheckRig(app, corners);
+    const UncertaintyRequest request = f.calibration.Uncertainty(corners);
     const CalibrationResult result = Calibrate(std::move(corners), options);
-    if (app.count("--sx") > 0 && result.tsai && result.tsai->variant == TsaiOptions::Variant::kNonCoplanar) {
-      throw InputError("--sx: the points are not coplanar, so Tsai's non-coplanar variant estimates sx and --sx would "
-                       "not be used; drop it, or force --variant coplanar");
-    }
-    return tools::FinishCalibration("calib-tsai", input, output, result, options, flags, request, argc, argv);
+    f.CheckUsed(app, result);
+    return tools::FinishCalibration("calib-tsai", f.input, f.output, result, options, f.calibration, request, argc, argv);
   });
 }

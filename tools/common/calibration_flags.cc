@@ -6,9 +6,7 @@
 
 #include "common/validators.h"
 #include "vstcal/core/limits.h"
-#include "vstcal/formats/camera/camera_io.h"
-#include "vstcal/formats/calib/residuals_io.h"
-#include "vstcal/report/fit_summary.h"
+#include "vstcal/app/calibration.h"
 
 namespace vstcal::tools {
 namespace {
@@ -25,36 +23,6 @@ void ExpectThree(const std::vector<double>& numbers, const std::string& flag, co
                    "); give each point as its own " + flag);
 }
 
-// The two kinds of projection uncertainty, each labelled (kWithPosesMeaning …), at the image
-// centre at the calibration points' median depth, and at each --uncertainty-pixel.
-std::string UncertaintySummary(const CalibrationResult& result, const UncertaintyRequest& request) {
-  const CalibratedCamera& c = result.camera;
-  if (!c.covariance || !c.fit) return "";
-  std::vector<double> depths;
-  for (size_t v = 0; v < result.used.views.size(); ++v) {
-    const Rigid3d pose = c.camera_from_world ? *c.camera_from_world : c.views[v].camera_from_board;
-    for (const Observation& o : result.used.views[v].observations) depths.push_back((pose * o.point).z());
-  }
-  if (depths.empty()) return "";
-  std::nth_element(depths.begin(), depths.begin() + static_cast<std::ptrdiff_t>(depths.size() / 2), depths.end());
-  const ImageSize& size = c.camera.image_size;
-  std::vector<Eigen::Vector3d> at = {{0.5 * (size.width - 1), 0.5 * (size.height - 1), depths[depths.size() / 2]}};
-  at.insert(at.end(), request.pixel_depths.begin(), request.pixel_depths.end());
-  std::string text = "  projection 1-sigma (major axis), with poses = tied to the calibration object, intrinsics only = "
-                     "what using the camera elsewhere inherits:\n";
-  for (const Eigen::Vector3d& q : at) {
-    const auto tied = ProjectionUncertaintyAtPixel(c, q.head<2>(), q.z(), ProjectionUncertaintyKind::kWithPoses);
-    const auto alone = ProjectionUncertaintyAtPixel(c, q.head<2>(), q.z(), ProjectionUncertaintyKind::kIntrinsicsOnly);
-    if (!tied || !alone) continue;
-    char buf[200];
-    std::snprintf(buf, sizeof buf, "    at pixel (%.1f, %.1f), depth %.4g %s: %.4f px with poses, %.4f px intrinsics only\n",
-                  q.x(), q.y(), q.z(), std::string(LengthUnitName(c.length_unit)).c_str(), tied->sigma_major_px,
-                  alone->sigma_major_px);
-    text += buf;
-  }
-  return text;
-}
-
 }  // namespace
 
 std::vector<CLI::Option*> CalibrationFlags::AddRefinement(CLI::App& app) {
@@ -65,7 +33,7 @@ std::vector<CLI::Option*> CalibrationFlags::AddRefinement(CLI::App& app) {
           ->capture_default_str(),
       app.add_flag("--skew", skew, "also estimate the skew s (K[0][1])"),
       app.add_option("--loss", loss, "robust loss: none, huber or cauchy")
-          ->check(CLI::IsMember({"none", "huber", "cauchy"}))
+          ->check(CLI::IsMember(NamesOf(RefineOptions::kLossNames)))
           ->capture_default_str()};
   loss_scale_option = app.add_option("--loss-scale", loss_scale_px, "where the robust loss departs from the square, px")
                           ->check(kPositiveFinite)
@@ -113,7 +81,7 @@ RefineOptions CalibrationFlags::Refinement() const {
     }
   }
   o.free_skew = skew;
-  o.loss = loss == "huber" ? RefineOptions::Loss::kHuber : loss == "cauchy" ? RefineOptions::Loss::kCauchy : RefineOptions::Loss::kNone;
+  o.loss = *FromName(RefineOptions::kLossNames, loss);
   if (o.loss == RefineOptions::Loss::kNone && loss_scale_option != nullptr && loss_scale_option->count() > 0) {
     throw InputError("--loss-scale: has no effect with --loss none; give --loss huber or --loss cauchy, or drop it");
   }
@@ -164,32 +132,11 @@ UncertaintyRequest CalibrationFlags::Uncertainty(const Correspondences& corners)
 int FinishCalibration(const std::string& tool, const std::string& input, const std::string& output,
                       const CalibrationResult& result, const CalibrationOptions& options, const CalibrationFlags& flags,
                       const UncertaintyRequest& request, int argc, char** argv) {
-  if (result.exit_code != ExitCode::kOk) throw Error(result.exit_code, input + ": " + result.message);
-  for (const std::string& w : result.warnings) std::cerr << tool << ": warning: " << w << "\n";
-
-  const Provenance provenance = MakeProvenance(tool, argc, argv);
-  OrderedJson blocks = CalibrationBlocksToJson(result, options);
-  if (result.camera.covariance) blocks["projection_uncertainty"] = UncertaintyToJson(result.camera, request);
-  std::vector<std::pair<std::filesystem::path, std::string>> outputs;
-  outputs.emplace_back(output, DumpJson(CameraToJson(result.camera, provenance, blocks)));
-  if (!flags.residuals.empty()) {
-    outputs.emplace_back(flags.residuals, DumpJson(ResidualsToJson(result.used, *result.camera.fit, provenance)));
-  }
-  WriteFilesAtomically(outputs);
-  if (!flags.quiet) {
-    std::cerr << tool << ": " << input << ": " << NumObservations(result.used) << " points in " << result.used.views.size()
-              << " views, method " << result.camera.method << "\n"
-              << FitSummaryText(result.camera);
-    if (result.refinement) {
-      const Refinement& r = *result.refinement;
-      char buf[200];
-      std::snprintf(buf, sizeof buf, "  refinement: %d iterations, sigma %.4f px (%d dof), %zu outliers\n", r.iterations,
-                    r.sigma_px, r.dof, r.outliers.size());
-      std::cerr << buf;
-    }
-    std::cerr << UncertaintySummary(result, request);
-    std::cerr << "  wrote " << output << (flags.residuals.empty() ? "" : " and " + flags.residuals) << "\n";
-  }
+  const app::Outcome outcome = app::CalibrationOutcome(result, options, {tool, input, output, flags.residuals, request},
+                                                       MakeProvenance(tool, argc, argv));
+  for (const std::string& w : outcome.warnings) std::cerr << w << "\n";
+  app::WriteOutcome(outcome);
+  if (!flags.quiet) std::cerr << outcome.summary;
   return 0;
 }
 

@@ -46,9 +46,9 @@ struct CalibrationFlags {
   UncertaintyRequest Uncertainty(const Correspondences& corners) const;
 };
 
-// Turns a failed result into the documented exit code and its one-line message (throws
-// vstcal::Error; the warnings are not printed then), or writes OUTPUT (and --residuals)
-// all-or-nothing and prints warnings and the summary on stderr.
+// app::CalibrationOutcome, printed and written: a failed result throws its exit code and one-line
+// message (no warnings printed then); else the warnings, OUTPUT (and --residuals) all or nothing,
+// and unless --quiet the summary.
 int FinishCalibration(const std::string& tool, const std::string& input, const std::string& output,
                       const CalibrationResult& result, const CalibrationOptions& options, const CalibrationFlags& flags,
                       const UncertaintyRequest& request, int argc, char** argv);

@@ -23,7 +23,8 @@ namespace vstcal::tools {
 // Files read without ReadInputFile (images through OpenCV) are recorded with
 // NoteInputFile(path) before they are read.
 // Returns the process exit code:
-//  0 ok (also for --help and --version), 2 bad usage or input, 3 degenerate data, 1 internal error.
+//  0 ok (also for --help and --version), 2 bad usage or input, 3 degenerate data, 1 internal error;
+//  a body returns 4 (kCheckFailedExitCode, core/check.h) itself when a check it ran failed.
 // Every failure prints exactly one line on stderr, "<tool>: error: <message>" (or "<tool>:
 // internal error: … (please report this)" for exit code 1); control characters in the message
 // are escaped so that it stays one line.

@@ -1,5 +1,6 @@
 #include "err-sim/command_line.h"
 
+#include <cmath>
 #include <cstdlib>
 #include <optional>
 #include <tuple>
@@ -8,6 +9,7 @@
 #include "common/scheduler.h"
 #include "common/validators.h"
 #include "vstcal/core/error.h"
+#include "vstcal/sensitivity/unit_points.h"
 
 namespace vstcal::tools {
 
@@ -52,7 +54,7 @@ ErrSimCommandLine::ErrSimCommandLine(CLI::App& app) {
   sweep_->add_option("--points", sweep_request_.points, "points per sweep (2 … 1001)")->capture_default_str();
 
   sobol_ = AddCommon(app.add_subcommand("sobol", "first-order and total Sobol indices per source"), true, true);
-  sobol_->add_option("--sampling", sobol_request_.sampling, "sobol or pseudo-random")->check(CLI::IsMember({"sobol", "pseudo-random"}))->capture_default_str();
+  sobol_->add_option("--sampling", sobol_request_.sampling, "sobol or pseudo-random")->check(CLI::IsMember(vstcal::NamesOf(kSamplingMethodNames)))->capture_default_str();
   sobol_->add_option("--bootstrap", sobol_request_.bootstrap, "bootstrap resamples for the intervals (0: none; at most 10000)")->capture_default_str();
   sobol_->add_option("--html", html_, html_help)->check(kNonEmpty);
 
@@ -60,6 +62,58 @@ ErrSimCommandLine::ErrSimCommandLine(CLI::App& app) {
   linear_->add_option("--html", html_, html_help)->check(kNonEmpty);
   CLI::App* normalize = AddCommon(app.add_subcommand("normalize", "write the chain in the canonical vst-chain@1 layout, defaults spelled out"), false, false);
   normalize->add_option("--html", html_, "refused: a chain has no page (run, merge, sweep, sobol and linear have one)");
+
+  check_ = app.add_subcommand("check", "compare a new run (or --report) with an accepted report: fail (exit code 4) "
+                                       "when a metric rose beyond its allowance by more than the Monte Carlo noise");
+  check_->add_option("ACCEPTED", check_request_.accepted, "the accepted report (vstcal/err-sim-report@2)")->required()->check(kNonEmpty);
+  check_->add_option("--report", check_request_.report, "the new report (default: re-run the accepted report's chain "
+                                                         "with its samples, seed and sources)")->check(kNonEmpty);
+  check_->add_option("--chain", check_request_.chain, "the chain to re-run (default: the accepted report's \"chain\")")->check(kNonEmpty);
+  check_->add_option("--max-rise", max_rise_, "how much a metric may rise: AMOUNT (in its unit) or PERCENT% of the accepted "
+                                              "value, for every metric, or METRIC=… or MEASURE=… for one (repeat; default 10%)");
+  check_->add_option("--z", check_request_.z, "standard errors of the difference a rise may exceed its allowance by before it fails")
+      ->capture_default_str();
+  check_->add_option("--junit", check_request_.junit, "write the verdicts as JUnit XML to this file (for CI)")->check(kNonEmpty);
+  check_->add_option("--threads", check_request_.threads, "threads of the re-run (0: all cores, at most 256; results do not depend on it)");
+  check_->add_flag("-q,--quiet", quiet_, "print only errors (the exit code says pass or fail)");
+}
+
+bool ErrSimCommandLine::checking() const { return check_->parsed(); }
+
+namespace {
+
+// [NAME=]AMOUNT[%]: NAME a metric or measure (the last '=' splits, a test point's name may hold one).
+void AddRise(app::ErrSimCheckRequest& request, const std::string& text, bool* default_given) {
+  const size_t eq = text.rfind('=');
+  const std::string name = eq == std::string::npos ? "" : text.substr(0, eq);
+  std::string amount = eq == std::string::npos ? text : text.substr(eq + 1);
+  const bool relative = !amount.empty() && amount.back() == '%';
+  if (relative) amount.pop_back();
+  const char* begin = amount.c_str();
+  char* end = nullptr;
+  const double value = std::strtod(begin, &end);
+  if (amount.empty() || end != begin + amount.size() || !std::isfinite(value) || !(value > 0)) {
+    throw InputError("--max-rise: \"" + text + "\": not a positive amount; give AMOUNT (0.5, in the metric's unit) or "
+                     "PERCENT% (10%), optionally after METRIC= or MEASURE=");
+  }
+  const RiseAllowance allowance{relative ? value / 100 : value, relative};
+  if (name.empty()) {
+    if (*default_given) throw InputError("--max-rise: \"" + text + "\": a second default; give one AMOUNT without a name");
+    *default_given = true;
+    request.by_default = allowance;
+  } else {
+    request.rules.push_back({name, allowance});
+  }
+}
+
+}  // namespace
+
+app::Outcome ErrSimCommandLine::Check(int argc, char** argv) {
+  bool default_given = false;
+  for (const std::string& text : max_rise_) AddRise(check_request_, text, &default_given);
+  ProgressBar bar("err-sim check", !quiet_ && check_request_.report.empty());
+  return app::CheckErrSim(check_request_, MakeProvenance("err-sim", argc, argv, std::nullopt),
+                          [&](double f) { bar.Update(f); });
 }
 
 app::ErrSimDocument ErrSimCommandLine::Run(int argc, char** argv) {

@@ -10,6 +10,7 @@
 #include <CLI/CLI.hpp>
 
 #include "vstcal/app/err_sim.h"
+#include "vstcal/app/err_sim_check.h"
 
 namespace vstcal::tools {
 
@@ -24,9 +25,18 @@ class ErrSimCommandLine {
   bool quiet() const { return quiet_; }
   const std::string& html() const { return html_; }  // run, merge, sweep, sobol, linear: the page to write too (empty: none)
 
+  // `check`: whether it was chosen, its JUnit file (empty: none), and the check itself, after
+  // app.parse. InputError for a --max-rise that is not [METRIC=]AMOUNT[%].
+  bool checking() const;
+  const std::string& junit() const { return check_request_.junit; }
+  app::Outcome Check(int argc, char** argv);
+
  private:
   CLI::App* AddCommon(CLI::App* app, bool sources, bool sampling);
 
+  CLI::App *check_ = nullptr;
+  app::ErrSimCheckRequest check_request_;
+  std::vector<std::string> max_rise_;
   CLI::App *run_ = nullptr, *merge_ = nullptr, *sweep_ = nullptr, *sobol_ = nullptr, *linear_ = nullptr;
   // Shared by every subcommand: the chain, which sources, samples, seed, threads, output.
   app::ChainRequest chain_;

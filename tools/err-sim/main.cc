@@ -5,6 +5,7 @@
 #include "common/run_tool.h"
 #include "err-sim/command_line.h"
 #include "vstcal/files/input_protection.h"
+#include "vstcal/core/check.h"
 #include "vstcal/json/json_writer.h"
 #include "vstcal/pages/errsim_html.h"
 
@@ -13,10 +14,18 @@ int main(int argc, char** argv) {
                "rendering, display, virtual_object_alignment) through the registration chain of a stereo video see-through "
                "system: image misregistration (px), the 3-D misregistration the user sees and the misperception of where "
                "things are (Holloway's terms), each source's contribution and an error budget ranked for each.\n"
-               "Exit codes: 0 ok, 1 internal error, 2 bad usage or input, 3 degenerate model (every sample of a test point undefined).",
+               "Exit codes: 0 ok, 1 internal error, 2 bad usage or input, 3 degenerate model (every sample of a test point undefined), "
+               "4 a check failed (err-sim check).",
                "err-sim"};
   vstcal::tools::ErrSimCommandLine command_line(app);
   return vstcal::tools::RunTool(app, argc, argv, [&] {
+    if (command_line.checking()) {
+      vstcal::DeclareOutputs({command_line.junit()});
+      const vstcal::app::Outcome outcome = command_line.Check(argc, argv);
+      vstcal::app::WriteOutcome(outcome);
+      if (!command_line.quiet()) std::cout << outcome.stdout_text;
+      return outcome.check_failed ? vstcal::kCheckFailedExitCode : 0;
+    }
     vstcal::DeclareOutputs({command_line.output(), command_line.html()});
     const vstcal::app::ErrSimDocument outcome = command_line.Run(argc, argv);
     std::vector<std::pair<std::filesystem::path, std::string>> files = {{command_line.output(), outcome.Text()}};

@@ -13,6 +13,7 @@
 #include "vstcal/formats/stereo/registration_io.h"
 #include "vstcal/formats/stereo/stereo_io.h"
 #include "vstcal/formats/stereo/stereo_peer_formats.h"
+#include "vstcal/report/fit_summary.h"
 
 namespace vstcal::app {
 namespace {
@@ -43,6 +44,22 @@ std::string RigSummary(const StereoRig& rig) {
                          RadToDeg(AngleBetween(rig.right_from_left.R, Eigen::Matrix3d::Identity())));
   if (const auto sigma = BaselineSigma(rig)) s += Format("baseline sigma %.3g %s\n", *sigma, unit.c_str());
   return s;
+}
+
+// Each camera's lens parameters ± σ and right_from_left's tangent σ (issue 24: a solver shows
+// what it estimated with its uncertainty).
+std::string RigParametersText(const StereoRig& rig) {
+  std::string text = "left camera:\n" + ParametersText(rig.left, {}) + "right camera:\n" + ParametersText(rig.right, {});
+  if (rig.covariance) {
+    std::string line = "right_from_left 1-sigma:";
+    for (const std::string& name : RelativePoseTangentNames()) {
+      if (const auto k = rig.covariance->Find(name)) {
+        line += Format(" %s %.3g", name.substr(name.rfind('.') + 1).c_str(), std::sqrt(rig.covariance->matrix(*k, *k)));
+      }
+    }
+    text += line + " (rad, " + std::string(LengthUnitName(rig.length_unit)) + ")\n";
+  }
+  return text;
 }
 
 }  // namespace
@@ -95,6 +112,7 @@ Outcome Solve(const SolveRequest& request, const Provenance& provenance) {
                      seen.c_str(), solved.rms_left_px, solved.rms_right_px, solved.sigma_px,
                      rig.fit ? rig.fit->epipolar.rms_px : 0.0, solved.iterations);
   out.summary += RigSummary(rig);
+  out.summary += RigParametersText(rig);
   return out;
 }
 
@@ -187,7 +205,7 @@ Outcome Plan(const DisplayPlanRequest& request, const Provenance& provenance) {
     const StereoRig rig = ReadStereoRig(request.rig);
     unit = rig.length_unit;
     input.baseline = rig.baseline();
-    input.focal_px = rig.left.camera.params[0];
+    input.focal_px = rig.left.camera.params[intrinsic::kFx];
     input.capture_width = rig.left.camera.image_size.width;
     const double converge = RadToDeg(AngleBetween(rig.right_from_left.R, Eigen::Matrix3d::Identity()));
     if (converge > 0.5) {

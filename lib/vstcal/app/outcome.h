@@ -13,6 +13,14 @@ namespace vstcal::app {
 struct Outcome {
   std::vector<std::pair<std::filesystem::path, std::string>> files;  // path, bytes
   std::string summary;                                               // for stderr
+  // Lines for stderr that a tool prints even when quiet, before it writes the files.
+  std::vector<std::string> warnings;
+  // What a tool prints on stdout after writing the files: a result that is text (reproj-report's
+  // table, calib-compare, err-sim check); empty: nothing.
+  std::string stdout_text;
+  // A check the user asked for failed (calib-compare --max-px, err-sim check): the files are still
+  // written and the text printed; the tool exits with ExitCode::kCheckFailed.
+  bool check_failed = false;
   // A missing folder of an output is created when its parent exists (calib-capture's overlay and
   // render folders), and removed again if writing fails. Otherwise a missing folder is refused.
   bool create_folders = false;

@@ -1,11 +1,40 @@
 #include "vstcal/calib/compare.h"
 
 #include <cmath>
+#include <limits>
 
-#include "vstcal/scene/measured_volume.h"
+#include <Eigen/Eigenvalues>
+
 #include "vstcal/core/error.h"
+#include "vstcal/estimators/uncertainty.h"
+#include "vstcal/scene/measured_volume.h"
 
 namespace vstcal {
+namespace {
+
+bool HasCovariance(const CalibratedCamera& c) { return c.covariance && !c.covariance->empty(); }
+
+// A difference this small is the rounding of two projections through a pose and back (≈ 1e-12 px),
+// not a disagreement: far below any pixel measurement.
+constexpr double kRoundingPx = 1e-9;
+
+}  // namespace
+
+double DisagreementSigma(const Eigen::Vector2d& d, const Eigen::Matrix2d& covariance_a, const Eigen::Matrix2d& covariance_b) {
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(covariance_a + covariance_b);
+  const double largest = std::max(eig.eigenvalues()(1), 0.0);
+  double m2 = 0;
+  for (int i = 0; i < 2; ++i) {
+    const double along = eig.eigenvectors().col(i).dot(d);
+    const double variance = eig.eigenvalues()(i);
+    if (variance > 1e-12 * largest && variance > 0) {
+      m2 += along * along / variance;
+    } else if (std::abs(along) > kRoundingPx) {
+      return std::numeric_limits<double>::infinity();
+    }
+  }
+  return std::sqrt(m2);
+}
 
 CameraComparison CompareCameras(const CalibratedCamera& a, const CalibratedCamera& b, std::optional<double> depth) {
   if (!(a.camera.image_size == b.camera.image_size)) {
@@ -31,19 +60,33 @@ CameraComparison CompareCameras(const CalibratedCamera& a, const CalibratedCamer
   // Without poses both cameras sit at the same place: compare the intrinsics alone.
   const Rigid3d world_from_a = posed ? a.camera_from_world->inverse() : Rigid3d::Identity();
   const Rigid3d b_from_world = posed ? *b.camera_from_world : Rigid3d::Identity();
-  std::vector<Eigen::Vector2d> differences;
+  const bool sigma = HasCovariance(a) && HasCovariance(b);
+  const auto kind = posed ? ProjectionUncertaintyKind::kWithPoses : ProjectionUncertaintyKind::kIntrinsicsOnly;
   const ImageSize& size = a.camera.image_size;
   for (int i = 0; i < 9; ++i) {
     for (int j = 0; j < 9; ++j) {
       const Eigen::Vector2d px(-0.5 + size.width * (i + 0.5) / 9.0, -0.5 + size.height * (j + 0.5) / 9.0);
       const auto ray = a.camera.Unproject(px);
       if (!ray) continue;
-      const auto q = b.camera.Project(b_from_world * (world_from_a * (*ray * out.depth)));
+      const Eigen::Vector3d point_in_world = world_from_a * (*ray * out.depth);
+      const auto q = b.camera.Project(b_from_world * point_in_world);
       if (!q) continue;
       const double d = (*q - px).norm();
       out.rms_px += d * d;
       out.max_px = std::max(out.max_px, d);
       ++out.n_points;
+      if (!sigma) continue;
+      // Unposed, b's point is a's camera-frame point, which b sees at q with the same depth.
+      const auto ea = posed ? ProjectionUncertaintyAtWorldPoint(a, point_in_world, kind)
+                            : ProjectionUncertaintyAtPixel(a, px, out.depth, kind);
+      const auto eb = posed ? ProjectionUncertaintyAtWorldPoint(b, point_in_world, kind)
+                            : ProjectionUncertaintyAtPixel(b, *q, out.depth, kind);
+      if (!ea || !eb) continue;
+      const double m = DisagreementSigma(*q - px, ea->covariance, eb->covariance);
+      if (!out.max_sigma || m > *out.max_sigma) {
+        out.max_sigma = m;
+        out.max_sigma_pixel = px;
+      }
     }
   }
   out.rms_px = out.n_points ? std::sqrt(out.rms_px / static_cast<double>(out.n_points)) : 0.0;
@@ -59,10 +102,15 @@ std::vector<PointDisagreement> CompareAtTestPoints(const CalibratedCamera& a, co
   const MeasuredVolume volume = MeasuredVolumeOf(files);
   std::vector<PointDisagreement> out;
   for (const TestPoint& t : corners.test_points) {
-    PointDisagreement d{t.name, t.point_in_world, std::nullopt, volume.Contains(t.point_in_world)};
+    PointDisagreement d{t.name, t.point_in_world, std::nullopt, volume.Contains(t.point_in_world), std::nullopt};
     const auto qa = a.camera.Project(*a.camera_from_world * t.point_in_world);
     const auto qb = b.camera.Project(*b.camera_from_world * t.point_in_world);
-    if (qa && qb) d.pixel_distance = (*qa - *qb).norm();
+    if (qa && qb) {
+      d.pixel_distance = (*qa - *qb).norm();
+      const auto ea = ProjectionUncertaintyAtWorldPoint(a, t.point_in_world);
+      const auto eb = ProjectionUncertaintyAtWorldPoint(b, t.point_in_world);
+      if (ea && eb) d.sigma = DisagreementSigma(*qb - *qa, ea->covariance, eb->covariance);
+    }
     out.push_back(std::move(d));
   }
   return out;

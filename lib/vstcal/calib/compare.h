@@ -20,7 +20,21 @@ struct CameraComparison {
   double rms_px = 0;
   double max_px = 0;
   size_t n_points = 0;
+  // When both cameras carry a covariance: the largest disagreement over the grid in units of its
+  // own uncertainty, DisagreementSigma, and the grid pixel where it is (docs/math/uncertainty.md#compare).
+  // Posed cameras project the same world point, each with its intrinsics and pose varying
+  // (ProjectionUncertaintyKind::kWithPoses); unposed ones the same camera-frame point, only the
+  // intrinsics varying (kIntrinsicsOnly). Grid points where either uncertainty is undefined are left out.
+  std::optional<double> max_sigma;
+  Eigen::Vector2d max_sigma_pixel = Eigen::Vector2d::Zero();
 };
+
+// The Mahalanobis distance of the difference d = q_b − q_a of two independent projections with
+// covariances Σ_a and Σ_b: √(dᵀ (Σ_a + Σ_b)⁻¹ d), "how many σ apart". +∞ when d has a component
+// of more than 1e-9 px (rounding) along a direction in which Σ_a + Σ_b is zero (to 1e-12 of its
+// largest eigenvalue).
+double DisagreementSigma(const Eigen::Vector2d& d, const Eigen::Matrix2d& covariance_a,
+                         const Eigen::Matrix2d& covariance_b);
 
 // Registration disagreement at the test points of `corners` (a volume's correspondences): each
 // point projected by both posed cameras; nullopt where either sees it behind. Each point is inside
@@ -31,6 +45,9 @@ struct PointDisagreement {
   Eigen::Vector3d point_in_world;
   std::optional<double> pixel_distance;
   std::optional<bool> inside_volume;
+  // DisagreementSigma of the two projections, each with its intrinsics and pose varying; nullopt
+  // unless both cameras carry a covariance and the point is in front of both.
+  std::optional<double> sigma = std::nullopt;
 };
 std::vector<PointDisagreement> CompareAtTestPoints(const CalibratedCamera& a, const CalibratedCamera& b,
                                                    const Correspondences& corners);

@@ -11,6 +11,7 @@
 #include "vstcal/scene/calibrated_camera.h"
 #include "vstcal/scene/correspondences.h"
 #include "vstcal/core/error.h"
+#include "vstcal/core/enum_names.h"
 
 namespace vstcal {
 
@@ -24,6 +25,7 @@ struct DltOptions {
     // Builds the 2N×12 matrix A and takes its SVD: the textbook reference.
     kFullSvd,
   };
+  static constexpr EnumNames<Solver, 2> kSolverNames = {{{Solver::kNormalEquations, "normal-equations"}, {Solver::kFullSvd, "svd"}}};
   Solver solver = Solver::kNormalEquations;
 
   // Refuse when the normalized point cloud is thinner than this along its second (collinear) or

@@ -227,7 +227,7 @@ CalibrationResult Calibrate(Correspondences correspondences, const CalibrationOp
   // Tsai start's k1, k2, k3 (converted from κ₁) would otherwise stay in the refined model
   // unestimated, outside the covariance, and bias the parameters that are estimated.
   Camera start = r.camera.camera;
-  if (!refinement.free_skew) start.params[4] = 0;
+  if (!refinement.free_skew) start.params[intrinsic::kSkew] = 0;
   const auto names = LensModelParamNames(start.model);
   const std::vector<std::string>& free = refinement.free_distortion;
   for (size_t i = kNumIntrinsicParams; i < names.size(); ++i) {

@@ -15,6 +15,7 @@
 #include "vstcal/calib/tsai.h"
 #include "vstcal/calib/zhang.h"
 #include "vstcal/core/error.h"
+#include "vstcal/core/enum_names.h"
 
 namespace vstcal {
 
@@ -32,6 +33,7 @@ struct CalibrationOptions {
   // predicted σ with it free is at most plane_principal_point_max_sigma × the image diagonal in
   // both coordinates (docs/math/uncertainty.md#one-plane).
   enum class PlanePrincipalPoint { kHold, kFree, kAuto };
+  static constexpr EnumNames<PlanePrincipalPoint, 3> kPlanePrincipalPointNames = {{{PlanePrincipalPoint::kHold, "no"}, {PlanePrincipalPoint::kFree, "yes"}, {PlanePrincipalPoint::kAuto, "auto"}}};
   PlanePrincipalPoint plane_principal_point = PlanePrincipalPoint::kHold;
   double plane_principal_point_max_sigma = 0.005;
 };

@@ -224,7 +224,8 @@ std::optional<StereoViewFit> EpipolarFit(const StereoRig& rig, const View& left,
   const Eigen::Matrix3d E = EssentialMatrix(rig.right_from_left);
   const Camera& cl = rig.left.camera;
   const Camera& cr = rig.right.camera;
-  const double fl = 0.5 * (cl.params[0] + cl.params[1]), fr = 0.5 * (cr.params[0] + cr.params[1]);
+  using namespace intrinsic;
+  const double fl = 0.5 * (cl.params[kFx] + cl.params[kFy]), fr = 0.5 * (cr.params[kFx] + cr.params[kFy]);
   std::vector<Eigen::Vector2d> distances;
   for (const Observation& o : left.observations) {
     const auto it = right_pixels.find({o.point.x(), o.point.y(), o.point.z()});

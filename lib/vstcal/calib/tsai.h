@@ -18,6 +18,7 @@
 #include "vstcal/camera/camera.h"
 #include "vstcal/core/error.h"
 #include "vstcal/geometry/rigid3.h"
+#include "vstcal/core/enum_names.h"
 
 namespace vstcal {
 
@@ -27,6 +28,7 @@ struct TsaiOptions {
     kCoplanar,     // points on one plane (any plane: it is moved to Z = 0 first); sx fixed
     kNonCoplanar,  // a 3-D volume; sx estimated
   };
+  static constexpr EnumNames<Variant, 3> kVariantNames = {{{Variant::kAuto, "auto"}, {Variant::kCoplanar, "coplanar"}, {Variant::kNonCoplanar, "non-coplanar"}}};
   Variant variant = Variant::kAuto;
   std::optional<Eigen::Vector2d> principal_point;  // default: the image centre ((W − 1)/2, (H − 1)/2)
   double sx = 1.0;                                 // the coplanar variant's fixed scale factor

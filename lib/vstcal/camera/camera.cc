@@ -1,5 +1,6 @@
 #include "vstcal/camera/camera.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
@@ -43,6 +44,19 @@ std::vector<std::string_view> LensModelParamNames(const AnyLensModel& model) {
         return std::vector<std::string_view>(names.begin(), names.end());
       },
       model);
+}
+
+std::optional<int> LensModelParamIndex(const AnyLensModel& model, std::string_view name) {
+  const auto names = LensModelParamNames(model);
+  const auto it = std::find(names.begin(), names.end(), name);
+  if (it == names.end()) return std::nullopt;
+  return static_cast<int>(it - names.begin());
+}
+
+double Camera::Param(std::string_view name) const {
+  const std::optional<int> index = LensModelParamIndex(model, name);
+  VSTCAL_CHECK(index && *index < static_cast<int>(params.size()), "no such camera parameter");
+  return params[*index];
 }
 
 Camera Camera::FromK(const Eigen::Matrix3d& K, ImageSize image_size, AnyLensModel model,

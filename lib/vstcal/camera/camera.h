@@ -40,6 +40,9 @@ std::string KnownLensModelNames();
 std::string_view LensModelName(const AnyLensModel& model);
 int LensModelNumParams(const AnyLensModel& model);
 std::vector<std::string_view> LensModelParamNames(const AnyLensModel& model);
+// Index of a parameter in the model's layout by its name ("fx", "k1", …); nullopt when the model
+// has no such parameter.
+std::optional<int> LensModelParamIndex(const AnyLensModel& model, std::string_view name);
 
 struct Camera {
   ImageSize image_size;
@@ -52,6 +55,8 @@ struct Camera {
                       std::span<const double> distortion = {});
 
   Eigen::Matrix3d K() const;
+  // A parameter by its name in the model's layout; a name the model lacks is a bug (InternalError).
+  double Param(std::string_view name) const;
   std::span<const double> distortion() const;
 
   // Pixel of a camera-frame point; nullopt behind the camera (z ≤ 0).

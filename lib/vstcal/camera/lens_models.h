@@ -18,6 +18,11 @@
 namespace vstcal {
 
 inline constexpr int kNumIntrinsicParams = 5;  // fx, fy, cx, cy, s
+// Where each shared intrinsic sits in every model's parameter vector; the distortion terms follow
+// in the model's own order (kParamNames; Camera::Param reads one by name).
+namespace intrinsic {
+inline constexpr int kFx = 0, kFy = 1, kCx = 2, kCy = 3, kSkew = 4;
+}  // namespace intrinsic
 
 template <typename Model>
 struct LensModel {

@@ -6,12 +6,7 @@
 namespace vstcal {
 
 std::string_view DetectionStatusName(DetectionStatus status) {
-  switch (status) {
-    case DetectionStatus::kFound: return "found";
-    case DetectionStatus::kNotFound: return "not-found";
-    case DetectionStatus::kRejected: return "rejected";
-  }
-  return "?";
+  return NameOf(kDetectionStatusNames, status);
 }
 
 Detection DetectTarget(const GrayImage& image, const Target& target, const DetectorOptions& options) {

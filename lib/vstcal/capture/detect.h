@@ -14,6 +14,7 @@
 
 #include "vstcal/image/image.h"
 #include "vstcal/capture/target.h"
+#include "vstcal/core/enum_names.h"
 
 namespace vstcal {
 
@@ -22,6 +23,7 @@ enum class DetectionStatus {
   kNotFound,  // the target was not seen
   kRejected,  // seen, but unusable: too few corners, blurred, orientation ambiguous, …
 };
+inline constexpr EnumNames<DetectionStatus, 3> kDetectionStatusNames = {{{DetectionStatus::kFound, "found"}, {DetectionStatus::kNotFound, "not-found"}, {DetectionStatus::kRejected, "rejected"}}};
 std::string_view DetectionStatusName(DetectionStatus status);  // "found", "not-found", "rejected"
 
 struct DetectedCorner {
@@ -42,12 +44,14 @@ enum class ChessboardFinder {
   kSectorBased,             // cv::findChessboardCornersSB (localized Radon transform)
   kClassicThenSectorBased,  // the classic one, and the sector-based one where it finds nothing
 };
+inline constexpr EnumNames<ChessboardFinder, 3> kChessboardFinderNames = {{{ChessboardFinder::kClassic, "classic"}, {ChessboardFinder::kSectorBased, "sector-based"}, {ChessboardFinder::kClassicThenSectorBased, "classic+sector-based"}}};
 // What refines the corners a detector returns (ChArUco's are always cornerSubPix'd by OpenCV first).
 enum class CornerRefiner {
   kSymmetry,      // vstcal's point-symmetry fit (corner_refinement.h)
   kCornerSubPix,  // cv::cornerSubPix, half-window 0.4 × the local square size
   kNone,          // the detector's own positions
 };
+inline constexpr EnumNames<CornerRefiner, 3> kCornerRefinerNames = {{{CornerRefiner::kSymmetry, "symmetry"}, {CornerRefiner::kCornerSubPix, "cornersubpix"}, {CornerRefiner::kNone, "none"}}};
 
 struct DetectorOptions {
   ChessboardFinder finder = ChessboardFinder::kClassicThenSectorBased;

@@ -47,19 +47,11 @@ std::optional<TargetProblem> Positive(std::string_view field, double v) {
 }  // namespace
 
 std::string_view TargetTypeName(TargetType type) {
-  switch (type) {
-    case TargetType::kChessboard: return "chessboard";
-    case TargetType::kCharuco: return "charuco";
-    case TargetType::kAprilTagGrid: return "apriltag-grid";
-  }
-  return "?";
+  return NameOf(kTargetTypeNames, type);
 }
 
 std::optional<TargetType> TargetTypeFromName(std::string_view name) {
-  for (TargetType t : {TargetType::kChessboard, TargetType::kCharuco, TargetType::kAprilTagGrid}) {
-    if (TargetTypeName(t) == name) return t;
-  }
-  return std::nullopt;
+  return FromName(kTargetTypeNames, name);
 }
 
 std::span<const MarkerFamily> ArucoDictionaries() { return kAruco; }

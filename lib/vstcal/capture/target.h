@@ -29,10 +29,12 @@
 
 #include "vstcal/capture/pattern.h"
 #include "vstcal/core/units.h"
+#include "vstcal/core/enum_names.h"
 
 namespace vstcal {
 
 enum class TargetType { kChessboard, kCharuco, kAprilTagGrid };
+inline constexpr EnumNames<TargetType, 3> kTargetTypeNames = {{{TargetType::kChessboard, "chessboard"}, {TargetType::kCharuco, "charuco"}, {TargetType::kAprilTagGrid, "apriltag-grid"}}};
 
 std::string_view TargetTypeName(TargetType type);  // "chessboard", "charuco", "apriltag-grid"
 std::optional<TargetType> TargetTypeFromName(std::string_view name);

@@ -43,11 +43,12 @@ ChainEvaluator::ChainEvaluator(const ChainModel& model) : model_(model), layout_
     camera_from_hmd_[e] = g.camera_from_hmd[e];
     baseline_step_[e] = (e == 0 ? 0.5 : -0.5) * (g.camera_from_hmd[e].R * baseline_direction);
     design_eyepoint_[e] = g.display.DesignEyepoint(e);
-    focal_baseline_[e] = camera.params[0] * baseline;
+    focal_baseline_[e] = camera.params[intrinsic::kFx] * baseline;
     mixing_is_identity_[e] = model_.intrinsic_mixing[e].isIdentity(0.0);
     extrinsic_mixing_is_identity_[e] = model_.extrinsic_mixing[e].isIdentity(0.0);
     const std::vector<double>& p = camera.params;
-    display_[e] = {p[2], p[3], p[4], 1.0 / p[0], 1.0 / p[1], g.camera_from_hmd[e].R.transpose(),
+    using namespace intrinsic;
+    display_[e] = {p[kCx], p[kCy], p[kSkew], 1.0 / p[kFx], 1.0 / p[kFy], g.camera_from_hmd[e].R.transpose(),
                    g.camera_from_hmd[e].R == Eigen::Matrix3d::Identity(), -0.5, camera.image_size.width - 0.5, -0.5,
                    camera.image_size.height - 0.5};
   }

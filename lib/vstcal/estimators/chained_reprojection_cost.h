@@ -13,14 +13,13 @@
 // A point behind the right camera makes Evaluate return false: Ceres rejects the step.
 #pragma once
 
-#include <cmath>
 #include <span>
-#include <vector>
 
 #include <ceres/cost_function.h>
 
-#include "vstcal/scene/correspondences.h"
+#include "vstcal/estimators/weighted_reprojection.h"
 #include "vstcal/geometry/rigid3.h"
+#include "vstcal/scene/correspondences.h"
 
 namespace vstcal {
 
@@ -29,12 +28,7 @@ class ChainedReprojectionCost final : public ceres::CostFunction {
  public:
   ChainedReprojectionCost(std::span<const Observation> observations, const Rigid3d& right_from_left_ref,
                           const Rigid3d& left_from_board_ref)
-      : right_from_left_(right_from_left_ref) {
-    for (const Observation& o : observations) {
-      y_.push_back(left_from_board_ref * o.point);
-      pixels_.push_back(o.pixel);
-      sqrt_weights_.push_back(std::sqrt(o.weight));
-    }
+      : right_from_left_(right_from_left_ref), observations_(observations, left_from_board_ref) {
     set_num_residuals(2 * static_cast<int>(observations.size()));
     mutable_parameter_block_sizes()->push_back(Model::kNumParams);
     mutable_parameter_block_sizes()->push_back(6);
@@ -44,7 +38,7 @@ class ChainedReprojectionCost final : public ceres::CostFunction {
   bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override {
     const Perturbation rl(parameters[1], jacobians && jacobians[1]);
     const Perturbation v(parameters[2], jacobians && jacobians[2]);
-    for (size_t i = 0; i < y_.size(); ++i) {
+    for (size_t i = 0; i < observations_.size(); ++i) {
       if (!EvaluatePoint(i, parameters[0], rl, v, residuals + 2 * i,
                          jacobians && jacobians[0] ? jacobians[0] + 2 * i * Model::kNumParams : nullptr,
                          jacobians && jacobians[1] ? jacobians[1] + 12 * i : nullptr,
@@ -63,7 +57,7 @@ class ChainedReprojectionCost final : public ceres::CostFunction {
     return EvaluatePoint(i, params, Perturbation(kZero, true), Perturbation(kZero, true), residual, d_params, d_rl, d_view);
   }
 
-  size_t size() const { return y_.size(); }
+  size_t size() const { return observations_.size(); }
 
  private:
   struct Perturbation {
@@ -79,20 +73,15 @@ class ChainedReprojectionCost final : public ceres::CostFunction {
 
   bool EvaluatePoint(size_t i, const double* params, const Perturbation& rl, const Perturbation& v, double* residual,
                      double* d_params, double* d_rl, double* d_view) const {
-    using RowMajor2x3 = Eigen::Matrix<double, 2, 3, Eigen::RowMajor>;
     using RowMajor2x6 = Eigen::Matrix<double, 2, 6, Eigen::RowMajor>;
-    const Eigen::Vector3d ev = v.E * y_[i];
+    const Eigen::Vector3d ev = v.E * observations_.point(i);
     const Eigen::Vector3d b = right_from_left_.R * (ev + v.rho) + right_from_left_.t;
     const Eigen::Vector3d eb = rl.E * b;
     const Eigen::Vector3d p = eb + rl.rho;
-    double q[2];
     RowMajor2x3 d_q_d_p;
-    if (!Model::ProjectWithJacobians(params, p.data(), q, d_params, (d_rl || d_view) ? d_q_d_p.data() : nullptr)) return false;
-    const double w = sqrt_weights_[i];
-    residual[0] = w * (q[0] - pixels_[i].x());
-    residual[1] = w * (q[1] - pixels_[i].y());
-    if (d_params && w != 1.0) {
-      for (int k = 0; k < 2 * Model::kNumParams; ++k) d_params[k] *= w;
+    double w;
+    if (!observations_.Residual<Model>(i, params, p, residual, d_params, (d_rl || d_view) ? &d_q_d_p : nullptr, &w)) {
+      return false;
     }
     if (d_rl) {
       Eigen::Map<RowMajor2x6> d(d_rl);
@@ -109,9 +98,7 @@ class ChainedReprojectionCost final : public ceres::CostFunction {
   }
 
   Rigid3d right_from_left_;
-  std::vector<Eigen::Vector3d> y_;  // left_from_board_ref · X
-  std::vector<Eigen::Vector2d> pixels_;
-  std::vector<double> sqrt_weights_;
+  WeightedObservations observations_;  // in the frame left_from_board_ref
 };
 
 }  // namespace vstcal

@@ -109,16 +109,16 @@ std::vector<HeldIntrinsic> HeldIntrinsics(const AnyLensModel& model, const std::
   const auto all = LensModelParamNames(model);
   std::vector<HeldIntrinsic> held;
   if (!options.free_focal) {
-    held.push_back({"fx", params[0], "held by the caller (RefineOptions::free_focal)"});
-    held.push_back({"fy", params[1], "held by the caller (RefineOptions::free_focal)"});
+    held.push_back({"fx", params[intrinsic::kFx], "held by the caller (RefineOptions::free_focal)"});
+    held.push_back({"fy", params[intrinsic::kFy], "held by the caller (RefineOptions::free_focal)"});
   } else if (options.focal_aspect) {
     held.push_back({"fx/fy", *options.focal_aspect, options.focal_aspect_held_because});
   }
   if (!options.free_principal_point) {
-    held.push_back({"cx", params[2], options.principal_point_held_because});
-    held.push_back({"cy", params[3], options.principal_point_held_because});
+    held.push_back({"cx", params[intrinsic::kCx], options.principal_point_held_because});
+    held.push_back({"cy", params[intrinsic::kCy], options.principal_point_held_because});
   }
-  if (!options.free_skew) held.push_back({"s", params[4], "not estimated (--skew frees it)"});
+  if (!options.free_skew) held.push_back({"s", params[intrinsic::kSkew], "not estimated (--skew frees it)"});
   for (size_t i = kNumIntrinsicParams; i < all.size(); ++i) {
     if (!Named(options.free_distortion, all[i])) {
       held.push_back({std::string(all[i]), params[i], "not named by --distortion"});

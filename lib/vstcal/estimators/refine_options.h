@@ -7,6 +7,7 @@
 #include <optional>
 #include <string>
 #include <vector>
+#include "vstcal/core/enum_names.h"
 
 namespace vstcal {
 
@@ -30,6 +31,7 @@ struct RefineOptions {
   std::string focal_aspect_held_because = "held by the caller (RefineOptions::focal_aspect)";
 
   enum class Loss { kNone, kHuber, kCauchy };
+  static constexpr EnumNames<Loss, 3> kLossNames = {{{Loss::kNone, "none"}, {Loss::kHuber, "huber"}, {Loss::kCauchy, "cauchy"}}};
   Loss loss = Loss::kNone;
   double loss_scale_px = 1.0;  // where the robust loss departs from the square, px (of a weight-1 point)
 

@@ -3,8 +3,8 @@
 //
 //   Σ w ‖ project(θ, δT · camera_from_view_ref · X) − q ‖²,   δT = (Exp(ω), ρ)
 //
-// w is the observation's weight (correspondences@1, docs/formats.md#weights): the residual and its
-// Jacobian rows are multiplied by √w, so a point of weight w counts as w points of weight 1.
+// w is the observation's weight (correspondences@1, docs/formats.md#weights), applied by the one
+// weighted residual (weighted_reprojection.h).
 // Parameter blocks:
 //   [0] θ: all of the lens model's parameters [fx, fy, cx, cy, s, distortion…]; the refinement
 //       moves them along its FreeIntrinsics basis (a Ceres manifold), the rest stay put;
@@ -17,14 +17,13 @@
 // never turned into a zero residual.
 #pragma once
 
-#include <cmath>
 #include <span>
-#include <vector>
 
 #include <ceres/cost_function.h>
 
-#include "vstcal/scene/correspondences.h"
+#include "vstcal/estimators/weighted_reprojection.h"
 #include "vstcal/geometry/rigid3.h"
+#include "vstcal/scene/correspondences.h"
 
 namespace vstcal {
 
@@ -33,12 +32,8 @@ class ReprojectionCost final : public ceres::CostFunction {
  public:
   // One residual block for all `observations` (no robust loss: a Ceres loss applies to a whole
   // block), or for a single observation (robust losses, point by point).
-  ReprojectionCost(std::span<const Observation> observations, const Rigid3d& camera_from_view_ref) {
-    for (const Observation& o : observations) {
-      y_.push_back(camera_from_view_ref * o.point);
-      pixels_.push_back(o.pixel);
-      sqrt_weights_.push_back(std::sqrt(o.weight));
-    }
+  ReprojectionCost(std::span<const Observation> observations, const Rigid3d& camera_from_view_ref)
+      : observations_(observations, camera_from_view_ref) {
     set_num_residuals(2 * static_cast<int>(observations.size()));
     mutable_parameter_block_sizes()->push_back(Model::kNumParams);
     mutable_parameter_block_sizes()->push_back(6);
@@ -51,7 +46,7 @@ class ReprojectionCost final : public ceres::CostFunction {
     const bool want_pose = jacobians && jacobians[1];
     const Eigen::Matrix3d E = RotationFromRotvec(omega);
     const Eigen::Matrix3d Jl = want_pose ? LeftJacobianSO3(omega) : Eigen::Matrix3d::Identity();
-    for (size_t i = 0; i < y_.size(); ++i) {
+    for (size_t i = 0; i < observations_.size(); ++i) {
       if (!EvaluatePoint(i, parameters[0], E, Jl, delta.tail<3>(), residuals + 2 * i,
                          want_intrinsics ? jacobians[0] + 2 * i * Model::kNumParams : nullptr,
                          want_pose ? jacobians[1] + 12 * i : nullptr)) {
@@ -68,24 +63,17 @@ class ReprojectionCost final : public ceres::CostFunction {
                          residual, d_params, d_pose);
   }
 
-  size_t size() const { return y_.size(); }
+  size_t size() const { return observations_.size(); }
 
  private:
   // E = Exp(ω), Jl = J_l(ω), ρ: the perturbation, shared by the block's points.
   bool EvaluatePoint(size_t i, const double* params, const Eigen::Matrix3d& E, const Eigen::Matrix3d& Jl,
                      const Eigen::Vector3d& rho, double* residual, double* d_params, double* d_pose) const {
-    using RowMajor2x3 = Eigen::Matrix<double, 2, 3, Eigen::RowMajor>;
-    const Eigen::Vector3d e = E * y_[i];
+    const Eigen::Vector3d e = E * observations_.point(i);
     const Eigen::Vector3d p = e + rho;
-    double q[2];
     RowMajor2x3 d_q_d_p;
-    if (!Model::ProjectWithJacobians(params, p.data(), q, d_params, d_pose ? d_q_d_p.data() : nullptr)) return false;
-    const double w = sqrt_weights_[i];
-    residual[0] = w * (q[0] - pixels_[i].x());
-    residual[1] = w * (q[1] - pixels_[i].y());
-    if (d_params && w != 1.0) {
-      for (int k = 0; k < 2 * Model::kNumParams; ++k) d_params[k] *= w;
-    }
+    double w;
+    if (!observations_.Residual<Model>(i, params, p, residual, d_params, d_pose ? &d_q_d_p : nullptr, &w)) return false;
     if (d_pose) {
       Eigen::Map<Eigen::Matrix<double, 2, 6, Eigen::RowMajor>> d(d_pose);
       d.leftCols<3>() = -w * d_q_d_p * Hat(e) * Jl;
@@ -94,9 +82,7 @@ class ReprojectionCost final : public ceres::CostFunction {
     return true;
   }
 
-  std::vector<Eigen::Vector3d> y_;  // camera_from_view_ref · X
-  std::vector<Eigen::Vector2d> pixels_;
-  std::vector<double> sqrt_weights_;
+  WeightedObservations observations_;  // in the frame camera_from_view_ref
 };
 
 }  // namespace vstcal

@@ -2,6 +2,7 @@
 // and WriteJsonFile (files/atomic_write.h: a failing tool never leaves a partial output behind).
 #pragma once
 
+#include <cmath>
 #include <filesystem>
 #include <string>
 #include <utility>
@@ -32,6 +33,10 @@ OrderedJson MatrixToJson(const Eigen::MatrixBase<Derived>& m) {
   }
   return rows;
 }
+
+// A number, or null where it is undefined (NaN, ±∞: a quantity a report states is unknown, such
+// as a standard error from one sample); the format's docs say which fields may be null.
+inline OrderedJson NumberOrNull(double v) { return std::isfinite(v) ? OrderedJson(v) : OrderedJson(nullptr); }
 
 // {"R": [[...]], "t": [...]}
 OrderedJson RigidToJson(const Rigid3d& a_from_b);

@@ -1,7 +1,9 @@
 #include "vstcal/pages/html.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <numeric>
 
 #include "vstcal/json/json_writer.h"
 #include "vstcal/pages/charts.h"
@@ -13,6 +15,34 @@ namespace {
 
 constexpr size_t kMaxPictureCameras = 4;  // overlays and heat maps of the first cameras only
 
+
+// A cell in significant digits: parameters span 1e-6 (p1) to 1e3 (fx).
+std::string SignificantCell(const std::string& key, double v, int digits) {
+  char shown[64];
+  std::snprintf(shown, sizeof shown, "%.*g", digits, v);
+  return "<td data-key=\"" + Escape(key) + "\" data-value=\"" + ShortestDecimal(v) + "\">" + shown + "</td>";
+}
+
+// Each lens parameter with its 1σ and 3σ interval from the camera file's covariance (Bouguet's
+// and mrcal's listing), or "—" where the file gives no σ.
+std::string ParametersTable(const CameraReport& c, const std::string& key) {
+  std::string rows;
+  for (size_t i = 0; i < c.parameters.size(); ++i) {
+    const ParameterEstimate& p = c.parameters[i];
+    const std::string pk = key + "/parameters/" + std::to_string(i);
+    rows += "<tr><th>" + Escape(p.name) + "</th>" + SignificantCell(pk + "/value", p.value, 9);
+    if (p.sigma) {
+      char interval[96];
+      std::snprintf(interval, sizeof interval, "[%.8g, %.8g]", p.value - 3 * *p.sigma, p.value + 3 * *p.sigma);
+      rows += SignificantCell(pk + "/sigma", *p.sigma, 4) + "<td>" + interval + "</td>";
+    } else {
+      rows += "<td>—</td><td>—</td>";
+    }
+    rows += "</tr>\n";
+  }
+  return "<table><caption>lens parameters (1-sigma from the camera's covariance)</caption><tr><th></th><th>estimate</th>"
+         "<th>1-sigma</th><th>3-sigma interval</th></tr>\n" + rows + "</table>\n";
+}
 
 std::string CameraSection(const ReprojReport& r, size_t k) {
   const CameraReport& c = r.cameras[k];
@@ -38,11 +68,17 @@ std::string CameraSection(const ReprojReport& r, size_t k) {
   s += " Excluded: <span data-key=\"" + key + "/excluded/behind_camera\" data-value=\"" + std::to_string(c.n_behind_camera) +
        "\">" + std::to_string(c.n_behind_camera) + "</span> behind the camera, " + std::to_string(c.n_no_pose) +
        " without a pose, " + std::to_string(c.n_no_ray) + " without a ray.</p>\n";
+  s += ParametersTable(c, key);
+  // Worst first: the view a user should look at (or drop) heads the table.
+  std::vector<size_t> order(c.views.size());
+  std::iota(order.begin(), order.end(), size_t{0});
+  auto rms = [&](size_t v) { return c.views[v].error_px ? c.views[v].error_px->rms : -1.0; };
+  std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return rms(a) > rms(b); });
   std::string views;
-  for (size_t v = 0; v < c.views.size(); ++v) {
+  for (const size_t v : order) {
     views += StatsRow(c.views[v].name, key + "/views/" + std::to_string(v) + "/error_px", c.views[v].error_px);
   }
-  s += StatsTable("|residual| px per view", views);
+  s += StatsTable("|residual| px per view, the largest RMS first", views);
   if (!c.test_points.empty()) {
     s += StatsTable("test points, |residual| px and lateral " + unit,
                     StatsRow("inside, px", key + "/test_points/inside/error_px", c.test_inside.error_px) +

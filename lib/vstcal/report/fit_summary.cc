@@ -1,6 +1,9 @@
 #include "vstcal/report/fit_summary.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
+#include <numeric>
 
 #include "vstcal/scene/measured_volume.h"
 #include "vstcal/camera/intrinsics.h"
@@ -43,6 +46,41 @@ std::string FitSummaryText(const CalibratedCamera& c) {
                t.predicted ? "(not measured)" : "(behind camera)");
       }
     }
+  }
+  return out;
+}
+
+std::string ParametersText(const CalibratedCamera& c, std::span<const HeldIntrinsic> held, size_t worst) {
+  std::string out;
+  if (!c.fit && !c.covariance) return out;
+  const auto names = LensModelParamNames(c.camera.model);
+  Append(&out, "  %-6s %16s %14s   %s\n", "param", "estimate", "1-sigma", "3-sigma interval (or why held)");
+  for (size_t i = 0; i < names.size(); ++i) {
+    const std::string name(names[i]);
+    const double value = c.camera.params[i];
+    const auto is_held = std::find_if(held.begin(), held.end(), [&](const HeldIntrinsic& h) { return h.parameter == name; });
+    const std::optional<size_t> k = c.covariance ? c.covariance->Find(name) : std::nullopt;
+    if (is_held != held.end()) {
+      Append(&out, "  %-6s %16.8g %14s   held: %s\n", name.c_str(), value, "", is_held->because.c_str());
+    } else if (k) {
+      const double sigma = std::sqrt(std::max(0.0, c.covariance->matrix(*k, *k)));
+      Append(&out, "  %-6s %16.8g %14.4g   [%.8g, %.8g]\n", name.c_str(), value, sigma, value - 3 * sigma, value + 3 * sigma);
+    } else {
+      Append(&out, "  %-6s %16.8g %14s\n", name.c_str(), value, c.covariance ? "(not estimated)" : "(no covariance)");
+    }
+  }
+  if (!c.fit) return out;
+  const std::vector<ViewFit>& views = c.fit->views;
+  if (views.size() > 1 && worst > 0) {
+    std::vector<size_t> order(views.size());
+    std::iota(order.begin(), order.end(), size_t{0});
+    std::stable_sort(order.begin(), order.end(),
+                     [&](size_t a, size_t b) { return views[a].stats.rms_px > views[b].stats.rms_px; });
+    out += "  worst views by RMS:";
+    for (size_t i = 0; i < std::min(worst, order.size()); ++i) {
+      Append(&out, "%s %s %.4f px", i == 0 ? "" : ",", views[order[i]].name.c_str(), views[order[i]].stats.rms_px);
+    }
+    out += "\n";
   }
   return out;
 }

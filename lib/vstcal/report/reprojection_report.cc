@@ -127,6 +127,13 @@ CameraReport ReportOne(const ReportCamera& rc, const Correspondences& c, const I
   out.file = rc.file;
   out.name = rc.camera.name;
   out.method = rc.camera.method;
+  const auto names = LensModelParamNames(rc.camera.camera.model);
+  for (size_t i = 0; i < names.size(); ++i) {
+    ParameterEstimate& p = out.parameters.emplace_back(ParameterEstimate{std::string(names[i]), rc.camera.camera.params[i], {}});
+    if (const auto k = rc.camera.covariance ? rc.camera.covariance->Find(p.name) : std::nullopt) {
+      p.sigma = std::sqrt(std::max(0.0, rc.camera.covariance->matrix(*k, *k)));
+    }
+  }
   const Normalization norm = NormalizationFor(rc, c);
   out.normalization = norm.description;
   Collected all;
@@ -226,14 +233,7 @@ CameraDifference Compare(const ReprojReport& report, size_t k) {
 double PointError::angular_deg() const { return angular_rad * kDegPerRad; }
 
 std::string_view ExclusionName(Exclusion e) {
-  switch (e) {
-    case Exclusion::kNone: return "none";
-    case Exclusion::kBehindCamera: return "behind-camera";
-    case Exclusion::kNoPose: return "no-pose";
-    case Exclusion::kNotMeasured: return "not-measured";
-    case Exclusion::kNoRay: return "no-ray";
-  }
-  return "none";
+  return NameOf(kExclusionNames, e);
 }
 
 ReprojReport BuildReprojReport(std::span<const ReportCamera> cameras, Correspondences c, std::string corr_file,

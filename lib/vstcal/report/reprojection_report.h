@@ -29,6 +29,7 @@
 #include "vstcal/scene/correspondences.h"
 #include "vstcal/scene/measured_volume.h"
 #include "vstcal/report/statistics.h"
+#include "vstcal/core/enum_names.h"
 
 namespace vstcal {
 
@@ -46,6 +47,7 @@ struct ReprojReportOptions {
 
 // Why a point has no error: it is left out of every statistic and counted.
 enum class Exclusion { kNone, kBehindCamera, kNoPose, kNotMeasured, kNoRay };
+inline constexpr EnumNames<Exclusion, 5> kExclusionNames = {{{Exclusion::kNone, "none"}, {Exclusion::kBehindCamera, "behind-camera"}, {Exclusion::kNoPose, "no-pose"}, {Exclusion::kNotMeasured, "not-measured"}, {Exclusion::kNoRay, "no-ray"}}};
 std::string_view ExclusionName(Exclusion e);  // "behind-camera", "no-pose", "not-measured", "no-ray"
 
 struct PointError {
@@ -80,8 +82,17 @@ struct MeasureStats {
   std::optional<ErrorStats> error_px, lateral, angular_deg;
 };
 
+// A lens parameter as the camera file gives it: its value and, when the file's covariance names
+// it, its 1σ.
+struct ParameterEstimate {
+  std::string name;  // "fx", "k1", … in the model's layout order
+  double value = 0;
+  std::optional<double> sigma;
+};
+
 struct CameraReport {
   std::string file, name, method;
+  std::vector<ParameterEstimate> parameters;  // every lens parameter, in layout order
   std::vector<ViewReport> views;
   MeasureStats overall;  // calibration points
   std::optional<ErrorStats> normalized;

@@ -208,16 +208,7 @@ void AddTestPoints(const StereoRig& rig, const PoseRefinement& pose, const Corre
 double StereoPointError::angular_deg() const { return RadToDeg(angular_rad); }
 
 std::string_view StereoExclusionName(StereoExclusion e) {
-  switch (e) {
-    case StereoExclusion::kNone: return "none";
-    case StereoExclusion::kLeftOnly: return "left-only";
-    case StereoExclusion::kRightOnly: return "right-only";
-    case StereoExclusion::kNoPose: return "no-pose";
-    case StereoExclusion::kNoRay: return "no-ray";
-    case StereoExclusion::kBehind: return "behind";
-    case StereoExclusion::kNotMeasured: return "not-measured";
-  }
-  return "none";
+  return NameOf(kStereoExclusionNames, e);
 }
 
 StereoReport BuildStereoReport(const StereoRig& rig, Correspondences left, Correspondences right,

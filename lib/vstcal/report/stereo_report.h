@@ -28,6 +28,7 @@
 #include "vstcal/report/reprojection_report.h"
 #include "vstcal/report/statistics.h"
 #include "vstcal/scene/stereo_rig.h"
+#include "vstcal/core/enum_names.h"
 
 namespace vstcal {
 
@@ -41,7 +42,7 @@ enum class StereoExclusion {
   kBehind,     // the rays meet behind the left camera
   kNotMeasured,  // a test point neither file gives a pixel for
 };
-// "left-only", "right-only", "no-pose", "no-ray", "behind", "not-measured"
+inline constexpr EnumNames<StereoExclusion, 7> kStereoExclusionNames = {{{StereoExclusion::kNone, "none"}, {StereoExclusion::kLeftOnly, "left-only"}, {StereoExclusion::kRightOnly, "right-only"}, {StereoExclusion::kNoPose, "no-pose"}, {StereoExclusion::kNoRay, "no-ray"}, {StereoExclusion::kBehind, "behind"}, {StereoExclusion::kNotMeasured, "not-measured"}}};
 std::string_view StereoExclusionName(StereoExclusion e);
 
 struct StereoPointError {

@@ -56,7 +56,7 @@ bool CentralDifference(const ParameterSpace& space, const Model& model, const st
 }  // namespace
 
 std::string DerivativeMethodName(DerivativeMethod method) {
-  return method == DerivativeMethod::kAutodiff ? "autodiff" : "central-difference";
+  return std::string(NameOf(kDerivativeMethodNames, method));
 }
 
 JacobianResult ComputeJacobian(const ParameterSpace& space, const Model& model, const std::vector<double>& theta,

@@ -15,10 +15,12 @@
 
 #include "vstcal/sensitivity/model.h"
 #include "vstcal/sensitivity/parameter_space.h"
+#include "vstcal/core/enum_names.h"
 
 namespace vstcal {
 
 enum class DerivativeMethod { kAutodiff, kCentralDifference };
+inline constexpr EnumNames<DerivativeMethod, 2> kDerivativeMethodNames = {{{DerivativeMethod::kAutodiff, "autodiff"}, {DerivativeMethod::kCentralDifference, "central-difference"}}};
 std::string DerivativeMethodName(DerivativeMethod method);  // "autodiff" / "central-difference"
 
 struct JacobianResult {

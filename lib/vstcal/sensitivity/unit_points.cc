@@ -20,13 +20,12 @@ uint64_t Word(const PhiloxCounter& b, int half) {
 }  // namespace
 
 std::string SamplingMethodName(SamplingMethod method) {
-  return method == SamplingMethod::kSobol ? "sobol" : "pseudo-random";
+  return std::string(NameOf(kSamplingMethodNames, method));
 }
 
 SamplingMethod ParseSamplingMethod(const std::string& name) {
-  if (name == "pseudo-random") return SamplingMethod::kPseudoRandom;
-  if (name == "sobol") return SamplingMethod::kSobol;
-  throw InputError("sampling: unknown method '" + name + "'; use \"pseudo-random\" or \"sobol\"");
+  if (const auto method = FromName(kSamplingMethodNames, name)) return *method;
+  throw InputError("sampling: unknown method '" + name + "'; use " + JoinedNames(kSamplingMethodNames));
 }
 
 UnitPoints::UnitPoints(const SamplingOptions& options, size_t dimensions)

@@ -19,10 +19,12 @@
 #include <cstdint>
 #include <string>
 #include <vector>
+#include "vstcal/core/enum_names.h"
 
 namespace vstcal {
 
 enum class SamplingMethod { kPseudoRandom, kSobol };
+inline constexpr EnumNames<SamplingMethod, 2> kSamplingMethodNames = {{{SamplingMethod::kPseudoRandom, "pseudo-random"}, {SamplingMethod::kSobol, "sobol"}}};
 
 // "pseudo-random" / "sobol": the words used in files and on command lines.
 std::string SamplingMethodName(SamplingMethod method);

@@ -10,12 +10,7 @@
 namespace vstcal {
 
 std::string_view ViewerName(Viewer viewer) {
-  switch (viewer) {
-    case Viewer::kNone: return "none";
-    case Viewer::kHmd: return "hmd";
-    case Viewer::kScreen: return "screen";
-  }
-  return "?";
+  return NameOf(kViewerNames, viewer);
 }
 
 double CrossedDisparityPx(double focal_px, double baseline, double depth) { return focal_px * baseline / depth; }

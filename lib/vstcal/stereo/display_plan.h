@@ -21,10 +21,12 @@
 #include <optional>
 #include <string_view>
 #include <vector>
+#include "vstcal/core/enum_names.h"
 
 namespace vstcal {
 
 enum class Viewer { kNone, kHmd, kScreen };
+inline constexpr EnumNames<Viewer, 3> kViewerNames = {{{Viewer::kNone, "none"}, {Viewer::kHmd, "hmd"}, {Viewer::kScreen, "screen"}}};
 std::string_view ViewerName(Viewer viewer);  // "none", "hmd", "screen"
 
 struct DisplayPlanInput {

@@ -7,19 +7,11 @@
 namespace vstcal {
 
 std::string_view RegistrationModeName(RegistrationMode mode) {
-  switch (mode) {
-    case RegistrationMode::kLeft: return "left";
-    case RegistrationMode::kPerEye: return "per-eye";
-    case RegistrationMode::kJoint: return "joint";
-  }
-  return "?";
+  return NameOf(kRegistrationModeNames, mode);
 }
 
 std::optional<RegistrationMode> RegistrationModeFromName(std::string_view name) {
-  for (const RegistrationMode m : {RegistrationMode::kLeft, RegistrationMode::kPerEye, RegistrationMode::kJoint}) {
-    if (RegistrationModeName(m) == name) return m;
-  }
-  return std::nullopt;
+  return FromName(kRegistrationModeNames, name);
 }
 
 namespace {

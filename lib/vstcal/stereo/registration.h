@@ -22,10 +22,12 @@
 #include "vstcal/estimators/pose_refine.h"
 #include "vstcal/scene/stereo_rig.h"
 #include "vstcal/scene/tracks.h"
+#include "vstcal/core/enum_names.h"
 
 namespace vstcal {
 
 enum class RegistrationMode { kLeft, kPerEye, kJoint };
+inline constexpr EnumNames<RegistrationMode, 3> kRegistrationModeNames = {{{RegistrationMode::kLeft, "left"}, {RegistrationMode::kPerEye, "per-eye"}, {RegistrationMode::kJoint, "joint"}}};
 std::string_view RegistrationModeName(RegistrationMode mode);  // "left", "per-eye", "joint"
 std::optional<RegistrationMode> RegistrationModeFromName(std::string_view name);
 

@@ -10,27 +10,15 @@ OrderedJson EllipseToJson(const Ellipse& e) {
 }
 
 std::string_view VariantName(TsaiOptions::Variant v) {
-  switch (v) {
-    case TsaiOptions::Variant::kCoplanar: return "coplanar";
-    case TsaiOptions::Variant::kNonCoplanar: return "non-coplanar";
-    default: return "auto";
-  }
+  return NameOf(TsaiOptions::kVariantNames, v);
 }
 
 std::string_view PlanePrincipalPointModeName(CalibrationOptions::PlanePrincipalPoint mode) {
-  switch (mode) {
-    case CalibrationOptions::PlanePrincipalPoint::kFree: return "yes";
-    case CalibrationOptions::PlanePrincipalPoint::kAuto: return "auto";
-    default: return "no";
-  }
+  return NameOf(CalibrationOptions::kPlanePrincipalPointNames, mode);
 }
 
 std::string_view LossName(RefineOptions::Loss loss) {
-  switch (loss) {
-    case RefineOptions::Loss::kHuber: return "huber";
-    case RefineOptions::Loss::kCauchy: return "cauchy";
-    default: return "none";
-  }
+  return NameOf(RefineOptions::kLossNames, loss);
 }
 
 }  // namespace
@@ -50,7 +38,7 @@ OrderedJson CalibrationBlocksToJson(const CalibrationResult& r, const Calibratio
                  {"principal_point", MatrixToJson(t.principal_point)},
                  {"nonlinear_iterations", t.nonlinear_iterations},
                  {"plane_rms", t.plane_rms},
-                 {"conversion", {{"k1", t.camera.params[5]}, {"k2", t.camera.params[6]}, {"k3", t.camera.params[9]},
+                 {"conversion", {{"k1", t.camera.Param("k1")}, {"k2", t.camera.Param("k2")}, {"k3", t.camera.Param("k3")},
                                  {"max_error_px", t.conversion_max_error_px}}}};
   }
   if (r.refinement) {

@@ -3,7 +3,7 @@
 namespace vstcal {
 
 std::string_view DltSolverName(DltOptions::Solver solver) {
-  return solver == DltOptions::Solver::kNormalEquations ? "normal-equations" : "svd";
+  return NameOf(DltOptions::kSolverNames, solver);
 }
 
 OrderedJson DltDiagnosticsToJson(const DltResult& d, const std::optional<Eq13Decomposition>& eq13,

@@ -1,5 +1,6 @@
 // A camera from one file format to another: vstcal/camera@1, OpenCV FileStorage YAML, mrcal
-// .cameramodel (docs/tools/calib-convert.md). calib-convert's one library call.
+// .cameramodel, ROS camera_info YAML, Kalibr camchain.yaml (docs/tools/calib-convert.md). A rig
+// (stereo@1, a camchain of two) goes through ConvertFile (formats/stereo/file_convert.h).
 #pragma once
 
 #include <filesystem>
@@ -14,19 +15,28 @@
 
 namespace vstcal {
 
-enum class CameraFileFormat { kVstcal, kOpenCvYaml, kMrcal };
+enum class CameraFileFormat { kVstcal, kOpenCvYaml, kMrcal, kRos, kKalibr };
 
-// From a file name's extension: .json, .yaml or .yml, .cameramodel; nullopt otherwise.
+// From a file name's extension: .json, .yaml or .yml (OpenCV: the default of the three YAML
+// formats), .cameramodel; nullopt otherwise.
 std::optional<CameraFileFormat> CameraFileFormatFromPath(const std::filesystem::path& path);
-// From calib-convert's --to names: "camera", "opencv", "mrcal"; nullopt otherwise.
+// Whether a file of this name may hold `format` (.yaml and .yml hold OpenCV, ROS and Kalibr).
+bool ExtensionAllows(const std::filesystem::path& path, CameraFileFormat format);
+// A file's format from its extension and, for .yaml and .yml, its keys: "%YAML:" at the start is
+// OpenCV's; otherwise a top-level cam0 is Kalibr's, a distortion_model ROS's, and anything else
+// OpenCV's (whose reader then says what is wrong). Throws InputError for a file it cannot read, or
+// one with ROS's or Kalibr's words that is not valid YAML; nullopt for an unknown extension.
+std::optional<CameraFileFormat> DetectCameraFileFormat(const std::filesystem::path& path);
+// From calib-convert's --to names: "camera", "opencv", "mrcal", "ros", "kalibr"; nullopt otherwise.
 std::optional<CameraFileFormat> CameraFileFormatFromName(std::string_view name);
-// "vstcal/camera@1", "OpenCV FileStorage YAML", "mrcal .cameramodel".
+// "vstcal/camera@1", "OpenCV FileStorage YAML", "mrcal .cameramodel", "ROS camera_info YAML",
+// "Kalibr camchain.yaml".
 std::string_view CameraFileFormatDescription(CameraFileFormat format);
 
 struct ConvertOptions {
   // The unit of a .cameramodel's lengths (read: instead of the file's vstcal_length_unit, or mm;
   // written: converted to it, instead of the camera's unit), and the length_unit of a camera read
-  // from OpenCV YAML, which holds no lengths (default mm).
+  // from OpenCV or ROS YAML, which hold no lengths (default mm).
   std::optional<LengthUnit> length_unit;
   // The mrcal lens model to write (MrcalWriteOptions::lensmodel), e.g. "LENSMODEL_OPENCV5".
   std::optional<std::string> mrcal_lensmodel;
@@ -37,7 +47,8 @@ struct Conversion {
   std::vector<std::string> notes;  // what was assumed, kept or not written: for the user
 };
 
-// Reads a camera file of any of the three formats (`options.length_unit` as ConvertOptions says).
+// Reads a camera file of any of the formats (`options.length_unit` as ConvertOptions says; a
+// Kalibr file must hold one camera, in metres).
 ImportedCamera ReadCameraFile(const std::filesystem::path& input, CameraFileFormat from, const ConvertOptions& options);
 
 // Reads `input` as `from` and returns the text of `to`. Throws InputError for bad input and for a

@@ -7,21 +7,11 @@
 namespace vstcal {
 
 std::string_view FinderName(ChessboardFinder finder) {
-  switch (finder) {
-    case ChessboardFinder::kClassic: return "classic";
-    case ChessboardFinder::kSectorBased: return "sector-based";
-    case ChessboardFinder::kClassicThenSectorBased: return "classic+sector-based";
-  }
-  return "?";
+  return NameOf(kChessboardFinderNames, finder);
 }
 
 std::string_view RefinerName(CornerRefiner refiner) {
-  switch (refiner) {
-    case CornerRefiner::kSymmetry: return "symmetry";
-    case CornerRefiner::kCornerSubPix: return "cornersubpix";
-    case CornerRefiner::kNone: return "none";
-  }
-  return "?";
+  return NameOf(kCornerRefinerNames, refiner);
 }
 
 OrderedJson CaptureToJson(const CaptureResult& result, const DetectRequest& request, const Provenance& provenance) {
@@ -47,7 +37,7 @@ OrderedJson CaptureToJson(const CaptureResult& result, const DetectRequest& requ
     if (!r.view.empty()) image["view"] = r.view;
     if (!r.reason.empty()) image["reason"] = r.reason;
     image["corners"] = r.corners;
-    image["blur_px"] = std::isfinite(r.blur_px) ? OrderedJson(r.blur_px) : OrderedJson(nullptr);
+    image["blur_px"] = NumberOrNull(r.blur_px);
     images.push_back(std::move(image));
   }
   capture["counts"] = {{"images", result.images.size()}, {"found", found}, {"not_found", not_found}, {"rejected", rejected}};

@@ -19,7 +19,7 @@ OrderedJson PositionToJson(const PositionPlan& p) {
   j["corners"] = p.corners;
   j["corners_outside"] = p.corners_outside;
   // Behind the camera has no pixel distance: null.
-  j["outside_px"] = std::isfinite(p.outside_px) ? OrderedJson(p.outside_px) : OrderedJson();
+  j["outside_px"] = NumberOrNull(p.outside_px);
   j["obliquity_deg"] = p.obliquity_deg;
   j["depth_range"] = {p.depth_min, p.depth_max};
   j["used"] = p.used;

@@ -15,8 +15,6 @@ namespace {
 
 constexpr double kDeg = 180.0 / kPi;
 
-OrderedJson NumberOrNull(double v) { return std::isfinite(v) ? OrderedJson(v) : OrderedJson(nullptr); }
-
 OrderedJson StatsToJson(const OutputStatistics& s) {
   if (s.count == 0) return nullptr;
   OrderedJson j;

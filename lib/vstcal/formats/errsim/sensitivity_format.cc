@@ -10,8 +10,6 @@ namespace vstcal {
 namespace {
 
 
-OrderedJson NumberOrNull(double v) { return std::isfinite(v) ? OrderedJson(v) : OrderedJson(nullptr); }
-
 OrderedJson Header(std::string_view format, const RunDescription& run, const ChainModel& model) {
   OrderedJson j;
   j["format"] = format;

@@ -69,6 +69,11 @@ OrderedJson CameraJson(const CameraReport& c, const ImageGrid& grid) {
   j["file"] = c.file;
   j["name"] = c.name;
   j["method"] = c.method;
+  OrderedJson parameters = OrderedJson::array();
+  for (const ParameterEstimate& p : c.parameters) {
+    parameters.push_back({{"name", p.name}, {"value", p.value}, {"sigma", p.sigma ? OrderedJson(*p.sigma) : OrderedJson(nullptr)}});
+  }
+  j["parameters"] = std::move(parameters);
   j["overall"] = MeasureJson(c.overall);
   j["excluded"] = {{"behind_camera", c.n_behind_camera}, {"no_pose", c.n_no_pose}, {"no_ray", c.n_no_ray}};
   j["normalized"] = {{"how", c.normalization},

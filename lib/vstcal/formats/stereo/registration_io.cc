@@ -4,6 +4,7 @@
 
 #include "vstcal/formats/camera/camera_io.h"
 #include "vstcal/formats/camera/correspondences_io.h"
+#include "vstcal/formats/camera/residual_stats_json.h"
 #include "vstcal/json/format_check.h"
 
 namespace vstcal {
@@ -63,12 +64,8 @@ OrderedJson PixelsToJson(const std::vector<std::optional<Eigen::Vector2d>>& pixe
   return a;
 }
 
-OrderedJson StatsToJson(const ResidualStats& s, std::string_view unit) {
-  return {{"rms" + std::string(unit), s.rms_px}, {"max" + std::string(unit), s.max_px}, {"n", s.n_points}};
-}
-
 OrderedJson OptionalStats(const std::optional<ResidualStats>& s) {
-  return s ? StatsToJson(*s, "_px") : OrderedJson(nullptr);
+  return s ? ResidualStatsToJson(*s, "_px", "n") : OrderedJson(nullptr);
 }
 
 OrderedJson AccuracyToJson(const std::optional<FrameAccuracy>& a) {
@@ -90,9 +87,9 @@ OrderedJson SequenceAccuracyToJson(const std::optional<SequenceAccuracy>& s) {
   j["frames"] = s->frames;
   const char* eyes[2] = {"left", "right"};
   for (int e = 0; e < 2; ++e) {
-    j[eyes[e]] = {{"rotation_deg", StatsToJson(s->rotation_deg[e], "")},
-                  {"centre_error", StatsToJson(s->centre_error[e], "")},
-                  {"virtual_px", StatsToJson(s->virtual_px[e], "")}};
+    j[eyes[e]] = {{"rotation_deg", ResidualStatsToJson(s->rotation_deg[e], "", "n")},
+                  {"centre_error", ResidualStatsToJson(s->centre_error[e], "", "n")},
+                  {"virtual_px", ResidualStatsToJson(s->virtual_px[e], "", "n")}};
   }
   return j;
 }

@@ -7,6 +7,7 @@
 #include "vstcal/formats/camera/camera_io.h"
 #include "vstcal/core/error.h"
 #include "vstcal/formats/camera/correspondences_io.h"
+#include "vstcal/formats/camera/residual_stats_json.h"
 #include "vstcal/json/format_check.h"
 
 namespace vstcal {
@@ -40,10 +41,6 @@ ResidualStats ReadStats(const JsonNode& node) {
   if (n < 0) node.at("n_points").Fail("must not be negative, got " + std::to_string(n), "give a count ≥ 0");
   s.n_points = static_cast<size_t>(n);
   return s;
-}
-
-OrderedJson StatsToJson(const ResidualStats& s) {
-  return {{"rms_px", s.rms_px}, {"max_px", s.max_px}, {"n_points", s.n_points}};
 }
 
 StereoFit ReadFit(const JsonNode& node) {
@@ -218,8 +215,8 @@ OrderedJson StereoRigToJson(const StereoRig& rig, const Provenance& provenance) 
   j["baseline"] = rig.baseline();
   if (rig.fit) {
     OrderedJson views = OrderedJson::array();
-    for (const StereoViewFit& v : rig.fit->views) views.push_back({{"name", v.name}, {"epipolar", StatsToJson(v.epipolar)}});
-    j["fit"] = {{"epipolar", StatsToJson(rig.fit->epipolar)}, {"views", std::move(views)}};
+    for (const StereoViewFit& v : rig.fit->views) views.push_back({{"name", v.name}, {"epipolar", ResidualStatsToJson(v.epipolar)}});
+    j["fit"] = {{"epipolar", ResidualStatsToJson(rig.fit->epipolar)}, {"views", std::move(views)}};
   } else {
     j["fit"] = nullptr;
   }

@@ -1,0 +1,35 @@
+// calib-synth as a library call (docs/tools/calib-synth.md): synthetic correspondences with the
+// ground-truth camera beside them, either a planar template moved through a volume (seed 000's
+// set-up) or a board shown at poses spread over the field of view.
+#pragma once
+
+#include <string>
+
+#include "vstcal/app/outcome.h"
+#include "vstcal/capture/synthetic_camera.h"
+#include "vstcal/capture/synthetic_views.h"
+#include "vstcal/capture/synthetic_volume.h"
+#include "vstcal/json/provenance.h"
+
+namespace vstcal::app {
+
+struct SynthRequest {
+  std::string output;  // correspondences@1
+  std::string truth;   // camera@1; empty: output with the extension .truth.json
+  // The camera: from a camera@1 file when given, else made from `camera`.
+  std::string camera_file;
+  SyntheticCameraSpec camera;
+  bool planar_views = false;  // else a volume
+  VolumeSpec volume;          // its grid, spacing, noise, seed, unit and camera name serve both set-ups
+  bool test_points = true;    // volume: seed 000's five test points
+  PlanarViewsSpec views;      // planar views: number, distance and tilt of the poses
+};
+
+// The correspondences and the truth camera; the summary (no final newline) counts the points, views
+// and test points, after a line for each warning of the planar set-up.
+Outcome Synthesize(SynthRequest request, const Provenance& provenance);
+
+// The truth file's default name for a correspondences file.
+std::string DefaultTruthPath(const std::string& output);
+
+}  // namespace vstcal::app

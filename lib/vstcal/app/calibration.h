@@ -1,0 +1,31 @@
+// What calib-dlt and calib-tsai do once the solver has run (docs/tools/calib-dlt.md,
+// calib-tsai.md): the camera file with its solver blocks and projection uncertainty, the optional
+// residuals file, the warnings and the summary — or, for a failed result, the documented error.
+#pragma once
+
+#include <string>
+
+#include "vstcal/app/outcome.h"
+#include "vstcal/calib/pipeline.h"
+#include "vstcal/formats/calib/calibration_io.h"
+#include "vstcal/json/provenance.h"
+
+namespace vstcal::app {
+
+struct CalibrationFiles {
+  std::string tool;       // names the warnings' lines ("calib-tsai: warning: …")
+  std::string input;      // the correspondences file, named in the summary and in a failure
+  std::string output;     // camera@1
+  std::string residuals;  // residuals@1; empty: none
+  UncertaintyRequest uncertainty;
+};
+
+// Throws Error with the result's exit code and "<input>: <message>" for a failed result.
+Outcome CalibrationOutcome(const CalibrationResult& result, const CalibrationOptions& options,
+                           const CalibrationFiles& files, const Provenance& provenance);
+
+// The two kinds of projection uncertainty, each labelled, at the image centre at the calibration
+// points' median depth and at each requested pixel; empty without a covariance.
+std::string UncertaintySummary(const CalibrationResult& result, const UncertaintyRequest& request);
+
+}  // namespace vstcal::app

@@ -1,0 +1,29 @@
+// reproj-report as a library call (docs/tools/reproj-report.md): one or more cameras against a
+// correspondences file, or a stereo rig against its two cameras' correspondences.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "vstcal/app/outcome.h"
+#include "vstcal/json/provenance.h"
+
+namespace vstcal::app {
+
+struct ReprojReportRequest {
+  // camera@1 files then the correspondences@1 file; or a stereo@1 rig, then LEFT and RIGHT.
+  std::vector<std::string> inputs;
+  std::string output;       // reproj-report@1
+  std::string html;         // empty: no page
+  std::string match_views;  // a rig's view-matching expression; empty: by name
+  int grid_cols = 8, grid_rows = 6;
+  bool text = false;  // the report's text table for stdout
+};
+
+// A rig's report when the first input is a stereo@1 file, else the cameras' report.
+Outcome RunReprojReport(const ReprojReportRequest& request, const Provenance& provenance);
+
+// True when the request's first input is a stereo rig (then match_views applies).
+bool IsRigRequest(const ReprojReportRequest& request);
+
+}  // namespace vstcal::app

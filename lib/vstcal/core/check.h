@@ -1,0 +1,37 @@
+// The outcome of a threshold check a user's CI runs (calib-compare's pixel and σ bounds, err-sim
+// check's rise of each metric): one verdict per check, with the numbers in words. A failed check is
+// no error: the tool prints every verdict and exits with kCheckFailedExitCode
+// (docs/conventions.md#exit-codes).
+#pragma once
+
+#include <span>
+#include <string>
+#include <string_view>
+
+namespace vstcal {
+
+// The exit code of a tool whose check failed, next to core/error.h's ExitCode values (0 ok,
+// 1 internal, 2 bad input, 3 degenerate), which are errors: this one is a result.
+inline constexpr int kCheckFailedExitCode = 4;
+
+enum class CheckVerdict {
+  kPass,
+  // Above the allowed value, but by less than the Monte Carlo noise of the two numbers explains:
+  // not a failure (err-sim check, docs/tools/err-sim.md#check).
+  kWithinNoise,
+  kFail,
+};
+
+// "pass", "within noise", "fail".
+std::string_view CheckVerdictName(CheckVerdict verdict);
+
+struct CheckResult {
+  std::string name;     // what was checked ("grid", "Middle 1.misregistration.linear")
+  CheckVerdict verdict = CheckVerdict::kPass;
+  std::string message;  // the numbers behind the verdict, one line
+};
+
+// Whether any result is a failure.
+bool AnyCheckFailed(std::span<const CheckResult> results);
+
+}  // namespace vstcal

@@ -1,0 +1,62 @@
+#include "flags.h"
+
+#include "common/validators.h"
+#include "vstcal/core/error.h"
+
+namespace vstcal::tools {
+
+void TsaiFlags::Add(CLI::App& app) {
+  app.add_option("CORNERS", input, "vstcal/correspondences@1 file")->required()->check(kNonEmpty);
+  app.add_option("-o,--output", output, "camera file to write (vstcal/camera@1)")->required()->check(kNonEmpty);
+  app.add_option("--variant", variant, "Tsai's variant for volumes: auto, coplanar or non-coplanar")
+      ->check(CLI::IsMember(NamesOf(TsaiOptions::kVariantNames)))
+      ->capture_default_str();
+  app.add_option("--principal-point", principal_point, "U,V in px for Tsai's stages (default: the image centre)")
+      ->delimiter(',')
+      ->check(kFinite)
+      ->type_name("U,V");
+  app.add_option("--sx", options.tsai.sx, "the coplanar variant's fixed horizontal scale factor")
+      ->check(kPositiveFinite)
+      ->capture_default_str();
+  CLI::Option* raw = app.add_flag("--no-refine", no_refine, "write the closed-form camera without refinement");
+  app.add_option("--free-principal-point", free_pp,
+                 "one plane, refined: no (hold it where Tsai assumed it), yes, or auto (free it when the scaled "
+                 "information determines it to 0.5% of the image diagonal)")
+      ->check(CLI::IsMember(NamesOf(CalibrationOptions::kPlanePrincipalPointNames)))
+      ->capture_default_str()
+      ->excludes(raw);
+  for (CLI::Option* o : calibration.AddRefinement(app)) o->excludes(raw);
+  for (CLI::Option* o : calibration.AddUncertainty(app)) o->excludes(raw);
+  calibration.AddOutput(app);
+}
+
+CalibrationOptions TsaiFlags::Options(const CLI::App& app) {
+  options.refine = !no_refine;
+  options.refinement = calibration.Refinement();
+  options.tsai.variant = *FromName(TsaiOptions::kVariantNames, variant);
+  if (app.count("--principal-point") > 0) {
+    options.tsai.principal_point = Eigen::Vector2d(principal_point[0], principal_point[1]);
+  }
+  options.plane_principal_point = *FromName(CalibrationOptions::kPlanePrincipalPointNames, free_pp);
+  return options;
+}
+
+void TsaiFlags::CheckRig(const CLI::App& app, const Correspondences& corners) const {
+  if (corners.rig == Rig::kPlanarViews) {
+    for (const char* flag : {"--variant", "--principal-point", "--sx", "--free-principal-point"}) {
+      if (app.count(flag) > 0) {
+        throw InputError(std::string(flag) + ": applies to rig \"volume\" only (planar views start from Zhang's "
+                         "method); remove it");
+      }
+    }
+  }
+}
+
+void TsaiFlags::CheckUsed(const CLI::App& app, const CalibrationResult& result) const {
+  if (app.count("--sx") > 0 && result.tsai && result.tsai->variant == TsaiOptions::Variant::kNonCoplanar) {
+    throw InputError("--sx: the points are not coplanar, so Tsai's non-coplanar variant estimates sx and --sx would "
+                     "not be used; drop it, or force --variant coplanar");
+  }
+}
+
+}  // namespace vstcal::tools
