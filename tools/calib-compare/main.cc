@@ -4,6 +4,7 @@
 #include <optional>
 
 #include "common/run_tool.h"
+#include "common/validators.h"
 #include "vstcal/calib/compare.h"
 #include "vstcal/scene/measured_volume.h"
 #include "vstcal/core/error.h"
@@ -24,7 +25,7 @@ int main(int argc, char** argv) {
   app.add_option("--test-points", points_file,
                  "also compare the projections of this correspondences file's test points (registration error)");
   app.add_option("--depth", depth, "depth of the comparison grid (length unit; default: world origin's depth)")
-      ->check(CLI::PositiveNumber);
+      ->check(vstcal::tools::kPositiveFinite);
   return vstcal::tools::RunTool(app, argc, argv, [&] {
     using namespace vstcal;
     const CalibratedCamera a = ReadCamera(reference), b = ReadCamera(other);

@@ -12,12 +12,7 @@ namespace {
 using vstcal::InputError;
 using vstcal::CameraFileFormat;
 
-CameraFileFormat InputFormat(const std::string& input) {
-  if (const auto f = vstcal::CameraFileFormatFromPath(input)) return *f;
-  throw InputError(input +
-                   ": cannot tell the format from the file name; name it .json (vstcal/camera@1), "
-                   ".yaml or .yml (OpenCV) or .cameramodel (mrcal)");
-}
+CameraFileFormat InputFormat(const std::string& input) { return vstcal::InputCameraFileFormat(input); }
 
 CameraFileFormat OutputFormat(const std::string& output, const std::string& to) {
   const auto named = vstcal::CameraFileFormatFromPath(output);

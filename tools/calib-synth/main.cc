@@ -33,7 +33,7 @@ int main(int argc, char** argv) {
   vstcal::SyntheticCameraSpec cam;
   vstcal::VolumeSpec spec;
   std::string unit = "mm";
-  bool no_test_points = false;
+  bool no_test_points = false, quiet = false;
   app.add_option("-o,--output", output, "correspondences file to write")->required()->check(kNonEmpty);
   app.add_option("--truth", truth, "ground-truth camera file (default: OUTPUT with .truth.json)")->check(kNonEmpty);
   auto* camera_file = app.add_option("--camera", camera_path, "take K, distortion and image size from a camera@1 file")
@@ -79,6 +79,7 @@ int main(int argc, char** argv) {
   app.add_option("--length-unit", unit, "mm, cm, m or in")->check(kLengthUnit)->capture_default_str();
   app.add_option("--camera-name", spec.camera_name, "the \"camera\" field, e.g. left");
   app.add_flag("--no-test-points", no_test_points, "omit seed 000's five test points");
+  app.add_flag("-q,--quiet", quiet, "print only warnings and errors (no summary)");
   const std::vector<std::string> volume_only = {"--near", "--far", "--interval", "--camera-distance", "--tilt-deg",
                                                 "--tilt-direction-deg", "--roll-deg", "--no-test-points"};
   app.add_option("--views", views.num_views, "planar views: number of board poses")->capture_default_str();
@@ -132,7 +133,7 @@ int main(int argc, char** argv) {
     const Provenance provenance = MakeProvenance("calib-synth", argc, argv, spec.seed);
     WriteFilesAtomically({{output, DumpJson(CorrespondencesToJson(corners, provenance))},
                               {truth, DumpJson(CameraToJson(truth_camera, provenance))}});
-    std::cerr << "calib-synth: " << NumObservations(corners) << " points in " << corners.views.size() << " views, "
+    if (!quiet) std::cerr << "calib-synth: " << NumObservations(corners) << " points in " << corners.views.size() << " views, "
               << corners.test_points.size() << " test points; wrote " << output << " and " << truth << "\n";
     return 0;
   });

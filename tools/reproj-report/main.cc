@@ -60,8 +60,9 @@ int main(int argc, char** argv) {
           {output, DumpJson(StereoReportToJson(report, MakeProvenance("reproj-report", argc, argv)))}};
       if (!html.empty()) files.emplace_back(html, StereoReportHtml(report, std::filesystem::path(inputs[1]).parent_path(),
                                                                  std::filesystem::path(inputs[2]).parent_path()));
+      if (format == "text") tools::PrintToStdout(StereoReportText(report));
       WriteFilesAtomically(files);
-      if (format == "text") std::fputs(StereoReportText(report).c_str(), stdout);
+      for (const std::string& note : ExclusionNotes(report)) std::fprintf(stderr, "reproj-report: note: %s\n", note.c_str());
       return 0;
     }
     if (!match_views.empty()) throw InputError("--match-views: goes with a stereo rig (RIG LEFT RIGHT); leave it out");
@@ -73,8 +74,9 @@ int main(int argc, char** argv) {
     std::vector<std::pair<std::filesystem::path, std::string>> files = {
         {output, DumpJson(ReprojReportToJson(report, MakeProvenance("reproj-report", argc, argv)))}};
     if (!html.empty()) files.emplace_back(html, ReprojReportHtml(report, std::filesystem::path(corr_file).parent_path()));
+    if (format == "text") tools::PrintToStdout(ReprojReportText(report));
     WriteFilesAtomically(files);
-    if (format == "text") std::fputs(ReprojReportText(report).c_str(), stdout);
+    for (const std::string& note : ExclusionNotes(report)) std::fprintf(stderr, "reproj-report: note: %s\n", note.c_str());
     return 0;
   });
 }

@@ -13,9 +13,10 @@ namespace vstcal::app {
 struct Outcome {
   std::vector<std::pair<std::filesystem::path, std::string>> files;  // path, bytes
   std::string summary;                                               // for stderr
-  // A missing folder of an output is created when its parent exists (calib-capture's overlay and
-  // render folders), and removed again if writing fails. Otherwise a missing folder is refused.
-  bool create_folders = false;
+  // The output folders the command is given as folders (calib-capture's --overlay and render's
+  // -o): created when missing and their parent exists, removed again if writing fails. The folder
+  // of every other output must exist, as for every tool (atomic_write.h).
+  std::vector<std::filesystem::path> folders;
 };
 
 // Writes every file all-or-nothing (WriteFilesAtomically: no output may be an input, no two

@@ -1,5 +1,7 @@
 #include "vstcal/formats/camera/camera_convert.h"
 
+#include "vstcal/core/error.h"
+#include "vstcal/files/input_protection.h"
 #include "vstcal/formats/camera/camera_io.h"
 #include "vstcal/formats/camera/mrcal_cameramodel.h"
 #include "vstcal/formats/camera/opencv_yaml.h"
@@ -12,6 +14,23 @@ std::optional<CameraFileFormat> CameraFileFormatFromPath(const std::filesystem::
   if (ext == ".yaml" || ext == ".yml") return CameraFileFormat::kOpenCvYaml;
   if (ext == ".cameramodel") return CameraFileFormat::kMrcal;
   return std::nullopt;
+}
+
+CameraFileFormat InputCameraFileFormat(const std::filesystem::path& path) {
+  // A known name is read as its format, whose reader says what is wrong with the path; an unknown
+  // one is explained by what the path names before its name.
+  if (const auto format = CameraFileFormatFromPath(path)) return *format;
+  const std::string name = path.string();
+  switch (KindOfPath(path)) {
+    case PathKind::kMissing: throw InputError(name + ": no such file; check the path");
+    case PathKind::kDirectory: throw InputError(name + ": is a directory, not a camera file; give the file's path");
+    case PathKind::kSpecial:
+      throw InputError(name + ": is not a regular file (a device, a pipe or a socket), not a camera file; give the file itself");
+    case PathKind::kRegularFile:
+    case PathKind::kUnknown: break;
+  }
+  throw InputError(name + ": cannot tell the format from the file name; name it .json (vstcal/camera@1), .yaml or .yml "
+                          "(OpenCV) or .cameramodel (mrcal)");
 }
 
 std::optional<CameraFileFormat> CameraFileFormatFromName(std::string_view name) {

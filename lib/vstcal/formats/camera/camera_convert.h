@@ -18,6 +18,10 @@ enum class CameraFileFormat { kVstcal, kOpenCvYaml, kMrcal };
 
 // From a file name's extension: .json, .yaml or .yml, .cameramodel; nullopt otherwise.
 std::optional<CameraFileFormat> CameraFileFormatFromPath(const std::filesystem::path& path);
+// The format of a camera file to read, from its name (its reader then refuses a path that is no
+// file). A name of no camera format throws InputError saying what the path is: no such file, a
+// directory, a device or a pipe, or a file whose format its name does not tell.
+CameraFileFormat InputCameraFileFormat(const std::filesystem::path& path);
 // From calib-convert's --to names: "camera", "opencv", "mrcal"; nullopt otherwise.
 std::optional<CameraFileFormat> CameraFileFormatFromName(std::string_view name);
 // "vstcal/camera@1", "OpenCV FileStorage YAML", "mrcal .cameramodel".
