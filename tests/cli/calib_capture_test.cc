@@ -143,13 +143,44 @@ TEST_F(CliCalibCapture, OutputsNeverReplaceTheImagesOrTheTarget) {
     const CommandResult r = Run(kTool, {"detect", "in/board.target.json", "in/views", "--min-views", "2", "-o", victim});
     EXPECT_TRUE(FailsWith(r, kTool, kBadInput, victim + ": ", {"is an input of this run"})) << victim;
   }
-  // The overlay of view-01.png written into the folder it was read from would replace it.
-  const CommandResult r = Run(kTool, {"detect", "in/board.target.json", "in/views", "--min-views", "2", "--overlay", "in/views",
-                                      "-o", "out/corners.json"});
-  EXPECT_EQ(r.exit_code, kBadInput) << r.err;
   EXPECT_EQ(ReadText("in/views/view-01.png"), image);
   EXPECT_EQ(ReadText("in/board.target.json"), target);
   EXPECT_TRUE(OutDirEmpty());
+}
+
+// A board in inches, as docs/conventions.md allows every length unit (issue 24: refused): 1 in
+// squares and margin: 12 × 9 in of sheet (10 × 7 squares and the margin around them).
+TEST_F(CliCalibCapture, TargetInInches) {
+  Ok({"target", "--rows", "6", "--cols", "9", "--square-size", "1", "--length-unit", "in", "--dpi", "0", "-o", "out/b"});
+  const Json target = ReadJson("out/b.target.json");
+  EXPECT_EQ(target.at("length_unit"), "in");
+  EXPECT_NE(ReadText("out/b.svg").find("width=\"304.8mm\""), std::string::npos) << ReadText("out/b.svg").substr(0, 400);
+}
+
+// Overlays are named <view>.overlay.png: written beside the images they are drawn on, they replace
+// none, and a later run over the folder or a glob leaves them out and says so (issue 24: they were
+// taken for new views, each pose counted twice); one named on its own is refused.
+TEST_F(CliCalibCapture, OverlaysAreNotTakenForViewsOnTheNextRun) {
+  Camera();
+  Board();
+  RenderViews("in/views", "in/board.target.json", 3);
+  const std::string image = ReadText("in/views/view-01.png");
+  Ok({"detect", "in/board.target.json", "in/views", "--min-views", "2", "--overlay", "in/views", "-o", "out/first.json"});
+  EXPECT_EQ(ReadText("in/views/view-01.png"), image);
+  EXPECT_EQ(List("in/views"), (std::vector<std::string>{"camera.truth.json", "truth.json", "view-00.overlay.png", "view-00.png",
+                                                       "view-01.overlay.png", "view-01.png", "view-02.overlay.png", "view-02.png"}));
+  for (const std::string& images : {std::string("in/views"), std::string("in/views/*.png")}) {
+    const CommandResult r = Run(kTool, {"detect", "in/board.target.json", images, "--min-views", "2", "-o", "out/again.json"});
+    ASSERT_EQ(r.exit_code, kOk) << r.err;
+    EXPECT_NE(r.err.find("3 images: 3 found"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("left out 3 overlays (*.overlay.png) of an earlier --overlay"), std::string::npos) << r.err;
+    Json first = ReadJson("out/first.json"), again = ReadJson("out/again.json");
+    first.erase("provenance");
+    again.erase("provenance");
+    EXPECT_EQ(first.dump(), again.dump()) << images;
+  }
+  EXPECT_TRUE(FailsWith(Run(kTool, {"detect", "in/board.target.json", "in/views/view-00.overlay.png", "-o", "out/c.json"}), kTool,
+                        kBadInput, "in/views/view-00.overlay.png: is an overlay", {"give the image it was drawn on"}));
 }
 
 // A volume from file names: --offset-from-name reads each template position from its image's name.
@@ -231,9 +262,34 @@ std::vector<BadCase> BadCases() {
       {"TargetGridWithSquareSize", [](CliCalibCapture*) {},
        {"target", "--type", "apriltag-grid", "--rows", "4", "--cols", "6", "--square-size", "30", "-o", "out/b"}, kBadInput,
        "--square-size: ", {"give --tag-size"}},
+      // Issue 24: "--square-size: required" for a size given, but negative.
+      {"TargetNegativeSquareSize", [](CliCalibCapture*) {}, {"target", "--rows", "6", "--cols", "9", "--square-size", "-1", "-o", "out/b"},
+       kBadInput, "--square-size", {"expected a positive number, got \"-1\""}},
+      // Issue 24: a square_size of 1e308 was an internal error (a sheet of infinite width), and with a
+      // margin given, "a margin problem".
+      {"TargetSquareSizeTooLarge", [](CliCalibCapture*) {},
+       {"target", "--rows", "6", "--cols", "9", "--square-size", "1e308", "--margin", "25", "-o", "out/b"}, kBadInput, "--square-size: ",
+       {"1e+308 makes a board beyond 1e308 mm wide, more than the 1e+09 mm vstcal computes with"}},
+      // Issue 24: the image size of the camera file was refused without naming the file.
+      {"RenderImagesTooLarge",
+       [](CliCalibCapture* t) {
+         t->Camera();
+         t->Board();
+         Json camera = static_cast<T*>(t)->ReadJson("in/camera.truth.json");
+         camera["image_size"] = {20000, 20000};
+         static_cast<T*>(t)->WriteJson("in/big.json", camera);
+       },
+       {"render", "in/board.target.json", "--camera", "in/big.json", "-o", "out/r"}, kBadInput, "in/big.json: image_size: ",
+       {"more than 100 megapixels"}},
       {"TargetOutputFolderMissing", [](CliCalibCapture*) {},
-       {"target", "--rows", "6", "--cols", "9", "--square-size", "25", "-o", "out/no/deeper/b"}, kBadInput, "out/no/deeper: ",
-       {"cannot create: folder out/no does not exist; create it first"}},
+       {"target", "--rows", "6", "--cols", "9", "--square-size", "25", "-o", "out/no/b"}, kBadInput, "out/no/b.target.json: ",
+       {"cannot write: directory out/no does not exist; create it first"}},
+      // One rule for every tool's output files (issue 24: detect created the folder): refused.
+      {"DetectOutputFolderMissing", views, {"detect", "in/board.target.json", "in/views", "-o", "out/no/c.json"}, kBadInput,
+       "out/no/c.json: ", {"cannot write: directory out/no does not exist; create it first"}},
+      {"OverlayFolderParentMissing", views,
+       {"detect", "in/board.target.json", "in/views", "-o", "out/c.json", "--overlay", "out/no/deeper"}, kBadInput,
+       "out/no/deeper: ", {"cannot create: folder out/no does not exist; create it first"}},
       {"TargetFileMissing", views, {"detect", "in/missing.json", "in/views", "-o", "out/c.json"}, kBadInput, "in/missing.json: ",
        {"no such file"}},
       {"TargetFileIsACamera", views, {"detect", "in/camera.truth.json", "in/views", "-o", "out/c.json"}, kBadInput, "in/camera.truth.json: ",
@@ -262,6 +318,19 @@ std::vector<BadCase> BadCases() {
        },
        {"detect", "in/swapped.target.json", "in/views", "-o", "out/c.json"}, kBadInput, "in/swapped.target.json: ",
        {"no image shows the ChArUco board of 5×7", "5 rejected (5 layout mismatch)"}},
+      // Issue 24: FFmpeg's own "moov atom not found" came before the one error line. An MP4 of
+      // its ftyp box alone: no moov atom.
+      {"VideoWithoutMoovAtom",
+       [](CliCalibCapture* t) {
+         Views(t);
+         static_cast<T*>(t)->WriteText("in/video.mp4", std::string("\0\0\0\x18" "ftypisom\0\0\x02\0" "isomiso2", 24));
+       },
+       {"detect", "in/board.target.json", "--video", "in/video.mp4", "-o", "out/c.json"}, kBadInput, "in/video.mp4: ",
+       {"cannot open as a video"}},
+      // Issue 24: a sharp board rejected as blurred was advised to "check rows and cols".
+      {"OnlyImageRejectedAsBlurred", views, {"detect", "in/board.target.json", "in/views/view-00.png", "--max-blur-px", "0.01", "-o", "out/c.json"},
+       kBadInput, "in/board.target.json: no usable image of the chessboard",
+       {"1 rejected (1 blurred)", "the board was found and rejected (in/views/view-00.png: blurred: ", "take sharper images"}},
       {"VideoCannotBeOpened", [](CliCalibCapture* t) { Views(t), static_cast<T*>(t)->WriteText("in/video.avi", "not a video\n"); },
        {"detect", "in/board.target.json", "--video", "in/video.avi", "-o", "out/c.json"}, kBadInput, "in/video.avi: ",
        {"cannot open as a video", "MJPG AVI"}},

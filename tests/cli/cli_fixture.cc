@@ -107,6 +107,13 @@ CommandResult CliTest::Run(std::string_view tool, const std::vector<std::string>
   return RunCommand(argv, dir_);
 }
 
+CommandResult CliTest::RunWithStdout(std::string_view tool, const std::vector<std::string>& args,
+                                     const fs::path& stdout_to) const {
+  std::vector<std::string> argv = {ToolPath(tool)};
+  argv.insert(argv.end(), args.begin(), args.end());
+  return RunCommand(argv, dir_, stdout_to);
+}
+
 Json CliTest::Synth(const std::string& relative, std::vector<std::string> args) const {
   if (args.empty()) args = DefaultSynthArgs();
   args.push_back("-o");

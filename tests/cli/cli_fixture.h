@@ -75,6 +75,8 @@ class CliTest : public ::testing::Test {
 
   // Runs a tool from the build tree with the test directory as working directory.
   CommandResult Run(std::string_view tool, const std::vector<std::string>& args) const;
+  // The same with the tool's stdout going to `stdout_to` (e.g. /dev/full) instead of `out`.
+  CommandResult RunWithStdout(std::string_view tool, const std::vector<std::string>& args, const fs::path& stdout_to) const;
 
   // Runs calib-synth (DefaultSynthArgs() unless `args` is given) writing `relative` and its
   // truth file beside it; fails the test unless it succeeds. Returns the correspondences.

@@ -47,8 +47,9 @@ TEST_F(CliLimits, DeeplyNestedJsonAndCameramodelAreRefused) {
 
 // A file without end (a device) or beyond the size limit is refused, not read into memory.
 TEST_F(CliLimits, EndlessInputIsRefused) {
+  // Refused before it is opened, not read to the 256 MiB limit first (issue 24: 530 MB, 4–6 s).
   const CommandResult r = Run("calib-dlt", {"/dev/zero", "-o", "out/c.json"});
-  EXPECT_TRUE(FailsWith(r, "calib-dlt", kBadInput, "/dev/zero: ", {"larger than the 256 MiB vstcal reads"}));
+  EXPECT_TRUE(FailsWith(r, "calib-dlt", kBadInput, "/dev/zero: ", {"is not a regular file (a device, a pipe or a socket)"}));
   EXPECT_TRUE(OutDirEmpty());
 }
 

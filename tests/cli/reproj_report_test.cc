@@ -100,6 +100,8 @@ TEST_F(CliReprojReport, PointsBehindTheCameraAreMarkedNotCounted) {
   EXPECT_EQ(view["excluded"][0]["index"], 20);
   EXPECT_EQ(view["excluded"][0]["reason"], "behind-camera");
   EXPECT_TRUE(view["points"][20][2].is_null());
+  // Said on stderr too (issue 24: exit 0 and nothing said).
+  EXPECT_EQ(r.err, "reproj-report: note: in/cam.json: 1 of 61 points left out of the statistics: 1 behind the camera\n");
 }
 
 TEST_F(CliReprojReport, PlanarViewsAndAViewTheCameraHasNoPoseFor) {
@@ -119,6 +121,8 @@ TEST_F(CliReprojReport, PlanarViewsAndAViewTheCameraHasNoPoseFor) {
   EXPECT_EQ(c["views"][2]["excluded"].size(), 48u);
   EXPECT_EQ(c["views"][2]["excluded"][0]["reason"], "no-pose");
   EXPECT_EQ(c["views"][1]["error_px"]["n"], 48);
+  EXPECT_EQ(r.err, "reproj-report: note: in/views.truth.json: 48 of 192 points left out of the statistics: 48 in views the "
+                   "camera has no pose for (renamed: its solver dropped them)\n");
 }
 
 TEST_F(CliReprojReport, OnePlaneSpansNoVolume) {

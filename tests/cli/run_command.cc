@@ -44,12 +44,17 @@ struct FileActions {
 
 }  // namespace
 
-CommandResult RunCommand(const std::vector<std::string>& argv, const std::filesystem::path& cwd) {
+CommandResult RunCommand(const std::vector<std::string>& argv, const std::filesystem::path& cwd,
+                         const std::filesystem::path& stdout_to) {
   if (argv.empty()) throw std::invalid_argument("RunCommand: empty argv");
   Pipe out, err;
   FileActions fa;
   posix_spawn_file_actions_addopen(&fa.actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
-  posix_spawn_file_actions_adddup2(&fa.actions, out.fd[1], STDOUT_FILENO);
+  if (stdout_to.empty()) {
+    posix_spawn_file_actions_adddup2(&fa.actions, out.fd[1], STDOUT_FILENO);
+  } else {
+    posix_spawn_file_actions_addopen(&fa.actions, STDOUT_FILENO, stdout_to.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  }
   posix_spawn_file_actions_adddup2(&fa.actions, err.fd[1], STDERR_FILENO);
   if (!cwd.empty()) posix_spawn_file_actions_addchdir_np(&fa.actions, cwd.c_str());
 

@@ -16,7 +16,9 @@ struct CommandResult {
 };
 
 // argv[0] is the program's path (not searched in PATH). The program runs in `cwd` when it is
-// not empty, with stdin from /dev/null. Throws std::runtime_error when it cannot be started.
-CommandResult RunCommand(const std::vector<std::string>& argv, const std::filesystem::path& cwd = {});
+// not empty, with stdin from /dev/null. With `stdout_to` (e.g. /dev/full), its stdout goes to that
+// file instead of `out`. Throws std::runtime_error when it cannot be started.
+CommandResult RunCommand(const std::vector<std::string>& argv, const std::filesystem::path& cwd = {},
+                         const std::filesystem::path& stdout_to = {});
 
 }  // namespace vstcal::cli_test

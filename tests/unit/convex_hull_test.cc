@@ -61,5 +61,27 @@ TEST(ConvexHull, NoVolumeIsAStatusNotAnError) {
   EXPECT_NE(ConvexHull3::Of(line).why.find("one line"), std::string::npos);
 }
 
+// The same cube grid in any length unit, 1e-150 to 1e200 times (issue 24: 1e100 and 1e-150 gave
+// "no hull", and at 1e200 the bounding box's diagonal overflowed, so that every point was inside):
+// the same hull, and the same decisions and distances at the scaled points.
+TEST(ConvexHull, TheSameHullInAnyLengthUnit) {
+  for (const double scale : {1e-150, 1e-30, 1.0, 1e30, 1e100, 1e200}) {
+    std::vector<Eigen::Vector3d> p;
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j)
+        for (int k = 0; k < 3; ++k) p.push_back(scale * Eigen::Vector3d(100.0 * i, 100.0 * j, 200.0 * k));
+    const auto outcome = ConvexHull3::Of(p);
+    ASSERT_TRUE(outcome.hull) << scale << ": " << outcome.why;
+    EXPECT_EQ(outcome.hull->num_vertices(), 8u) << scale;
+    EXPECT_EQ(outcome.hull->num_facets(), 6u) << scale;
+    EXPECT_TRUE(outcome.hull->Contains(scale * Eigen::Vector3d(200, 200, 400))) << scale;
+    EXPECT_TRUE(outcome.hull->Contains(scale * Eigen::Vector3d(100, 0, 250))) << scale;
+    EXPECT_FALSE(outcome.hull->Contains(scale * Eigen::Vector3d(100, 100, 400.001))) << scale;
+    EXPECT_FALSE(outcome.hull->Contains(scale * Eigen::Vector3d(-640, 0, 200))) << scale;
+    EXPECT_NEAR(outcome.hull->SignedDistance(scale * Eigen::Vector3d(100, 100, 450)) / scale, 50, 1e-9) << scale;
+    EXPECT_FALSE(outcome.hull->Contains({1e308, 0, 0})) << scale;  // far outside, whatever the unit
+  }
+}
+
 }  // namespace
 }  // namespace vstcal

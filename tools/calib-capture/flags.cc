@@ -46,15 +46,15 @@ void TargetFlags::Add(CLI::App* app) {
       ->capture_default_str();
   app->add_option("--rows", t.rows, "inner corners (tags for apriltag-grid) along Y, down the sheet")->required();
   app->add_option("--cols", t.cols, "inner corners (tags) along X, across the sheet")->required();
-  app->add_option("--square-size", t.square_size, "chessboard, charuco: side of a square")->check(kFinite);
+  app->add_option("--square-size", t.square_size, "chessboard, charuco: side of a square")->check(kPositiveFinite);
   app->add_option("--marker-size", marker_size, "charuco: side of a marker (default 0.75 × square size)")->check(kFinite);
   app->add_option("--dictionary", t.dictionary, "charuco: OpenCV ArUco dictionary")->capture_default_str();
-  app->add_option("--tag-size", t.tag_size, "apriltag-grid: side of a tag's black square")->check(kFinite);
+  app->add_option("--tag-size", t.tag_size, "apriltag-grid: side of a tag's black square")->check(kPositiveFinite);
   app->add_option("--tag-gap", tag_gap, "apriltag-grid: white between tags (default tag size / 4)")->check(kFinite);
   app->add_option("--family", t.family, "apriltag-grid: libapriltag family")->capture_default_str();
   app->add_option("--first-id", t.first_id, "apriltag-grid: id of the top-left tag")->capture_default_str();
   app->add_option("--margin", margin, "white border around the pattern (default a square, or the tag gap)")->check(kFinite);
-  app->add_option("--length-unit", unit, "mm, cm or m")->check(CLI::IsMember({"mm", "cm", "m"}))->capture_default_str();
+  app->add_option("--length-unit", unit, "mm, cm, m or in")->check(kLengthUnit)->capture_default_str();
   app->add_option("--dpi", request.dpi, "resolution of the PNG (0: no PNG)")->check(kFinite)->capture_default_str();
   app->add_option("-o,--output", request.output, "writes OUTPUT.target.json, OUTPUT.svg, OUTPUT.png")->required()->check(kNonEmpty);
 }
@@ -83,8 +83,8 @@ void DetectFlags::Add(CLI::App* app) {
       ->check(kNonEmpty);
   app->add_option("--video", c.video.file, "a video file instead of images (planar views)")->check(kNonEmpty);
   app->add_option("--camera-index", c.video.camera_index, "a live camera (0: the first) instead of images; needs --frames");
-  app->add_option("--every", c.video.every, "video/camera: keep every k-th frame")->check(CLI::PositiveNumber)->capture_default_str();
-  app->add_option("--frames", c.video.max_frames, "video/camera: frames to keep (0: the whole video)")->check(CLI::NonNegativeNumber);
+  app->add_option("--every", c.video.every, "video/camera: keep every k-th frame")->check(kPositiveCount)->capture_default_str();
+  app->add_option("--frames", c.video.max_frames, "video/camera: frames to keep (0: the whole video)")->check(kCount);
   app->add_option("--finder", finder, "chessboard: classic, sector-based or classic+sector-based (the second where the first fails)")
       ->check(CLI::IsMember(NamesOf(kChessboardFinderNames)))
       ->capture_default_str();

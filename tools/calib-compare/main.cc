@@ -3,6 +3,7 @@
 #include <iostream>
 
 #include "common/run_tool.h"
+#include "common/validators.h"
 #include "vstcal/app/calib_compare.h"
 #include "vstcal/core/check.h"
 
@@ -19,7 +20,7 @@ int main(int argc, char** argv) {
   app.add_option("--test-points", request.test_points,
                  "also compare the projections of this correspondences file's test points (registration error)");
   app.add_option("--depth", request.depth, "depth of the comparison grid (length unit; default: world origin's depth)")
-      ->check(CLI::PositiveNumber);
+      ->check(vstcal::tools::kPositiveFinite);
   app.add_option("--max-px", request.max_px,
                  "fail (exit code 4) when the cameras disagree by more than this many px at a grid or test point");
   app.add_option("--max-sigma", request.max_sigma,
@@ -29,8 +30,8 @@ int main(int argc, char** argv) {
   return vstcal::tools::RunTool(app, argc, argv, [&] {
     vstcal::DeclareOutputs({request.junit});
     const vstcal::app::Outcome outcome = vstcal::app::Compare(request);
+    vstcal::tools::PrintToStdout(outcome.stdout_text);
     vstcal::app::WriteOutcome(outcome);
-    std::cout << outcome.stdout_text;
     return outcome.check_failed ? vstcal::kCheckFailedExitCode : 0;
   });
 }

@@ -8,12 +8,7 @@
 namespace vstcal::tools {
 namespace {
 
-CameraFileFormat InputFormat(const std::string& input) {
-  if (const auto f = DetectCameraFileFormat(input)) return *f;
-  throw InputError(input +
-                   ": cannot tell the format from the file name; name it .json (vstcal/camera@1 or stereo@1), "
-                   ".yaml or .yml (OpenCV, ROS camera_info or Kalibr camchain) or .cameramodel (mrcal)");
-}
+CameraFileFormat InputFormat(const std::string& input) { return InputCameraFileFormat(input); }
 
 CameraFileFormat OutputFormat(const std::string& output, const std::string& to) {
   const auto named = CameraFileFormatFromPath(output);

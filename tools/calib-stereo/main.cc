@@ -1,6 +1,8 @@
 // calib-stereo: stereo rigs — solve, assemble, export to OpenCV and mrcal, binocular registration and
 // stereo display planning (docs/tools/calib-stereo.md).
 #include <iostream>
+#include <sstream>
+#include <string>
 
 #include "calib-stereo/subcommands.h"
 #include "common/run_tool.h"
@@ -28,7 +30,9 @@ int main(int argc, char** argv) {
           "calib-stereo", argc, argv, seed ? std::optional(seed->as<uint64_t>()) : std::nullopt);
       const app::Outcome outcome = s.run(provenance);
       app::WriteOutcome(outcome);
-      std::cerr << outcome.summary;
+      // Every line a note gets the tool's name, as every tool's warnings do.
+      std::istringstream lines(outcome.summary);
+      for (std::string line; std::getline(lines, line);) std::cerr << (line.rfind("note: ", 0) == 0 ? "calib-stereo: " : "") << line << "\n";
       for (const auto& [path, text] : outcome.files) std::cerr << "calib-stereo: wrote " << path.string() << "\n";
     }
     return 0;

@@ -154,7 +154,7 @@ Subcommand AddSimulate(CLI::App& parent) {
   app->add_option("RIG", f->request.rig, "rig file (vstcal/stereo@1)")->required()->check(kNonEmpty);
   app->add_option("-o,--output", f->request.output, "tracks to write")->required()->check(kNonEmpty);
   app->add_option("--frames", s.frames, "frames")->check(CLI::Range(1, 1000000))->capture_default_str();
-  app->add_option("--noise", s.noise_px, "pixel noise σ per coordinate, px")->check(CLI::NonNegativeNumber & kFinite)->capture_default_str();
+  app->add_option("--noise", s.noise_px, "pixel noise σ per coordinate, px")->check(kNonNegativeFinite)->capture_default_str();
   app->add_option("--seed", s.seed, "random seed")->check(kSeed)->capture_default_str();
   app->add_option("--layout", f->layout, "planar (4 points in a square) or spatial (6 points)")
       ->check(CLI::IsMember({"planar", "spatial"}))->capture_default_str();
@@ -211,8 +211,8 @@ Subcommand AddPlan(CLI::App& parent) {
   app->add_option("--hfov-deg", f->hfov_deg, "the capture's horizontal field of view across its width (seed 000's θ), degrees")
       ->check(kPositiveFinite);
   app->add_option("--capture-width", f->capture_width, "the camera's image width, px, to check against the need")
-      ->check(CLI::PositiveNumber);
-  app->add_option("--display-width", in.display_width, "the display's width A, px")->required()->check(CLI::PositiveNumber);
+      ->check(kPositiveCount);
+  app->add_option("--display-width", in.display_width, "the display's width A, px")->required()->check(kPositiveCount);
   app->add_option("--z0", f->z0, "zero-parallax depth (default: none, the images shown as captured)")->check(kPositiveFinite);
   app->add_option("--depths", in.depths, "depths to tabulate: z1,z2,...")->delimiter(',')->check(kPositiveFinite);
   app->add_option("--viewer", f->viewer, "none, hmd (each eye its own display at the camera's field of view, as err-sim) or screen")

@@ -60,6 +60,7 @@ void SynthFlags::Add(CLI::App& app) {
   app.add_option("--length-unit", unit, "mm, cm, m or in")->check(kLengthUnit)->capture_default_str();
   app.add_option("--camera-name", spec.camera_name, "the \"camera\" field, e.g. left");
   app.add_flag("--no-test-points", no_test_points, "omit seed 000's five test points");
+  app.add_flag("-q,--quiet", quiet, "print only warnings and errors (no summary)");
   app.add_option("--views", views.num_views, "planar views: number of board poses")->capture_default_str();
   app.add_option("--distance", views.distance, "planar views: typical board depth")->check(kFinite)->capture_default_str();
   app.add_option("--max-tilt-deg", views.max_tilt_deg, "planar views: largest board tilt")

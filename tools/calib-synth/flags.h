@@ -14,7 +14,7 @@ namespace vstcal::tools {
 struct SynthFlags {
   app::SynthRequest request;
   std::string grid = "13x9", image_size, unit = "mm", rig = "volume";
-  bool no_test_points = false;
+  bool no_test_points = false, quiet = false;
 
   void Add(CLI::App& app);
   // Checks the flags that apply to one set-up only and parses the sizes and the unit.

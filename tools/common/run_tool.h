@@ -30,4 +30,9 @@ namespace vstcal::tools {
 // are escaped so that it stays one line.
 int RunTool(CLI::App& app, int argc, char** argv, const std::function<int()>& body);
 
+// Writes `text` to stdout now and throws InputError when it cannot be written (a full disk,
+// > /dev/full): a tool that also writes files prints first, so that a lost table leaves no file.
+// RunTool checks stdout again at the end, for text printed any other way.
+void PrintToStdout(const std::string& text);
+
 }  // namespace vstcal::tools

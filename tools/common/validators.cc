@@ -41,6 +41,23 @@ const CLI::Validator kPositiveFinite(
     },
     "POSITIVE");
 
+const CLI::Validator kNonNegativeFinite(
+    [](std::string& text) -> std::string {
+      double v = 0;
+      if (!ParseNumber(text, &v) || !std::isfinite(v) || !(v >= 0)) return "expected a number ≥ 0, got \"" + text + "\"";
+      return "";
+    },
+    "NONNEGATIVE");
+
+const CLI::Validator kCount(
+    [](std::string& text) -> std::string {
+      uint64_t v = 0;
+      const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+      if (text.empty() || ec != std::errc() || end != text.data() + text.size()) return "expected a whole number ≥ 0, got \"" + text + "\"";
+      return "";
+    },
+    "COUNT");
+
 const CLI::Validator kSeed(
     [](std::string& text) -> std::string {
       uint64_t v = 0;

@@ -16,6 +16,7 @@
 #include "vstcal/core/error.h"
 #include "vstcal/formats/camera/camera_io.h"
 #include "vstcal/formats/camera/correspondences_io.h"
+#include "vstcal/files/input_protection.h"
 
 namespace vstcal::app {
 namespace {
@@ -32,6 +33,10 @@ bool IsImageName(const fs::path& p) {
   }
   return false;
 }
+
+constexpr std::string_view kOverlaySuffix = ".overlay.png";
+
+bool IsOverlayName(const fs::path& p) { return p.filename().string().ends_with(kOverlaySuffix); }
 
 fs::path Canonical(const fs::path& p) {
   std::error_code ec;
@@ -69,7 +74,6 @@ Outcome MakeTarget(const TargetRequest& request, const Provenance& provenance) {
   if (request.output.empty()) throw InputError("-o/--output: give the output's name (e.g. board)");
   if (!(request.dpi >= 0)) throw InputError("--dpi: must be ≥ 0 (0: no PNG)");
   Outcome out;
-  out.create_folders = true;
   out.files.emplace_back(request.output + ".target.json", DumpJson(TargetToJson(request.target, provenance)));
   out.files.emplace_back(request.output + ".svg", TargetSvg(request.target));
   std::string png;
@@ -89,20 +93,41 @@ Outcome MakeTarget(const TargetRequest& request, const Provenance& provenance) {
   return out;
 }
 
-std::vector<std::string> ExpandImageArguments(const std::vector<std::string>& arguments) {
-  std::vector<std::string> images;
+std::string OverlayFileName(const std::string& view) { return view + std::string(kOverlaySuffix); }
+
+ImageArguments ExpandImageArguments(const std::vector<std::string>& arguments) {
+  ImageArguments out;
+  std::vector<std::string>& images = out.images;
   for (const std::string& arg : arguments) {
     std::error_code ec;
     if (arg.empty()) throw InputError("an image argument is empty; give an image file, a folder or a glob");
     if (fs::is_directory(arg, ec)) {
       std::vector<std::string> found;
+      size_t overlays = 0;
       for (const fs::directory_entry& e : fs::directory_iterator(arg, ec)) {
-        if (e.is_regular_file(ec) && IsImageName(e.path())) found.push_back(e.path().string());
+        if (!e.is_regular_file(ec) || !IsImageName(e.path())) continue;
+        if (IsOverlayName(e.path())) {
+          ++overlays;
+        } else {
+          found.push_back(e.path().string());
+        }
       }
-      if (found.empty()) throw InputError(arg + ": no images (.png, .jpg, .jpeg, .bmp, .tif, .pgm …) in this folder; give the folder of the images");
+      if (found.empty()) {
+        throw InputError(arg + ": no images (.png, .jpg, .jpeg, .bmp, .tif, .pgm …) in this folder" +
+                         (overlays ? " but overlays (*.overlay.png) of an earlier --overlay" : "") +
+                         "; give the folder of the images");
+      }
+      out.overlays_left_out += overlays;
       std::sort(found.begin(), found.end());
       images.insert(images.end(), found.begin(), found.end());
     } else if (fs::exists(arg, ec)) {
+      if (KindOfPath(arg) == PathKind::kSpecial) {
+        throw InputError(arg + ": is not a regular file (a device, a pipe or a socket), not an image; give image files, a folder or a glob");
+      }
+      if (IsOverlayName(arg)) {
+        throw InputError(arg + ": is an overlay an earlier --overlay wrote (corners drawn on an image), not a view of the board; "
+                               "give the image it was drawn on");
+      }
       images.push_back(arg);
     } else if (arg.find_first_of("*?[") != std::string::npos) {
       glob_t matches{};
@@ -110,7 +135,12 @@ std::vector<std::string> ExpandImageArguments(const std::vector<std::string>& ar
       std::vector<std::string> found;
       if (status == 0) {
         for (size_t k = 0; k < matches.gl_pathc; ++k) {
-          if (!fs::is_directory(matches.gl_pathv[k], ec)) found.emplace_back(matches.gl_pathv[k]);
+          if (fs::is_directory(matches.gl_pathv[k], ec)) continue;
+          if (IsOverlayName(matches.gl_pathv[k])) {
+            ++out.overlays_left_out;
+          } else {
+            found.emplace_back(matches.gl_pathv[k]);
+          }
         }
       }
       globfree(&matches);
@@ -121,7 +151,7 @@ std::vector<std::string> ExpandImageArguments(const std::vector<std::string>& ar
       throw InputError(arg + ": no such file or folder; check the path");
     }
   }
-  return images;
+  return out;
 }
 
 Outcome RunDetect(DetectCommand command, const Provenance& provenance, const Progress& progress) {
@@ -146,13 +176,16 @@ Outcome RunDetect(DetectCommand command, const Provenance& provenance, const Pro
 
   std::vector<fs::path> inputs = {command.target_file};
   std::vector<CaptureInput> files;
+  size_t overlays_left_out = 0;
   if (!command.manifest.empty()) {
     inputs.push_back(command.manifest);
     const VolumeManifest manifest = ReadVolumeManifest(command.manifest);
     const double to_target = MetresPer(manifest.length_unit) / MetresPer(request.target.length_unit);
     for (const ManifestImage& m : manifest.images) files.push_back({m.path.lexically_normal().string(), m.path, m.plane_offset * to_target});
   } else {
-    for (const std::string& image : ExpandImageArguments(command.images)) {
+    const ImageArguments expanded = ExpandImageArguments(command.images);
+    overlays_left_out = expanded.overlays_left_out;
+    for (const std::string& image : expanded.images) {
       std::optional<double> offset;
       if (!command.offset_pattern.empty()) offset = OffsetFromName(image, command.offset_pattern, "--offset-from-name");
       files.push_back({image, image, offset});
@@ -167,10 +200,12 @@ Outcome RunDetect(DetectCommand command, const Provenance& provenance, const Pro
   if (!command.video.file.empty()) inputs.push_back(command.video.file);
 
   if (command.output.empty()) throw InputError("-o/--output: give the correspondences file to write");
-  RefuseOverwriting({{{command.output, ""}}, ""}, inputs);  // before the work, not only after it
+  Outcome planned;
+  planned.files.emplace_back(command.output, "");
+  RefuseOverwriting(planned, inputs);  // before the work, not only after it
   const CaptureResult result = files.empty() ? DetectInVideo(command.video, request, progress) : DetectInFiles(files, request, progress);
   Outcome out;
-  out.create_folders = true;
+  out.folders = {command.overlay_folder};
   out.files.emplace_back(command.output, DumpJson(CaptureToJson(result, request, provenance)));
   if (!command.overlay_folder.empty()) {
     for (size_t k = 0; k < result.images.size(); ++k) {
@@ -178,13 +213,16 @@ Outcome RunDetect(DetectCommand command, const Provenance& provenance, const Pro
       const LoadedImage loaded = LoadImageFile(files[k].path);
       if (!loaded.problem.empty()) continue;
       const std::string name = result.images[k].view.empty() ? fs::path(files[k].image).stem().string() : result.images[k].view;
-      out.files.emplace_back(fs::path(command.overlay_folder) / (name + ".png"), OverlayPng(loaded.image, request.target, result.detections[k]));
+      out.files.emplace_back(fs::path(command.overlay_folder) / OverlayFileName(name), OverlayPng(loaded.image, request.target, result.detections[k]));
     }
   }
   RefuseOverwriting(out, inputs);
   out.summary = "calib-capture: " + DescribeCounts(result.images) + "; " + std::to_string(NumObservations(result.correspondences)) +
                 " corners in " + std::to_string(result.correspondences.views.size()) + " views (rig " +
                 (request.rig == Rig::kVolume ? "volume" : "planar-views") + "); wrote " + Join(out.files, 2);
+  if (overlays_left_out > 0) {
+    out.summary += "; left out " + std::to_string(overlays_left_out) + " overlays (*.overlay.png) of an earlier --overlay";
+  }
   return out;
 }
 
@@ -192,10 +230,11 @@ Outcome RunRender(const RenderCommand& command, const Provenance& provenance) {
   const Target target = ReadTarget(command.target_file);
   const CalibratedCamera camera = ReadCamera(command.camera_file);
   if (command.output_folder.empty()) throw InputError("-o/--output: give the folder to write the images to");
+  CheckRenderSize(camera.camera.image_size, command.camera_file);
   const RenderedScene scene = RenderScene(camera.camera, target, command.scene);
   const fs::path folder(command.output_folder);
   Outcome out;
-  out.create_folders = true;
+  out.folders = {folder};
   for (size_t k = 0; k < scene.names.size(); ++k) out.files.emplace_back(folder / (scene.names[k] + ".png"), EncodePng(scene.images[k]));
   out.files.emplace_back(folder / "truth.json", DumpJson(CorrespondencesToJson(scene.truth, provenance)));
   CalibratedCamera truth = scene.truth_camera;

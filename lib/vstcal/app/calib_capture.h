@@ -40,9 +40,18 @@ struct DetectCommand {
 Outcome RunDetect(DetectCommand command, const Provenance& provenance, const Progress& progress = {});
 
 // Files, folders and globs → image paths, in the order given, each folder and glob sorted by name.
-// Throws InputError for an argument that names nothing, a folder without images, a glob that
-// matches no file.
-std::vector<std::string> ExpandImageArguments(const std::vector<std::string>& arguments);
+// The overlays detect --overlay writes (<view>.overlay.png) are left out of folders and globs, and
+// counted: corners drawn on a photograph are no new view of the board. Throws InputError for an
+// argument that names nothing, a device or a pipe, an overlay named on its own, a folder without
+// images, a glob that matches no file.
+struct ImageArguments {
+  std::vector<std::string> images;
+  size_t overlays_left_out = 0;
+};
+ImageArguments ExpandImageArguments(const std::vector<std::string>& arguments);
+
+// The file name detect --overlay gives the overlay of a view.
+std::string OverlayFileName(const std::string& view);
 
 // calib-capture render: DIR/<name>.png for every view, DIR/truth.json (the true corners),
 // DIR/camera.truth.json (the camera and its poses) and, for a volume, DIR/manifest.json.

@@ -36,7 +36,6 @@ Camera PlanCamera(PlanCommand& command) {
 
 Outcome RunPlan(PlanCommand command, const Provenance& provenance) {
   Outcome out;
-  out.create_folders = true;
   if (!command.compare.empty()) {
     const PlanPrediction a = ReadPlanPrediction(command.compare.at(0)), b = ReadPlanPrediction(command.compare.at(1));
     const std::string text = ComparePlansText(a, b);

@@ -1,5 +1,6 @@
 #include "vstcal/app/calib_stereo.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -7,6 +8,7 @@
 #include <initializer_list>
 
 #include "vstcal/core/error.h"
+#include "vstcal/core/string_printf.h"
 #include "vstcal/formats/camera/camera_convert.h"
 #include "vstcal/formats/camera/correspondences_io.h"
 #include "vstcal/formats/stereo/display_plan_io.h"
@@ -18,21 +20,13 @@
 namespace vstcal::app {
 namespace {
 
-std::string Format(const char* format, auto... values) {
-  char buf[512];
-  std::snprintf(buf, sizeof buf, format, values...);
-  return buf;
-}
+std::string Format(const char* format, auto... values) { return StringPrintf(format, values...); }
 
 ImportedCamera ReadAnyCamera(const std::string& path, std::optional<LengthUnit> unit) {
-  const auto format = CameraFileFormatFromPath(path);
-  if (!format) {
-    throw InputError(path + ": cannot tell the format from the file name; name it .json (vstcal/camera@1), .yaml or "
-                            ".yml (OpenCV) or .cameramodel (mrcal)");
-  }
-  ImportedCamera in = ReadCameraFile(path, *format, {unit, std::nullopt});
+  const CameraFileFormat format = InputCameraFileFormat(path);
+  ImportedCamera in = ReadCameraFile(path, format, {unit, std::nullopt});
   // mrcal's all-zero extrinsics mean "this camera is the reference".
-  if (*format == CameraFileFormat::kMrcal && !in.camera.camera_from_world) in.camera.camera_from_world = Rigid3d::Identity();
+  if (format == CameraFileFormat::kMrcal && !in.camera.camera_from_world) in.camera.camera_from_world = Rigid3d::Identity();
   return in;
 }
 
@@ -85,6 +79,11 @@ Outcome Assemble(const AssembleRequest& request, const Provenance& provenance) {
 }
 
 Outcome Solve(const SolveRequest& request, const Provenance& provenance) {
+  std::error_code ec;
+  if (std::filesystem::equivalent(request.left, request.right, ec)) {
+    throw InputError(request.left + " and " + request.right +
+                     ": are the same file; give the left camera's correspondences, then the right camera's");
+  }
   const Correspondences left = ReadCorrespondences(request.left), right = ReadCorrespondences(request.right);
   StereoSolveOptions options = request.options;
   Outcome out;
@@ -134,7 +133,13 @@ Outcome Export(const ExportRequest& request, const Provenance& provenance) {
     out.files.emplace_back(request.mrcal_right, r.text);
     for (const auto* e : {&l, &r}) notes.insert(notes.end(), e->notes.begin(), e->notes.end());
   }
-  for (const auto& note : notes) out.summary += "note: " + note + "\n";
+  // Both mrcal files, and the YAML, say the same of the rig (its covariance and fit not written): once.
+  std::vector<std::string> said;
+  for (const auto& note : notes) {
+    if (std::find(said.begin(), said.end(), note) != said.end()) continue;
+    said.push_back(note);
+    out.summary += "note: " + note + "\n";
+  }
   return out;
 }
 

@@ -29,7 +29,7 @@ Outcome Synthesize(SynthRequest request, const Provenance& provenance) {
     views.length_unit = spec.length_unit;
     views.camera_name = spec.camera_name;
     const SyntheticViews synthetic = SynthesizePlanarViews(camera, views);
-    for (const std::string& w : synthetic.warnings) outcome.summary += "calib-synth: warning: " + w + "\n";
+    for (const std::string& w : synthetic.warnings) outcome.warnings.push_back("calib-synth: warning: " + w);
     truth = PlanarViewsTruthCamera(camera, views, synthetic);
     corners = synthetic.correspondences;
   } else {

@@ -26,7 +26,7 @@ struct SynthRequest {
 };
 
 // The correspondences and the truth camera; the summary (no final newline) counts the points, views
-// and test points, after a line for each warning of the planar set-up.
+// and test points; the warnings are the planar set-up's (views that lost corners outside the image).
 Outcome Synthesize(SynthRequest request, const Provenance& provenance);
 
 // The truth file's default name for a correspondences file.

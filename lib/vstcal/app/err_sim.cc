@@ -308,6 +308,7 @@ ErrSimDocument LinearErrSim(const ChainRequest& request, const Provenance& given
   const ParameterSpace space = MakeParameterSpace(model);
   const Model vector_model = VectorModel(model);
   const LinearPropagation linear = PropagateLinear(space, vector_model);
+  if (!linear.defined && linear.beyond_range) throw InputError(request.chain + ": " + linear.message);
   if (!linear.defined) throw DegenerateError(request.chain + ": " + linear.message);
   MonteCarloOptions mc;
   mc.samples = model.samples;
@@ -315,6 +316,15 @@ ErrSimDocument LinearErrSim(const ChainRequest& request, const Provenance& given
   mc.threads = request.threads;
   mc.run_id = "err-sim-linear/" + ChainDigest(model);
   const MonteCarloSummary summary = RunMonteCarlo(space, vector_model, mc);
+  // Samples that overflow (a σ near 1e300) sum to infinity: refused, never written as null, which
+  // means "undefined" in the file (docs/formats.md#err-sim-sensitivity).
+  for (size_t k = 0; k < outputs; ++k) {
+    const OutputStatistics s = summary.Statistics(k);
+    if (std::isinf(s.mean) || std::isinf(s.standard_deviation)) {
+      throw InputError(request.chain + ": Monte Carlo: " + s.name +
+                       ": the samples' mean or σ is beyond double precision; give σ's in the chain's units, far below 1e150");
+    }
+  }
   const TextAndJson out = LinearOutput(model, Describe(request, model), linear, summary, provenance);
   return {out.json, out.text};
 }

@@ -11,14 +11,10 @@ namespace vstcal::app {
 namespace fs = std::filesystem;
 
 void WriteOutcome(const Outcome& outputs) {
-  if (!outputs.create_folders) {
-    WriteFilesAtomically(outputs.files);
-    return;
-  }
   std::vector<fs::path> created;
   std::set<fs::path> folders;
-  for (const auto& [path, bytes] : outputs.files) {
-    if (path.has_parent_path()) folders.insert(path.parent_path());
+  for (const fs::path& folder : outputs.folders) {
+    if (!folder.empty()) folders.insert(folder);
   }
   auto remove_created = [&] {
     std::error_code ec;

@@ -21,9 +21,10 @@ struct Outcome {
   // A check the user asked for failed (calib-compare --max-px, err-sim check): the files are still
   // written and the text printed; the tool exits with ExitCode::kCheckFailed.
   bool check_failed = false;
-  // A missing folder of an output is created when its parent exists (calib-capture's overlay and
-  // render folders), and removed again if writing fails. Otherwise a missing folder is refused.
-  bool create_folders = false;
+  // The output folders the command is given as folders (calib-capture's --overlay and render's
+  // -o): created when missing and their parent exists, removed again if writing fails. The folder
+  // of every other output must exist, as for every tool (atomic_write.h).
+  std::vector<std::filesystem::path> folders;
 };
 
 // Writes every file all-or-nothing (WriteFilesAtomically: no output may be an input, no two

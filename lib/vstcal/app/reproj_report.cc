@@ -28,6 +28,7 @@ Outcome RigReport(const ReprojReportRequest& r, const JsonDocument& rig, const P
     outcome.files.emplace_back(r.html, StereoReportHtml(report, FolderOf(r.inputs[1]), FolderOf(r.inputs[2])));
   }
   if (r.text) outcome.stdout_text = StereoReportText(report);
+  for (const std::string& note : ExclusionNotes(report)) outcome.summary += "reproj-report: note: " + note + "\n";
   return outcome;
 }
 
@@ -51,6 +52,7 @@ Outcome RunReprojReport(const ReprojReportRequest& r, const Provenance& provenan
   outcome.files = {{r.output, DumpJson(ReprojReportToJson(report, provenance))}};
   if (!r.html.empty()) outcome.files.emplace_back(r.html, ReprojReportHtml(report, FolderOf(corr_file)));
   if (r.text) outcome.stdout_text = ReprojReportText(report);
+  for (const std::string& note : ExclusionNotes(report)) outcome.summary += "reproj-report: note: " + note + "\n";
   return outcome;
 }
 

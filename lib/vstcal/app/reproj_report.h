@@ -20,7 +20,8 @@ struct ReprojReportRequest {
   bool text = false;  // the report's text table for stdout
 };
 
-// A rig's report when the first input is a stereo@1 file, else the cameras' report.
+// A rig's report when the first input is a stereo@1 file, else the cameras' report; the summary
+// has a note for each kind of point the statistics leave out (how many and why).
 Outcome RunReprojReport(const ReprojReportRequest& request, const Provenance& provenance);
 
 // True when the request's first input is a stereo rig (then match_views applies).

@@ -276,6 +276,35 @@ DltResult FailNormalization(DltResult r, std::span<const Observation> obs) {
 // smallest eigenvalue of M₀'s 3×3 carries absolute rounding ~1e-16·λ_max, so √ of it ~1e-8).
 constexpr double kCoplanarAtRounding = 1e-6;
 
+// A cloud is "collinear" also when one point lies so far from the others (a coordinate of 1e308, a
+// typo) that they shrink to a point beside it: then that point, not the cloud, is the problem.
+// The message names that point when the median distance from the median point is below 1e-6 of
+// the farthest.
+void NoteFarPoint(std::span<const Observation> obs, DltResult* r) {
+  if (obs.empty()) return;
+  std::vector<double> x(obs.size()), y(obs.size()), z(obs.size());
+  for (size_t i = 0; i < obs.size(); ++i) x[i] = obs[i].point.x(), y[i] = obs[i].point.y(), z[i] = obs[i].point.z();
+  const auto median = [](std::vector<double> v) {
+    std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
+    return v[v.size() / 2];
+  };
+  const Eigen::Vector3d centre(median(x), median(y), median(z));
+  std::vector<double> distance(obs.size());
+  size_t farthest = 0;
+  for (size_t i = 0; i < obs.size(); ++i) {
+    distance[i] = (obs[i].point - centre).cwiseAbs().maxCoeff();  // no squares: 1e308 stays finite
+    if (distance[i] > distance[farthest]) farthest = i;
+  }
+  if (!(median(distance) < 1e-6 * distance[farthest])) return;
+  const Eigen::Vector3d& p = obs[farthest].point;
+  char buf[320];
+  std::snprintf(buf, sizeof buf,
+                "one point, at (%.6g, %.6g, %.6g), lies more than a million times farther from the others than they "
+                "lie from each other, so that the cloud looks like a line from it: check that point's coordinates",
+                p.x(), p.y(), p.z());
+  r->message = buf;
+}
+
 // Degeneracy of the point cloud from the principal extents of the normalized points (the centred
 // second moments are M₀'s top-left 3×3 over N). Returns the failing status, or kOk.
 DltStatus CheckExtents(const Eigen::Matrix4d& M0, size_t count, const DltOptions& options, DltResult* r) {
@@ -335,6 +364,7 @@ DltResult SolveDlt(std::span<const Observation> obs, const DltOptions& options) 
   if (!n.valid) return FailNormalization(r, obs);
   if (const DltStatus s = CheckExtents(moments.M0, obs.size(), options, &r); s != DltStatus::kOk) {
     r.status = s;
+    if (s == DltStatus::kCollinear) NoteFarPoint(obs, &r);
     return r;
   }
 

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <numeric>
 #include <set>
@@ -401,6 +402,22 @@ StereoSolveResult SolveStereo(Correspondences left, Correspondences right, const
     return out;
   }
   x.Recentre();
+
+  // One camera's views given for both (two copies of one file) solve to cameras at one place, a
+  // baseline at the solver's tolerance: no rig. Compared with the board's distance, so that the
+  // test does not depend on the length unit.
+  double distance = 0;
+  for (const Rigid3d& T : x.left_from_pose) distance = std::max(distance, T.t.norm());
+  if (!(x.right_from_left.t.norm() > 1e-9 * distance)) {
+    char numbers[160];
+    std::snprintf(numbers, sizeof numbers, "baseline %.3g %s, the board %.3g %s away", x.right_from_left.t.norm(),
+                  std::string(LengthUnitName(left.length_unit)).c_str(), distance,
+                  std::string(LengthUnitName(left.length_unit)).c_str());
+    out.exit_code = ExitCode::kDegenerate;
+    out.message = left_file + " and " + right_file + ": the solved cameras coincide (" + numbers +
+                  "): both files hold one camera's views; give the left camera's correspondences, then the right camera's";
+    return out;
+  }
 
   StereoRig& rig = out.rig;
   rig.length_unit = left.length_unit;

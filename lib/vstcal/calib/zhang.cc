@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "vstcal/estimators/homography.h"
+#include "vstcal/estimators/length_range.h"
 
 namespace vstcal {
 namespace {
@@ -36,6 +37,12 @@ std::vector<std::string> DropSparseViews(Correspondences* c, size_t min_points) 
 
 ZhangResult ZhangInitialization(const Correspondences& c) {
   ZhangResult out;
+  // Board lengths of 1e200 or 1e-300 square beyond the doubles in the closed form: say that,
+  // rather than call the views degenerate.
+  if (const auto range = LengthsOutOfRange(c, std::nullopt)) {
+    out.message = "the board's " + range->substr(std::string("the ").size()) + "; give the board in another length unit";
+    return out;
+  }
   std::vector<Eigen::Matrix3d> homographies;
   for (const View& view : c.views) {
     const auto H = EstimateHomography(view.observations);

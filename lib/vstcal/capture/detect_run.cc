@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <map>
 #include <mutex>
@@ -107,6 +108,20 @@ CaptureResult Finish(std::vector<ImageRecord> records, std::vector<Detection> de
   }
   const std::string counts = DescribeCounts(records);
   if (c.views.empty()) {
+    // Found in every image, and rejected for its quality: the target file is right, the images are not.
+    const ImageRecord* rejected = nullptr;
+    bool missed = false;
+    for (const ImageRecord& r : records) {
+      missed = missed || r.status == DetectionStatus::kNotFound ||
+               (r.status == DetectionStatus::kRejected && (r.reason.starts_with("layout mismatch") || r.reason.starts_with("unreadable")));
+      if (!rejected && r.status == DetectionStatus::kRejected) rejected = &r;
+    }
+    if (!missed && rejected) {
+      throw InputError(TargetName(request) + ": no usable image of the " + DescribeTarget(request.target) + " (" + counts +
+                       "): the board was found and rejected (" + rejected->image + ": " + rejected->reason + "); " +
+                       (rejected->reason.starts_with("blurred") ? "take sharper images (focus, steady the camera, a shorter exposure) or raise the blur limit (max_blur_px)"
+                                                                : "take images the reason does not apply to"));
+    }
     throw InputError(TargetName(request) + ": no image shows the " + DescribeTarget(request.target) + " (" + counts +
                      "); check the target file's type, rows and cols against the board, and that the images show it whole");
   }
@@ -239,7 +254,10 @@ CaptureResult DetectInVideo(const VideoRequest& video, const DetectRequest& requ
   if (live && video.max_frames < 1) throw InputError("--frames: required with --camera-index (how many frames to keep)");
   const std::string source = live ? "camera" + std::to_string(video.camera_index) : video.file;
   // OpenCV's video backends log their own failures (GStreamer, FFmpeg) on stderr; the tool's one
-  // line says what went wrong instead.
+  // line says what went wrong instead. FFmpeg logs through av_log, which OpenCV's FFmpeg backend
+  // quiets only when OPENCV_FFMPEG_LOGLEVEL is set when it loads (-8: AV_LOG_QUIET); a value the
+  // user set is kept.
+  ::setenv("OPENCV_FFMPEG_LOGLEVEL", "-8", 0);
   struct QuietOpenCv {
     cv::utils::logging::LogLevel saved = cv::utils::logging::setLogLevel(cv::utils::logging::LOG_LEVEL_SILENT);
     ~QuietOpenCv() { cv::utils::logging::setLogLevel(saved); }

@@ -36,12 +36,17 @@ int NumPlanes(const VolumeSpec& spec) {
   return n > kMaxImages ? kMaxImages + 1 : static_cast<int>(n);
 }
 
+void CheckRenderSize(ImageSize size, std::string_view camera_file) {
+  if (static_cast<double>(size.width) * size.height > kMaxImageMegapixels * 1e6) {
+    throw InputError((camera_file.empty() ? std::string() : std::string(camera_file) + ": ") + "image_size: " +
+                     std::to_string(size.width) + "×" + std::to_string(size.height) +
+                     " is more than 100 megapixels; render smaller images (give a camera of fewer pixels)");
+  }
+}
+
 RenderedScene RenderScene(const Camera& camera, const Target& target, const SceneSpec& spec) {
   const ImageSize size = camera.image_size;
-  if (static_cast<double>(size.width) * size.height > kMaxImageMegapixels * 1e6) {
-    throw InputError("image_size: " + std::to_string(size.width) + "×" + std::to_string(size.height) +
-                     " is more than 100 megapixels; render smaller images");
-  }
+  CheckRenderSize(size, "");
   RenderedScene scene;
   Correspondences& truth = scene.truth;
   truth.image_size = size;

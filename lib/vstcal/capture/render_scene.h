@@ -5,6 +5,7 @@
 
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "vstcal/scene/calibrated_camera.h"
@@ -42,6 +43,10 @@ struct RenderedScene {
 // Throws InputError for impossible requests: more than 1,000 images, 100 megapixels an image or
 // 1,000 megapixels in all, the camera inside the volume, a view without any visible corner.
 RenderedScene RenderScene(const Camera& camera, const Target& target, const SceneSpec& spec);
+
+// Throws InputError when images of `size` are too large to render (more than 100 megapixels),
+// naming `camera_file` (the camera file the size comes from; "" for none).
+void CheckRenderSize(ImageSize size, std::string_view camera_file);
 
 // The number of template positions of a volume spec: near, near + interval, … ≤ far.
 int NumPlanes(const VolumeSpec& spec);

@@ -1,10 +1,12 @@
 #include "vstcal/capture/target.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
 
 #include "vstcal/core/error.h"
+#include "vstcal/core/limits.h"
 
 namespace vstcal {
 namespace {
@@ -42,6 +44,19 @@ std::string Names(std::span<const MarkerFamily> families) {
 std::optional<TargetProblem> Positive(std::string_view field, double v) {
   if (std::isfinite(v) && v > 0) return std::nullopt;
   return TargetProblem{std::string(field), "must be a positive length, got " + Num(v), "give the printed size"};
+}
+
+// A board's side is at most limits::kMaxSyntheticScale in its length unit, as every synthetic
+// scene's lengths: beyond it the sheet's size, the corners' coordinates and what the solvers square
+// leave double precision (a square_size of 1e308 made a sheet of infinite width).
+std::optional<TargetProblem> TooLarge(std::string_view field, double size, double cells, std::string_view unit) {
+  const double side = size * cells;
+  if (!(side > limits::kMaxSyntheticScale)) return std::nullopt;  // NaN and ≤ 0: Positive says what is wrong
+  return TargetProblem{std::string(field),
+                       Num(size) + " makes a board " + (std::isfinite(side) ? Num(side) : std::string("beyond 1e308")) + " " +
+                           std::string(unit) + " wide, more than the " +
+                           Num(limits::kMaxSyntheticScale) + " " + std::string(unit) + " vstcal computes with",
+                       "give the printed size in the target's length unit (at most " + Num(limits::kMaxSyntheticScale / cells) + ")"};
 }
 
 }  // namespace
@@ -83,9 +98,16 @@ std::optional<TargetProblem> CheckTarget(const Target& t) {
                          "use a smaller board"};
   }
   if (tags && t.rows * t.cols < 2) return TargetProblem{"cols", "a grid of one tag", "use at least 2 tags"};
+  // The squares or tags before the margin, which defaults to one of them.
+  const std::string_view unit = LengthUnitName(t.length_unit);
+  if (auto p = tags ? TooLarge("tag_size", t.tag_size, 2.0 * std::max(t.rows, t.cols), unit)
+                    : TooLarge("square_size", t.square_size, std::max(t.rows, t.cols) + 1.0, unit)) {
+    return p;
+  }
   if (!(std::isfinite(t.margin) && t.margin >= 0)) {
     return TargetProblem{"margin", "must be a length ≥ 0, got " + Num(t.margin), "give the white border's width"};
   }
+  if (auto p = TooLarge("margin", t.margin, 2, unit)) return p;
   if (t.type == TargetType::kChessboard || t.type == TargetType::kCharuco) {
     if (auto p = Positive("square_size", t.square_size)) return p;
     if (t.margin < 0.5 * t.square_size) {

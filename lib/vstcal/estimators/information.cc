@@ -4,8 +4,10 @@
 #include <cmath>
 #include <cstdio>
 #include <numeric>
+#include <optional>
 
 #include "vstcal/estimators/arrow_information.h"
+#include "vstcal/estimators/length_range.h"
 #include "vstcal/estimators/reprojection_cost.h"
 #include "vstcal/estimators/robust_loss.h"
 #include "vstcal/core/error.h"
@@ -70,6 +72,10 @@ std::string DescribeWeakest(const ArrowObservability& verdict, const FreeIntrins
   if (verdict.singular_pose) {
     const int v = *verdict.singular_pose;
     const std::string which = c.rig == Rig::kVolume ? "the camera pose" : "view \"" + c.views[v].name + "\"";
+    if (const auto range = LengthsOutOfRange(c, c.rig == Rig::kVolume ? std::nullopt : std::optional<size_t>(v))) {
+      return "the points do not determine " + which + " (" + PoseName(c, static_cast<size_t>(v)) + ") in double precision: " +
+             *range + "; give the points in another length unit";
+    }
     return "the points do not determine " + which + " (" + PoseName(c, static_cast<size_t>(v)) +
            ": too few points, or all on one line); " + (c.rig == Rig::kVolume ? "add points" : "remove the view or add points to it");
   }

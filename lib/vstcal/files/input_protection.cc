@@ -2,6 +2,8 @@
 
 #include <sys/stat.h>
 
+#include <cerrno>
+
 #include <mutex>
 #include <optional>
 
@@ -114,6 +116,13 @@ void NoteInputFile(const fs::path& path) {
     if (SameFile(output, input)) FailInputIsOutput(output.given, path);
   }
   r.inputs.push_back(std::move(input));
+}
+
+PathKind KindOfPath(const fs::path& path) {
+  struct stat st {};
+  if (::stat(path.c_str(), &st) != 0) return errno == ENOENT || errno == ENOTDIR ? PathKind::kMissing : PathKind::kUnknown;
+  if (S_ISREG(st.st_mode)) return PathKind::kRegularFile;
+  return S_ISDIR(st.st_mode) ? PathKind::kDirectory : PathKind::kSpecial;
 }
 
 void CheckOutputs(const std::vector<fs::path>& outputs) {

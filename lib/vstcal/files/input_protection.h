@@ -33,6 +33,13 @@ void DeclareOutputs(const std::vector<std::filesystem::path>& outputs);
 // declared output. Does nothing without an InputProtection.
 void NoteInputFile(const std::filesystem::path& path);
 
+// What a path names, for a reader to refuse anything but a regular file before it opens it: a
+// device or a pipe (/dev/zero, a FIFO) has no size, may never end, and opening a FIFO blocks until
+// something writes to it. Symlinks are followed. kUnknown: stat failed otherwise (e.g. permission
+// denied), and opening the file will say why.
+enum class PathKind { kRegularFile, kMissing, kDirectory, kSpecial, kUnknown };
+PathKind KindOfPath(const std::filesystem::path& path);
+
 // Throws InputError when two outputs are one file, or (with an InputProtection) when an output is
 // an input read so far. WriteFilesAtomically calls it before writing anything.
 void CheckOutputs(const std::vector<std::filesystem::path>& outputs);

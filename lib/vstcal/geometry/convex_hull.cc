@@ -1,5 +1,7 @@
 #include "vstcal/geometry/convex_hull.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 #include <Eigen/SVD>
@@ -52,7 +54,16 @@ std::string WhyNoVolume(std::span<const Eigen::Vector3d> points) {
 
 }  // namespace
 
-ConvexHullOutcome ConvexHull3::Of(std::span<const Eigen::Vector3d> points) {
+ConvexHullOutcome ConvexHull3::Of(std::span<const Eigen::Vector3d> given) {
+  // Computed on the points scaled by a power of two to a largest coordinate in [1, 2): exactly the
+  // same arithmetic as on the points themselves, whatever their length unit, without squares that
+  // overflow (1e200) or underflow (1e-150), nor Qhull's limits on coordinates.
+  double largest = 0;
+  for (const Eigen::Vector3d& p : given) largest = std::max(largest, p.cwiseAbs().maxCoeff());
+  const double scale = largest > 0 && std::isfinite(largest) ? std::ldexp(1.0, -std::ilogb(largest)) : 1.0;
+  std::vector<Eigen::Vector3d> scaled(given.begin(), given.end());
+  for (Eigen::Vector3d& p : scaled) p *= scale;
+  const std::span<const Eigen::Vector3d> points = scaled;
   if (std::string why = WhyNoVolume(points); !why.empty()) return {std::nullopt, std::move(why)};
   std::vector<coordT> coordinates;
   coordinates.reserve(3 * points.size());
@@ -73,7 +84,9 @@ ConvexHullOutcome ConvexHull3::Of(std::span<const Eigen::Vector3d> points) {
   if (status == 0) {
     facetT* facet;
     FORALLfacets {
-      hull.facets_.emplace_back(facet->normal[0], facet->normal[1], facet->normal[2], facet->offset);
+      // Back to the points' own unit: the normals are unit vectors in both, the offsets scale
+      // (exactly: a power of two).
+      hull.facets_.emplace_back(facet->normal[0], facet->normal[1], facet->normal[2], facet->offset / scale);
     }
     hull.num_vertices_ = static_cast<size_t>(qh->num_vertices);
   }
@@ -81,11 +94,13 @@ ConvexHullOutcome ConvexHull3::Of(std::span<const Eigen::Vector3d> points) {
   int still_long = 0, total_long = 0;
   qh_memfreeshort(qh, &still_long, &total_long);
   if (status != 0) return {std::nullopt, "qhull could not build the hull: " + errors.FirstLine()};
-  hull.tolerance_ = 1e-9 * (hi - lo).norm();
+  hull.tolerance_ = 1e-9 * (hi - lo).norm() / scale;
   return {std::move(hull), {}};
 }
 
 double ConvexHull3::SignedDistance(const Eigen::Vector3d& point) const {
+  // No squares here: n·p + d overflows only beyond the doubles themselves, to +inf (outside) for a
+  // point far outside (1e308), never to NaN (|n| = 1).
   double farthest = -INFINITY;
   for (const Eigen::Vector4d& f : facets_) farthest = std::max(farthest, f.head<3>().dot(point) + f(3));
   return farthest;

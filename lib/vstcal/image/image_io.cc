@@ -124,13 +124,12 @@ LoadedImage DecodeImage(const std::string& bytes) {
 LoadedImage LoadImageFile(const std::filesystem::path& path) {
   std::error_code ec;
   LoadedImage out;
-  if (!std::filesystem::exists(path, ec)) {
-    out.problem = "no such file";
-    return out;
-  }
-  if (std::filesystem::is_directory(path, ec)) {
-    out.problem = "a directory, not an image";
-    return out;
+  switch (KindOfPath(path)) {
+    case PathKind::kMissing: out.problem = "no such file"; return out;
+    case PathKind::kDirectory: out.problem = "a directory, not an image"; return out;
+    case PathKind::kSpecial: out.problem = "not a regular file (a device, a pipe or a socket), not an image"; return out;
+    case PathKind::kRegularFile:
+    case PathKind::kUnknown: break;
   }
   NoteInputFile(path);  // an output of this run may not replace an image it read
   const auto bytes_on_disk = std::filesystem::file_size(path, ec);

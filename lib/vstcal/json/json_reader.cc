@@ -249,6 +249,16 @@ JsonDocument JsonDocument::Parse(const std::string& text, std::string name) {
     FailSyntax(doc.name_, text, at, Quote(token) + " is not a JSON number",
                "every value must be a finite number (remove or fix the point)");
   }
+  // A camera in another format, given where vstcal's JSON is read: say what it is and what to do.
+  const std::string extension = std::filesystem::path(doc.name_).extension().string();
+  if (text.starts_with("%YAML") || extension == ".yaml" || extension == ".yml" || extension == ".cameramodel") {
+    const bool yaml = extension != ".cameramodel";
+    FailSyntax(doc.name_, text, at,
+               std::string("not valid JSON: this is ") + (yaml ? "an OpenCV FileStorage YAML" : "a mrcal .cameramodel") +
+                   " file, and vstcal's JSON formats are read here",
+               "convert a camera with calib-convert (e.g. calib-convert " + doc.name_ +
+                   " -o camera.json); calib-convert and calib-stereo read YAML and .cameramodel cameras directly");
+  }
   FailSyntax(doc.name_, text, at, "not valid JSON", "fix the syntax there");
 }
 

@@ -12,21 +12,24 @@
 
 namespace vstcal {
 
-std::string ReadInputFile(const std::filesystem::path& path, std::string_view kind) {
+std::string ReadInputFile(const std::filesystem::path& path, std::string_view kind, size_t max_bytes,
+                          std::string_view limit_name) {
   const std::string name = path.string();
+  switch (KindOfPath(path)) {
+    case PathKind::kMissing: throw InputError(name + ": no such file; check the path");
+    case PathKind::kDirectory: throw InputError(name + ": is a directory, not " + std::string(kind) + "; give the file's path");
+    case PathKind::kSpecial:
+      throw InputError(name + ": is not a regular file (a device, a pipe or a socket), not " + std::string(kind) +
+                       "; give the file itself");
+    case PathKind::kRegularFile:
+    case PathKind::kUnknown: break;
+  }
+  const std::string too_large = name + ": larger than the " + std::to_string(max_bytes >> 20) + " MiB vstcal reads" +
+                                (limit_name.empty() ? std::string() : " as " + std::string(limit_name)) +
+                                " (docs/reliability.md#limits); check that it is " + std::string(kind) + ", or split the data";
+  // The size is checked before reading, and again while reading (the file may grow meanwhile).
   std::error_code ec;
-  if (!std::filesystem::exists(path, ec)) throw InputError(name + ": no such file; check the path");
-  if (std::filesystem::is_directory(path, ec)) {
-    throw InputError(name + ": is a directory, not " + std::string(kind) + "; give the file's path");
-  }
-  const std::string too_large = name + ": larger than the " + std::to_string(limits::kMaxInputFileBytes >> 20) +
-                                " MiB vstcal reads (docs/reliability.md#limits); check that it is " +
-                                std::string(kind) + ", or split the data";
-  // The size is checked before reading, and again while reading: a device or a pipe (/dev/zero)
-  // has no size and never ends.
-  if (std::filesystem::is_regular_file(path, ec) && std::filesystem::file_size(path, ec) > limits::kMaxInputFileBytes) {
-    throw InputError(too_large);
-  }
+  if (std::filesystem::file_size(path, ec) > max_bytes && !ec) throw InputError(too_large);
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(name + ": cannot open (" + std::strerror(errno) + "); check its permissions");
   NoteInputFile(path);
@@ -34,7 +37,7 @@ std::string ReadInputFile(const std::filesystem::path& path, std::string_view ki
   char buffer[1 << 16];
   while (in.read(buffer, sizeof buffer) || in.gcount() > 0) {
     text.append(buffer, static_cast<size_t>(in.gcount()));
-    if (text.size() > limits::kMaxInputFileBytes) throw InputError(too_large);
+    if (text.size() > max_bytes) throw InputError(too_large);
   }
   if (in.bad()) throw InputError(name + ": cannot read (" + std::strerror(errno) + "); check the file");
   return text;

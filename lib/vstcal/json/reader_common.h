@@ -10,11 +10,15 @@
 #include <string>
 #include <string_view>
 
+#include "vstcal/core/limits.h"
+
 namespace vstcal {
 
 // The whole file as bytes. `kind` completes "is a directory, not <kind>" (e.g. "a JSON file").
-// Errors: no such file, a directory, cannot open.
-std::string ReadInputFile(const std::filesystem::path& path, std::string_view kind);
+// Errors: no such file, a directory, a device or a pipe (refused before it is opened), cannot
+// open, larger than `max_bytes` (a format's own limit, docs/reliability.md#limits).
+std::string ReadInputFile(const std::filesystem::path& path, std::string_view kind,
+                          size_t max_bytes = limits::kMaxInputFileBytes, std::string_view limit_name = "");
 
 // True when the text holds only spaces, tabs and line breaks.
 bool IsBlank(std::string_view text);

@@ -5,17 +5,14 @@
 #include <cstdio>
 #include <numeric>
 
+#include "vstcal/core/string_printf.h"
 #include "vstcal/scene/measured_volume.h"
 #include "vstcal/camera/intrinsics.h"
 
 namespace vstcal {
 namespace {
 
-void Append(std::string* out, const char* fmt, auto... args) {
-  char buf[512];
-  std::snprintf(buf, sizeof buf, fmt, args...);
-  *out += buf;
-}
+void Append(std::string* out, const char* fmt, auto... args) { *out += StringPrintf(fmt, args...); }
 
 }  // namespace
 

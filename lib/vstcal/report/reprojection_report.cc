@@ -236,6 +236,30 @@ std::string_view ExclusionName(Exclusion e) {
   return NameOf(kExclusionNames, e);
 }
 
+std::vector<std::string> ExclusionNotes(const ReprojReport& report) {
+  std::vector<std::string> notes;
+  for (const CameraReport& camera : report.cameras) {
+    size_t total = 0;
+    std::string unposed;
+    for (const ViewReport& view : camera.views) {
+      total += view.points.size();
+      if (!view.points.empty() && view.points.front().excluded == Exclusion::kNoPose) unposed += (unposed.empty() ? "" : ", ") + view.name;
+    }
+    const size_t left_out = camera.n_behind_camera + camera.n_no_pose + camera.n_no_ray;
+    if (left_out == 0) continue;
+    std::string why;
+    const auto add = [&why](size_t n, const std::string& what) {
+      if (n > 0) why += (why.empty() ? "" : ", ") + std::to_string(n) + " " + what;
+    };
+    add(camera.n_behind_camera, "behind the camera");
+    add(camera.n_no_pose, "in views the camera has no pose for (" + unposed + ": its solver dropped them)");
+    add(camera.n_no_ray, "measured at pixels without a ray through the lens");
+    notes.push_back(camera.file + ": " + std::to_string(left_out) + " of " + std::to_string(total) +
+                    " points left out of the statistics: " + why);
+  }
+  return notes;
+}
+
 ReprojReport BuildReprojReport(std::span<const ReportCamera> cameras, Correspondences c, std::string corr_file,
                                const ReprojReportOptions& options) {
   VSTCAL_CHECK(!cameras.empty(), "at least one camera");

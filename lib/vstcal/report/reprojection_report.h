@@ -134,4 +134,9 @@ struct ReprojReport {
 ReprojReport BuildReprojReport(std::span<const ReportCamera> cameras, Correspondences correspondences,
                                std::string correspondences_file, const ReprojReportOptions& options = {});
 
+// What the statistics leave out, one line a camera that left out calibration points: how many of
+// how many, and why ("<camera file>: 8 of 60 points left out of the statistics: 8 in views the
+// camera has no pose for (view3, view7)"); nothing is dropped in silence. Empty when none was.
+std::vector<std::string> ExclusionNotes(const ReprojReport& report);
+
 }  // namespace vstcal

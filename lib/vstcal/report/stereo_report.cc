@@ -211,6 +211,33 @@ std::string_view StereoExclusionName(StereoExclusion e) {
   return NameOf(kStereoExclusionNames, e);
 }
 
+std::vector<std::string> ExclusionNotes(const StereoReport& report) {
+  std::vector<std::string> notes;
+  size_t total = 0;
+  for (const StereoViewReport& view : report.views) total += view.points.size();
+  const size_t left_out = report.n_left_only + report.n_right_only + report.n_no_pose + report.n_no_ray + report.n_behind;
+  if (left_out > 0) {
+    std::string why;
+    const auto add = [&why](size_t n, const std::string& what) {
+      if (n > 0) why += (why.empty() ? "" : ", ") + std::to_string(n) + " " + what;
+    };
+    add(report.n_left_only, "seen by the left camera only");
+    add(report.n_right_only, "seen by the right camera only");
+    add(report.n_no_pose, "in views without a left pose");
+    add(report.n_no_ray, "without two rays that meet");
+    add(report.n_behind, "triangulated behind the left camera");
+    notes.push_back(report.left_file + " and " + report.right_file + ": " + std::to_string(left_out) + " of " +
+                    std::to_string(total) + " points of the views both cameras saw left out of the 3-D statistics: " + why);
+  }
+  for (const auto& [views, file] : {std::pair{&report.left_only_views, &report.left_file}, std::pair{&report.right_only_views, &report.right_file}}) {
+    if (views->empty()) continue;
+    std::string names;
+    for (const std::string& v : *views) names += (names.empty() ? "" : ", ") + v;
+    notes.push_back(*file + ": " + std::to_string(views->size()) + " views the other camera did not see left out (" + names + ")");
+  }
+  return notes;
+}
+
 StereoReport BuildStereoReport(const StereoRig& rig, Correspondences left, Correspondences right,
                                const std::string& rig_file, const std::string& left_file,
                                const std::string& right_file, const StereoReportOptions& options) {

@@ -141,4 +141,8 @@ StereoReport BuildStereoReport(const StereoRig& rig, Correspondences left, Corre
                                const std::string& rig_file, const std::string& left_file,
                                const std::string& right_file, const StereoReportOptions& options = {});
 
+// What the 3-D statistics leave out, as ExclusionNotes(ReprojReport) does: the points of the common
+// views not triangulated, by reason, and the views one camera saw. Empty when nothing was.
+std::vector<std::string> ExclusionNotes(const StereoReport& report);
+
 }  // namespace vstcal

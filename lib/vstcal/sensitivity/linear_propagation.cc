@@ -55,6 +55,19 @@ LinearPropagation PropagateLinear(const ParameterSpace& space, const Model& mode
     const Eigen::Index col = static_cast<Eigen::Index>(i);
     out.group_variance.col(g) += out.jacobian.col(col).cwiseAbs2() * variance(col);
   }
+  if (!out.mean.allFinite() || !out.covariance.allFinite() || !out.group_variance.allFinite()) {
+    size_t widest = 0;  // the parameter of the largest variance (an infinite one, most likely)
+    for (size_t i = 1; i < space.size(); ++i) {
+      if (!(variance(static_cast<Eigen::Index>(i)) <= variance(static_cast<Eigen::Index>(widest)))) widest = i;
+    }
+    LinearPropagation failed;
+    failed.method = out.method;
+    failed.beyond_range = true;
+    failed.message = "linear propagation: J Σ Jᵀ is beyond double precision (the widest parameter, " +
+                     space.parameter(widest).name + ", is " + space.parameter(widest).distribution.Describe() +
+                     "); give σ's whose squares times the model's slopes stay within double precision (σ < 1e150)";
+    return failed;
+  }
   return out;
 }
 

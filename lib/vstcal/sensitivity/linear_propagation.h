@@ -26,6 +26,9 @@ namespace vstcal {
 
 struct LinearPropagation {
   bool defined = false;  // false: the model is undefined at θ₀ (message says so); nothing else is set
+  // Not defined because J Σ Jᵀ is beyond double precision (a σ of 1e300 squares to infinity): the
+  // parameters are out of range rather than the model degenerate. Never a non-finite result.
+  bool beyond_range = false;
   std::string message;
   DerivativeMethod method = DerivativeMethod::kAutodiff;
   std::vector<std::string> output_names;

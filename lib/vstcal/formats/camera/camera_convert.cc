@@ -1,6 +1,7 @@
 #include "vstcal/formats/camera/camera_convert.h"
 
 #include "vstcal/core/error.h"
+#include "vstcal/files/input_protection.h"
 #include "vstcal/formats/camera/camera_io.h"
 #include "vstcal/formats/camera/kalibr_camchain.h"
 #include "vstcal/formats/camera/mrcal_cameramodel.h"
@@ -53,6 +54,25 @@ std::optional<CameraFileFormat> DetectCameraFileFormat(const std::filesystem::pa
   if (has("cam0")) return CameraFileFormat::kKalibr;
   if (has("distortion_model")) return CameraFileFormat::kRos;
   return CameraFileFormat::kOpenCvYaml;
+}
+
+CameraFileFormat InputCameraFileFormat(const std::filesystem::path& path) {
+  // A known name is read as its format, whose reader says what is wrong with the path; an unknown
+  // one is explained by what the path names before its name.
+  if (CameraFileFormatFromPath(path)) {
+    if (const auto format = DetectCameraFileFormat(path)) return *format;
+  }
+  const std::string name = path.string();
+  switch (KindOfPath(path)) {
+    case PathKind::kMissing: throw InputError(name + ": no such file; check the path");
+    case PathKind::kDirectory: throw InputError(name + ": is a directory, not a camera file; give the file's path");
+    case PathKind::kSpecial:
+      throw InputError(name + ": is not a regular file (a device, a pipe or a socket), not a camera file; give the file itself");
+    case PathKind::kRegularFile:
+    case PathKind::kUnknown: break;
+  }
+  throw InputError(name + ": cannot tell the format from the file name; name it .json (vstcal/camera@1 or stereo@1), "
+                          ".yaml or .yml (OpenCV, ROS camera_info or Kalibr camchain) or .cameramodel (mrcal)");
 }
 
 std::optional<CameraFileFormat> CameraFileFormatFromName(std::string_view name) {

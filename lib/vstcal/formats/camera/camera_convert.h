@@ -27,6 +27,10 @@ bool ExtensionAllows(const std::filesystem::path& path, CameraFileFormat format)
 // OpenCV's (whose reader then says what is wrong). Throws InputError for a file it cannot read, or
 // one with ROS's or Kalibr's words that is not valid YAML; nullopt for an unknown extension.
 std::optional<CameraFileFormat> DetectCameraFileFormat(const std::filesystem::path& path);
+// The format of a camera file to read, from its name and, for .yaml and .yml, its keys (its
+// reader then refuses a path that is no file). A name of no camera format throws InputError saying what the path is: no such file, a
+// directory, a device or a pipe, or a file whose format its name does not tell.
+CameraFileFormat InputCameraFileFormat(const std::filesystem::path& path);
 // From calib-convert's --to names: "camera", "opencv", "mrcal", "ros", "kalibr"; nullopt otherwise.
 std::optional<CameraFileFormat> CameraFileFormatFromName(std::string_view name);
 // "vstcal/camera@1", "OpenCV FileStorage YAML", "mrcal .cameramodel", "ROS camera_info YAML",

@@ -340,7 +340,7 @@ ImportedCamera OpenCvYamlFromText(const std::string& text, const std::string& na
 }
 
 ImportedCamera ReadOpenCvYaml(const std::filesystem::path& path, LengthUnit length_unit) {
-  return OpenCvYamlFromText(ReadInputFile(path, "an OpenCV YAML file"), path.string(), length_unit);
+  return OpenCvYamlFromText(ReadInputFile(path, "an OpenCV YAML file", limits::kMaxOpenCvYamlBytes, "OpenCV YAML"), path.string(), length_unit);
 }
 
 ExportedCamera OpenCvYamlText(const CalibratedCamera& camera, std::string_view source, const Provenance& provenance) {

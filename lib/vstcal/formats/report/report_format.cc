@@ -2,6 +2,7 @@
 
 #include <cstdio>
 
+#include "vstcal/core/string_printf.h"
 #include "vstcal/formats/camera/camera_io.h"
 
 namespace vstcal {
@@ -103,11 +104,7 @@ OrderedJson CameraJson(const CameraReport& c, const ImageGrid& grid) {
   return j;
 }
 
-void Append(std::string* out, const char* fmt, auto... args) {
-  char buf[512];
-  std::snprintf(buf, sizeof buf, fmt, args...);
-  *out += buf;
-}
+void Append(std::string* out, const char* fmt, auto... args) { *out += StringPrintf(fmt, args...); }
 
 void AppendStatsRow(std::string* out, const std::string& label, const std::optional<ErrorStats>& s) {
   if (!s) {
