@@ -45,3 +45,19 @@ def without_provenance(document):
 def vstcal():
     import vstcal as module
     return module
+
+
+def assert_documents_close(a, b, rel=1e-9, path="document"):
+    """Two JSON documents with the same keys, lists and strings, and numbers equal to `rel`."""
+    if isinstance(a, dict):
+        assert isinstance(b, dict) and list(a) == list(b), f"{path}: keys {list(a)} != {list(b)}"
+        for k in a:
+            assert_documents_close(a[k], b[k], rel, f"{path}.{k}")
+    elif isinstance(a, list):
+        assert isinstance(b, list) and len(a) == len(b), f"{path}: lengths differ"
+        for i, (x, y) in enumerate(zip(a, b)):
+            assert_documents_close(x, y, rel, f"{path}[{i}]")
+    elif isinstance(a, float) or isinstance(b, float):
+        assert abs(a - b) <= rel * max(abs(a), abs(b), 1e-300) or a == b, f"{path}: {a} != {b}"
+    else:
+        assert a == b, f"{path}: {a!r} != {b!r}"
