@@ -755,6 +755,8 @@ TEST_F(CliErrSim, CheckRefusesBadThresholdsAndNames) {
                         {"did you mean \"misregistration.linear\""}));
   EXPECT_TRUE(FailsWith(Run("err-sim", {"check", "in/accepted.json", "--report", "in/accepted.json", "--z", "0"}), "err-sim",
                         kBadInput, "--z: 0 is not a positive number", {}));
+  EXPECT_TRUE(FailsWith(Run("err-sim", {"check", "in/accepted.json", "--report", "in/accepted.json", "--chain", "in/chain.json"}),
+                        "err-sim", kBadInput, "--chain: ", {"drop one of the two"}));
   EXPECT_TRUE(FailsWith(Run("err-sim", {"check", "in/chain.json", "--junit", "out/c.xml"}), "err-sim", kBadInput,
                         "in/chain.json: format: ", {"vstcal/err-sim-report@2"}));
   EXPECT_TRUE(FailsWith(Run("err-sim", {"check", "in/accepted.json", "--report", "in/accepted.json", "--junit",

@@ -28,6 +28,9 @@ Outcome CheckErrSim(const ErrSimCheckRequest& request, const Provenance& provena
   CheckPositive(request.by_default.amount, "--max-rise", fix);
   for (const RiseRule& rule : request.rules) CheckPositive(rule.allowance.amount, "--max-rise " + rule.name, fix);
   CheckPositive(request.z, "--z", "give the number of standard errors a rise may exceed its allowance by (e.g. 3)");
+  if (!request.report.empty() && !request.chain.empty()) {
+    throw InputError("--chain: names a chain to re-run, but --report gives the new report; drop one of the two");
+  }
   const ReportForCheck accepted = ReadReportForCheck(JsonDocument::Load(request.accepted));
   std::string fresh_name = request.report;
   const ReportForCheck fresh = [&] {
