@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "cli_fixture.h"
+#include "convert_bad_input.h"
 
 namespace vstcal::cli_test {
 namespace {
@@ -130,29 +131,6 @@ TEST_F(CliConvertInterop, SameInputSameBytes) {
                              {"out/l.yaml", "out/r.yaml"}));
 }
 
-struct BadInput {
-  std::string name;
-  std::string file;  // written to in/
-  std::string text;
-  std::vector<std::string> flags;
-  std::string location;
-  std::vector<std::string> phrases;
-  std::string output = "out/cam.json";
-};
-
-void PrintTo(const BadInput& c, std::ostream* os) { *os << c.name; }
-
-class CliConvertInteropBad : public CliTest, public ::testing::WithParamInterface<BadInput> {};
-
-TEST_P(CliConvertInteropBad, FailsWithOneLineAndNoOutput) {
-  const BadInput& c = GetParam();
-  WriteText("in/" + c.file, c.text);
-  std::vector<std::string> args = {"in/" + c.file, "-o", c.output};
-  args.insert(args.end(), c.flags.begin(), c.flags.end());
-  EXPECT_TRUE(FailsWith(Run(kTool, args), kTool, kBadInput, c.location, c.phrases));
-  EXPECT_TRUE(OutDirEmpty());
-}
-
 std::vector<BadInput> BadRos() {
   const std::string y = Sample("ros/mono_plumb_bob.yaml");
   const std::string k = "  data: [423.10428, 0.0, 309.05867, 0.0, 424.08911, 227.45914, 0.0, 0.0, 1.0]\n";
@@ -231,11 +209,11 @@ std::vector<BadInput> BadUsage() {
   };
 }
 
-INSTANTIATE_TEST_SUITE_P(Ros, CliConvertInteropBad, ::testing::ValuesIn(BadRos()),
+INSTANTIATE_TEST_SUITE_P(Ros, CliCalibConvertBad, ::testing::ValuesIn(BadRos()),
                          [](const auto& info) { return info.param.name; });
-INSTANTIATE_TEST_SUITE_P(Kalibr, CliConvertInteropBad, ::testing::ValuesIn(BadKalibr()),
+INSTANTIATE_TEST_SUITE_P(Kalibr, CliCalibConvertBad, ::testing::ValuesIn(BadKalibr()),
                          [](const auto& info) { return info.param.name; });
-INSTANTIATE_TEST_SUITE_P(Usage, CliConvertInteropBad, ::testing::ValuesIn(BadUsage()),
+INSTANTIATE_TEST_SUITE_P(InteropUsage, CliCalibConvertBad, ::testing::ValuesIn(BadUsage()),
                          [](const auto& info) { return info.param.name; });
 
 }  // namespace

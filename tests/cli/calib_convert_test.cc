@@ -4,6 +4,7 @@
 #include <ostream>
 
 #include "cli_fixture.h"
+#include "convert_bad_input.h"
 
 namespace vstcal::cli_test {
 namespace {
@@ -192,20 +193,6 @@ TEST_F(CliCalibConvert, HelpIsTheManual) {
 // ---------------------------------------------------------------------------------------------
 // Bad input. Each case writes IN, runs calib-convert IN -o out/<output> [flags] and expects exit
 // code 2 with one line "calib-convert: error: <location>...", the phrases, and an empty out/.
-
-struct BadInput {
-  std::string name;
-  std::string file;  // under in/
-  std::string text;
-  std::vector<std::string> flags;
-  std::string location;
-  std::vector<std::string> phrases;
-  std::string output = "out/cam.json";
-};
-
-void PrintTo(const BadInput& c, std::ostream* os) { *os << c.name; }
-
-class CliCalibConvertBad : public CliTest, public ::testing::WithParamInterface<BadInput> {};
 
 TEST_P(CliCalibConvertBad, FailsWithOneLineAndNoOutput) {
   const BadInput& c = GetParam();

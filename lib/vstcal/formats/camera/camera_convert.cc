@@ -1,6 +1,7 @@
 #include "vstcal/formats/camera/camera_convert.h"
 
 #include "vstcal/core/error.h"
+#include "vstcal/core/limits.h"
 #include "vstcal/files/input_protection.h"
 #include "vstcal/formats/camera/camera_io.h"
 #include "vstcal/formats/camera/kalibr_camchain.h"
@@ -32,7 +33,7 @@ bool ExtensionAllows(const std::filesystem::path& path, CameraFileFormat format)
 std::optional<CameraFileFormat> DetectCameraFileFormat(const std::filesystem::path& path) {
   const auto named = CameraFileFormatFromPath(path);
   if (named != CameraFileFormat::kOpenCvYaml) return named;
-  const std::string text = ReadInputFile(path, "a YAML file");
+  const std::string text = ReadInputFile(path, "a YAML file", limits::kMaxOpenCvYamlBytes, "OpenCV YAML");
   // cv::FileStorage starts every file with its directive; ROS and Kalibr files have none.
   if (text.starts_with("%YAML:")) return CameraFileFormat::kOpenCvYaml;
   // A file none of whose keys says ROS or Kalibr is left to the OpenCV reader, which says what is
@@ -118,7 +119,7 @@ ImportedCamera ReadCameraFile(const std::filesystem::path& input, CameraFileForm
     case CameraFileFormat::kKalibr: {
       const std::string name = input.string();
       std::vector<KalibrCamera> chain =
-          KalibrCamchainFromText(ReadInputFile(input, "a Kalibr camchain.yaml"), name, &in.notes);
+          KalibrCamchainFromText(ReadInputFile(input, "a Kalibr camchain.yaml", limits::kMaxOpenCvYamlBytes, "Kalibr camchain YAML"), name, &in.notes);
       if (chain.size() != 1) {
         FailField(name, "cam" + std::to_string(chain.size() - 1),
                   "a chain of " + std::to_string(chain.size()) + " cameras where one camera was expected",

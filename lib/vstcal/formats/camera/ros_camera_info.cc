@@ -4,6 +4,7 @@
 
 #include "vstcal/camera/opencv_distortion.h"
 #include "vstcal/core/error.h"
+#include "vstcal/core/limits.h"
 #include "vstcal/formats/camera/camera_io.h"
 #include "vstcal/formats/camera/yaml_tree.h"
 #include "vstcal/geometry/rotation.h"
@@ -112,7 +113,7 @@ ImportedCamera ImportRosCameraInfo(const RosCameraInfo& info, const std::string&
 
 ImportedCamera ReadRosCameraInfo(const std::filesystem::path& path, LengthUnit length_unit) {
   const std::string name = path.string();
-  return ImportRosCameraInfo(RosCameraInfoFromText(ReadInputFile(path, kWhat), name, length_unit), name);
+  return ImportRosCameraInfo(RosCameraInfoFromText(ReadInputFile(path, kWhat, limits::kMaxOpenCvYamlBytes, "ROS camera_info YAML"), name, length_unit), name);
 }
 
 ExportedCamera RosCameraInfoText(const RosCameraInfo& info, std::string_view source, const Provenance& provenance) {

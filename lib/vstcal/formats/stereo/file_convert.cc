@@ -1,6 +1,7 @@
 #include "vstcal/formats/stereo/file_convert.h"
 
 #include "vstcal/core/error.h"
+#include "vstcal/core/limits.h"
 #include "vstcal/formats/camera/yaml_tree.h"
 #include "vstcal/formats/stereo/rig_interop.h"
 #include "vstcal/formats/stereo/stereo_io.h"
@@ -12,7 +13,7 @@ namespace vstcal {
 bool HoldsRig(const std::filesystem::path& input, CameraFileFormat from) {
   if (from == CameraFileFormat::kVstcal) return IsStereoRigDocument(JsonDocument::Load(input));
   if (from != CameraFileFormat::kKalibr) return false;
-  const YamlNode root = ParseYamlMap(ReadInputFile(input, "a Kalibr camchain.yaml"), input.string(), "a Kalibr camchain.yaml");
+  const YamlNode root = ParseYamlMap(ReadInputFile(input, "a Kalibr camchain.yaml", limits::kMaxOpenCvYamlBytes, "Kalibr camchain YAML"), input.string(), "a Kalibr camchain.yaml");
   for (const auto& member : root.members) {
     if (member.first == "cam1") return true;
   }
@@ -34,7 +35,7 @@ FileConversion ConvertFile(const std::filesystem::path& input, CameraFileFormat 
   if (from == CameraFileFormat::kVstcal) {
     rig = ReadStereoRig(input);
   } else {
-    rig = RigFromKalibr(KalibrCamchainFromText(ReadInputFile(input, "a Kalibr camchain.yaml"), source, &out.notes),
+    rig = RigFromKalibr(KalibrCamchainFromText(ReadInputFile(input, "a Kalibr camchain.yaml", limits::kMaxOpenCvYamlBytes, "Kalibr camchain YAML"), source, &out.notes),
                         source, &out.notes);
   }
   ExportedCamera written;
