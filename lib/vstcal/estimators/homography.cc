@@ -2,25 +2,19 @@
 
 #include <Eigen/Geometry>
 #include <Eigen/Eigenvalues>
-#include <algorithm>
 #include <cmath>
 
 namespace vstcal {
 namespace {
 
-// Similarity moving 2-D points to zero mean and RMS distance √2. The squares are summed of the
-// deviations scaled by a power of two to at most 2: the same bits as without the scaling, and no
-// overflow (board units of 1e200) or underflow (1e-300) whatever the length unit.
+// Similarity moving 2-D points to zero mean and RMS distance √2.
 Eigen::Matrix3d Normalizer(std::span<const Eigen::Vector2d> points) {
   Eigen::Vector2d mean = Eigen::Vector2d::Zero();
   for (const auto& p : points) mean += p;
   mean /= static_cast<double>(points.size());
-  double largest = 0;
-  for (const auto& p : points) largest = std::max(largest, (p - mean).cwiseAbs().maxCoeff());
-  const int exponent = largest > 0 && std::isfinite(largest) ? std::ilogb(largest) : 0;
   double ss = 0;
-  for (const auto& p : points) ss += (std::ldexp(1.0, -exponent) * (p - mean)).squaredNorm();
-  const double s = std::ldexp(std::sqrt(2.0 * static_cast<double>(points.size()) / ss), -exponent);
+  for (const auto& p : points) ss += (p - mean).squaredNorm();
+  const double s = std::sqrt(2.0 * static_cast<double>(points.size()) / ss);
   Eigen::Matrix3d T;
   T << s, 0, -s * mean.x(), 0, s, -s * mean.y(), 0, 0, 1;
   return T;
