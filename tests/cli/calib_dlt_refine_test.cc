@@ -3,8 +3,10 @@
 // tool reports; the refinement's flags without --refine, its failures; and the covariance block
 // of a camera@1 file as calib-compare and calib-convert read it back (every malformation refused
 // with exit code 2 and one line naming the entry).
+#include <algorithm>
 #include <cmath>
 #include <functional>
+#include <map>
 #include <ostream>
 
 #include "calibration_checks.h"
@@ -106,6 +108,27 @@ TEST_F(CliCalibDltRefine, OutlierListedAndUncertaintyReported) {
   EXPECT_EQ(u.at("world_points").size(), 1u);
   EXPECT_EQ(u.at("pixels").size(), 1u);
   EXPECT_EQ(u.at("grid").at("cells").size(), 48u);
+}
+
+// Without --refine the DLT camera has no covariance: the summary lists each parameter's value as
+// written and says it has no σ, never a σ it does not have.
+TEST_F(CliCalibDltRefine, WithoutRefineTheSummarySaysThereIsNoSigma) {
+  Synth("in/volume.json", VolumeArgs());
+  const CommandResult r = Run(kTool, {"in/volume.json", "-o", "out/camera.json"});
+  ASSERT_EQ(r.exit_code, kOk) << r.err;
+  const Json camera = ReadJson("out/camera.json");
+  EXPECT_FALSE(camera.contains("covariance"));
+  const std::map<std::string, double> k = {{"fx", camera["K"][0][0]}, {"fy", camera["K"][1][1]},
+                                           {"cx", camera["K"][0][2]}, {"cy", camera["K"][1][2]},
+                                           {"s", camera["K"][0][1]}};
+  for (const auto& [name, value] : k) {
+    const size_t at = r.err.find("\n  " + name + " ");
+    ASSERT_NE(at, std::string::npos) << name << "\n" << r.err;
+    const std::string line = r.err.substr(at + 1, r.err.find('\n', at + 1) - at - 1);
+    EXPECT_NEAR(std::stod(line.substr(2 + name.size())), value, 1e-7 * std::max(1.0, std::abs(value))) << line;
+    EXPECT_NE(line.find("(no covariance)"), std::string::npos) << line;
+    EXPECT_EQ(line.find('['), std::string::npos) << line;
+  }
 }
 
 TEST_F(CliCalibDltRefine, WithoutRefineTheRefinementFlagsAreRefused) {
