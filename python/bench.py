@@ -15,6 +15,7 @@ import os
 import pathlib
 import subprocess
 import sys
+import tempfile
 import timeit
 
 import numpy as np
@@ -22,33 +23,25 @@ import numpy as np
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 
 
-def volume_scene(vstcal, n, noise_px=0.2, seed=42):
-    """tests/support/scenes.cc RandomVolumeScene's geometry: K, pose and volume (1200 × 900 × 2000 mm) the
-    same, points drawn by NumPy (the DLT's cost does not depend on the draw)."""
-    K = np.array([[1700, 0.8, 652.3], [0, 1695, 498.1], [0, 0, 1.0]])
-    cam = vstcal.Camera.from_K(K, (1280, 1024))
-    rotvec = np.array([0.05, -0.2, 0.03])
-    theta = np.linalg.norm(rotvec)
-    k = rotvec / theta
-    Kx = np.array([[0, -k[2], k[1]], [k[2], 0, -k[0]], [-k[1], k[0], 0]])
-    R = np.eye(3) + np.sin(theta) * Kx + (1 - np.cos(theta)) * Kx @ Kx
-    t = np.array([-120.0, 80.0, 2600.0])
-    rng = np.random.default_rng(seed)
-    points, pixels = [], []
-    while len(points) < n:
-        a = rng.uniform(size=3)
-        p = np.array([(a[0] - 0.5) * 1200, (a[1] - 0.5) * 900, a[2] * 2000])
-        px = cam.project(np.ascontiguousarray(R @ p + t))
-        if not cam.in_image(px.reshape(1, 2))[0]:
-            continue
-        points.append(p)
-        pixels.append(px + noise_px * rng.standard_normal(2))
-    return np.ascontiguousarray(points), np.ascontiguousarray(pixels)
+def benchmark_scenes(bench, sizes):
+    """{n: (points, pixels)}: the scenes bench_dlt times (tests/support/scenes.cc RandomVolumeScene, seed 42,
+    0.2 px noise), written by `bench_dlt --write-scenes` at %.17g so that the doubles are the same. The
+    DLT's refusal certificate is data-dependent: another draw of the same size may cost more or less."""
+    with tempfile.TemporaryDirectory() as folder:
+        subprocess.run([str(bench / "bench_dlt"), "--write-scenes", folder], check=True)
+        scenes = {}
+        for n in sizes:
+            table = np.loadtxt(pathlib.Path(folder) / f"dlt_scene_{n}.txt", ndmin=2)
+            if table.shape != (n, 5):
+                raise SystemExit(f"bench.py: bench_dlt wrote {table.shape[0]} points for the {n}-point scene")
+            scenes[n] = (np.ascontiguousarray(table[:, :3]), np.ascontiguousarray(table[:, 3:]))
+        return scenes
 
 
-def best_seconds(function, repeats, target_seconds=0.2):
-    """The fastest time of one call, timeit-style: calls per repeat chosen to last ~target_seconds."""
-    timer = timeit.Timer(function)
+def best_seconds(call, repeats, target_seconds=0.2, **names):
+    """The fastest time of one call, timeit-style: calls per repeat chosen to last ~target_seconds. The
+    call is a statement over `names` (not a lambda, whose own call would be counted as the binding's)."""
+    timer = timeit.Timer(call, globals=names)
     number, elapsed = timer.autorange()
     number = max(1, int(number * target_seconds / max(elapsed, 1e-9)))
     return min(timer.repeat(repeat=repeats, number=number)) / number
@@ -77,7 +70,7 @@ def main():
     import vstcal
     bench = pathlib.Path(args.build) / "tests" / "bench"
     chain = str(ROOT / "datasets" / "vst" / "seed001.json")
-    scenes = {n: volume_scene(vstcal, n) for n in (60, 600, 6000)}
+    scenes = benchmark_scenes(bench, (60, 600, 6000))
     observations = {n: vstcal.Observations(*scenes[n]) for n in scenes}
     best = {}
 
@@ -91,12 +84,13 @@ def main():
             for name, seconds in google_benchmark(bench / "bench_dlt", "BM_DltNormalEquations", 3).items():
                 keep(("cpp", name), seconds)
             for n in scenes:
-                keep(("py", n), best_seconds(lambda: vstcal.solve_dlt(observations[n]), 3))
-                keep(("arrays", n), best_seconds(lambda: vstcal.solve_dlt(*scenes[n]), 3))
+                keep(("py", n), best_seconds("solve(o)", 3, solve=vstcal.solve_dlt, o=observations[n]))
+                keep(("arrays", n), best_seconds("solve(x, u)", 3, solve=vstcal.solve_dlt, x=scenes[n][0], u=scenes[n][1]))
+            keep(("floor", 0), best_seconds("length()", 3, length=observations[60].__len__))
         if args.only != "dlt":
             for name, seconds in google_benchmark(bench / "bench_errsim", "BM_ErrSimRun", 3).items():
                 keep(("cpp", name), seconds)
-            keep(("py", "errsim"), best_seconds(lambda: vstcal.err_sim(chain, samples=16384, seed=1, threads=1), 3, 1.0))
+            keep(("py", "errsim"), best_seconds("run(chain, samples=16384, seed=1, threads=1)", 3, 1.0, run=vstcal.err_sim, chain=chain))
 
     rows = []
     if args.only != "errsim":
@@ -109,6 +103,8 @@ def main():
         unit, scale = ("ms", 1e3) if c > 1e-3 else ("µs", 1e6)
         extra = f"{arrays * scale:.2f} {unit} ({100 * (arrays / c - 1):+.1f} %)" if arrays else ""
         print(f"{name:40s} {c * scale:>21.2f} {unit} {p * scale:>13.2f} {unit} {100 * (p / c - 1):>+7.1f} %  {extra}")
+    if args.only != "errsim":
+        print(f"the floor of any call into the module (Observations.__len__, no work): {best[('floor', 0)] * 1e6:.3f} µs")
 
 
 if __name__ == "__main__":

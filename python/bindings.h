@@ -15,6 +15,7 @@
 #include "vstcal/json/json_reader.h"
 #include "vstcal/json/json_writer.h"
 #include "vstcal/json/provenance.h"
+#include "vstcal/scene/correspondences.h"
 
 namespace vstcal::python {
 
@@ -31,6 +32,9 @@ struct Rows {
 Rows CheckedRows(const py::handle& array, const char* name, py::ssize_t cols, bool one_row_ok = true);
 // A 1-D float64 array of `size` values (any size when size < 0), checked as above.
 Rows CheckedVector(const py::handle& array, const char* name, py::ssize_t size = -1);
+// The (N, 3) points and (N, 2) pixels, and optionally (N,) positive weights, checked as above and
+// copied into vstcal's layout.
+std::vector<Observation> ObservationsOf(const py::handle& points, const py::handle& pixels, const py::handle& weights);
 
 // A new C-contiguous float64 array of the given shape, uninitialised.
 py::array_t<double> NewArray(std::vector<py::ssize_t> shape);

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <pybind11/stl.h>
@@ -14,6 +15,7 @@
 #include "vstcal/app/calib_stereo.h"
 #include "vstcal/calib/dlt.h"
 #include "vstcal/calib/pipeline.h"
+#include "vstcal/core/enum_names.h"
 #include "vstcal/core/error.h"
 #include "vstcal/estimators/decompose.h"
 #include "vstcal/formats/calib/calibration_io.h"
@@ -30,28 +32,7 @@ struct Observations {
 };
 
 Observations MakeObservations(const py::handle& points, const py::handle& pixels, const py::object& weights) {
-  const Rows p = CheckedRows(points, "points", 3, false);
-  const Rows q = CheckedRows(pixels, "pixels", 2, false);
-  if (q.n != p.n) {
-    throw InputError("pixels: " + std::to_string(q.n) + " rows for " + std::to_string(p.n) +
-                     " points; give one pixel per point, in the same order");
-  }
-  std::optional<Rows> w;
-  if (!weights.is_none()) {
-    w = CheckedVector(weights, "weights", p.n);
-    for (py::ssize_t i = 0; i < p.n; ++i) {
-      if (!(w->data[i] > 0)) throw InputError("weights[" + std::to_string(i) + "]: must be positive; drop the point instead");
-    }
-  }
-  Observations o;
-  o.list.resize(static_cast<size_t>(p.n));
-  for (py::ssize_t i = 0; i < p.n; ++i) {
-    Observation& ob = o.list[static_cast<size_t>(i)];
-    ob.point = Eigen::Vector3d(p.data[3 * i], p.data[3 * i + 1], p.data[3 * i + 2]);
-    ob.pixel = Eigen::Vector2d(q.data[2 * i], q.data[2 * i + 1]);
-    if (w) ob.weight = w->data[i];
-  }
-  return o;
+  return {ObservationsOf(points, pixels, weights)};
 }
 
 // SolveDlt and the decomposition of its P (what bench_dlt times), kept in C++ until read.
@@ -60,10 +41,11 @@ struct DltSolution {
   ProjectionDecomposition decomposition;
 };
 
-DltOptions::Solver SolverNamed(const std::string& name) {
-  if (name == "normal-equations") return DltOptions::Solver::kNormalEquations;
-  if (name == "svd") return DltOptions::Solver::kFullSvd;
-  throw InputError("solver: unknown DLT solver \"" + name + "\"; use normal-equations or svd");
+// A string_view, not a std::string: "normal-equations" is longer than the small-string buffer, and
+// its copy on every call was a tenth of the binding's cost on a 60-point DLT (docs/performance.md#python).
+DltOptions::Solver SolverNamed(std::string_view name) {
+  if (const auto solver = FromName(DltOptions::kSolverNames, name)) return *solver;
+  throw InputError("solver: unknown DLT solver \"" + std::string(name) + "\"; use " + JoinedNames(DltOptions::kSolverNames));
 }
 
 // Raises the tool's exception when the DLT failed; otherwise P's decomposition.
@@ -219,7 +201,7 @@ void RegisterSolvers(py::module_& m) {
 
   m.def(
       "solve_dlt",
-      [](const py::object& points, const py::object& pixels, const std::string& solver, bool exact_diagnostics) {
+      [](const py::object& points, const py::object& pixels, std::string_view solver, bool exact_diagnostics) {
         DltOptions options;
         options.solver = SolverNamed(solver);
         options.exact_diagnostics = exact_diagnostics;
