@@ -5,7 +5,7 @@
 #include "common/run_tool.h"
 #include "common/validators.h"
 #include "vstcal/app/calib_compare.h"
-#include "vstcal/core/check.h"
+#include "vstcal/app/outcome.h"
 
 int main(int argc, char** argv) {
   CLI::App app{
@@ -32,6 +32,6 @@ int main(int argc, char** argv) {
     const vstcal::app::Outcome outcome = vstcal::app::Compare(request);
     vstcal::tools::PrintToStdout(outcome.stdout_text);
     vstcal::app::WriteOutcome(outcome);
-    return outcome.check_failed ? vstcal::kCheckFailedExitCode : 0;
+    return vstcal::app::ExitStatus(outcome);
   });
 }

@@ -24,7 +24,7 @@ namespace vstcal::tools {
 // NoteInputFile(path) before they are read.
 // Returns the process exit code:
 //  0 ok (also for --help and --version), 2 bad usage or input, 3 degenerate data, 1 internal error;
-//  a body returns 4 (kCheckFailedExitCode, core/check.h) itself when a check it ran failed.
+//  a body returns 4 (ExitCode::kCheckFailed, app::ExitStatus) itself when a check it ran failed.
 // Every failure prints exactly one line on stderr, "<tool>: error: <message>" (or "<tool>:
 // internal error: … (please report this)" for exit code 1); control characters in the message
 // are escaped so that it stays one line.

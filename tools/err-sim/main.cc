@@ -5,7 +5,7 @@
 #include "common/run_tool.h"
 #include "err-sim/command_line.h"
 #include "vstcal/files/input_protection.h"
-#include "vstcal/core/check.h"
+#include "vstcal/app/outcome.h"
 #include "vstcal/json/json_writer.h"
 #include "vstcal/pages/errsim_html.h"
 
@@ -24,7 +24,7 @@ int main(int argc, char** argv) {
       const vstcal::app::Outcome outcome = command_line.Check(argc, argv);
       vstcal::app::WriteOutcome(outcome);
       if (!command_line.quiet()) std::cout << outcome.stdout_text;
-      return outcome.check_failed ? vstcal::kCheckFailedExitCode : 0;
+      return vstcal::app::ExitStatus(outcome);
     }
     vstcal::DeclareOutputs({command_line.output(), command_line.html()});
     const vstcal::app::ErrSimDocument outcome = command_line.Run(argc, argv);

@@ -45,4 +45,8 @@ void WriteOutcome(const Outcome& outputs) {
   }
 }
 
+int ExitStatus(const Outcome& outcome) {
+  return static_cast<int>(outcome.check_failed ? ExitCode::kCheckFailed : ExitCode::kOk);
+}
+
 }  // namespace vstcal::app

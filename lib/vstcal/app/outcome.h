@@ -31,4 +31,8 @@ struct Outcome {
 // outputs one file).
 void WriteOutcome(const Outcome& outcome);
 
+// The tool's exit status once the outcome is written: ExitCode::kCheckFailed (4) when a check
+// failed, else 0.
+int ExitStatus(const Outcome& outcome);
+
 }  // namespace vstcal::app

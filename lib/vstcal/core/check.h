@@ -1,7 +1,7 @@
 // The outcome of a threshold check a user's CI runs (calib-compare's pixel and σ bounds, err-sim
 // check's rise of each metric): one verdict per check, with the numbers in words. A failed check is
-// no error: the tool prints every verdict and exits with kCheckFailedExitCode
-// (docs/conventions.md#exit-codes).
+// no error: the tool prints every verdict and exits with ExitCode::kCheckFailed (core/error.h,
+// docs/conventions.md#exit-codes).
 #pragma once
 
 #include <span>
@@ -9,10 +9,6 @@
 #include <string_view>
 
 namespace vstcal {
-
-// The exit code of a tool whose check failed, next to core/error.h's ExitCode values (0 ok,
-// 1 internal, 2 bad input, 3 degenerate), which are errors: this one is a result.
-inline constexpr int kCheckFailedExitCode = 4;
 
 enum class CheckVerdict {
   kPass,

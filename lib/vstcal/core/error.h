@@ -17,6 +17,9 @@ enum class ExitCode : int {
   kInternal = 1,    // a bug in vstcal
   kBadInput = 2,    // bad usage or bad input: the message names file, field and fix
   kDegenerate = 3,  // degenerate data (coplanar points for DLT, ...): the message says why
+  // Not an error but a result: a check the user asked for failed (calib-compare --max-px, err-sim
+  // check; core/check.h). The tool printed every verdict and wrote its files.
+  kCheckFailed = 4,
 };
 
 class Error : public std::runtime_error {
