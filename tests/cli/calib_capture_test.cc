@@ -134,6 +134,83 @@ TEST_F(CliCalibCapture, PlanarViewsAreDeterministicWhateverTheThreads) {
 
 // Inputs are never overwritten (docs/reliability.md#inputs): an output naming an image or the
 // target description read by this run is refused with exit code 2, and the file keeps its bytes.
+// One command from images (issue 24): calib-tsai, under its other name calib-camera, given the
+// board and the images solves exactly what detect then calib-tsai solve — the same camera file and
+// the same corners file but for the provenance, which records the arguments — and writes them with
+// the overlays and the report page; the summary accounts for every image.
+TEST_F(CliCalibCapture, OneCommandFromImagesSolvesWhatTheSeparateStepsSolve) {
+  Camera();
+  Board();
+  RenderViews("in/views");
+  Ok({"detect", "in/board.target.json", "in/views", "-o", "out/corners.json"});
+  ASSERT_EQ(Run("calib-tsai", {"out/corners.json", "-o", "out/steps.json", "-q"}).exit_code, kOk);
+  const CommandResult r = Run("calib-camera", {"--target", "in/board.target.json", "in/views", "-o", "out/one.json", "--corners",
+                                               "out/one.corners.json", "--html", "out/one.html", "--overlay", "out/overlays"});
+  ASSERT_EQ(r.exit_code, kOk) << r.err;
+  EXPECT_EQ(r.err.rfind("calib-camera: 5 images: 5 found, 0 not found, 0 rejected; ", 0), 0u) << r.err;
+  EXPECT_NE(r.err.find("wrote out/one.html"), std::string::npos) << r.err;
+  Json steps = ReadJson("out/steps.json"), one = ReadJson("out/one.json");
+  EXPECT_EQ(one.at("provenance").at("tool"), "calib-camera");
+  steps.erase("provenance");
+  one.erase("provenance");
+  EXPECT_EQ(one.dump(), steps.dump());
+  Json corners = ReadJson("out/corners.json"), one_corners = ReadJson("out/one.corners.json");
+  corners.erase("provenance");
+  one_corners.erase("provenance");
+  EXPECT_EQ(one_corners.dump(), corners.dump());
+  EXPECT_EQ(List("out/overlays").size(), 5u);
+  // The page is reproj-report's for this camera and these corners: one residual figure per view.
+  ASSERT_EQ(Run("reproj-report", {"out/one.json", "out/one.corners.json", "-o", "out/report.json", "--html", "out/report.html"}).exit_code, kOk);
+  const std::string page = ReadText("out/one.html"), reference = ReadText("out/report.html");
+  EXPECT_NE(page.find("<html"), std::string::npos);
+  for (const char* view : {"view-00", "view-04"}) {
+    EXPECT_NE(page.find(view), std::string::npos) << view;
+    EXPECT_NE(reference.find(view), std::string::npos) << view;
+  }
+  // Without --corners the corners stay in memory: the same camera, and only the camera written.
+  ASSERT_EQ(Run("calib-tsai", {"--target", "in/board.target.json", "in/views", "-o", "out/mem.json", "-q"}).exit_code, kOk);
+  Json mem = ReadJson("out/mem.json");
+  mem.erase("provenance");
+  EXPECT_EQ(mem.dump(), steps.dump());
+}
+
+// The same for a volume: calib-dlt --target with the render's manifest equals detect --manifest then calib-dlt.
+TEST_F(CliCalibCapture, OneCommandFromAVolumesImages) {
+  Camera();
+  Board();
+  RenderVolume("in/volume");
+  Ok({"detect", "in/board.target.json", "--manifest", "in/volume/manifest.json", "-o", "out/corners.json"});
+  ASSERT_EQ(Run("calib-dlt", {"out/corners.json", "-o", "out/steps.json", "--refine", "-q"}).exit_code, kOk);
+  const CommandResult r =
+      Run("calib-dlt", {"--target", "in/board.target.json", "--manifest", "in/volume/manifest.json", "-o", "out/one.json", "--refine"});
+  ASSERT_EQ(r.exit_code, kOk) << r.err;
+  EXPECT_EQ(r.err.rfind("calib-dlt: 5 images: 5 found, 0 not found, 0 rejected; ", 0), 0u) << r.err;
+  Json steps = ReadJson("out/steps.json"), one = ReadJson("out/one.json");
+  steps.erase("provenance");
+  one.erase("provenance");
+  EXPECT_EQ(one.dump(), steps.dump());
+}
+
+// The input's rules: the image flags need --target, one correspondences file without it, planar
+// images are no volume for DLT; a solve that fails writes no corners file either (all or nothing).
+TEST_F(CliCalibCapture, OneCommandFromImagesRefusesWhatDoesNotFit) {
+  Camera();
+  Board();
+  RenderViews("in/views");
+  Ok({"detect", "in/board.target.json", "in/views", "-o", "in/corners.json"});
+  EXPECT_TRUE(FailsWith(Run("calib-tsai", {"in/corners.json", "in/corners.json", "-o", "out/c.json"}), "calib-tsai", kBadInput, "",
+                        {"2 inputs: give one correspondences file, or --target"}));
+  EXPECT_TRUE(FailsWith(Run("calib-tsai", {"in/corners.json", "--corners", "out/k.json", "-o", "out/c.json"}), "calib-tsai", kBadInput,
+                        "--corners: ", {"applies to images", "--target"}));
+  EXPECT_TRUE(FailsWith(Run("calib-tsai", {"-o", "out/c.json"}), "calib-tsai", kBadInput, "INPUT: ", {"--target"}));
+  EXPECT_TRUE(FailsWith(Run("calib-dlt", {"--target", "in/board.target.json", "in/views", "-o", "out/c.json", "--corners", "out/k.json"}),
+                        "calib-dlt", kBadInput, "the corners found in the images: rig: ", {"give the images' plane offsets with --manifest"}));
+  EXPECT_TRUE(FailsWith(Run("calib-camera", {"--target", "in/board.target.json", "in/views/view-00.png", "-o", "out/c.json", "--corners",
+                                             "out/k.json"}),
+                        "calib-camera", kDegenerate, "too few usable images: 1 image: 1 found", {"--min-views"}));
+  EXPECT_TRUE(OutDirEmpty());
+}
+
 TEST_F(CliCalibCapture, OutputsNeverReplaceTheImagesOrTheTarget) {
   Camera();
   Board();

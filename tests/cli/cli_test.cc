@@ -613,14 +613,14 @@ TEST_F(CliCalibDlt, MissingOutputFlag) {
 
 TEST_F(CliCalibDlt, MissingInputArgument) {
   const auto r = Run("calib-dlt", {"-o", "out/camera.json"});
-  EXPECT_TRUE(FailsWith(r, "calib-dlt", kBadInput, "CORNERS", {"required", "see calib-dlt --help"}));
+  EXPECT_TRUE(FailsWith(r, "calib-dlt", kBadInput, "INPUT: ", {"give the correspondences file, or --target TARGET.json and the images"}));
   EXPECT_TRUE(OutDirEmpty());
 }
 
 TEST_F(CliCalibDlt, TwoInputArguments) {
   Synth();
   const auto r = Run("calib-dlt", {"in/volume.json", "in/volume.json", "-o", "out/camera.json"});
-  EXPECT_TRUE(FailsWith(r, "calib-dlt", kBadInput, "", {"in/volume.json", "not expected", "see calib-dlt --help"}));
+  EXPECT_TRUE(FailsWith(r, "calib-dlt", kBadInput, "2 inputs: ", {"give one correspondences file, or --target TARGET.json before images"}));
   EXPECT_TRUE(OutDirEmpty());
 }
 

@@ -6,7 +6,7 @@
 namespace vstcal::tools {
 
 void TsaiFlags::Add(CLI::App& app) {
-  app.add_option("CORNERS", input, "vstcal/correspondences@1 file")->required()->check(kNonEmpty);
+  input.Add(app, "a volume or planar views");
   app.add_option("-o,--output", output, "camera file to write (vstcal/camera@1)")->required()->check(kNonEmpty);
   app.add_option("--variant", variant, "Tsai's variant for volumes: auto, coplanar or non-coplanar")
       ->check(CLI::IsMember(NamesOf(TsaiOptions::kVariantNames)))

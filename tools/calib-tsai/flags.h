@@ -11,7 +11,8 @@
 namespace vstcal::tools {
 
 struct TsaiFlags {
-  std::string input, output, variant = "auto", free_pp = "no";
+  CornerInput input;
+  std::string output, variant = "auto", free_pp = "no";
   std::array<double, 2> principal_point{};
   bool no_refine = false;
   CalibrationOptions options;

@@ -129,11 +129,12 @@ UncertaintyRequest CalibrationFlags::Uncertainty(const Correspondences& corners)
   return r;
 }
 
-int FinishCalibration(const std::string& tool, const std::string& input, const std::string& output,
+int FinishCalibration(const std::string& tool, const CornerInput& input, const ReadCorners& read, const std::string& output,
                       const CalibrationResult& result, const CalibrationOptions& options, const CalibrationFlags& flags,
                       const UncertaintyRequest& request, int argc, char** argv) {
-  const app::Outcome outcome = app::CalibrationOutcome(result, options, {tool, input, output, flags.residuals, request},
-                                                       MakeProvenance(tool, argc, argv));
+  const app::Outcome outcome = WithCornersAndPage(
+      app::CalibrationOutcome(result, options, {tool, input.Name(), output, flags.residuals, request}, MakeProvenance(tool, argc, argv)),
+      read, input);
   for (const std::string& w : outcome.warnings) std::cerr << w << "\n";
   app::WriteOutcome(outcome);
   if (!flags.quiet) std::cerr << outcome.summary;

@@ -9,6 +9,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "common/corner_input.h"
 #include "vstcal/calib/pipeline.h"
 #include "vstcal/formats/calib/calibration_io.h"
 
@@ -49,7 +50,9 @@ struct CalibrationFlags {
 // app::CalibrationOutcome, printed and written: a failed result throws its exit code and one-line
 // message (no warnings printed then); else the warnings, OUTPUT (and --residuals) all or nothing,
 // and unless --quiet the summary.
-int FinishCalibration(const std::string& tool, const std::string& input, const std::string& output,
+// `read` and `input`: the corners solved and where they came from (corner_input.h): a detection's
+// files and --html's page are written with the camera.
+int FinishCalibration(const std::string& tool, const CornerInput& input, const ReadCorners& read, const std::string& output,
                       const CalibrationResult& result, const CalibrationOptions& options, const CalibrationFlags& flags,
                       const UncertaintyRequest& request, int argc, char** argv);
 

@@ -3,6 +3,7 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <iostream>
 #include <sstream>
 #include <vector>
@@ -134,6 +135,16 @@ int RunTool(CLI::App& app, int argc, char** argv, const std::function<int()>& bo
 void PrintToStdout(const std::string& text) {
   std::fputs(text.c_str(), stdout);
   if (std::string problem = StdoutProblem(); !problem.empty()) throw InputError(problem);
+}
+
+std::string InvokedAs(int argc, char** argv, std::initializer_list<std::string> names) {
+  if (argc > 0 && argv[0] != nullptr) {
+    const std::string invoked = std::filesystem::path(argv[0]).filename().string();
+    for (const std::string& n : names) {
+      if (n == invoked) return n;
+    }
+  }
+  return *names.begin();
 }
 
 }  // namespace vstcal::tools

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <functional>
+#include <initializer_list>
 #include <string>
 
 #include <CLI/CLI.hpp>
@@ -29,6 +30,10 @@ namespace vstcal::tools {
 // internal error: … (please report this)" for exit code 1); control characters in the message
 // are escaped so that it stays one line.
 int RunTool(CLI::App& app, int argc, char** argv, const std::function<int()>& body);
+
+// The name a tool installed under several (`names`, the first its own) was run as: argv[0]'s file
+// name when it is one of them, else the first.
+std::string InvokedAs(int argc, char** argv, std::initializer_list<std::string> names);
 
 // Writes `text` to stdout now and throws InputError when it cannot be written (a full disk,
 // > /dev/full): a tool that also writes files prints first, so that a lost table leaves no file.

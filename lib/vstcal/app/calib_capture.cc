@@ -154,7 +154,7 @@ ImageArguments ExpandImageArguments(const std::vector<std::string>& arguments) {
   return out;
 }
 
-Outcome RunDetect(DetectCommand command, const Provenance& provenance, const Progress& progress) {
+DetectedCorners DetectCorners(DetectCommand command, const Provenance& provenance, const Progress& progress) {
   const int sources = !command.images.empty() + !command.manifest.empty() + !command.video.file.empty() + (command.video.camera_index >= 0);
   if (sources != 1) {
     throw InputError(std::string(sources == 0 ? "no images: give" : "several image sources: give only one of") +
@@ -199,14 +199,21 @@ Outcome RunDetect(DetectCommand command, const Provenance& provenance, const Pro
   for (const CaptureInput& f : files) inputs.push_back(f.path);
   if (!command.video.file.empty()) inputs.push_back(command.video.file);
 
-  if (command.output.empty()) throw InputError("-o/--output: give the correspondences file to write");
-  Outcome planned;
-  planned.files.emplace_back(command.output, "");
-  RefuseOverwriting(planned, inputs);  // before the work, not only after it
+  if (!command.output.empty()) {
+    Outcome planned;
+    planned.files.emplace_back(command.output, "");
+    RefuseOverwriting(planned, inputs);  // before the work, not only after it
+  }
   const CaptureResult result = files.empty() ? DetectInVideo(command.video, request, progress) : DetectInFiles(files, request, progress);
-  Outcome out;
+  DetectedCorners detected;
+  Outcome& out = detected.outcome;
   out.folders = {command.overlay_folder};
-  out.files.emplace_back(command.output, DumpJson(CaptureToJson(result, request, provenance)));
+  // The corners as the file holds them, read back by the file's reader: a solver given the images
+  // then solves exactly what it would solve from the written file.
+  const std::string corners_json = DumpJson(CaptureToJson(result, request, provenance));
+  detected.correspondences =
+      CorrespondencesFromJson(JsonDocument::Parse(corners_json, command.output.empty() ? "the detected corners" : command.output));
+  if (!command.output.empty()) out.files.emplace_back(command.output, corners_json);
   if (!command.overlay_folder.empty()) {
     for (size_t k = 0; k < result.images.size(); ++k) {
       if (result.detections[k].corners.empty()) continue;
@@ -217,13 +224,18 @@ Outcome RunDetect(DetectCommand command, const Provenance& provenance, const Pro
     }
   }
   RefuseOverwriting(out, inputs);
-  out.summary = "calib-capture: " + DescribeCounts(result.images) + "; " + std::to_string(NumObservations(result.correspondences)) +
+  out.summary = command.tool + ": " + DescribeCounts(result.images) + "; " + std::to_string(NumObservations(result.correspondences)) +
                 " corners in " + std::to_string(result.correspondences.views.size()) + " views (rig " +
-                (request.rig == Rig::kVolume ? "volume" : "planar-views") + "); wrote " + Join(out.files, 2);
+                (request.rig == Rig::kVolume ? "volume" : "planar-views") + ")" + (out.files.empty() ? "" : "; wrote " + Join(out.files, 2));
   if (overlays_left_out > 0) {
     out.summary += "; left out " + std::to_string(overlays_left_out) + " overlays (*.overlay.png) of an earlier --overlay";
   }
-  return out;
+  return detected;
+}
+
+Outcome RunDetect(DetectCommand command, const Provenance& provenance, const Progress& progress) {
+  if (command.output.empty()) throw InputError("-o/--output: give the correspondences file to write");
+  return DetectCorners(std::move(command), provenance, progress).outcome;
 }
 
 Outcome RunRender(const RenderCommand& command, const Provenance& provenance) {

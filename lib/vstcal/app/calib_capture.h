@@ -36,8 +36,19 @@ struct DetectCommand {
   DetectRequest detect;             // target, target_file and rig are filled in here
   std::string output;
   std::string overlay_folder;       // a PNG per image with its corners drawn (images only)
+  std::string tool = "calib-capture";  // names the summary's line
 };
 Outcome RunDetect(DetectCommand command, const Provenance& provenance, const Progress& progress = {});
+
+// detect for a solver given images (calib-tsai, calib-dlt --target): the corners in memory, read
+// back from the very text the correspondences file holds, so that solving them is solving the
+// file; and the outcome — the correspondences file when command.output is given (else none), the
+// overlays, the summary that accounts for every image.
+struct DetectedCorners {
+  Correspondences correspondences;
+  Outcome outcome;
+};
+DetectedCorners DetectCorners(DetectCommand command, const Provenance& provenance, const Progress& progress = {});
 
 // Files, folders and globs → image paths, in the order given, each folder and glob sorted by name.
 // The overlays detect --overlay writes (<view>.overlay.png) are left out of folders and globs, and

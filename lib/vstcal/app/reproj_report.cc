@@ -56,4 +56,11 @@ Outcome RunReprojReport(const ReprojReportRequest& r, const Provenance& provenan
   return outcome;
 }
 
+std::string ReprojReportPageOf(const std::string& camera_file, const std::string& camera_json,
+                               const Correspondences& corners, const std::string& corners_file) {
+  const std::vector<ReportCamera> cameras = {ReportCameraFrom(JsonDocument::Parse(camera_json, camera_file), camera_file)};
+  const ReprojReport report = BuildReprojReport(cameras, corners, corners_file, ReprojReportOptions{});
+  return ReprojReportHtml(report, FolderOf(corners_file));
+}
+
 }  // namespace vstcal::app

@@ -7,6 +7,7 @@
 
 #include "vstcal/app/outcome.h"
 #include "vstcal/json/provenance.h"
+#include "vstcal/scene/correspondences.h"
 
 namespace vstcal::app {
 
@@ -26,5 +27,12 @@ Outcome RunReprojReport(const ReprojReportRequest& request, const Provenance& pr
 
 // True when the request's first input is a stereo rig (then match_views applies).
 bool IsRigRequest(const ReprojReportRequest& request);
+
+// reproj-report's page for a camera just solved, before any file is written (calib-tsai and
+// calib-dlt --html): the camera as its file will hold it (camera@1 text, named `camera_file`)
+// against the correspondences it was solved from (named `corners_file`, whose folder the views'
+// relative image paths are tried against). The default grid, as reproj-report's.
+std::string ReprojReportPageOf(const std::string& camera_file, const std::string& camera_json,
+                               const Correspondences& corners, const std::string& corners_file);
 
 }  // namespace vstcal::app

@@ -163,9 +163,10 @@ void AppendStereoRows(std::string* out, const std::string& prefix, const std::st
 
 }  // namespace
 
-ReportCamera ReadReportCamera(const std::filesystem::path& path) {
-  const JsonDocument doc = JsonDocument::Load(path);
-  ReportCamera rc{path.string(), CameraFromJson(doc), std::nullopt};
+ReportCamera ReadReportCamera(const std::filesystem::path& path) { return ReportCameraFrom(JsonDocument::Load(path), path.string()); }
+
+ReportCamera ReportCameraFrom(const JsonDocument& doc, const std::string& name) {
+  ReportCamera rc{name, CameraFromJson(doc), std::nullopt};
   if (const auto refinement = doc.root().find("refinement")) {
     if (const auto sigma = refinement->find("sigma_px")) {
       const double s = sigma->NonNegativeNumber();

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <string>
 
+#include "vstcal/json/json_reader.h"
 #include "vstcal/json/json_writer.h"
 #include "vstcal/json/provenance.h"
 #include "vstcal/report/reprojection_report.h"
@@ -14,6 +15,8 @@ namespace vstcal {
 
 // A vstcal/camera@1 file with σ̂ (refinement.sigma_px, when present and positive) beside it.
 ReportCamera ReadReportCamera(const std::filesystem::path& path);
+// The same from a camera@1 document already in memory (a camera just solved), named `name`.
+ReportCamera ReportCameraFrom(const JsonDocument& doc, const std::string& name);
 
 OrderedJson ReprojReportToJson(const ReprojReport& report, const Provenance& provenance);
 
