@@ -819,5 +819,46 @@ TEST_F(CliCalibTsai, FailureLeavesAnExistingOutputUntouched) {
   EXPECT_EQ(ReadText("out/camera.json"), "previous result\n");
 }
 
+// Cross-validation from one run (issue 23 item 5): --split-halves writes each half's camera beside
+// the whole's, calib-compare --cross-validate weighs their difference by both covariances: a
+// model that fits agrees, k1 alone on a k1, k2 lens does not (exit code 4, its JUnit failure).
+TEST_F(CliCalibTsai, SplitHalvesThenCrossValidate) {
+  Synth("in/views.json", Override(Override(Override(PlanarArgs(), "--views", "24"), "--noise", "0.2"), "--distortion", "-0.3,0.15,0,0,0"));
+  const Json whole = Calibrate("in/views.json", {"--split-halves", "--distortion", "k1,k2"});
+  EXPECT_NE(last_.err.find("half a: 12 views"), std::string::npos) << last_.err;
+  EXPECT_NE(last_.err.find("half b: 12 views"), std::string::npos) << last_.err;
+  const Json a = ReadJson("out/camera.half-a.json"), b = ReadJson("out/camera.half-b.json");
+  ASSERT_EQ(a.at("views").size(), 12u);
+  EXPECT_EQ(a.at("views")[0].at("name"), whole.at("views")[0].at("name"));
+  EXPECT_EQ(b.at("views")[0].at("name"), whole.at("views")[1].at("name"));
+  CommandResult r = Run("calib-compare", {"out/camera.half-a.json", "out/camera.half-b.json", "--cross-validate", "--junit", "out/cv.xml"});
+  EXPECT_EQ(r.exit_code, kOk) << r.out << r.err;
+  EXPECT_NE(r.out.find("check cross-validation: pass: one camera within their uncertainty: all 12 regions jointly"), std::string::npos) << r.out;
+  EXPECT_EQ(JUnitCounts(Path("out/cv.xml")), "1 0 0\n");
+  // The lens has k2 = 0.15; each half fitted with k1 alone bends the edges by its own boards (χ² ≈ 135, 5 dof).
+  Calibrate("in/views.json", {"--split-halves", "--distortion", "k1", "-q"});
+  r = Run("calib-compare", {"out/camera.half-a.json", "out/camera.half-b.json", "--cross-validate"});
+  EXPECT_EQ(r.exit_code, kCheckFailed) << r.out << r.err;
+  EXPECT_NE(r.out.find("check cross-validation: fail: they disagree beyond their uncertainty"), std::string::npos) << r.out;
+}
+
+TEST_F(CliCalibTsai, CrossValidationRefusals) {
+  Synth("in/views.json", PlanarArgs());
+  Calibrate("in/views.json", {"-q"});
+  // The truth has no covariance: the flag is named, nothing printed.
+  CommandResult r = Run("calib-compare", {"in/views.truth.json", "out/camera.json", "--cross-validate"});
+  EXPECT_TRUE(FailsWith(r, "calib-compare", kBadInput, "in/views.truth.json: covariance: none; --cross-validate needs both cameras'", {}));
+  // One view cannot be halved.
+  Json one = ReadJson("in/views.json");
+  Json views = Json::array();
+  views.push_back(one.at("views")[0]);
+  one["views"] = views;
+  WriteJson("in/one.json", one);
+  fs::remove(Path("out/camera.json"));
+  r = Run(kTool, {"in/one.json", "-o", "out/camera.json", "--split-halves"});
+  EXPECT_TRUE(FailsWith(r, std::string(kTool), kBadInput, "", {}) || FailsWith(r, std::string(kTool), kDegenerate, "", {})) << r.err;
+  EXPECT_TRUE(OutDirEmpty());
+}
+
 }  // namespace
 }  // namespace vstcal::cli_test

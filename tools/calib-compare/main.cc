@@ -12,7 +12,7 @@ int main(int argc, char** argv) {
       "Compares two vstcal/camera@1 files, REFERENCE (e.g. ground truth) and OTHER (e.g. an estimate): "
       "differences of K, of the pose, and the pixel disagreement over a 9x9 grid of the image at a depth; "
       "optionally checks the disagreement against bounds (for CI).\n"
-      "Exit codes: 0 ok, 1 internal error, 2 bad usage or input, 4 a check failed (--max-px, --max-sigma).",
+      "Exit codes: 0 ok, 1 internal error, 2 bad usage or input, 4 a check failed (--max-px, --max-sigma, --cross-validate).",
       "calib-compare"};
   vstcal::app::CompareRequest request;
   app.add_option("REFERENCE", request.reference, "camera@1 file taken as reference")->required();
@@ -26,6 +26,9 @@ int main(int argc, char** argv) {
   app.add_option("--max-sigma", request.max_sigma,
                  "fail (exit code 4) when they disagree by more than this many σ of their summed projection "
                  "covariances (both files need a covariance)");
+  app.add_flag("--cross-validate", request.cross_validate,
+               "two calibrations of one camera from disjoint views (calib-tsai --split-halves): do they agree within "
+               "their uncertainty, region by region? (exit code 4 when not; both files need a covariance)");
   app.add_option("--junit", request.junit, "write the checks' verdicts as JUnit XML to this file (for CI)");
   return vstcal::tools::RunTool(app, argc, argv, [&] {
     vstcal::DeclareOutputs({request.junit});

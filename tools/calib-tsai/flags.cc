@@ -25,6 +25,10 @@ void TsaiFlags::Add(CLI::App& app) {
       ->check(CLI::IsMember(NamesOf(CalibrationOptions::kPlanePrincipalPointNames)))
       ->capture_default_str()
       ->excludes(raw);
+  app.add_flag("--split-halves", split_halves,
+               "also calibrate each half of the views (1st, 3rd, … and 2nd, 4th, …) into OUTPUT's <stem>.half-a.json and "
+               ".half-b.json, for calib-compare --cross-validate")
+      ->excludes(raw);
   for (CLI::Option* o : calibration.AddRefinement(app)) o->excludes(raw);
   for (CLI::Option* o : calibration.AddUncertainty(app)) o->excludes(raw);
   calibration.AddOutput(app);

@@ -14,7 +14,7 @@ struct TsaiFlags {
   CornerInput input;
   std::string output, variant = "auto", free_pp = "no";
   std::array<double, 2> principal_point{};
-  bool no_refine = false;
+  bool no_refine = false, split_halves = false;
   CalibrationOptions options;
   CalibrationFlags calibration;
 

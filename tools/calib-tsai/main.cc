@@ -3,6 +3,7 @@
 // from corners or straight from images (docs/tools/calib-tsai.md).
 #include "common/run_tool.h"
 #include "flags.h"
+#include "vstcal/app/calibration.h"
 #include "vstcal/formats/camera/correspondences_io.h"
 
 int main(int argc, char** argv) {
@@ -33,6 +34,10 @@ int main(int argc, char** argv) {
     const UncertaintyRequest request = f.calibration.Uncertainty(read.corners);
     const CalibrationResult result = Calibrate(read.corners, options);
     f.CheckUsed(app, result);
-    return tools::FinishCalibration(name, f.input, read, f.output, result, options, f.calibration, request, argc, argv);
+    app::Outcome halves;
+    if (f.split_halves && result.exit_code == ExitCode::kOk) {
+      halves = app::CalibrateHalves(read.corners, options, {name, f.input.Name(), f.output, "", request}, MakeProvenance(name, argc, argv));
+    }
+    return tools::FinishCalibration(name, f.input, read, f.output, result, options, f.calibration, request, argc, argv, std::move(halves));
   });
 }

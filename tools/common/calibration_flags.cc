@@ -131,10 +131,13 @@ UncertaintyRequest CalibrationFlags::Uncertainty(const Correspondences& corners)
 
 int FinishCalibration(const std::string& tool, const CornerInput& input, const ReadCorners& read, const std::string& output,
                       const CalibrationResult& result, const CalibrationOptions& options, const CalibrationFlags& flags,
-                      const UncertaintyRequest& request, int argc, char** argv) {
-  const app::Outcome outcome = WithCornersAndPage(
+                      const UncertaintyRequest& request, int argc, char** argv, app::Outcome extra) {
+  app::Outcome outcome = WithCornersAndPage(
       app::CalibrationOutcome(result, options, {tool, input.Name(), output, flags.residuals, request}, MakeProvenance(tool, argc, argv)),
       read, input);
+  for (auto& file : extra.files) outcome.files.push_back(std::move(file));
+  for (auto& w : extra.warnings) outcome.warnings.push_back(std::move(w));
+  outcome.summary += extra.summary;
   for (const std::string& w : outcome.warnings) std::cerr << w << "\n";
   app::WriteOutcome(outcome);
   if (!flags.quiet) std::cerr << outcome.summary;

@@ -51,9 +51,10 @@ struct CalibrationFlags {
 // message (no warnings printed then); else the warnings, OUTPUT (and --residuals) all or nothing,
 // and unless --quiet the summary.
 // `read` and `input`: the corners solved and where they came from (corner_input.h): a detection's
-// files and --html's page are written with the camera.
+// files and --html's page are written with the camera; so are `extra`'s files (calib-tsai
+// --split-halves' cameras), its summary after the camera's.
 int FinishCalibration(const std::string& tool, const CornerInput& input, const ReadCorners& read, const std::string& output,
                       const CalibrationResult& result, const CalibrationOptions& options, const CalibrationFlags& flags,
-                      const UncertaintyRequest& request, int argc, char** argv);
+                      const UncertaintyRequest& request, int argc, char** argv, app::Outcome extra = {});
 
 }  // namespace vstcal::tools

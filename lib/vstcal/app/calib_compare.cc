@@ -32,11 +32,41 @@ void CheckThreshold(const std::optional<double>& value, const char* flag, const 
   }
 }
 
-void RequireCovariance(const CalibratedCamera& camera, const std::string& file) {
+void RequireCovariance(const CalibratedCamera& camera, const std::string& file, const char* flag) {
   if (!camera.covariance || camera.covariance->empty()) {
-    throw InputError(file + ": covariance: none; --max-sigma needs both cameras' covariances (write them with "
+    throw InputError(file + ": covariance: none; " + flag + " needs both cameras' covariances (write them with "
                             "calib-dlt --refine or calib-tsai), or bound the pixels with --max-px");
   }
+}
+
+// The regions' table and the verdict, and the check it makes.
+CheckResult AppendCrossValidation(std::string* s, const CrossValidation& v) {
+  Append(s, "cross-validation, intrinsics only, %d×%d regions (m² is χ²₂ when both calibrations are right; p = exp(−m²/2)):\n", v.cols,
+         v.rows);
+  Append(s, "%-8s %-18s %10s %8s %8s\n", "region", "pixel", "|Δ| px", "m σ", "p");
+  for (const RegionAgreement& r : v.regions) {
+    char where[32], pixel[40];
+    std::snprintf(where, sizeof where, "%d,%d", r.col + 1, r.row + 1);
+    std::snprintf(pixel, sizeof pixel, "(%.1f, %.1f)", r.pixel.x(), r.pixel.y());
+    if (r.p_value) {
+      Append(s, "%-8s %-18s %10.4f %8.2f %8.2g\n", where, pixel, *r.distance_px, *r.sigma, *r.p_value);
+    } else {
+      Append(s, "%-8s %-18s %10s\n", where, pixel, r.distance_px ? "(no σ)" : "(no ray)");
+    }
+  }
+  CheckResult check{"cross-validation", v.agree ? CheckVerdict::kPass : CheckVerdict::kFail, ""};
+  if (!v.p_value) {
+    check.verdict = CheckVerdict::kFail;
+    check.message = "no region has a defined uncertainty";
+    return check;
+  }
+  char text[200];
+  std::snprintf(text, sizeof text, "all %zu regions jointly: χ² %.3g with %d degrees of freedom, p %.2g %s %.2g", v.tested, v.chi2, v.dof,
+                *v.p_value, v.agree ? "≥" : "<", v.alpha);
+  check.message = std::string(v.agree ? "one camera within their uncertainty: "
+                                      : "they disagree beyond their uncertainty (a lens model that does not fit, a camera that "
+                                        "changed, or σ's that are too small): ") + text;
+  return check;
 }
 
 CheckResult Bound(std::string name, std::optional<double> value, double limit, const char* unit, const std::string& what) {
@@ -82,13 +112,14 @@ std::vector<CheckResult> Checks(const CompareRequest& request, const CameraCompa
 Outcome Compare(const CompareRequest& request) {
   CheckThreshold(request.max_px, "--max-px", "px");
   CheckThreshold(request.max_sigma, "--max-sigma", "σ (e.g. 3)");
-  if (!request.junit.empty() && !request.max_px && !request.max_sigma) {
-    throw InputError("--junit: no check to report; give --max-px or --max-sigma too");
+  if (!request.junit.empty() && !request.max_px && !request.max_sigma && !request.cross_validate) {
+    throw InputError("--junit: no check to report; give --max-px, --max-sigma or --cross-validate too");
   }
   const CalibratedCamera a = ReadCamera(request.reference), b = ReadCamera(request.other);
-  if (request.max_sigma) {
-    RequireCovariance(a, request.reference);
-    RequireCovariance(b, request.other);
+  for (const auto& [flag, wanted] : {std::pair{"--max-sigma", request.max_sigma.has_value()}, {"--cross-validate", request.cross_validate}}) {
+    if (!wanted) continue;
+    RequireCovariance(a, request.reference, flag);
+    RequireCovariance(b, request.other, flag);
   }
   const CameraComparison c = [&] {
     try {
@@ -137,7 +168,8 @@ Outcome Compare(const CompareRequest& request) {
       }
     }
   }
-  const std::vector<CheckResult> checks = Checks(request, c, at_points);
+  std::vector<CheckResult> checks = Checks(request, c, at_points);
+  if (request.cross_validate) checks.push_back(AppendCrossValidation(&s, CrossValidate(a, b)));
   size_t failed = 0;
   for (const CheckResult& r : checks) {
     s += "check " + r.name + ": " + std::string(CheckVerdictName(r.verdict)) + ": " + r.message + "\n";

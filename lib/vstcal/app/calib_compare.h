@@ -17,6 +17,9 @@ struct CompareRequest {
   std::string test_points;         // correspondences@1 file; empty: none
   std::optional<double> max_px;    // fail when any disagreement exceeds it (px)
   std::optional<double> max_sigma;  // fail when any disagreement exceeds it in σ (both cameras need a covariance)
+  // Cross-validation of two calibrations of one camera from disjoint data (CrossValidate): a table
+  // of the image's regions and a check that fails when they disagree beyond their uncertainty.
+  bool cross_validate = false;
   std::string junit;               // JUnit XML of the checks; empty: none
 };
 

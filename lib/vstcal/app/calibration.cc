@@ -69,4 +69,35 @@ Outcome CalibrationOutcome(const CalibrationResult& result, const CalibrationOpt
   return outcome;
 }
 
+Outcome CalibrateHalves(const Correspondences& corners, const CalibrationOptions& options, const CalibrationFiles& files,
+                        const Provenance& provenance) {
+  if (corners.views.size() < 2) {
+    throw InputError("--split-halves: " + files.input + " has " + std::to_string(corners.views.size()) +
+                     " view; halves need at least one view each (two calibrations need twice the views one needs)");
+  }
+  Outcome out;
+  const std::filesystem::path output(files.output);
+  for (int half = 0; half < 2; ++half) {
+    const std::string name = half == 0 ? "a" : "b";
+    Correspondences part = corners;
+    part.views.clear();
+    for (size_t v = static_cast<size_t>(half); v < corners.views.size(); v += 2) part.views.push_back(corners.views[v]);
+    const CalibrationResult result = Calibrate(part, options);
+    const std::string where = "--split-halves: half " + name + " (" + std::to_string(part.views.size()) + " views)";
+    if (result.exit_code != ExitCode::kOk) throw Error(result.exit_code, where + ": " + result.message + "; give more views");
+    CalibrationFiles half_files = files;
+    half_files.input = files.input + " (half " + name + ")";
+    half_files.output = (output.parent_path() / (output.stem().string() + ".half-" + name + ".json")).string();
+    half_files.residuals.clear();
+    Outcome one = CalibrationOutcome(result, options, half_files, provenance);
+    out.files.push_back(std::move(one.files.front()));
+    for (std::string& w : one.warnings) out.warnings.push_back(std::move(w));
+    char line[160];
+    std::snprintf(line, sizeof line, "  half %s: %zu views, RMS %.4f px; wrote %s\n", name.c_str(), part.views.size(),
+                  result.camera.fit ? result.camera.fit->overall.rms_px : 0.0, half_files.output.c_str());
+    out.summary += line;
+  }
+  return out;
+}
+
 }  // namespace vstcal::app

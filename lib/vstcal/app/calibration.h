@@ -24,6 +24,14 @@ struct CalibrationFiles {
 Outcome CalibrationOutcome(const CalibrationResult& result, const CalibrationOptions& options,
                            const CalibrationFiles& files, const Provenance& provenance);
 
+// calib-tsai --split-halves (docs/tools/calib-tsai.md#cross-validation): the views split into two
+// halves — the 1st, 3rd, 5th … and the 2nd, 4th, 6th … in file order — each calibrated as the whole
+// was, their cameras written beside files.output as <stem>.half-a.json and <stem>.half-b.json for
+// calib-compare --cross-validate. InputError naming the flag when there are fewer than 2 views, and
+// the half's failure (with its exit code) when a half cannot be calibrated.
+Outcome CalibrateHalves(const Correspondences& corners, const CalibrationOptions& options, const CalibrationFiles& files,
+                        const Provenance& provenance);
+
 // The two kinds of projection uncertainty, each labelled, at the image centre at the calibration
 // points' median depth and at each requested pixel; empty without a covariance.
 std::string UncertaintySummary(const CalibrationResult& result, const UncertaintyRequest& request);

@@ -4,6 +4,7 @@
 #include <limits>
 
 #include <Eigen/Eigenvalues>
+#include <boost/math/distributions/chi_squared.hpp>
 
 #include "vstcal/core/error.h"
 #include "vstcal/estimators/uncertainty.h"
@@ -112,6 +113,84 @@ std::vector<PointDisagreement> CompareAtTestPoints(const CalibratedCamera& a, co
       if (ea && eb) d.sigma = DisagreementSigma(*qb - *qa, ea->covariance, eb->covariance);
     }
     out.push_back(std::move(d));
+  }
+  return out;
+}
+
+CrossValidation CrossValidate(const CalibratedCamera& a, const CalibratedCamera& b, int cols, int rows, double alpha) {
+  if (a.camera.image_size.width != b.camera.image_size.width || a.camera.image_size.height != b.camera.image_size.height) {
+    throw InputError("image_size: the two calibrations are of different sensors; cross-validate two calibrations of one camera");
+  }
+  if (!HasCovariance(a) || !HasCovariance(b)) {
+    throw InputError("covariance: cross-validation weighs the difference by both calibrations' uncertainty; give two refined cameras");
+  }
+  CrossValidation out;
+  out.cols = cols;
+  out.rows = rows;
+  out.alpha = alpha;
+  // Intrinsics only, a camera-frame direction: any depth gives the same projections and ellipses.
+  constexpr double kDepth = 1000.0;
+  const ImageSize& size = a.camera.image_size;
+  std::vector<Eigen::Vector2d> differences;
+  std::vector<Eigen::MatrixXd> jacobians_a, jacobians_b;
+  for (int r = 0; r < rows; ++r) {
+    for (int c = 0; c < cols; ++c) {
+      RegionAgreement region;
+      region.col = c;
+      region.row = r;
+      region.pixel = Eigen::Vector2d(-0.5 + size.width * (c + 0.5) / cols, -0.5 + size.height * (r + 0.5) / rows);
+      const auto ray = a.camera.Unproject(region.pixel);
+      const auto q = ray ? b.camera.Project(*ray * kDepth) : std::nullopt;
+      if (q) {
+        region.distance_px = (*q - region.pixel).norm();
+        const auto ja = IntrinsicsJacobianAt(a, *ray * kDepth), jb = IntrinsicsJacobianAt(b, *ray * kDepth);
+        if (ja && jb) {
+          differences.push_back(*q - region.pixel);
+          jacobians_a.push_back(*ja);
+          jacobians_b.push_back(*jb);
+        }
+        const auto ea = ProjectionUncertaintyAtPixel(a, region.pixel, kDepth, ProjectionUncertaintyKind::kIntrinsicsOnly);
+        const auto eb = ProjectionUncertaintyAtPixel(b, *q, kDepth, ProjectionUncertaintyKind::kIntrinsicsOnly);
+        if (ea && eb) {
+          region.sigma = DisagreementSigma(*q - region.pixel, ea->covariance, eb->covariance);
+          region.p_value = std::exp(-0.5 * *region.sigma * *region.sigma);
+          out.min_p = out.min_p ? std::min(*out.min_p, *region.p_value) : *region.p_value;
+          ++out.tested;
+        }
+      }
+      out.regions.push_back(region);
+    }
+  }
+  if (!differences.empty()) {
+    const auto n = static_cast<Eigen::Index>(differences.size());
+    Eigen::VectorXd d(2 * n);
+    Eigen::MatrixXd Ja(2 * n, jacobians_a.front().cols()), Jb(2 * n, jacobians_b.front().cols());
+    for (Eigen::Index k = 0; k < n; ++k) {
+      d.segment<2>(2 * k) = differences[static_cast<size_t>(k)];
+      Ja.middleRows(2 * k, 2) = jacobians_a[static_cast<size_t>(k)];
+      Jb.middleRows(2 * k, 2) = jacobians_b[static_cast<size_t>(k)];
+    }
+    // One Jacobian for both when they name the same parameters: to first order the two are equal,
+    // and their O(δθ) difference would otherwise add directions of near-zero variance that
+    // amplify the noise (rank(C) is then at most the number of parameters, as it should be).
+    if (a.covariance->parameters == b.covariance->parameters) Ja = Jb = 0.5 * (Ja + Jb);
+    const Eigen::MatrixXd C = PropagateCovariance(*a.covariance, Ja) + PropagateCovariance(*b.covariance, Jb);
+    Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(C);
+    const double largest = eig.eigenvalues().maxCoeff();
+    const Eigen::VectorXd along = eig.eigenvectors().transpose() * d;
+    bool beyond = false;  // a difference where neither calibration has any uncertainty
+    for (Eigen::Index i = 0; i < along.size(); ++i) {
+      if (eig.eigenvalues()(i) > 1e-12 * largest) {
+        out.chi2 += along(i) * along(i) / eig.eigenvalues()(i);
+        ++out.dof;
+      } else if (std::abs(along(i)) > 1e-9) {
+        beyond = true;
+      }
+    }
+    if (beyond) out.chi2 = std::numeric_limits<double>::infinity();
+    out.p_value = out.dof == 0 ? 1.0 : std::isinf(out.chi2) ? 0.0
+                                     : boost::math::cdf(boost::math::complement(boost::math::chi_squared(out.dof), out.chi2));
+    out.agree = *out.p_value >= alpha;
   }
   return out;
 }

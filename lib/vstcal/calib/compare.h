@@ -52,6 +52,34 @@ struct PointDisagreement {
 std::vector<PointDisagreement> CompareAtTestPoints(const CalibratedCamera& a, const CalibratedCamera& b,
                                                    const Correspondences& corners);
 
+// Cross-validation (docs/math/uncertainty.md#cross-validation): are two calibrations of one camera
+// from disjoint data — two halves of the views — one camera within their uncertainty? At the centre
+// of each of cols × rows image cells, a's ray is projected by both cameras (the same camera-frame
+// direction: poses play no part, the two halves' boards are not the same) and the difference is
+// measured in σ of the two intrinsics-only projection uncertainties, which are independent: m² is
+// χ²₂ when both are right, so P(m² ≥ observed) = exp(−m²/2), which says where they disagree. The
+// verdict is one joint test over all cells, since the cells share the parameters: the stacked
+// differences d weighed by their joint covariance C = J (Σ_a + Σ_b) Jᵀ, dᵀ C⁺ d, is χ² with rank(C)
+// degrees of freedom when both are right; they disagree when its p is below alpha. Both cameras
+// need a covariance (InputError otherwise).
+struct RegionAgreement {
+  int col = 0, row = 0;
+  Eigen::Vector2d pixel = Eigen::Vector2d::Zero();  // the cell's centre, a's pixel
+  std::optional<double> distance_px, sigma, p_value;  // nullopt where a projection or its uncertainty is undefined
+};
+struct CrossValidation {
+  int cols = 0, rows = 0;
+  double alpha = 0.01;
+  std::vector<RegionAgreement> regions;  // row by row
+  size_t tested = 0;                     // cells with a p-value
+  std::optional<double> min_p;           // of the cells
+  double chi2 = 0;                       // the joint statistic dᵀ C⁺ d
+  int dof = 0;                           // rank(C)
+  std::optional<double> p_value;         // P(χ²_dof ≥ chi2); nullopt when no cell was tested
+  bool agree = true;
+};
+CrossValidation CrossValidate(const CalibratedCamera& a, const CalibratedCamera& b, int cols = 4, int rows = 3, double alpha = 0.01);
+
 // `depth` defaults to the depth of the world origin in a's camera frame when both cameras are
 // posed (a volume calibration), else 1000 length units. Throws InputError when the cameras
 // differ in image size or length unit.

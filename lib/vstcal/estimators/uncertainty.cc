@@ -127,6 +127,13 @@ std::optional<Ellipse> ProjectionUncertaintyAtPixel(const CalibratedCamera& c, c
   return Propagate(c, p);
 }
 
+std::optional<Eigen::MatrixXd> IntrinsicsJacobianAt(const CalibratedCamera& c, const Eigen::Vector3d& p_cam) {
+  if (!HasCovariance(c)) return std::nullopt;
+  const auto pj = Differentiate(c.camera, p_cam);
+  if (!pj) return std::nullopt;
+  return IntrinsicColumns(c, *pj).J;
+}
+
 std::vector<UncertaintyCell> ProjectionUncertaintyGrid(const CalibratedCamera& c, double depth, int cols, int rows,
                                                        ProjectionUncertaintyKind kind) {
   VSTCAL_CHECK(cols > 0 && rows > 0, "grid size");

@@ -51,6 +51,12 @@ struct UncertaintyCell {
   Ellipse ellipse;
 };
 
+// ∂q/∂θ at a camera-frame point: 2 × (the covariance's parameters), the intrinsics' columns filled
+// and the poses' zero — for a joint test over many points, whose rows are stacked and weighed with
+// PropagateCovariance (calib-compare --cross-validate). nullopt without a covariance or outside
+// the model's domain.
+std::optional<Eigen::MatrixXd> IntrinsicsJacobianAt(const CalibratedCamera& camera, const Eigen::Vector3d& p_cam);
+
 // A cols × rows grid of pixel-cell centres over the image at one depth (cells where the model
 // has no ray are left out).
 std::vector<UncertaintyCell> ProjectionUncertaintyGrid(const CalibratedCamera& camera, double depth, int cols, int rows,
