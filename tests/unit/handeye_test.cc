@@ -15,6 +15,8 @@
 #include "vstcal/core/error.h"
 #include "vstcal/geometry/rotation.h"
 #include "vstcal/handeye/closed_form.h"
+#include "vstcal/handeye/refine.h"
+#include "support/sanitizers.h"
 
 namespace vstcal {
 namespace {
@@ -148,6 +150,108 @@ TEST(HandEyeClosedForm, RefusesMotionAboutOneAxisAndTooFewPoses) {
     EXPECT_NE(std::string(e.what()).find("tilt or roll it as well as turning it"), std::string::npos) << e.what();
   }
   EXPECT_THROW(SolveHandEyeClosedForm(Samples(2, 4)), DegenerateError);
+}
+
+}  // namespace
+}  // namespace vstcal
+
+namespace vstcal {
+namespace {
+
+// A headset moving in front of a fixed board for 10 s: the camera at ~600 mm from a 9×6 board,
+// turning about all three axes; the tracker reports at 100 Hz on its own clock, the camera takes
+// 30 images whose times are δ behind (a view at camera time t shows the pose at tracker time t + δ).
+struct Recording {
+  Camera camera = Camera::FromK((Eigen::Matrix3d() << 600, 0, 319.5, 0, 600, 239.5, 0, 0, 1).finished(), ImageSize{640, 480});
+  std::vector<TrackedPose> log;
+  std::vector<TimedView> views;
+};
+
+Rigid3d BoardFromCamera(double tau) {
+  return Rigid3d::FromRotvec(Eigen::Vector3d(0.25 * std::sin(0.7 * tau), 0.25 * std::sin(1.1 * tau + 1), 0.3 * std::sin(0.5 * tau + 2)),
+                             Eigen::Vector3d(120 + 100 * std::sin(0.6 * tau), 75 + 60 * std::sin(0.9 * tau), -600 + 80 * std::sin(0.4 * tau)));
+}
+
+Recording Record(double delta, double noise_px, uint64_t seed) {
+  Recording r;
+  for (int k = 0; k <= 1000; ++k) {
+    const double tau = 0.01 * k;
+    r.log.push_back({tau, kTrackerFromBoard * BoardFromCamera(tau) * kHmdFromCamera.inverse()});
+  }
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> g(0, 1);
+  for (int i = 0; i < 30; ++i) {
+    TimedView v;
+    v.name = "frame-" + std::to_string(i);
+    v.time = 0.5 + 0.3 * i;
+    const Rigid3d camera_from_board = BoardFromCamera(v.time + delta).inverse();
+    for (int row = 0; row < 6; ++row) {
+      for (int col = 0; col < 9; ++col) {
+        const Eigen::Vector3d P(30.0 * col, 30.0 * row, 0);
+        const auto q = r.camera.Project(camera_from_board * P);
+        if (!q) continue;
+        v.observations.push_back({P, *q + noise_px * Eigen::Vector2d(g(rng), g(rng)), 1.0});
+      }
+    }
+    r.views.push_back(std::move(v));
+  }
+  return r;
+}
+
+TEST(HandEyeRefinement, RecoversTheTimeOffsetAndBothPosesWithoutNoise) {
+  const Recording r = Record(0.03, 0, 1);
+  const HandEyeSolution s = SolveHandEye(r.camera, r.log, r.views);
+  EXPECT_NEAR(s.start_time_offset, 0.03, 0.0051);  // the coarse search's step
+  EXPECT_NEAR(s.time_offset, 0.03, 2e-4);
+  EXPECT_LT(AngleDeg(s.hmd_from_camera.R, kHmdFromCamera.R), 2e-3);
+  EXPECT_LT((s.hmd_from_camera.t - kHmdFromCamera.t).norm(), 0.05);
+  EXPECT_LT((s.tracker_from_board.t - kTrackerFromBoard.t).norm(), 0.05);
+  EXPECT_LT(s.rms_px, 0.01);  // what remains is the geodesic interpolation between 100 Hz reports
+}
+
+// With 0.2 px of corner noise: each estimate within 3.5σ of the truth by its own covariance, and —
+// over 80 recordings — the spread of δ and of X's translation within 25 % of the predicted σ (the
+// standard error of an empirical σ from 80 draws is 8 %; 150 recordings gave 1.02 and 0.94).
+TEST(HandEyeRefinement, PredictedSigmasMatchTheSpread) {
+  VSTCAL_STATISTICAL_TEST_RELEASE_ONLY();
+  std::vector<double> deltas, xs;
+  double predicted_delta = 0, predicted_x = 0;
+  constexpr int kRuns = 80;
+  for (int run = 0; run < kRuns; ++run) {
+    const Recording r = Record(0.03, 0.2, 10 + static_cast<uint64_t>(run));
+    const HandEyeSolution s = SolveHandEye(r.camera, r.log, r.views);
+    ASSERT_EQ(s.covariance.rows(), 13);
+    // X's translation moves with the left perturbation as dt = −[t]× ω + ρ.
+    Eigen::Matrix<double, 3, 6> dt_d_tangent;
+    dt_d_tangent << -Hat(s.hmd_from_camera.t), Eigen::Matrix3d::Identity();
+    const Eigen::Matrix3d cov_t = dt_d_tangent * s.covariance.topLeftCorner<6, 6>() * dt_d_tangent.transpose();
+    const double sd = std::sqrt(s.covariance(12, 12)), sx = std::sqrt(cov_t(0, 0));
+    EXPECT_LT(std::abs(s.time_offset - 0.03), 3.5 * sd) << run;
+    deltas.push_back(s.time_offset);
+    xs.push_back(s.hmd_from_camera.t.x());
+    predicted_delta += sd / kRuns;
+    predicted_x += sx / kRuns;
+    EXPECT_NEAR(s.sigma_px, 0.2, 0.02);
+  }
+  const auto sd = [](const std::vector<double>& v) {
+    double m = 0, ss = 0;
+    for (double x : v) m += x / static_cast<double>(v.size());
+    for (double x : v) ss += (x - m) * (x - m);
+    return std::sqrt(ss / static_cast<double>(v.size() - 1));
+  };
+  ::testing::Test::RecordProperty("delta_empirical_over_predicted", ::testing::PrintToString(sd(deltas) / predicted_delta));
+  ::testing::Test::RecordProperty("x_empirical_over_predicted", ::testing::PrintToString(sd(xs) / predicted_x));
+  EXPECT_NEAR(sd(deltas) / predicted_delta, 1.0, 0.25);
+  EXPECT_NEAR(sd(xs) / predicted_x, 1.0, 0.25);
+}
+
+TEST(HandEyeRefinement, RefusesAViewOutsideTheLogAndAnUnsortedLog) {
+  Recording r = Record(0.0, 0, 2);
+  r.views.back().time = 20;
+  EXPECT_THROW(SolveHandEye(r.camera, r.log, r.views), InputError);
+  r = Record(0.0, 0, 2);
+  std::swap(r.log[5], r.log[6]);
+  EXPECT_THROW(SolveHandEye(r.camera, r.log, r.views), InputError);
 }
 
 }  // namespace

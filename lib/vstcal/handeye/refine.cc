@@ -1,0 +1,182 @@
+#include "vstcal/handeye/refine.h"
+
+#include <cmath>
+#include <limits>
+
+#include <Eigen/Dense>
+#include <ceres/ceres.h>
+
+#include "vstcal/core/error.h"
+#include "vstcal/estimators/pose_refine.h"
+#include "vstcal/geometry/rotation.h"
+
+namespace vstcal {
+namespace {
+
+// One corner's residual. X and Z are left perturbations (ω, ρ) of fixed reference poses, so that
+// the covariance at the solution, computed with the references moved there, is the convention's
+// left-perturbation tangent (docs/conventions.md#poses-in-optimisation).
+struct CornerCost {
+  const Camera* camera;
+  std::span<const TrackedPose> log;
+  std::span<const Eigen::Vector3d> steps;
+  const Rigid3d* x0;
+  const Rigid3d* z0;
+  double view_time;
+  Eigen::Vector3d point;
+  Eigen::Vector2d pixel;
+
+  template <typename T>
+  bool operator()(const T* x, const T* z, const T* delta, T* r) const {
+    const Rigid3<T> X = PerturbLeft(x0->cast<T>(), Vec3<T>(x[0], x[1], x[2]), Vec3<T>(x[3], x[4], x[5]));
+    const Rigid3<T> Z = PerturbLeft(z0->cast<T>(), Vec3<T>(z[0], z[1], z[2]), Vec3<T>(z[3], z[4], z[5]));
+    const std::optional<Rigid3<T>> H = InterpolatePose(log, steps, T(view_time) + delta[0]);
+    if (!H) return false;
+    const Vec3<T> p = (X.inverse() * H->inverse() * Z) * point.cast<T>();
+    T params[kMaxLensParams];
+    for (size_t i = 0; i < camera->params.size(); ++i) params[i] = T(camera->params[i]);
+    T q[2];
+    if (!ProjectWith(camera->model, params, p.data(), q)) return false;
+    r[0] = q[0] - T(pixel.x());
+    r[1] = q[1] - T(pixel.y());
+    return true;
+  }
+};
+
+void CheckLog(std::span<const TrackedPose> log) {
+  if (log.size() < 2) throw InputError("poses: " + std::to_string(log.size()) + " reports; the tracker's log needs at least 2");
+  for (size_t k = 1; k < log.size(); ++k) {
+    if (!(log[k].time > log[k - 1].time)) {
+      throw InputError("poses[" + std::to_string(k) + "].time: " + std::to_string(log[k].time) + " is not after the report before it (" +
+                       std::to_string(log[k - 1].time) + "); sort the log by time and drop duplicates");
+    }
+  }
+}
+
+// Each view's PnP pose and the tracker's pose at its time + δ: the closed form's samples.
+std::vector<HandEyeSample> Samples(std::span<const TrackedPose> log, std::span<const Eigen::Vector3d> steps,
+                                   const std::vector<Rigid3d>& camera_from_board, std::span<const TimedView> views, double delta) {
+  std::vector<HandEyeSample> out;
+  for (size_t v = 0; v < views.size(); ++v) {
+    if (const auto H = InterpolatePose(log, steps, views[v].time + delta)) out.push_back({*H, camera_from_board[v]});
+  }
+  return out;
+}
+
+// How well a closed form explains the samples: the spread of tracker_from_board over them (mm
+// plus mm-equivalent of rotation at 1 m), for the coarse search of δ.
+double Inconsistency(const HandEyeStart& s, std::span<const HandEyeSample> samples) {
+  double sum = 0;
+  for (const HandEyeSample& x : samples) {
+    const Rigid3d z = x.tracker_from_hmd * s.hmd_from_camera * x.camera_from_board;
+    sum += (z.t - s.tracker_from_board.t).squaredNorm() + 1e6 * RotvecFromRotation(z.R * s.tracker_from_board.R.transpose()).squaredNorm();
+  }
+  return sum / static_cast<double>(samples.size());
+}
+
+}  // namespace
+
+std::vector<Eigen::Vector3d> LogSteps(std::span<const TrackedPose> log) {
+  std::vector<Eigen::Vector3d> steps;
+  for (size_t k = 0; k + 1 < log.size(); ++k) {
+    steps.push_back(RotvecFromRotation(log[k].tracker_from_hmd.R.transpose() * log[k + 1].tracker_from_hmd.R));
+  }
+  return steps;
+}
+
+HandEyeSolution SolveHandEye(const Camera& camera, std::span<const TrackedPose> log, std::span<const TimedView> views,
+                             const HandEyeOptions& options) {
+  CheckLog(log);
+  const std::vector<Eigen::Vector3d> steps = LogSteps(log);
+  for (const TimedView& v : views) {
+    if (!(v.time >= log.front().time && v.time <= log.back().time)) {
+      throw InputError("view \"" + v.name + "\": time " + std::to_string(v.time) + " s is outside the tracker's log (" +
+                       std::to_string(log.front().time) + " … " + std::to_string(log.back().time) + " s); drop the view or record longer");
+    }
+  }
+  // Each view's board pose from its corners alone.
+  std::vector<Rigid3d> camera_from_board;
+  for (const TimedView& v : views) {
+    std::vector<Eigen::Vector3d> points;
+    std::vector<Eigen::Vector2d> pixels;
+    for (const Observation& o : v.observations) {
+      points.push_back(o.point);
+      pixels.push_back(o.pixel);
+    }
+    const PoseRefinement pose = SolvePnp(camera, points, pixels);
+    if (pose.status != PoseStatus::kOk) {
+      throw DegenerateError("view \"" + v.name + "\": the board's pose cannot be solved (" + std::string(PoseStatusText(pose.status)) +
+                            "); drop the view");
+    }
+    camera_from_board.push_back(pose.body_from_world);
+  }
+
+  // δ's start: the closed form at each δ of a coarse grid, the most consistent kept.
+  HandEyeSolution out;
+  double best = std::numeric_limits<double>::infinity();
+  const int steps_each_side = static_cast<int>(std::floor(options.max_time_offset / options.search_step));
+  for (int k = -steps_each_side; k <= steps_each_side; ++k) {
+    const double delta = k * options.search_step;
+    const std::vector<HandEyeSample> samples = Samples(log, steps, camera_from_board, views, delta);
+    if (samples.size() < kMinHandEyeSamples) continue;
+    const HandEyeStart start = SolveHandEyeClosedForm(samples);
+    const double score = Inconsistency(start, samples);
+    if (score < best) {
+      best = score;
+      out.start = start;
+      out.start_time_offset = delta;
+    }
+  }
+  if (!std::isfinite(best)) out.start = SolveHandEyeClosedForm(Samples(log, steps, camera_from_board, views, 0.0));  // throws why
+
+  // The refinement: X, Z as left perturbations of their starts, δ absolute.
+  Rigid3d x0 = out.start.hmd_from_camera, z0 = out.start.tracker_from_board;
+  double x[6] = {0, 0, 0, 0, 0, 0}, z[6] = {0, 0, 0, 0, 0, 0}, delta = out.start_time_offset;
+  ceres::Problem problem;
+  for (const TimedView& v : views) {
+    for (const Observation& o : v.observations) {
+      problem.AddResidualBlock(new ceres::AutoDiffCostFunction<CornerCost, 2, 6, 6, 1>(
+                                   new CornerCost{&camera, log, steps, &x0, &z0, v.time, o.point, o.pixel}),
+                               nullptr, x, z, &delta);
+      ++out.corners;
+    }
+  }
+  out.views = views.size();
+  ceres::Solver::Options solver;
+  solver.max_num_iterations = options.max_iterations;
+  solver.linear_solver_type = ceres::DENSE_QR;
+  solver.num_threads = 1;
+  solver.function_tolerance = 1e-12;
+  solver.parameter_tolerance = 1e-12;
+  ceres::Solver::Summary summary;
+  ceres::Solve(solver, &problem, &summary);
+  out.iterations = static_cast<int>(summary.iterations.size());
+  out.hmd_from_camera = PerturbLeft(x0, Eigen::Vector3d(x[0], x[1], x[2]), Eigen::Vector3d(x[3], x[4], x[5]));
+  out.tracker_from_board = PerturbLeft(z0, Eigen::Vector3d(z[0], z[1], z[2]), Eigen::Vector3d(z[3], z[4], z[5]));
+  out.time_offset = delta;
+
+  // The covariance at the solution: references moved there, tangents zero, J of all residuals.
+  x0 = out.hmd_from_camera;
+  z0 = out.tracker_from_board;
+  std::fill(std::begin(x), std::end(x), 0.0);
+  std::fill(std::begin(z), std::end(z), 0.0);
+  double cost = 0;
+  ceres::CRSMatrix crs;
+  problem.Evaluate(ceres::Problem::EvaluateOptions{}, &cost, nullptr, nullptr, &crs);
+  Eigen::MatrixXd J = Eigen::MatrixXd::Zero(crs.num_rows, crs.num_cols);
+  for (int r = 0; r < crs.num_rows; ++r) {
+    for (int i = crs.rows[static_cast<size_t>(r)]; i < crs.rows[static_cast<size_t>(r) + 1]; ++i) {
+      J(r, crs.cols[static_cast<size_t>(i)]) = crs.values[static_cast<size_t>(i)];
+    }
+  }
+  const double residuals = static_cast<double>(crs.num_rows);
+  out.rms_px = std::sqrt(2 * cost / residuals);
+  out.sigma_px = residuals > 13 ? std::sqrt(2 * cost / (residuals - 13)) : 0.0;
+  out.covariance = out.sigma_px * out.sigma_px * (J.transpose() * J).inverse();
+  out.names = {"hmd_from_camera.rx", "hmd_from_camera.ry", "hmd_from_camera.rz", "hmd_from_camera.tx", "hmd_from_camera.ty",
+               "hmd_from_camera.tz", "tracker_from_board.rx", "tracker_from_board.ry", "tracker_from_board.rz",
+               "tracker_from_board.tx", "tracker_from_board.ty", "tracker_from_board.tz", "time_offset"};
+  return out;
+}
+
+}  // namespace vstcal

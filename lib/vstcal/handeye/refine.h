@@ -1,0 +1,100 @@
+// Maximum-likelihood hand-eye calibration with the time offset between the two clocks (issue 22;
+// docs/math/handeye.md#refinement): over the board corners' reprojection, with the tracker's
+// poses interpolated on SE(3) at each image's time plus the offset,
+//
+//   minimise over X = hmd_from_camera, Z = tracker_from_board, δ
+//     Σ_views Σ_corners |project(camera_from_board_i · P) − u|²,
+//     camera_from_board_i = X⁻¹ · H(t_i + δ)⁻¹ · Z,
+//
+// H(τ) the tracker's pose at its own clock's time τ; a view taken at camera time t_i is the
+// tracker's t_i + δ. The camera's intrinsics are fixed (calibrated before). The start comes from
+// the closed form (closed_form.h) on each view's PnP pose at the best δ of a coarse search.
+#pragma once
+
+#include <algorithm>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "vstcal/camera/camera.h"
+#include "vstcal/geometry/rigid3.h"
+#include "vstcal/handeye/closed_form.h"
+#include "vstcal/scene/correspondences.h"
+
+namespace vstcal {
+
+// One report of the tracker: its clock's time (s) and the body's pose.
+struct TrackedPose {
+  double time = 0;
+  Rigid3d tracker_from_hmd;
+};
+
+// One image of the board: the camera clock's time (s) and its corners (board point → pixel).
+struct TimedView {
+  std::string name;
+  double time = 0;
+  std::vector<Observation> observations;
+};
+
+// The pose at tracker time τ between the reports around it: rotation along the geodesic
+// (R_k Exp(s log(R_kᵀ R_k+1))), translation linearly, s = (τ − t_k)/(t_k+1 − t_k). Templated so that
+// δ's derivative flows through s. nullopt outside [first, last] report.
+// log_steps[k] = log(R_kᵀ R_k+1), one per interval (LogSteps).
+std::vector<Eigen::Vector3d> LogSteps(std::span<const TrackedPose> log);
+
+namespace detail {
+inline double ScalarPart(double x) { return x; }
+template <typename J>
+double ScalarPart(const J& jet) {
+  return jet.a;
+}
+}  // namespace detail
+
+template <typename T>
+std::optional<Rigid3<T>> InterpolatePose(std::span<const TrackedPose> log, std::span<const Eigen::Vector3d> log_steps, const T& tau) {
+  const double time = detail::ScalarPart(tau);
+  if (log.size() < 2 || !(time >= log.front().time && time <= log.back().time)) return std::nullopt;
+  // The interval [t_k, t_k+1] holding τ (the last one for τ = t_last).
+  size_t k = static_cast<size_t>(std::upper_bound(log.begin(), log.end(), time, [](double t, const TrackedPose& p) { return t < p.time; }) -
+                                 log.begin());
+  k = std::min(k, log.size() - 1) - 1;
+  const T s = (tau - T(log[k].time)) / T(log[k + 1].time - log[k].time);
+  const Mat3<T> Rk = log[k].tracker_from_hmd.R.template cast<T>();
+  const Vec3<T> step = log_steps[k].template cast<T>() * s;
+  Rigid3<T> out;
+  out.R = Rk * RotationFromRotvec(step);
+  out.t = log[k].tracker_from_hmd.t.template cast<T>() * (T(1) - s) + log[k + 1].tracker_from_hmd.t.template cast<T>() * s;
+  return out;
+}
+
+struct HandEyeOptions {
+  double max_time_offset = 0.2;  // s: the coarse search for δ's start spans ±this
+  double search_step = 0.005;    // s
+  int max_iterations = 100;
+};
+
+struct HandEyeSolution {
+  Rigid3d hmd_from_camera, tracker_from_board;
+  double time_offset = 0;  // δ, s: the tracker's clock reads t + δ at the camera's t
+  // Covariance of (X's left-perturbation tangent ω, ρ; Z's ω, ρ; δ), 13 × 13, σ̂²(JᵀJ)⁻¹ with σ̂ from
+  // the residuals; `names` gives the order.
+  Eigen::MatrixXd covariance;
+  std::vector<std::string> names;
+  double sigma_px = 0;  // σ̂ = √(Σ r² / (2N − 13))
+  double rms_px = 0;
+  size_t views = 0, corners = 0;
+  int iterations = 0;
+  HandEyeStart start;  // the closed form the refinement started from
+  double start_time_offset = 0;
+};
+
+// Throws InputError for a log that is not strictly increasing in time or has fewer than 2 reports,
+// a view outside the log's span, and DegenerateError (closed_form.h) for too few views or motion
+// about one axis.
+HandEyeSolution SolveHandEye(const Camera& camera, std::span<const TrackedPose> log, std::span<const TimedView> views,
+                             const HandEyeOptions& options = {});
+
+}  // namespace vstcal
