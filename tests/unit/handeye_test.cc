@@ -16,13 +16,14 @@
 #include "vstcal/geometry/rotation.h"
 #include "vstcal/handeye/closed_form.h"
 #include "vstcal/handeye/refine.h"
+#include "support/handeye_scenes.h"
 #include "support/sanitizers.h"
 
 namespace vstcal {
 namespace {
 
-const Rigid3d kHmdFromCamera = Rigid3d::FromRotvec(Eigen::Vector3d(0.1, -0.2, 0.3), Eigen::Vector3d(30, -20, 50));
-const Rigid3d kTrackerFromBoard = Rigid3d::FromRotvec(Eigen::Vector3d(0.5, 0.1, -1.0), Eigen::Vector3d(1000, 200, 1500));
+using testing::kHmdFromCamera;
+using testing::kTrackerFromBoard;
 
 double AngleDeg(const Eigen::Matrix3d& a, const Eigen::Matrix3d& b) { return RotvecFromRotation(a * b.transpose()).norm() * 180 / M_PI; }
 
@@ -158,48 +159,11 @@ TEST(HandEyeClosedForm, RefusesMotionAboutOneAxisAndTooFewPoses) {
 namespace vstcal {
 namespace {
 
-// A headset moving in front of a fixed board for 10 s: the camera at ~600 mm from a 9×6 board,
-// turning about all three axes; the tracker reports at 100 Hz on its own clock, the camera takes
-// 30 images whose times are δ behind (a view at camera time t shows the pose at tracker time t + δ).
-struct Recording {
-  Camera camera = Camera::FromK((Eigen::Matrix3d() << 600, 0, 319.5, 0, 600, 239.5, 0, 0, 1).finished(), ImageSize{640, 480});
-  std::vector<TrackedPose> log;
-  std::vector<TimedView> views;
-};
-
-Rigid3d BoardFromCamera(double tau) {
-  return Rigid3d::FromRotvec(Eigen::Vector3d(0.25 * std::sin(0.7 * tau), 0.25 * std::sin(1.1 * tau + 1), 0.3 * std::sin(0.5 * tau + 2)),
-                             Eigen::Vector3d(120 + 100 * std::sin(0.6 * tau), 75 + 60 * std::sin(0.9 * tau), -600 + 80 * std::sin(0.4 * tau)));
-}
-
-Recording Record(double delta, double noise_px, uint64_t seed) {
-  Recording r;
-  for (int k = 0; k <= 1000; ++k) {
-    const double tau = 0.01 * k;
-    r.log.push_back({tau, kTrackerFromBoard * BoardFromCamera(tau) * kHmdFromCamera.inverse()});
-  }
-  std::mt19937_64 rng(seed);
-  std::normal_distribution<double> g(0, 1);
-  for (int i = 0; i < 30; ++i) {
-    TimedView v;
-    v.name = "frame-" + std::to_string(i);
-    v.time = 0.5 + 0.3 * i;
-    const Rigid3d camera_from_board = BoardFromCamera(v.time + delta).inverse();
-    for (int row = 0; row < 6; ++row) {
-      for (int col = 0; col < 9; ++col) {
-        const Eigen::Vector3d P(30.0 * col, 30.0 * row, 0);
-        const auto q = r.camera.Project(camera_from_board * P);
-        if (!q) continue;
-        v.observations.push_back({P, *q + noise_px * Eigen::Vector2d(g(rng), g(rng)), 1.0});
-      }
-    }
-    r.views.push_back(std::move(v));
-  }
-  return r;
-}
+using testing::HandEyeRecording;
+HandEyeRecording Record(double delta, double noise_px, uint64_t seed) { return testing::RecordHandEye(delta, noise_px, seed); }
 
 TEST(HandEyeRefinement, RecoversTheTimeOffsetAndBothPosesWithoutNoise) {
-  const Recording r = Record(0.03, 0, 1);
+  const HandEyeRecording r = Record(0.03, 0, 1);
   const HandEyeSolution s = SolveHandEye(r.camera, r.log, r.views);
   EXPECT_NEAR(s.start_time_offset, 0.03, 0.0051);  // the coarse search's step
   EXPECT_NEAR(s.time_offset, 0.03, 2e-4);
@@ -218,7 +182,7 @@ TEST(HandEyeRefinement, PredictedSigmasMatchTheSpread) {
   double predicted_delta = 0, predicted_x = 0;
   constexpr int kRuns = 80;
   for (int run = 0; run < kRuns; ++run) {
-    const Recording r = Record(0.03, 0.2, 10 + static_cast<uint64_t>(run));
+    const HandEyeRecording r = Record(0.03, 0.2, 10 + static_cast<uint64_t>(run));
     const HandEyeSolution s = SolveHandEye(r.camera, r.log, r.views);
     ASSERT_EQ(s.covariance.rows(), 13);
     // X's translation moves with the left perturbation as dt = −[t]× ω + ρ.
@@ -246,7 +210,7 @@ TEST(HandEyeRefinement, PredictedSigmasMatchTheSpread) {
 }
 
 TEST(HandEyeRefinement, RefusesAViewOutsideTheLogAndAnUnsortedLog) {
-  Recording r = Record(0.0, 0, 2);
+  HandEyeRecording r = Record(0.0, 0, 2);
   r.views.back().time = 20;
   EXPECT_THROW(SolveHandEye(r.camera, r.log, r.views), InputError);
   r = Record(0.0, 0, 2);

@@ -36,6 +36,7 @@ struct View {
   std::string name;
   std::string image;                  // source image, may be empty
   std::optional<double> plane_offset;  // template offset along its normal, length unit
+  std::optional<double> time;          // when the image was taken, s on the camera's clock (hand-eye)
   std::vector<Observation> observations;
 };
 

@@ -77,6 +77,7 @@ Correspondences CorrespondencesFromJson(const JsonDocument& doc) {
     if (!names.insert(view.name).second) v.at("name").Fail("duplicate view name \"" + view.name + "\"", "give every view a unique name");
     if (auto image = v.find("image")) view.image = image->String();
     if (auto offset = v.find("plane_offset")) view.plane_offset = offset->Number();
+    if (auto time = v.find("time")) view.time = time->Number();
     const JsonNode points = v.at("points");
     const size_t n = points.ArraySize();
     if (n == 0) points.Fail("the view has no points", "remove the view or add its points");
@@ -127,6 +128,7 @@ OrderedJson CorrespondencesToJson(const Correspondences& c, const Provenance& pr
     jv["name"] = v.name;
     if (!v.image.empty()) jv["image"] = v.image;
     if (v.plane_offset) jv["plane_offset"] = *v.plane_offset;
+    if (v.time) jv["time"] = *v.time;
     OrderedJson points = OrderedJson::array();
     for (const Observation& o : v.observations) {
       OrderedJson p = {o.point.x(), o.point.y(), o.point.z(), o.pixel.x(), o.pixel.y()};

@@ -1,0 +1,87 @@
+#include "vstcal/app/calib_handeye.h"
+
+#include <cmath>
+#include <cstdio>
+
+#include "vstcal/core/error.h"
+#include "vstcal/formats/camera/camera_io.h"
+#include "vstcal/formats/camera/correspondences_io.h"
+#include "vstcal/formats/handeye/handeye_io.h"
+#include "vstcal/formats/handeye/pose_log_io.h"
+#include "vstcal/geometry/rotation.h"
+#include "vstcal/handeye/refine.h"
+
+namespace vstcal::app {
+namespace {
+
+std::string Line(const char* format, double a, double b, const char* unit) {
+  char buf[120];
+  std::snprintf(buf, sizeof buf, format, a, b, unit);
+  return buf;
+}
+
+}  // namespace
+
+Outcome SolveHandEyeFiles(const HandEyeRequest& request, const Provenance& provenance) {
+  if (request.output.empty()) throw InputError("-o/--output: give the handeye@1 file to write");
+  const auto tum_unit = LengthUnitFromName(request.tum_unit);
+  if (!tum_unit) throw InputError("--tum-unit: \"" + request.tum_unit + "\" is not a length unit; use mm, cm, m or in");
+  if (!(request.max_time_offset > 0 && request.max_time_offset <= 10)) {
+    throw InputError("--max-time-offset: " + MessageNumber(request.max_time_offset) + " s; give the largest offset to search, > 0 and ≤ 10 s");
+  }
+  const CalibratedCamera camera = ReadCamera(request.camera);
+  const Correspondences corners = ReadCorrespondences(request.corners);
+  if (corners.rig != Rig::kPlanarViews) {
+    throw InputError(request.corners + ": rig: hand-eye calibration takes a board seen from a moving headset (rig \"planar-views\")");
+  }
+  if (corners.image_size.width != camera.camera.image_size.width || corners.image_size.height != camera.camera.image_size.height) {
+    throw InputError(request.corners + ": image_size: the views are " + std::to_string(corners.image_size.width) + "x" +
+                     std::to_string(corners.image_size.height) + " but " + request.camera + " is a camera of " +
+                     std::to_string(camera.camera.image_size.width) + "x" + std::to_string(camera.camera.image_size.height) +
+                     "; give the camera that took the images");
+  }
+  std::vector<TimedView> views;
+  for (size_t i = 0; i < corners.views.size(); ++i) {
+    const View& v = corners.views[i];
+    if (!v.time) {
+      throw InputError(request.corners + ": views[" + std::to_string(i) + "].time: missing (view \"" + v.name +
+                       "\"); every view needs the time its image was taken (calib-capture detect writes it for video frames)");
+    }
+    views.push_back({v.name, *v.time, v.observations});
+  }
+  const PoseLog log = InUnit(ReadPoseLog(request.poses, *tum_unit), corners.length_unit);
+  HandEyeOptions options;
+  options.max_time_offset = request.max_time_offset;
+  const HandEyeSolution s = [&] {
+    try {
+      return SolveHandEye(camera.camera, log.poses, views, options);
+    } catch (const DegenerateError& e) {
+      throw DegenerateError(request.corners + " with " + request.poses + ": " + e.what());
+    } catch (const InputError& e) {
+      throw InputError(request.corners + " with " + request.poses + ": " + e.what());
+    }
+  }();
+  Outcome out;
+  out.files.emplace_back(request.output, DumpJson(HandEyeToJson(s, corners.length_unit, provenance)));
+  const std::string unit(LengthUnitName(corners.length_unit));
+  const auto sigma = [&](int i) { return std::sqrt(s.covariance(i, i)); };
+  const double deg = 180 / M_PI;
+  std::string& t = out.summary;
+  t = "calib-handeye: " + std::to_string(s.views) + " views, " + std::to_string(s.corners) + " corners, " +
+      std::to_string(log.poses.size()) + " tracker reports\n";
+  t += Line("  time offset: %.4f s ± %.4f s%s (the tracker's clock reads t + offset at the camera's t)\n", s.time_offset, sigma(12), "");
+  const Eigen::Vector3d rx = RotvecFromRotation(s.hmd_from_camera.R) * deg;
+  char buf[200];
+  std::snprintf(buf, sizeof buf, "  hmd_from_camera: t (%.3f, %.3f, %.3f) %s ± (%.3f, %.3f, %.3f); rotation %.3f° ± (%.3f, %.3f, %.3f)°\n",
+                s.hmd_from_camera.t.x(), s.hmd_from_camera.t.y(), s.hmd_from_camera.t.z(), unit.c_str(), sigma(3), sigma(4), sigma(5),
+                rx.norm(), sigma(0) * deg, sigma(1) * deg, sigma(2) * deg);
+  t += buf;
+  std::snprintf(buf, sizeof buf, "  tracker_from_board: t (%.3f, %.3f, %.3f) %s ± (%.3f, %.3f, %.3f)\n", s.tracker_from_board.t.x(),
+                s.tracker_from_board.t.y(), s.tracker_from_board.t.z(), unit.c_str(), sigma(9), sigma(10), sigma(11));
+  t += buf;
+  t += Line("  fit: RMS %.4f px, sigma %.4f px%s\n", s.rms_px, s.sigma_px, "");
+  t += "  wrote " + request.output + "\n";
+  return out;
+}
+
+}  // namespace vstcal::app

@@ -1,0 +1,41 @@
+#include "vstcal/formats/handeye/handeye_io.h"
+
+#include "vstcal/geometry/rotation.h"
+
+namespace vstcal {
+namespace {
+
+OrderedJson PoseJson(const Rigid3d& p) {
+  OrderedJson R = OrderedJson::array();
+  for (int r = 0; r < 3; ++r) R.push_back({p.R(r, 0), p.R(r, 1), p.R(r, 2)});
+  return {{"R", std::move(R)}, {"t", {p.t.x(), p.t.y(), p.t.z()}}};
+}
+
+}  // namespace
+
+OrderedJson HandEyeToJson(const HandEyeSolution& s, LengthUnit length_unit, const Provenance& provenance) {
+  OrderedJson j;
+  j["format"] = "vstcal/handeye@1";
+  j["length_unit"] = LengthUnitName(length_unit);
+  j["hmd_from_camera"] = PoseJson(s.hmd_from_camera);
+  j["tracker_from_board"] = PoseJson(s.tracker_from_board);
+  j["time_offset_s"] = s.time_offset;
+  OrderedJson matrix = OrderedJson::array();
+  for (Eigen::Index r = 0; r < s.covariance.rows(); ++r) {
+    OrderedJson row = OrderedJson::array();
+    for (Eigen::Index c = 0; c < s.covariance.cols(); ++c) row.push_back(s.covariance(r, c));
+    matrix.push_back(std::move(row));
+  }
+  j["covariance"] = {{"parameters", s.names}, {"matrix", std::move(matrix)}};
+  j["fit"] = {{"views", s.views}, {"corners", s.corners}, {"rms_px", s.rms_px}, {"sigma_px", s.sigma_px}, {"iterations", s.iterations}};
+  j["start"] = {{"method", "park-martin"},
+                {"hmd_from_camera", PoseJson(s.start.hmd_from_camera)},
+                {"tracker_from_board", PoseJson(s.start.tracker_from_board)},
+                {"time_offset_s", s.start_time_offset},
+                {"pairs", s.start.pairs},
+                {"second_axis_spread", s.start.second_axis_spread}};
+  j["provenance"] = ProvenanceToJson(provenance);
+  return j;
+}
+
+}  // namespace vstcal

@@ -1,0 +1,15 @@
+// vstcal/handeye@1 (docs/formats.md#handeye): what calib-handeye measured — hmd_from_camera,
+// tracker_from_board, the time offset, their joint covariance with named parameters, the fit, the
+// closed-form start — for err-sim's chain and for the user.
+#pragma once
+
+#include "vstcal/core/units.h"
+#include "vstcal/handeye/refine.h"
+#include "vstcal/json/json_writer.h"
+#include "vstcal/json/provenance.h"
+
+namespace vstcal {
+
+OrderedJson HandEyeToJson(const HandEyeSolution& solution, LengthUnit length_unit, const Provenance& provenance);
+
+}  // namespace vstcal

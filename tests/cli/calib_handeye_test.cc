@@ -1,0 +1,104 @@
+// CLI tests of calib-handeye (issue 22): a recording written as a user's files — the corners as
+// correspondences@1 with each view's time, the tracker's log as TUM text (metres) and as poses@1,
+// the camera as camera@1 — solved to the truth of tests/support/handeye_scenes.h; every bad input
+// with its exit code, one line naming the file and line or field, and nothing written.
+#include <cstdio>
+#include <fstream>
+
+#include "cli_fixture.h"
+#include "support/handeye_scenes.h"
+#include "vstcal/formats/camera/camera_io.h"
+#include "vstcal/formats/camera/correspondences_io.h"
+#include "vstcal/formats/handeye/pose_log_io.h"
+#include "vstcal/geometry/rotation.h"
+
+namespace vstcal::cli_test {
+namespace {
+
+constexpr std::string_view kTool = "calib-handeye";
+
+class CliCalibHandEye : public CliTest {
+ protected:
+  // in/corners.json, in/poses.txt (TUM, metres), in/poses.json (poses@1, mm), in/camera.json.
+  void WriteRecording(const testing::HandEyeRecording& r) const {
+    Correspondences c;
+    c.image_size = r.camera.image_size;
+    c.rig = Rig::kPlanarViews;
+    for (const TimedView& v : r.views) c.views.push_back({v.name, "", std::nullopt, v.time, v.observations});
+    WriteText("in/corners.json", DumpJson(CorrespondencesToJson(c, Provenance{})));
+    CalibratedCamera camera;
+    camera.camera = r.camera;
+    camera.method = "synthetic";
+    WriteText("in/camera.json", DumpJson(CameraToJson(camera, Provenance{}, {})));
+    std::string tum = "# timestamp tx ty tz qx qy qz qw (metres)\n";
+    for (const TrackedPose& p : r.log) {
+      const auto q = QuaternionWxyzFromRotation(p.tracker_from_hmd.R);
+      char line[300];
+      std::snprintf(line, sizeof line, "%.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g\n", p.time, p.tracker_from_hmd.t.x() / 1000,
+                    p.tracker_from_hmd.t.y() / 1000, p.tracker_from_hmd.t.z() / 1000, q[1], q[2], q[3], q[0]);
+      tum += line;
+    }
+    WriteText("in/poses.txt", tum);
+    PoseLog log;
+    log.length_unit = LengthUnit::kMillimetre;
+    log.poses = r.log;
+    WriteText("in/poses.json", DumpJson(PoseLogToJson(log, Provenance{})));
+  }
+};
+
+TEST_F(CliCalibHandEye, RecoversTheCameraOnTheHeadsetAndTheClockOffset) {
+  WriteRecording(testing::RecordHandEye(0.03, 0.2, 5));
+  const CommandResult r = Run(kTool, {"in/corners.json", "--poses", "in/poses.txt", "--camera", "in/camera.json", "-o", "out/he.json"});
+  ASSERT_EQ(r.exit_code, kOk) << r.err;
+  EXPECT_NE(r.err.find("calib-handeye: 30 views, 1556 corners, 1001 tracker reports"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("time offset: 0.03"), std::string::npos) << r.err;
+  const Json he = ReadJson("out/he.json");
+  EXPECT_EQ(he.at("format"), "vstcal/handeye@1");
+  EXPECT_EQ(he.at("length_unit"), "mm");
+  ASSERT_EQ(he.at("covariance").at("parameters").size(), 13u);
+  EXPECT_EQ(he.at("covariance").at("parameters")[12], "time_offset");
+  const double offset = he.at("time_offset_s"), sigma = std::sqrt(he.at("covariance").at("matrix")[12][12].get<double>());
+  EXPECT_LT(std::abs(offset - 0.03), 4 * sigma);
+  EXPECT_LT(sigma, 0.002);
+  for (int i = 0; i < 3; ++i) {
+    const double t = he.at("hmd_from_camera").at("t")[i], sd = std::sqrt(he.at("covariance").at("matrix")[3 + i][3 + i].get<double>());
+    EXPECT_LT(std::abs(t - testing::kHmdFromCamera.t(i)), 1.0) << i << " σ(ρ) " << sd;
+  }
+  // The same log as poses@1 (mm) gives the same answer.
+  ASSERT_EQ(Run(kTool, {"in/corners.json", "--poses", "in/poses.json", "--camera", "in/camera.json", "-o", "out/he2.json"}).exit_code, kOk);
+  EXPECT_NEAR(ReadJson("out/he2.json").at("time_offset_s").get<double>(), offset, 1e-9);
+  EXPECT_NEAR(ReadJson("out/he2.json").at("hmd_from_camera").at("t")[0].get<double>(), he.at("hmd_from_camera").at("t")[0].get<double>(), 1e-6);
+}
+
+TEST_F(CliCalibHandEye, RefusesBadLogsAndViews) {
+  WriteRecording(testing::RecordHandEye(0.0, 0.0, 6));
+  const std::vector<std::string> args = {"in/corners.json", "--poses", "in/bad.txt", "--camera", "in/camera.json", "-o", "out/he.json"};
+  WriteText("in/bad.txt", "0 0 0 0 0 0 0 1\n0.01 0 0 0 0 0 0\n");
+  EXPECT_TRUE(FailsWith(Run(kTool, args), std::string(kTool), kBadInput, "in/bad.txt: line 2: ", {"7 numbers where a TUM pose has 8"}));
+  WriteText("in/bad.txt", "0 0 0 0 0 0 0 1\n0.01 0 0 0 0 0 0 2\n");
+  EXPECT_TRUE(FailsWith(Run(kTool, args), std::string(kTool), kBadInput, "in/bad.txt: line 2: ", {"norm is 2, not 1", "unit quaternions"}));
+  WriteText("in/bad.txt", "# log\n1 0 0 0 0 0 0 1\n1 0 0 0 0 0 0 1\n");
+  EXPECT_TRUE(FailsWith(Run(kTool, args), std::string(kTool), kBadInput, "in/bad.txt: line 3: ", {"not after the report before it", "sort the log"}));
+  WriteText("in/bad.txt", "0 nan 0 0 0 0 0 1\n");
+  EXPECT_TRUE(FailsWith(Run(kTool, args), std::string(kTool), kBadInput, "in/bad.txt: line 1: ", {"\"nan\" is not a finite number"}));
+  // The log ends before the views do.
+  WriteText("in/bad.txt", "0 0 0 0 0 0 0 1\n1 0 0 0 0 0 0 1\n");
+  EXPECT_TRUE(FailsWith(Run(kTool, args), std::string(kTool), kBadInput, "in/corners.json with in/bad.txt: ", {"outside the tracker's log"}));
+  // A view without its time.
+  Json corners = ReadJson("in/corners.json");
+  corners["views"][4].erase("time");
+  WriteJson("in/untimed.json", corners);
+  EXPECT_TRUE(FailsWith(Run(kTool, {"in/untimed.json", "--poses", "in/poses.txt", "--camera", "in/camera.json", "-o", "out/he.json"}),
+                        std::string(kTool), kBadInput, "in/untimed.json: views[4].time: missing", {"the time its image was taken"}));
+  EXPECT_TRUE(OutDirEmpty());
+}
+
+TEST_F(CliCalibHandEye, RefusesMotionAboutOneAxis) {
+  WriteRecording(testing::RecordHandEye(0.0, 0.1, 7, /*one_axis=*/true));
+  const CommandResult r = Run(kTool, {"in/corners.json", "--poses", "in/poses.txt", "--camera", "in/camera.json", "-o", "out/he.json"});
+  EXPECT_TRUE(FailsWith(r, std::string(kTool), kDegenerate, "in/corners.json with in/poses.txt: ", {"turned about one axis only", "tilt or roll"}));
+  EXPECT_TRUE(OutDirEmpty());
+}
+
+}  // namespace
+}  // namespace vstcal::cli_test

@@ -1,0 +1,27 @@
+// A headset moving in front of a fixed board, for the hand-eye tests (unit and CLI): the camera at
+// ~600 mm from a 9×6 board of 30 mm squares, turning about all three axes for 10 s; the tracker
+// reports tracker_from_hmd at 100 Hz on its own clock; the camera takes 30 images whose times are
+// δ behind (a view at camera time t shows the pose at tracker time t + δ).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "vstcal/camera/camera.h"
+#include "vstcal/handeye/refine.h"
+
+namespace vstcal::testing {
+
+inline const Rigid3d kHmdFromCamera = Rigid3d::FromRotvec(Eigen::Vector3d(0.1, -0.2, 0.3), Eigen::Vector3d(30, -20, 50));
+inline const Rigid3d kTrackerFromBoard = Rigid3d::FromRotvec(Eigen::Vector3d(0.5, 0.1, -1.0), Eigen::Vector3d(1000, 200, 1500));
+
+struct HandEyeRecording {
+  Camera camera;  // 640×480 pinhole, f 600
+  std::vector<TrackedPose> log;
+  std::vector<TimedView> views;
+};
+
+// `one_axis`: the headset only turns about the board's normal (degenerate).
+HandEyeRecording RecordHandEye(double delta, double noise_px, uint64_t seed, bool one_axis = false);
+
+}  // namespace vstcal::testing
