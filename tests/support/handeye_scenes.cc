@@ -1,5 +1,6 @@
 #include "support/handeye_scenes.h"
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <string>
@@ -15,7 +16,7 @@ Rigid3d BoardFromCamera(double tau, bool one_axis) {
 
 }  // namespace
 
-HandEyeRecording RecordHandEye(double delta, double noise_px, uint64_t seed, bool one_axis) {
+HandEyeRecording RecordHandEye(double delta, double noise_px, uint64_t seed, bool one_axis, int views) {
   HandEyeRecording r;
   r.camera = Camera::FromK((Eigen::Matrix3d() << 600, 0, 319.5, 0, 600, 239.5, 0, 0, 1).finished(), ImageSize{640, 480});
   for (int k = 0; k <= 1000; ++k) {
@@ -24,10 +25,10 @@ HandEyeRecording RecordHandEye(double delta, double noise_px, uint64_t seed, boo
   }
   std::mt19937_64 rng(seed);
   std::normal_distribution<double> g(0, 1);
-  for (int i = 0; i < 30; ++i) {
+  for (int i = 0; i < views; ++i) {
     TimedView v;
     v.name = "frame-" + std::to_string(i);
-    v.time = 0.5 + 0.3 * i;
+    v.time = 0.5 + 9.0 * i / std::max(1, views - 1);
     const Rigid3d camera_from_board = BoardFromCamera(v.time + delta, one_axis).inverse();
     for (int row = 0; row < 6; ++row) {
       for (int col = 0; col < 9; ++col) {

@@ -21,7 +21,8 @@ struct HandEyeRecording {
   std::vector<TimedView> views;
 };
 
-// `one_axis`: the headset only turns about the board's normal (degenerate).
-HandEyeRecording RecordHandEye(double delta, double noise_px, uint64_t seed, bool one_axis = false);
+// `one_axis`: the headset only turns about the board's normal (degenerate). `views` images spread
+// evenly over 0.5 … 9.5 s.
+HandEyeRecording RecordHandEye(double delta, double noise_px, uint64_t seed, bool one_axis = false, int views = 30);
 
 }  // namespace vstcal::testing

@@ -1,0 +1,61 @@
+// calib-handeye's solve (issue 22 item 7: 1,000 poses × 50 corners ≤ 1 s on one core, linear in the
+// poses), beside OpenCV's calibrateHandEye (Park) on the same views' PnP poses and the tracker's
+// poses at the true times — OpenCV's closed form only: no corners, no time offset, no covariance.
+#include <benchmark/benchmark.h>
+
+#include <Eigen/Core>
+#include <opencv2/calib3d.hpp>
+#include <opencv2/core/eigen.hpp>
+
+#include "support/handeye_scenes.h"
+#include "vstcal/estimators/pose_refine.h"
+#include "vstcal/handeye/refine.h"
+
+namespace {
+
+void BM_HandEyeSolve(benchmark::State& state) {
+  const auto r = vstcal::testing::RecordHandEye(0.03, 0.2, 1, false, static_cast<int>(state.range(0)));
+  for (auto _ : state) {
+    auto s = vstcal::SolveHandEye(r.camera, r.log, r.views);
+    benchmark::DoNotOptimize(s);
+  }
+  state.SetItemsProcessed(state.iterations() * state.range(0));
+}
+
+void BM_OpenCvCalibrateHandEyePark(benchmark::State& state) {
+  const auto r = vstcal::testing::RecordHandEye(0.0, 0.2, 1, false, static_cast<int>(state.range(0)));
+  std::vector<cv::Mat> Rg, tg, Rt, tt;
+  const std::vector<Eigen::Vector3d> steps = vstcal::LogSteps(r.log);
+  for (const auto& v : r.views) {
+    std::vector<Eigen::Vector3d> points;
+    std::vector<Eigen::Vector2d> pixels;
+    for (const auto& o : v.observations) {
+      points.push_back(o.point);
+      pixels.push_back(o.pixel);
+    }
+    const auto pose = vstcal::SolvePnp(r.camera, points, pixels).body_from_world;
+    const auto H = *vstcal::InterpolatePose(std::span(r.log), std::span(steps), v.time);
+    cv::Mat a, b, c, d;
+    cv::eigen2cv(H.R, a);
+    cv::eigen2cv(H.t, b);
+    cv::eigen2cv(pose.R, c);
+    cv::eigen2cv(pose.t, d);
+    Rg.push_back(a);
+    tg.push_back(b);
+    Rt.push_back(c);
+    tt.push_back(d);
+  }
+  for (auto _ : state) {
+    cv::Mat R, t;
+    cv::calibrateHandEye(Rg, tg, Rt, tt, R, t, cv::CALIB_HAND_EYE_PARK);
+    benchmark::DoNotOptimize(R);
+  }
+  state.SetItemsProcessed(state.iterations() * state.range(0));
+}
+
+BENCHMARK(BM_HandEyeSolve)->Arg(30)->Arg(100)->Arg(300)->Arg(1000)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_OpenCvCalibrateHandEyePark)->Arg(30)->Arg(100)->Arg(300)->Arg(1000)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();
