@@ -3,6 +3,7 @@
 // the camera as camera@1 — solved to the truth of tests/support/handeye_scenes.h; every bad input
 // with its exit code, one line naming the file and line or field, and nothing written.
 #include <cstdio>
+#include <random>
 #include <fstream>
 
 #include "cli_fixture.h"
@@ -48,9 +49,9 @@ class CliCalibHandEye : public CliTest {
 
 TEST_F(CliCalibHandEye, RecoversTheCameraOnTheHeadsetAndTheClockOffset) {
   WriteRecording(testing::RecordHandEye(0.03, 0.2, 5));
-  const CommandResult r = Run(kTool, {"in/corners.json", "--poses", "in/poses.txt", "--camera", "in/camera.json", "-o", "out/he.json"});
+  const CommandResult r = Run(kTool, {"solve", "in/corners.json", "--poses", "in/poses.txt", "--camera", "in/camera.json", "-o", "out/he.json"});
   ASSERT_EQ(r.exit_code, kOk) << r.err;
-  EXPECT_NE(r.err.find("calib-handeye: 30 views, 1556 corners, 1001 tracker reports"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("calib-handeye: 30 views, 1555 corners, 1001 tracker reports"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("time offset: 0.03"), std::string::npos) << r.err;
   const Json he = ReadJson("out/he.json");
   EXPECT_EQ(he.at("format"), "vstcal/handeye@1");
@@ -65,14 +66,14 @@ TEST_F(CliCalibHandEye, RecoversTheCameraOnTheHeadsetAndTheClockOffset) {
     EXPECT_LT(std::abs(t - testing::kHmdFromCamera.t(i)), 1.0) << i << " σ(ρ) " << sd;
   }
   // The same log as poses@1 (mm) gives the same answer.
-  ASSERT_EQ(Run(kTool, {"in/corners.json", "--poses", "in/poses.json", "--camera", "in/camera.json", "-o", "out/he2.json"}).exit_code, kOk);
+  ASSERT_EQ(Run(kTool, {"solve", "in/corners.json", "--poses", "in/poses.json", "--camera", "in/camera.json", "-o", "out/he2.json"}).exit_code, kOk);
   EXPECT_NEAR(ReadJson("out/he2.json").at("time_offset_s").get<double>(), offset, 1e-9);
   EXPECT_NEAR(ReadJson("out/he2.json").at("hmd_from_camera").at("t")[0].get<double>(), he.at("hmd_from_camera").at("t")[0].get<double>(), 1e-6);
 }
 
 TEST_F(CliCalibHandEye, RefusesBadLogsAndViews) {
   WriteRecording(testing::RecordHandEye(0.0, 0.0, 6));
-  const std::vector<std::string> args = {"in/corners.json", "--poses", "in/bad.txt", "--camera", "in/camera.json", "-o", "out/he.json"};
+  const std::vector<std::string> args = {"solve", "in/corners.json", "--poses", "in/bad.txt", "--camera", "in/camera.json", "-o", "out/he.json"};
   WriteText("in/bad.txt", "0 0 0 0 0 0 0 1\n0.01 0 0 0 0 0 0\n");
   EXPECT_TRUE(FailsWith(Run(kTool, args), std::string(kTool), kBadInput, "in/bad.txt: line 2: ", {"7 numbers where a TUM pose has 8"}));
   WriteText("in/bad.txt", "0 0 0 0 0 0 0 1\n0.01 0 0 0 0 0 0 2\n");
@@ -88,16 +89,45 @@ TEST_F(CliCalibHandEye, RefusesBadLogsAndViews) {
   Json corners = ReadJson("in/corners.json");
   corners["views"][4].erase("time");
   WriteJson("in/untimed.json", corners);
-  EXPECT_TRUE(FailsWith(Run(kTool, {"in/untimed.json", "--poses", "in/poses.txt", "--camera", "in/camera.json", "-o", "out/he.json"}),
+  EXPECT_TRUE(FailsWith(Run(kTool, {"solve", "in/untimed.json", "--poses", "in/poses.txt", "--camera", "in/camera.json", "-o", "out/he.json"}),
                         std::string(kTool), kBadInput, "in/untimed.json: views[4].time: missing", {"the time its image was taken"}));
   EXPECT_TRUE(OutDirEmpty());
 }
 
 TEST_F(CliCalibHandEye, RefusesMotionAboutOneAxis) {
   WriteRecording(testing::RecordHandEye(0.0, 0.1, 7, /*one_axis=*/true));
-  const CommandResult r = Run(kTool, {"in/corners.json", "--poses", "in/poses.txt", "--camera", "in/camera.json", "-o", "out/he.json"});
+  const CommandResult r = Run(kTool, {"solve", "in/corners.json", "--poses", "in/poses.txt", "--camera", "in/camera.json", "-o", "out/he.json"});
   EXPECT_TRUE(FailsWith(r, std::string(kTool), kDegenerate, "in/corners.json with in/poses.txt: ", {"turned about one axis only", "tilt or roll"}));
   EXPECT_TRUE(OutDirEmpty());
+}
+
+// calib-handeye noise on a TUM log whose first 5 s hold the headset still (0.1 mm and 0.02° of
+// jitter per axis) before it moves: the σ's with their intervals; a segment into the motion is refused.
+TEST_F(CliCalibHandEye, NoiseFromAStaticSegment) {
+  std::mt19937_64 rng(3);
+  std::normal_distribution<double> g(0, 1);
+  std::string tum;
+  for (int k = 0; k < 2000; ++k) {
+    const double t = 0.005 * k, moving = t > 5 ? (t - 5) : 0;
+    const Eigen::Vector3d w = Eigen::Vector3d(g(rng), g(rng), g(rng) + 500 * moving) * (0.02 * M_PI / 180);
+    const Eigen::Matrix3d R = RotationFromRotvec(w);
+    const auto q = QuaternionWxyzFromRotation(R);
+    char line[300];
+    std::snprintf(line, sizeof line, "%.6f %.9f %.9f %.9f %.12f %.12f %.12f %.12f\n", t, 0.5 + 1e-4 * g(rng), 1e-4 * g(rng), 1.2 + 1e-4 * g(rng),
+                  q[1], q[2], q[3], q[0]);
+    tum += line;
+  }
+  WriteText("in/log.txt", tum);
+  const CommandResult r = Run(kTool, {"noise", "--poses", "in/log.txt", "--from", "0", "--to", "4.9", "-o", "out/noise.json"});
+  ASSERT_EQ(r.exit_code, kOk) << r.err;
+  EXPECT_NE(r.err.find("calib-handeye noise: 981 reports from 0.000 to 4.900 s"), std::string::npos) << r.err;
+  const Json n = ReadJson("out/noise.json");
+  EXPECT_EQ(n.at("format"), "vstcal/tracker-noise@1");
+  EXPECT_NEAR(n.at("translation").at("sigma").get<double>(), 0.1, 0.008);  // mm
+  EXPECT_NEAR(n.at("rotation_rad").at("sigma").get<double>() * 180 / M_PI, 0.02, 0.0016);
+  EXPECT_TRUE(FailsWith(Run(kTool, {"noise", "--poses", "in/log.txt", "--from", "0", "--to", "6", "-o", "out/n2.json"}), std::string(kTool),
+                        kDegenerate, "in/log.txt: the headset moved at ", {"held still"}));
+  EXPECT_FALSE(fs::exists(Path("out/n2.json")));
 }
 
 }  // namespace

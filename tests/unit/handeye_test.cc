@@ -16,6 +16,7 @@
 #include "vstcal/geometry/rotation.h"
 #include "vstcal/handeye/closed_form.h"
 #include "vstcal/handeye/refine.h"
+#include "vstcal/handeye/tracker_noise.h"
 #include "support/handeye_scenes.h"
 #include "support/sanitizers.h"
 
@@ -216,6 +217,50 @@ TEST(HandEyeRefinement, RefusesAViewOutsideTheLogAndAnUnsortedLog) {
   r = Record(0.0, 0, 2);
   std::swap(r.log[5], r.log[6]);
   EXPECT_THROW(SolveHandEye(r.camera, r.log, r.views), InputError);
+}
+
+}  // namespace
+}  // namespace vstcal
+
+namespace vstcal {
+namespace {
+
+// A held headset: 2,000 reports of one pose with isotropic jitter (0.05° per axis, 0.2 mm per
+// axis), then it moves.
+std::vector<TrackedPose> StaticLog(uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> g(0, 1);
+  const Rigid3d held = Rigid3d::FromRotvec(Eigen::Vector3d(0.3, -0.1, 1.2), Eigen::Vector3d(500, -200, 1200));
+  std::vector<TrackedPose> log;
+  for (int k = 0; k < 2000; ++k) {
+    const Eigen::Vector3d w(g(rng), g(rng), g(rng)), r(g(rng), g(rng), g(rng));
+    // The rotation's jitter turns the body about its own position: t jitters by r alone.
+    log.push_back({0.005 * k, Rigid3d{RotationFromRotvec(Eigen::Vector3d(w * (0.05 * M_PI / 180))) * held.R, held.t + r * 0.2}});
+  }
+  for (int k = 0; k < 100; ++k) log.push_back({10 + 0.005 * k, Rigid3d::FromRotvec(Eigen::Vector3d(0, 0, 0.01 * k), held.t) * held});
+  return log;
+}
+
+TEST(TrackerNoise, RecoversTheJitterWithAnIntervalThatCoversIt) {
+  int covered_rotation = 0, covered_translation = 0;
+  for (uint64_t seed = 1; seed <= 20; ++seed) {
+    const TrackerNoise n = EstimateTrackerNoise(StaticLog(seed), 0, 9.999, 10);
+    EXPECT_EQ(n.reports, 2000u);
+    EXPECT_NEAR(n.rotation.sigma * 180 / M_PI, 0.05, 0.003);
+    EXPECT_NEAR(n.translation.sigma, 0.2, 0.012);
+    covered_rotation += n.rotation.lower <= 0.05 * M_PI / 180 && 0.05 * M_PI / 180 <= n.rotation.upper;
+    covered_translation += n.translation.lower <= 0.2 && 0.2 <= n.translation.upper;
+    EXPECT_LT(n.translation.lower, n.translation.sigma);
+    EXPECT_GT(n.translation.upper, n.translation.sigma);
+  }
+  // A 95 % interval misses about once in 20; three misses or more has probability 0.08.
+  EXPECT_GE(covered_rotation, 17);
+  EXPECT_GE(covered_translation, 17);
+}
+
+TEST(TrackerNoise, RefusesASegmentInWhichTheHeadsetMovedOrTooFewReports) {
+  EXPECT_THROW(EstimateTrackerNoise(StaticLog(1), 0, 10.4, 10), DegenerateError);
+  EXPECT_THROW(EstimateTrackerNoise(StaticLog(1), 0, 0.02, 10), InputError);
 }
 
 }  // namespace

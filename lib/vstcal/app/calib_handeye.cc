@@ -22,6 +22,38 @@ std::string Line(const char* format, double a, double b, const char* unit) {
 
 }  // namespace
 
+Outcome MeasureTrackerNoise(const TrackerNoiseRequest& request, const Provenance& provenance) {
+  const auto tum_unit = LengthUnitFromName(request.tum_unit);
+  if (!tum_unit) throw InputError("--tum-unit: \"" + request.tum_unit + "\" is not a length unit; use mm, cm, m or in");
+  if (!(request.to > request.from)) throw InputError("--to: must be after --from (the static segment, in the tracker's seconds)");
+  if (!(request.max_motion > 0)) throw InputError("--max-motion: give the largest drift (mm) a held headset may show, > 0");
+  // The σ's are reported in millimetres whatever the log's unit.
+  const PoseLog log = InUnit(ReadPoseLog(request.poses, *tum_unit), LengthUnit::kMillimetre);
+  const TrackerNoise n = [&] {
+    try {
+      return EstimateTrackerNoise(log.poses, request.from, request.to, request.max_motion);
+    } catch (const DegenerateError& e) {
+      throw DegenerateError(request.poses + ": " + e.what());
+    }
+  }();
+  Outcome out;
+  if (!request.output.empty()) out.files.emplace_back(request.output, DumpJson(TrackerNoiseToJson(n, LengthUnit::kMillimetre, provenance)));
+  const double deg = 180 / M_PI;
+  char buf[300];
+  std::snprintf(buf, sizeof buf,
+                "calib-handeye noise: %zu reports from %.3f to %.3f s, the headset held still\n"
+                "  rotation σ %.4f° (95%% interval %.4f … %.4f°; per axis %.4f, %.4f, %.4f°)\n"
+                "  translation σ %.4f mm (95%% interval %.4f … %.4f mm; per axis %.4f, %.4f, %.4f mm)\n",
+                n.reports, n.from, n.to, n.rotation.sigma * deg, n.rotation.lower * deg, n.rotation.upper * deg, n.rotation.per_axis.x() * deg,
+                n.rotation.per_axis.y() * deg, n.rotation.per_axis.z() * deg, n.translation.sigma, n.translation.lower, n.translation.upper,
+                n.translation.per_axis.x(), n.translation.per_axis.y(), n.translation.per_axis.z());
+  out.summary = buf;
+  out.summary += "  the interval assumes independent reports; a tracker that filters its output correlates them, and the σ is then the "
+                 "jitter of one report, not of an average\n";
+  if (!request.output.empty()) out.summary += "  wrote " + request.output + "\n";
+  return out;
+}
+
 Outcome SolveHandEyeFiles(const HandEyeRequest& request, const Provenance& provenance) {
   if (request.output.empty()) throw InputError("-o/--output: give the handeye@1 file to write");
   const auto tum_unit = LengthUnitFromName(request.tum_unit);

@@ -19,6 +19,16 @@ struct HandEyeRequest {
   std::string output;    // handeye@1
 };
 
+// calib-handeye noise: the tracker's jitter from a static segment of its log.
+struct TrackerNoiseRequest {
+  std::string poses;
+  std::string tum_unit = "m";
+  double from = 0, to = 0;      // s, the tracker's clock
+  double max_motion = 10;       // mm: farther from the mean is a headset that moved
+  std::string output;           // tracker-noise@1; empty: the summary only
+};
+Outcome MeasureTrackerNoise(const TrackerNoiseRequest& request, const Provenance& provenance);
+
 // InputError naming the file and field for every bad input (views without a time, a log in
 // another unit than declared, a view outside the log's span, a camera of another image size);
 // DegenerateError for motion about one axis or too few views.

@@ -11,7 +11,23 @@ OrderedJson PoseJson(const Rigid3d& p) {
   return {{"R", std::move(R)}, {"t", {p.t.x(), p.t.y(), p.t.z()}}};
 }
 
+OrderedJson NoiseJson(const NoiseEstimate& e) {
+  return {{"sigma", e.sigma}, {"ci95", {e.lower, e.upper}}, {"per_axis", {e.per_axis.x(), e.per_axis.y(), e.per_axis.z()}}};
+}
+
 }  // namespace
+
+OrderedJson TrackerNoiseToJson(const TrackerNoise& n, LengthUnit length_unit, const Provenance& provenance) {
+  OrderedJson j;
+  j["format"] = "vstcal/tracker-noise@1";
+  j["length_unit"] = LengthUnitName(length_unit);
+  j["segment"] = {{"from", n.from}, {"to", n.to}, {"reports", n.reports}};
+  j["tracker_from_hmd"] = PoseJson(n.mean);
+  j["rotation_rad"] = NoiseJson(n.rotation);
+  j["translation"] = NoiseJson(n.translation);
+  j["provenance"] = ProvenanceToJson(provenance);
+  return j;
+}
 
 OrderedJson HandEyeToJson(const HandEyeSolution& s, LengthUnit length_unit, const Provenance& provenance) {
   OrderedJson j;

@@ -5,11 +5,15 @@
 
 #include "vstcal/core/units.h"
 #include "vstcal/handeye/refine.h"
+#include "vstcal/handeye/tracker_noise.h"
 #include "vstcal/json/json_writer.h"
 #include "vstcal/json/provenance.h"
 
 namespace vstcal {
 
 OrderedJson HandEyeToJson(const HandEyeSolution& solution, LengthUnit length_unit, const Provenance& provenance);
+
+// vstcal/tracker-noise@1 (docs/formats.md#tracker-noise): calib-handeye noise's estimate.
+OrderedJson TrackerNoiseToJson(const TrackerNoise& noise, LengthUnit length_unit, const Provenance& provenance);
 
 }  // namespace vstcal

@@ -1,0 +1,42 @@
+#include "flags.h"
+
+#include "common/validators.h"
+
+namespace vstcal::tools {
+
+void HandEyeFlags::Add(CLI::App& app) {
+  app.require_subcommand(1);
+  solve_app = app.add_subcommand(
+      "solve",
+      "hmd_from_camera (where the camera sits on the tracked body), tracker_from_board and the clocks' offset, by maximum "
+      "likelihood over the board corners of timed views and the tracker's log, with their joint covariance "
+      "(vstcal/handeye@1)");
+  solve_app->add_option("CORNERS", solve.corners, "the board's corners in timed views (vstcal/correspondences@1, views[i].time)")
+      ->required()
+      ->check(kNonEmpty);
+  solve_app->add_option("--poses", solve.poses, "the tracker's log: tracker_from_hmd (vstcal/poses@1 .json, or TUM text)")
+      ->required()
+      ->check(kNonEmpty);
+  solve_app->add_option("--camera", solve.camera, "the camera that took the views (vstcal/camera@1; its intrinsics are held)")
+      ->required()
+      ->check(kNonEmpty);
+  solve_app->add_option("--tum-unit", solve.tum_unit, "length unit of a TUM log's translations")->capture_default_str();
+  solve_app->add_option("--max-time-offset", solve.max_time_offset, "search the clocks' offset within ±this many seconds")
+      ->capture_default_str();
+  solve_app->add_option("-o,--output", solve.output, "the vstcal/handeye@1 file to write")->required()->check(kNonEmpty);
+  solve_app->add_flag("-q,--quiet", quiet, "print only errors");
+
+  noise_app = app.add_subcommand("noise", "the tracker's jitter (rotation, translation σ with 95 % intervals) from a segment of its log in "
+                                          "which the headset was held still (vstcal/tracker-noise@1)");
+  noise_app->add_option("--poses", noise.poses, "the tracker's log (vstcal/poses@1 .json, or TUM text)")->required()->check(kNonEmpty);
+  noise_app->add_option("--from", noise.from, "the static segment's start (s, the tracker's clock)")->required()->check(kFinite);
+  noise_app->add_option("--to", noise.to, "the static segment's end (s)")->required()->check(kFinite);
+  noise_app->add_option("--tum-unit", noise.tum_unit, "length unit of a TUM log's translations")->capture_default_str();
+  noise_app->add_option("--max-motion", noise.max_motion, "mm: a report farther from the segment's mean means the headset moved")
+      ->check(kPositiveFinite)
+      ->capture_default_str();
+  noise_app->add_option("-o,--output", noise.output, "also write vstcal/tracker-noise@1")->check(kNonEmpty);
+  noise_app->add_flag("-q,--quiet", quiet, "print only errors");
+}
+
+}  // namespace vstcal::tools
