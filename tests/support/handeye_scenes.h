@@ -1,7 +1,6 @@
-// A headset moving in front of a fixed board, for the hand-eye tests (unit and CLI): the camera at
-// ~600 mm from a 9×6 board of 30 mm squares, turning about all three axes for 10 s; the tracker
-// reports tracker_from_hmd at 100 Hz on its own clock; the camera takes 30 images whose times are
-// δ behind (a view at camera time t shows the pose at tracker time t + δ).
+// The hand-eye tests' recording (unit, CLI, benchmark): SynthesizeHandEye (handeye/synthetic.h) with
+// a 640×480 pinhole camera (f 600) ~600 mm from a 9×6 board of 30 mm squares for 10 s, the tracker
+// at 100 Hz.
 #pragma once
 
 #include <cstdint>
@@ -21,8 +20,7 @@ struct HandEyeRecording {
   std::vector<TimedView> views;
 };
 
-// `one_axis`: the headset only turns about the board's normal (degenerate). `views` images spread
-// evenly over 0.5 … 9.5 s.
+// `one_axis`: the headset only turns about the board's normal (degenerate).
 HandEyeRecording RecordHandEye(double delta, double noise_px, uint64_t seed, bool one_axis = false, int views = 30);
 
 }  // namespace vstcal::testing
