@@ -27,6 +27,11 @@ OrderedJson CalibrationBlocksToJson(const CalibrationResult& r, const Calibratio
   OrderedJson j = OrderedJson::object();
   if (r.dlt) {
     j["dlt"] = DltDiagnosticsToJson(*r.dlt, r.eq13, options.dlt);
+    if (r.dlt_uncertainty && r.dlt_covariance) {
+      const auto d = DecomposeProjection(r.dlt->P);
+      VSTCAL_CHECK(d.has_value(), "a solved DLT P decomposes");
+      j["dlt"]["uncertainty"] = DltUncertaintyToJson(*r.dlt_uncertainty, *r.dlt_covariance, d->camera_from_world);
+    }
   }
   if (r.tsai) {
     const TsaiResult& t = *r.tsai;

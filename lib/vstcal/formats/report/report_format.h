@@ -12,7 +12,8 @@
 
 namespace vstcal {
 
-// A vstcal/camera@1 file with σ̂ (refinement.sigma_px, when present and positive) beside it.
+// A vstcal/camera@1 file with σ̂ (refinement.sigma_px, else dlt.uncertainty.sigma_px, when present
+// and positive) beside it.
 ReportCamera ReadReportCamera(const std::filesystem::path& path);
 
 OrderedJson ReprojReportToJson(const ReprojReport& report, const Provenance& provenance);
