@@ -37,6 +37,7 @@ int main(int argc, char** argv) {
   CLI::Option* refine = app.add_flag("--refine", options.refine, "refine the DLT camera to maximum likelihood");
   for (CLI::Option* o : flags.AddRefinement(app)) o->needs(refine);
   flags.AddUncertainty(app);  // the DLT camera has its own first-order covariance
+  flags.AddRejection(app);
   flags.AddOutput(app);
 
   return vstcal::tools::RunTool(app, argc, argv, [&] {
@@ -45,6 +46,7 @@ int main(int argc, char** argv) {
     options.dlt.exact_diagnostics = true;  // the camera file reports sigma_11
     options.dlt.solver = *FromName(DltOptions::kSolverNames, solver);
     options.refinement = flags.Refinement();
+    options.reject_views = flags.Rejection();
     Correspondences corners = ReadCorrespondences(input);
     if (corners.rig != Rig::kVolume) {
       throw InputError(input + ": rig: DLT needs one world frame (rig \"volume\"), got \"planar-views\"; "

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <tuple>
+#include <optional>
 
 #include <Eigen/Geometry>
 
@@ -236,16 +236,71 @@ CalibrationResult CalibrateRejecting(Correspondences c, const CalibrationOptions
   }
   const size_t min_views = c.rig == Rig::kVolume ? kMinVolumeViewsKept : kMinPlanarViewsKept;
   std::vector<Rejection> rejections;
+  const auto erase_view = [&](size_t v) {
+    c.views.erase(c.views.begin() + static_cast<std::ptrdiff_t>(v));
+    view_index.erase(view_index.begin() + static_cast<std::ptrdiff_t>(v));
+    point_index.erase(point_index.begin() + static_cast<std::ptrdiff_t>(v));
+  };
+  // Rejects test.worst_view, or returns the refusal when too few views would remain.
+  const auto reject_view = [&](const RejectionTest& t, int round, const char* of) -> std::optional<CalibrationResult> {
+    const size_t v = *t.worst_view;
+    Rejection x;
+    x.kind = Rejection::Kind::kView;
+    x.round = round;
+    x.view = view_index[v];
+    x.view_name = c.views[v].name;
+    x.rms_px = t.view_rms_px[v];
+    x.threshold_px = t.view_threshold_px[v];
+    char buf[360];
+    std::snprintf(buf, sizeof buf,
+                  "view RMS %.4g px > %.4g px%s: chi-square threshold for its dof at false alarm %g over %zu views, "
+                  "robust sigma %.4g px from the median view",
+                  x.rms_px, x.threshold_px, of, o.view_false_alarm, c.views.size(), t.sigma_px);
+    x.because = buf;
+    if (c.views.size() - 1 < min_views) {
+      CalibrationResult refused;
+      refused.exit_code = ExitCode::kBadInput;
+      refused.rejections = rejections;
+      refused.message = "--reject-views: view \"" + x.view_name + "\" is inconsistent with the others (" + x.because +
+                        "), but rejecting it would leave " + std::to_string(c.views.size() - 1) + " views, fewer than the " +
+                        std::to_string(min_views) + (c.rig == Rig::kVolume ? " a volume" : " planar views") +
+                        " need; recapture that view or add views, or drop --reject-views";
+      return refused;
+    }
+    rejections.push_back(x);
+    erase_view(v);
+    return std::nullopt;
+  };
   for (int round = 1;; ++round) {
     CalibrationResult r = CalibrateOnce(c, options);
     r.warnings.insert(r.warnings.begin(), warnings.begin(), warnings.end());
     r.rejections = rejections;
     r.rejection_rounds = round;
+    if (r.exit_code != ExitCode::kOk && options.refine && round < o.max_rounds) {
+      // A refinement that fails with a bad view in (a mislabelled one can pull it into an
+      // unobservable corner) is no verdict on the views: the closed-form start of the same set is
+      // tested instead, for its worst view only (its residuals also hold the unmodelled
+      // distortion, so its corners are not judged).
+      CalibrationOptions start = options;
+      start.refine = false;
+      const CalibrationResult s = CalibrateOnce(c, start);
+      if (s.exit_code == ExitCode::kOk) {
+        const auto [num_params, per_view] = EstimatedParameters(s);
+        const RejectionTest t = TestResiduals(c, *s.camera.fit, num_params, per_view, o);
+        if (t.worst_view) {
+          if (auto refused = reject_view(t, round, " (of the closed-form start: the refinement failed with it)")) {
+            return *refused;
+          }
+          continue;
+        }
+      }
+    }
     if (r.exit_code != ExitCode::kOk) {
       if (!rejections.empty()) {
         r.exit_code = ExitCode::kBadInput;
-        r.message = "--reject-views: after rejecting " + std::to_string(rejections.size()) + " views or corners (last: view \"" +
-                    rejections.back().view_name + "\"), the rest cannot be solved: " + r.message +
+        r.message = "--reject-views: after rejecting " + std::to_string(rejections.size()) +
+                    " views or corners (last: view \"" + rejections.back().view_name +
+                    "\"), the rest cannot be solved: " + r.message +
                     "; fix or recapture the rejected views, or drop --reject-views";
       }
       return r;
@@ -253,45 +308,18 @@ CalibrationResult CalibrateRejecting(Correspondences c, const CalibrationOptions
     const auto [num_params, per_view] = EstimatedParameters(r);
     const RejectionTest t = TestResiduals(c, *r.camera.fit, num_params, per_view, o);
     r.rejection_sigma_px = t.sigma_px;
-    const bool reject = t.worst_view || !t.corners.empty();
-    if (!reject) return r;
+    if (!t.worst_view && t.corners.empty()) return r;
     if (round >= o.max_rounds) {
       r.warnings.push_back("--reject-views: still rejecting after " + std::to_string(o.max_rounds) +
                            " rounds; the last solve is kept with what it would have rejected");
       return r;
     }
     if (t.worst_view) {
-      const size_t v = *t.worst_view;
-      Rejection x;
-      x.kind = Rejection::Kind::kView;
-      x.round = round;
-      x.view = view_index[v];
-      x.view_name = c.views[v].name;
-      x.rms_px = t.view_rms_px[v];
-      x.threshold_px = t.view_threshold_px[v];
-      char buf[300];
-      std::snprintf(buf, sizeof buf,
-                    "view RMS %.4g px > %.4g px: chi-square threshold for its dof at false alarm %g over %zu views, "
-                    "robust sigma %.4g px from the median view",
-                    x.rms_px, x.threshold_px, o.view_false_alarm, c.views.size(), t.sigma_px);
-      x.because = buf;
-      if (c.views.size() - 1 < min_views) {
-        CalibrationResult refused;
-        refused.exit_code = ExitCode::kBadInput;
-        refused.rejections = rejections;
-        refused.message = "--reject-views: view \"" + x.view_name + "\" is inconsistent with the others (" + x.because +
-                          "), but rejecting it would leave " + std::to_string(c.views.size() - 1) + " views, fewer than the " +
-                          std::to_string(min_views) + (c.rig == Rig::kVolume ? " a volume" : " planar views") +
-                          " need; recapture that view or add views, or drop --reject-views";
-        return refused;
-      }
-      rejections.push_back(x);
-      c.views.erase(c.views.begin() + static_cast<std::ptrdiff_t>(v));
-      view_index.erase(view_index.begin() + static_cast<std::ptrdiff_t>(v));
-      point_index.erase(point_index.begin() + static_cast<std::ptrdiff_t>(v));
+      if (auto refused = reject_view(t, round, "")) return *refused;
       continue;
     }
-    // Corners, from the last of each view backwards so that indices stay valid.
+    // Corners, from the last of each view backwards so that indices stay valid; reported in order.
+    const size_t first = rejections.size();
     for (auto it = t.corners.rbegin(); it != t.corners.rend(); ++it) {
       Rejection x;
       x.kind = Rejection::Kind::kCorner;
@@ -312,16 +340,13 @@ CalibrationResult CalibrateRejecting(Correspondences c, const CalibrationOptions
       obs.erase(obs.begin() + static_cast<std::ptrdiff_t>(it->point));
       point_index[it->view].erase(point_index[it->view].begin() + static_cast<std::ptrdiff_t>(it->point));
     }
-    std::sort(rejections.end() - static_cast<std::ptrdiff_t>(t.corners.size()), rejections.end(),
-              [](const Rejection& a, const Rejection& b) { return std::tie(a.view, *a.point) < std::tie(b.view, *b.point); });
+    std::reverse(rejections.begin() + static_cast<std::ptrdiff_t>(first), rejections.end());
     if (c.rig == Rig::kPlanarViews) {
       for (size_t v = c.views.size(); v-- > 0;) {
         if (c.views[v].observations.size() >= kMinPointsPerPlanarView) continue;
         warnings.push_back("--reject-views: view \"" + c.views[v].name + "\" has fewer than " +
                            std::to_string(kMinPointsPerPlanarView) + " corners left after rejecting corners; dropped");
-        c.views.erase(c.views.begin() + static_cast<std::ptrdiff_t>(v));
-        view_index.erase(view_index.begin() + static_cast<std::ptrdiff_t>(v));
-        point_index.erase(point_index.begin() + static_cast<std::ptrdiff_t>(v));
+        erase_view(v);
       }
     }
   }

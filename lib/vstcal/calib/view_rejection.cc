@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include "vstcal/core/error.h"
 #include "vstcal/sensitivity/normal_quantile.h"
@@ -48,10 +49,16 @@ RejectionTest TestResiduals(const Correspondences& c, const Fit& fit, size_t num
   t.sigma_px = std::sqrt(median / shrink);
 
   if (V >= kMinViewsToTest) {
+    // σ̂² is itself uncertain: a median of V views' S_v/k_v has relative variance τ² ≈ (π/2)·2/(kV)
+    // (the median's efficiency 2/π), which widens Wilson–Hilferty's cube-root normal by τ²/9.
+    const double tau2 = std::numbers::pi / (k * static_cast<double>(V));
+    const double z = NormalQuantile(1 - options.view_false_alarm / static_cast<double>(V));
     double worst = 1;
     for (size_t v = 0; v < V; ++v) {
       const double n = static_cast<double>(c.views[v].observations.size());
-      const double q = ChiSquareQuantile(dof[v], 1 - options.view_false_alarm / static_cast<double>(V));
+      const double a = 2 / (9 * dof[v]);
+      const double root = 1 - a + z * std::sqrt(a + tau2 / 9);
+      const double q = dof[v] * root * root * root;
       t.view_threshold_px[v] = t.sigma_px * std::sqrt(q / n);
       const double excess = squares[v] / (t.sigma_px * t.sigma_px * q);
       if (excess > worst) worst = excess, t.worst_view = v;
