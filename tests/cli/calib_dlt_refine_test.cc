@@ -145,6 +145,32 @@ TEST_F(CliCalibDltRefine, WithoutRefineTheDltCovarianceIsReported) {
   EXPECT_TRUE(WithinSigmas(camera, ReadJson("in/volume.truth.json"), {"fx", "fy", "cx", "cy"}, 5));
 }
 
+// --reject-views on a volume (docs/tools/calib-dlt.md): one template position whose world
+// coordinates are off by one square (60 mm) is rejected and named, and the camera is the DLT of the
+// other positions; without the flag it is kept and the fit is far worse.
+TEST_F(CliCalibDltRefine, RejectViewsDropsAShiftedTemplatePosition) {
+  Json doc = Synth("in/volume.json", Override(Override(VolumeArgs(), "--distortion", "0,0,0,0,0"), "--noise", "0.3"));
+  ASSERT_GE(doc["views"].size(), 4u);
+  for (Json& p : doc["views"][1]["points"]) p[0] = p[0].get<double>() + 60;
+  WriteJson("in/volume.json", doc);
+  const CommandResult r = Run(kTool, {"in/volume.json", "-o", "out/camera.json", "--reject-views"});
+  ASSERT_EQ(r.exit_code, kOk) << r.err;
+  const Json camera = ReadJson("out/camera.json");
+  const Json& rejected = camera.at("view_rejection").at("rejected");
+  ASSERT_EQ(rejected.size(), 1u) << rejected.dump();
+  EXPECT_EQ(rejected[0].at("view_index"), 1);
+  EXPECT_NE(r.err.find("calib-dlt: warning: --reject-views: rejected view \"" + doc["views"][1]["name"].get<std::string>()),
+            std::string::npos)
+      << r.err;
+  Json without = doc;
+  without["views"].erase(1);
+  WriteJson("in/without.json", without);
+  ASSERT_EQ(Run(kTool, {"in/without.json", "-o", "out/without.json", "-q"}).exit_code, kOk);
+  EXPECT_EQ(camera.at("K"), ReadJson("out/without.json").at("K"));
+  ASSERT_EQ(Run(kTool, {"in/volume.json", "-o", "out/kept.json", "-q"}).exit_code, kOk);
+  EXPECT_GT(ReadJson("out/kept.json")["fit"]["rms_px"].get<double>(), 5 * camera["fit"]["rms_px"].get<double>());
+}
+
 TEST_F(CliCalibDltRefine, WithoutRefineTheRefinementFlagsAreRefused) {
   Synth("in/volume.json", VolumeArgs());
   for (const std::vector<std::string>& flag : std::vector<std::vector<std::string>>{{"--distortion", "k1"},

@@ -9,12 +9,6 @@
 
 namespace vstcal {
 
-double ChiSquareQuantile(double k, double p) {
-  const double a = 2.0 / (9.0 * k);
-  const double cube = 1 - a + NormalQuantile(p) * std::sqrt(a);
-  return k * std::max(0.0, cube * cube * cube);
-}
-
 RejectionTest TestResiduals(const Correspondences& c, const Fit& fit, size_t num_params, size_t pose_params_per_view,
                             const ViewRejectionOptions& options) {
   VSTCAL_CHECK(fit.views.size() == c.views.size(), "the fit covers the correspondences' views");

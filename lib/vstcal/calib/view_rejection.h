@@ -59,8 +59,4 @@ struct RejectionTest {
 RejectionTest TestResiduals(const Correspondences& c, const Fit& fit, size_t num_params, size_t pose_params_per_view,
                             const ViewRejectionOptions& options);
 
-// χ²_k's quantile at probability p by Wilson–Hilferty, k > 0 (error < 1 % of k for k ≥ 3 in the tail
-// used here).
-double ChiSquareQuantile(double k, double p);
-
 }  // namespace vstcal
