@@ -135,6 +135,22 @@ void BM_CalibratePlanarViews(benchmark::State& state) {
   state.counters["iterations"] = iterations;
 }
 
+// The same with --reject-views on a clean set: one solve plus the linear residual test (a rejection
+// would add one solve per round).
+void BM_CalibratePlanarViewsRejecting(benchmark::State& state) {
+  const Correspondences& c = PlanarViews(static_cast<int>(state.range(0)));
+  CalibrationOptions options;
+  options.reject_views.enabled = true;
+  size_t rejected = 0;
+  for (auto _ : state) {
+    CalibrationResult r = Calibrate(c, options);
+    rejected = r.rejections.size();
+    benchmark::DoNotOptimize(r);
+  }
+  state.counters["points"] = static_cast<double>(NumObservations(c));
+  state.counters["rejected"] = static_cast<double>(rejected);
+}
+
 // The covariance alone at the optimum: by the Schur complement (CovarianceAt) and by the dense
 // inverse of the whole information matrix it replaced (the test oracle, long double).
 void BM_SchurCovariance(benchmark::State& state) {
@@ -177,6 +193,7 @@ BENCHMARK(BM_RefineFromDlt)->Arg(600)->Arg(0)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_TsaiRefined)->Arg(600)->Arg(0)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_OpenCvCalibrateCamera)->Arg(600)->Arg(0)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_CalibratePlanarViews)->Arg(50)->Arg(100)->Arg(200)->Arg(400)->Arg(1000)->Arg(2000)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_CalibratePlanarViewsRejecting)->Arg(50)->Arg(100)->Arg(200)->Arg(400)->Arg(1000)->Arg(2000)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_SchurCovariance)->Arg(50)->Arg(100)->Arg(200)->Arg(400)->Arg(1000)->Arg(2000)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_DenseCovariance)->Arg(50)->Arg(100)->Arg(200)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_OpenCvPlanarViews)->Arg(50)->Arg(100)->Unit(benchmark::kMillisecond);

@@ -66,8 +66,11 @@ TEST_F(CliCalibDltRefine, RecoversTheTruthWithinFiveSigma) {
   ASSERT_EQ(Run(kTool, {"in/volume.json", "-o", "out/dlt.json"}).exit_code, kOk);
   const Json dlt = ReadJson("out/dlt.json");
   EXPECT_LT(camera.at("fit").at("rms_px").get<double>(), dlt.at("fit").at("rms_px").get<double>());
-  EXPECT_FALSE(dlt.contains("covariance"));
   EXPECT_FALSE(dlt.contains("refinement"));
+  // The unrefined DLT camera carries its own first-order covariance over its 11 parameters.
+  EXPECT_EQ(dlt.at("covariance").at("parameters"),
+            Json({"fx", "fy", "cx", "cy", "s", "camera_from_world.rx", "camera_from_world.ry", "camera_from_world.rz",
+                  "camera_from_world.tx", "camera_from_world.ty", "camera_from_world.tz"}));
 }
 
 TEST_F(CliCalibDltRefine, StartsFromDltNotTsai) {
@@ -110,14 +113,22 @@ TEST_F(CliCalibDltRefine, OutlierListedAndUncertaintyReported) {
   EXPECT_EQ(u.at("grid").at("cells").size(), 48u);
 }
 
-// Without --refine the DLT camera has no covariance: the summary lists each parameter's value as
-// written and says it has no σ, never a σ it does not have.
-TEST_F(CliCalibDltRefine, WithoutRefineTheSummarySaysThereIsNoSigma) {
-  Synth("in/volume.json", VolumeArgs());
-  const CommandResult r = Run(kTool, {"in/volume.json", "-o", "out/camera.json"});
+// Without --refine the DLT camera has its first-order covariance (docs/math/dlt.md#covariance):
+// the summary lists each parameter's value as written with the σ of dlt.uncertainty, the file
+// has Cov(P) in its stated gauge (rank 11) and the projection uncertainty at the test points.
+TEST_F(CliCalibDltRefine, WithoutRefineTheDltCovarianceIsReported) {
+  Synth("in/volume.json", Override(VolumeArgs(), "--distortion", "0,0,0,0,0"));
+  const CommandResult r = Run(kTool, {"in/volume.json", "-o", "out/camera.json", "--uncertainty-pixel", "320,240,1000"});
   ASSERT_EQ(r.exit_code, kOk) << r.err;
   const Json camera = ReadJson("out/camera.json");
-  EXPECT_FALSE(camera.contains("covariance"));
+  ASSERT_TRUE(camera.contains("covariance"));
+  EXPECT_TRUE(CovarianceIsWellFormed(camera));
+  const Json& u = camera.at("dlt").at("uncertainty");
+  EXPECT_GT(u.at("sigma_px").get<double>(), 0);
+  EXPECT_EQ(u.at("dof").get<int>(), 2 * camera.at("fit").at("n_points").get<int>() - 11);
+  EXPECT_EQ(u.at("P_covariance").at("matrix").size(), 12u);
+  EXPECT_EQ(camera.at("projection_uncertainty").at("test_points").size(), 5u);
+  EXPECT_EQ(camera.at("projection_uncertainty").at("pixels").size(), 1u);
   const std::map<std::string, double> k = {{"fx", camera["K"][0][0]}, {"fy", camera["K"][1][1]},
                                            {"cx", camera["K"][0][2]}, {"cy", camera["K"][1][2]},
                                            {"s", camera["K"][0][1]}};
@@ -126,9 +137,38 @@ TEST_F(CliCalibDltRefine, WithoutRefineTheSummarySaysThereIsNoSigma) {
     ASSERT_NE(at, std::string::npos) << name << "\n" << r.err;
     const std::string line = r.err.substr(at + 1, r.err.find('\n', at + 1) - at - 1);
     EXPECT_NEAR(std::stod(line.substr(2 + name.size())), value, 1e-7 * std::max(1.0, std::abs(value))) << line;
-    EXPECT_NE(line.find("(no covariance)"), std::string::npos) << line;
-    EXPECT_EQ(line.find('['), std::string::npos) << line;
+    EXPECT_EQ(line.find("(no covariance)"), std::string::npos) << line;
+    EXPECT_NE(line.find('['), std::string::npos) << line;
+    EXPECT_NEAR(Sigma(camera, name), u.at("sigma").at(name).get<double>(), 1e-9 * Sigma(camera, name)) << name;
   }
+  // The truth lies within 5σ of the DLT estimate.
+  EXPECT_TRUE(WithinSigmas(camera, ReadJson("in/volume.truth.json"), {"fx", "fy", "cx", "cy"}, 5));
+}
+
+// --reject-views on a volume (docs/tools/calib-dlt.md): one template position whose world
+// coordinates are off by one square (60 mm) is rejected and named, and the camera is the DLT of the
+// other positions; without the flag it is kept and the fit is far worse.
+TEST_F(CliCalibDltRefine, RejectViewsDropsAShiftedTemplatePosition) {
+  Json doc = Synth("in/volume.json", Override(Override(VolumeArgs(), "--distortion", "0,0,0,0,0"), "--noise", "0.3"));
+  ASSERT_GE(doc["views"].size(), 4u);
+  for (Json& p : doc["views"][1]["points"]) p[0] = p[0].get<double>() + 60;
+  WriteJson("in/volume.json", doc);
+  const CommandResult r = Run(kTool, {"in/volume.json", "-o", "out/camera.json", "--reject-views"});
+  ASSERT_EQ(r.exit_code, kOk) << r.err;
+  const Json camera = ReadJson("out/camera.json");
+  const Json& rejected = camera.at("view_rejection").at("rejected");
+  ASSERT_EQ(rejected.size(), 1u) << rejected.dump();
+  EXPECT_EQ(rejected[0].at("view_index"), 1);
+  EXPECT_NE(r.err.find("calib-dlt: warning: --reject-views: rejected view \"" + doc["views"][1]["name"].get<std::string>()),
+            std::string::npos)
+      << r.err;
+  Json without = doc;
+  without["views"].erase(1);
+  WriteJson("in/without.json", without);
+  ASSERT_EQ(Run(kTool, {"in/without.json", "-o", "out/without.json", "-q"}).exit_code, kOk);
+  EXPECT_EQ(camera.at("K"), ReadJson("out/without.json").at("K"));
+  ASSERT_EQ(Run(kTool, {"in/volume.json", "-o", "out/kept.json", "-q"}).exit_code, kOk);
+  EXPECT_GT(ReadJson("out/kept.json")["fit"]["rms_px"].get<double>(), 5 * camera["fit"]["rms_px"].get<double>());
 }
 
 TEST_F(CliCalibDltRefine, WithoutRefineTheRefinementFlagsAreRefused) {
@@ -137,11 +177,7 @@ TEST_F(CliCalibDltRefine, WithoutRefineTheRefinementFlagsAreRefused) {
                                                                                     {"--skew"},
                                                                                     {"--loss", "huber"},
                                                                                     {"--loss-scale", "2"},
-                                                                                    {"--max-iterations", "50"},
-                                                                                    {"--uncertainty-grid", "1000"},
-                                                                                    {"--grid-size", "4x3"},
-                                                                                    {"--uncertainty-at", "0,0,0"},
-                                                                                    {"--uncertainty-pixel", "1,1,1"}}) {
+                                                                                    {"--max-iterations", "50"}}) {
     std::vector<std::string> args = {"in/volume.json", "-o", "out/camera.json"};
     args.insert(args.end(), flag.begin(), flag.end());
     EXPECT_TRUE(

@@ -11,6 +11,7 @@
 
 #include "calibration_checks.h"
 #include "cli_fixture.h"
+#include "vstcal/random/philox.h"
 
 namespace vstcal::cli_test {
 namespace {
@@ -857,6 +858,71 @@ TEST_F(CliCalibTsai, CrossValidationRefusals) {
   fs::remove(Path("out/camera.json"));
   r = Run(kTool, {"in/one.json", "-o", "out/camera.json", "--split-halves"});
   EXPECT_TRUE(FailsWith(r, std::string(kTool), kBadInput, "", {}) || FailsWith(r, std::string(kTool), kDegenerate, "", {})) << r.err;
+  EXPECT_TRUE(OutDirEmpty());
+}
+
+}  // namespace
+}  // namespace vstcal::cli_test
+
+namespace vstcal::cli_test {
+namespace {
+
+// --reject-views (docs/tools/calib-tsai.md#reject-views): a view 5× noisier than the others is
+// rejected, named on stderr and in the camera's view_rejection block, and the camera is the one
+// calibrated without it; with three views the rejection would leave too few, which is refused.
+class CliCalibTsaiRejectViews : public CliTest {
+ protected:
+  // PlanarArgs() views, one of them (views[k]) given 5× the noise.
+  Json NoisyView(size_t k, std::vector<std::string> args = PlanarArgs()) {
+    Json doc = Synth("in/views.json", Override(args, "--noise", "0.3"));
+    const CounterRng extra(5, 1);
+    Json& points = doc["views"][k]["points"];
+    for (size_t i = 0; i < points.size(); ++i) {
+      const auto e = extra.Normal2(i, 0);
+      points[i][3] = points[i][3].get<double>() + 0.3 * std::sqrt(24.0) * e[0];
+      points[i][4] = points[i][4].get<double>() + 0.3 * std::sqrt(24.0) * e[1];
+    }
+    WriteJson("in/views.json", doc);
+    return doc;
+  }
+};
+
+TEST_F(CliCalibTsaiRejectViews, NoisyViewIsRejectedAndReported) {
+  const Json doc = NoisyView(2);
+  const CommandResult r = Run("calib-tsai", {"in/views.json", "-o", "out/camera.json", "--reject-views"});
+  ASSERT_EQ(r.exit_code, kOk) << r.err;
+  const Json camera = ReadJson("out/camera.json");
+  const Json& block = camera.at("view_rejection");
+  ASSERT_GE(block.at("rejected").size(), 1u);
+  const Json& first = block.at("rejected")[0];
+  EXPECT_EQ(first.at("kind"), "view");
+  EXPECT_EQ(first.at("view_index"), 2);
+  EXPECT_EQ(first.at("view"), doc["views"][2]["name"]);
+  EXPECT_GT(first.at("rms_px").get<double>(), first.at("threshold_px").get<double>());
+  EXPECT_NE(r.err.find("calib-tsai: warning: --reject-views: rejected view \"" + doc["views"][2]["name"].get<std::string>() +
+                       "\" (views[2]) in round 1: view RMS"),
+            std::string::npos)
+      << r.err;
+  EXPECT_NE(r.err.find("  view rejection: "), std::string::npos) << r.err;
+  // The same camera as calibrating without that view.
+  Json without = doc;
+  without["views"].erase(2);
+  WriteJson("in/without.json", without);
+  ASSERT_EQ(Run("calib-tsai", {"in/without.json", "-o", "out/without.json", "-q"}).exit_code, kOk);
+  if (block.at("rejected").size() == 1) {
+    EXPECT_NEAR(camera["K"][0][0].get<double>(), ReadJson("out/without.json")["K"][0][0].get<double>(), 1e-6);
+  }
+  // Off by default: nothing rejected, no block.
+  ASSERT_EQ(Run("calib-tsai", {"in/views.json", "-o", "out/kept.json", "-q"}).exit_code, kOk);
+  EXPECT_FALSE(ReadJson("out/kept.json").contains("view_rejection"));
+}
+
+TEST_F(CliCalibTsaiRejectViews, RefusesToLeaveFewerViewsThanTheModelNeeds) {
+  const Json doc = NoisyView(1, Override(PlanarArgs(), "--views", "3"));
+  ASSERT_EQ(doc["views"].size(), 3u);
+  const CommandResult r = Run("calib-tsai", {"in/views.json", "-o", "out/camera.json", "--reject-views"});
+  EXPECT_TRUE(FailsWith(r, "calib-tsai", kBadInput, "in/views.json: --reject-views: view ",
+                        {"would leave 2 views, fewer than the 3 planar views need", "drop --reject-views"}));
   EXPECT_TRUE(OutDirEmpty());
 }
 

@@ -769,5 +769,29 @@ TEST_F(CliErrSim, CheckRefusesBadThresholdsAndNames) {
   EXPECT_TRUE(OutDirEmpty());
 }
 
+// An unrefined calib-dlt camera carries the DLT's first-order covariance (docs/math/dlt.md#covariance)
+// in the form refined cameras use: err-sim's "covariance": "camera" reads it, and the image error
+// it causes grows with the calibration's pixel noise.
+TEST_F(CliErrSim, CovarianceOfAnUnrefinedDltCamera) {
+  double rms[2];
+  for (int k = 0; k < 2; ++k) {
+    const std::string noise = k == 0 ? "0.25" : "1";
+    Synth("in/volume.json", Override(DefaultSynthArgs(), "--noise", noise));
+    ASSERT_EQ(Run("calib-dlt", {"in/volume.json", "-o", "in/dlt.camera.json", "-q"}).exit_code, kOk);
+    ASSERT_TRUE(ReadJson("in/dlt.camera.json").contains("covariance"));
+    Json c = SmallChain();
+    c["cameras"]["left"] = {{"file", "dlt.camera.json"}};
+    c["sources"]["camera_intrinsic"] = {{"left", {{"covariance", "camera"}}}};
+    WriteJson("in/chain.json", c);
+    const CommandResult r =
+        Run("err-sim", {"run", "in/chain.json", "-o", "out/r.json", "--only", "camera_intrinsic", "--no-budget", "-q"});
+    ASSERT_EQ(r.exit_code, kOk) << r.err;
+    EXPECT_EQ(r.err.find("has no covariance"), std::string::npos) << r.err;
+    rms[k] = ReadJson("out/r.json")["totals"]["image_rms_px"].get<double>();
+  }
+  EXPECT_GT(rms[0], 0.0);
+  EXPECT_GT(rms[1], 2 * rms[0]);  // σ̂ 4× larger: the covariance 16×, the error ≈ 4×
+}
+
 }  // namespace
 }  // namespace vstcal::cli_test

@@ -66,6 +66,26 @@ TEST_F(CliReprojReport, AgreesWithTheSolversOwnFit) {
   }
 }
 
+// An unrefined DLT camera has a covariance (docs/math/dlt.md#covariance) and its σ̂ in
+// dlt.uncertainty: the report normalizes its residuals and gives its projection uncertainty.
+TEST_F(CliReprojReport, DltCameraHasProjectionUncertainty) {
+  Synth("in/volume.json", Override(Override(Remove(DefaultSynthArgs(), "--no-test-points", false), "--noise", "0.5"),
+                                   "--distortion", "0,0,0,0,0"));
+  ASSERT_EQ(Run("calib-dlt", {"in/volume.json", "-o", "in/cam.json", "-q"}).exit_code, kOk);
+  const CommandResult r = Run("reproj-report", {"in/cam.json", "in/volume.json", "-o", "out/report.json", "--grid", "4x3"});
+  ASSERT_EQ(r.exit_code, kOk) << r.err;
+  EXPECT_EQ(r.err.find("has no covariance"), std::string::npos) << r.err;
+  const Json report = ReadJson("out/report.json");
+  const Json& c = report["cameras"][0];
+  EXPECT_EQ(c["method"], "dlt");
+  EXPECT_TRUE(c["normalized"]["chi2_per_dof"].is_number()) << c["normalized"].dump();
+  EXPECT_NEAR(c["normalized"]["chi2_per_dof"].get<double>(), 1.0, 0.15);
+  ASSERT_EQ(c["projection_uncertainty"]["sigma_major_px"].size(), 12u);
+  for (const Json& s : c["projection_uncertainty"]["sigma_major_px"]) {
+    if (s.is_number()) EXPECT_GT(s.get<double>(), 0);
+  }
+}
+
 TEST_F(CliReprojReport, CamerasSideBySideAndATable) {
   SolveNoisyVolume();
   const CommandResult r = Run("reproj-report", {"in/cam.json", "in/volume.truth.json", "in/volume.json", "-o",

@@ -8,9 +8,10 @@ int main(int argc, char** argv) {
   CLI::App app{
       "Solves a camera (K with skew, camera_from_world, P) from a calibration volume by the direct linear "
       "transformation on the Hartley-normalized system, and reports residuals per point, per view and at the "
-      "test points. With --refine, the DLT camera starts a maximum-likelihood refinement (distortion, robust "
-      "loss, covariance and projection uncertainty). Input: vstcal/correspondences@1 with rig \"volume\", or "
-      "--target with the images and their --manifest (the corners found first, as calib-capture detect does). "
+      "test points, with the DLT's first-order covariance of P and of K, R, C (docs/math/dlt.md#covariance). With "
+      "--refine, the DLT camera starts a maximum-likelihood refinement (distortion, robust loss, covariance and "
+      "projection uncertainty). Input: vstcal/correspondences@1 with rig \"volume\", or --target with the images and "
+      "their --manifest (the corners found first, as calib-capture detect does). "
       "Output: vstcal/camera@1.\n"
       "Exit codes: 0 ok, 1 internal error, 2 bad usage or input, 3 degenerate geometry (coplanar, collinear, "
       "ill-conditioned) or a refinement that does not converge.",
@@ -36,15 +37,16 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   CLI::Option* refine = app.add_flag("--refine", options.refine, "refine the DLT camera to maximum likelihood");
   for (CLI::Option* o : flags.AddRefinement(app)) o->needs(refine);
-  for (CLI::Option* o : flags.AddUncertainty(app)) o->needs(refine);
+  flags.AddUncertainty(app);  // the DLT camera has its own first-order covariance
+  flags.AddRejection(app);
   flags.AddOutput(app);
-
   return vstcal::tools::RunTool(app, argc, argv, [&] {
     using namespace vstcal;
     DeclareOutputs({output, flags.residuals, input.corners, input.html});
     options.dlt.exact_diagnostics = true;  // the camera file reports sigma_11
     options.dlt.solver = *FromName(DltOptions::kSolverNames, solver);
     options.refinement = flags.Refinement();
+    options.reject_views = flags.Rejection();
     const tools::ReadCorners read = input.Read("calib-dlt", flags.quiet, argc, argv);
     if (read.corners.rig != Rig::kVolume) {
       throw InputError(input.Name() + ": rig: DLT needs one world frame (rig \"volume\"), got \"planar-views\"; " +

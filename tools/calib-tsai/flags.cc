@@ -31,12 +31,14 @@ void TsaiFlags::Add(CLI::App& app) {
       ->excludes(raw);
   for (CLI::Option* o : calibration.AddRefinement(app)) o->excludes(raw);
   for (CLI::Option* o : calibration.AddUncertainty(app)) o->excludes(raw);
+  calibration.AddRejection(app);
   calibration.AddOutput(app);
 }
 
 CalibrationOptions TsaiFlags::Options(const CLI::App& app) {
   options.refine = !no_refine;
   options.refinement = calibration.Refinement();
+  options.reject_views = calibration.Rejection();
   options.tsai.variant = *FromName(TsaiOptions::kVariantNames, variant);
   if (app.count("--principal-point") > 0) {
     options.tsai.principal_point = Eigen::Vector2d(principal_point[0], principal_point[1]);

@@ -68,6 +68,31 @@ void CalibrationFlags::AddOutput(CLI::App& app) {
   app.add_flag("-q,--quiet", quiet, "print only warnings and errors");
 }
 
+void CalibrationFlags::AddRejection(CLI::App& app) {
+  CLI::Option* on = app.add_flag("--reject-views", reject_views,
+                                 "reject views whose residual RMS is inconsistent with the median view's noise, then "
+                                 "single corners beyond a chi-square threshold, re-solving until none is (off by "
+                                 "default)");
+  app.add_option("--view-false-alarm", view_false_alarm,
+                 "--reject-views: probability that a clean calibration loses a view")
+      ->check(CLI::Range(1e-12, 0.5))
+      ->capture_default_str()
+      ->needs(on);
+  app.add_option("--corner-false-alarm", corner_false_alarm,
+                 "--reject-views: probability that a clean calibration loses a corner")
+      ->check(CLI::Range(1e-12, 0.5))
+      ->capture_default_str()
+      ->needs(on);
+}
+
+ViewRejectionOptions CalibrationFlags::Rejection() const {
+  ViewRejectionOptions o;
+  o.enabled = reject_views;
+  o.view_false_alarm = view_false_alarm;
+  o.corner_false_alarm = corner_false_alarm;
+  return o;
+}
+
 RefineOptions CalibrationFlags::Refinement() const {
   RefineOptions o;
   o.free_distortion.clear();

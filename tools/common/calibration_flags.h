@@ -32,6 +32,10 @@ struct CalibrationFlags {
   std::string residuals;
   bool quiet = false;
 
+  bool reject_views = false;
+  double view_false_alarm = 0.01;
+  double corner_false_alarm = 0.01;
+
   CLI::Option* loss_scale_option = nullptr;  // set by AddRefinement: --loss-scale needs a robust --loss
 
   // Add the refinement and the uncertainty flags; return them so a tool can tie them to its own
@@ -39,6 +43,9 @@ struct CalibrationFlags {
   std::vector<CLI::Option*> AddRefinement(CLI::App& app);
   std::vector<CLI::Option*> AddUncertainty(CLI::App& app);
   void AddOutput(CLI::App& app);
+  // --reject-views and its false-alarm probabilities (docs/tools/calib-tsai.md#reject-views).
+  void AddRejection(CLI::App& app);
+  ViewRejectionOptions Rejection() const;
 
   // Throws InputError for a flag that would do nothing (--loss-scale with --loss none).
   RefineOptions Refinement() const;

@@ -45,6 +45,14 @@ Outcome CalibrationOutcome(const CalibrationResult& result, const CalibrationOpt
   if (result.exit_code != ExitCode::kOk) throw Error(result.exit_code, files.input + ": " + result.message);
   Outcome outcome;
   for (const std::string& w : result.warnings) outcome.warnings.push_back(files.tool + ": warning: " + w);
+  for (const Rejection& x : result.rejections) {
+    const std::string what = x.kind == Rejection::Kind::kView
+                                 ? "view \"" + x.view_name + "\" (views[" + std::to_string(x.view) + "])"
+                                 : "views[" + std::to_string(x.view) + "].points[" + std::to_string(*x.point) +
+                                       "] (view \"" + x.view_name + "\")";
+    outcome.warnings.push_back(files.tool + ": warning: --reject-views: rejected " + what + " in round " +
+                               std::to_string(x.round) + ": " + x.because);
+  }
   OrderedJson blocks = CalibrationBlocksToJson(result, options);
   if (result.camera.covariance) blocks["projection_uncertainty"] = UncertaintyToJson(result.camera, files.uncertainty);
   outcome.files.emplace_back(files.output, DumpJson(CameraToJson(result.camera, provenance, blocks)));
@@ -62,6 +70,15 @@ Outcome CalibrationOutcome(const CalibrationResult& result, const CalibrationOpt
     char buf[200];
     std::snprintf(buf, sizeof buf, "  refinement: %d iterations, sigma %.4f px (%d dof), %zu outliers\n", r.iterations,
                   r.sigma_px, r.dof, r.outliers.size());
+    text += buf;
+  }
+  if (options.reject_views.enabled && result.rejection_sigma_px) {
+    const auto views = std::count_if(result.rejections.begin(), result.rejections.end(),
+                                     [](const Rejection& x) { return x.kind == Rejection::Kind::kView; });
+    char buf[240];
+    std::snprintf(buf, sizeof buf, "  view rejection: %td views and %td corners rejected in %d rounds, robust sigma %.4f px\n",
+                  views, static_cast<std::ptrdiff_t>(result.rejections.size()) - views, result.rejection_rounds,
+                  *result.rejection_sigma_px);
     text += buf;
   }
   text += UncertaintySummary(result, files.uncertainty);

@@ -10,7 +10,6 @@
 namespace vstcal {
 namespace {
 
-using Matrix12d = Eigen::Matrix<double, 12, 12>;
 using Vector12d = Eigen::Matrix<double, 12, 1>;
 
 // Similarity transforms that move the centroid to the origin and scale the RMS distance to
@@ -442,6 +441,78 @@ DltResult SolveDlt(std::span<const Observation> obs, const DltOptions& options) 
                 "u/v are swapped; flip one world axis or fix the pixel columns");
   }
   return r;
+}
+
+DltUncertainty EstimateDltUncertainty(std::span<const Observation> obs, const Matrix34d& P) {
+  VSTCAL_CHECK(obs.size() >= 6 && P.allFinite(), "the DLT uncertainty needs a solved P and its observations");
+  const Normalization n = DirectNormalization(obs);
+  Eigen::Matrix4d T3 = Eigen::Matrix4d::Identity();
+  T3.topLeftCorner<3, 3>() *= n.world_scale;
+  T3.block<3, 1>(0, 3) = -n.world_scale * n.world_centroid;
+  const double s2 = n.pixel_scale;
+  Eigen::Matrix3d T2 = Eigen::Matrix3d::Identity(), T2inv = Eigen::Matrix3d::Identity();
+  T2.topLeftCorner<2, 2>() *= s2;
+  T2.block<2, 1>(0, 2) = -s2 * n.pixel_centroid;
+  T2inv.topLeftCorner<2, 2>() /= s2;
+  T2inv.block<2, 1>(0, 2) = n.pixel_centroid;
+  // The normalized solution m (unit norm) that P came from: P̃ ∝ T₂ P T₃⁻¹.
+  Matrix34d Pn = T2 * P * T3.inverse();
+  Pn /= Pn.norm();
+
+  // AᵀA and Aᵀ D² A, D the rows' weights w̃ᵢ = p̃₃·X̃ᵢ: a pixel error δq̃ moves the algebraic
+  // residual by −w̃ᵢ δq̃ (docs/math/dlt.md#covariance).
+  Matrix12d N = Matrix12d::Zero(), B = Matrix12d::Zero();
+  double squares = 0;
+  for (const Observation& o : obs) {
+    const Eigen::Vector4d X = T3 * o.point.homogeneous();
+    const Eigen::Vector2d q = s2 * (o.pixel - n.pixel_centroid);
+    Vector12d au = Vector12d::Zero(), av = Vector12d::Zero();
+    au.segment<4>(0) = X;
+    au.segment<4>(8) = -q.x() * X;
+    av.segment<4>(4) = X;
+    av.segment<4>(8) = -q.y() * X;
+    const Matrix12d rows = au * au.transpose() + av * av.transpose();
+    const double w = Pn.row(2).dot(X);
+    N += rows;
+    B += w * w * rows;
+    const Eigen::Vector3d x = P * o.point.homogeneous();
+    squares += (x.head<2>() / x.z() - o.pixel).squaredNorm();
+  }
+  DltUncertainty u;
+  u.dof = 2 * static_cast<int>(obs.size()) - 11;
+  u.sigma_px = std::sqrt(squares / u.dof);
+
+  // δm = G Aᵀ D δq̃ with G = Σ_{j>0} v_j v_jᵀ / (λ_j − λ₀): first-order perturbation of the
+  // smallest eigenvector, which never moves along itself (‖m‖ = 1).
+  Eigen::SelfAdjointEigenSolver<Matrix12d> eig(N);
+  Matrix12d G = Matrix12d::Zero();
+  for (int j = 1; j < 12; ++j) {
+    const Vector12d v = eig.eigenvectors().col(j);
+    G += v * v.transpose() / (eig.eigenvalues()(j) - eig.eigenvalues()(0));
+  }
+  const Matrix12d cov_m = (u.sigma_px * s2) * (u.sigma_px * s2) * G * B * G;
+
+  // vec P_raw = L m (P_raw = T₂⁻¹ P̃ T₃), then the gauge P = ±P_raw / ‖P_raw(2, 0:3)‖, whose
+  // Jacobian is (±1/ν)(I − vec P · e₃ᵀ), e₃ picking P(2, 0:3).
+  Matrix12d L;
+  for (int k = 0; k < 12; ++k) {
+    Matrix34d E = Matrix34d::Zero();
+    E(k / 4, k % 4) = 1;
+    const Matrix34d D = T2inv * E * T3;
+    for (int i = 0; i < 12; ++i) L(i, k) = D(i / 4, i % 4);
+  }
+  Vector12d m, p;
+  for (int i = 0; i < 12; ++i) m(i) = Pn(i / 4, i % 4), p(i) = P(i / 4, i % 4);
+  const Vector12d raw = L * m;
+  const double nu = raw.segment<3>(8).norm();
+  const double sign = raw.dot(p) > 0 ? 1.0 : -1.0;
+  Vector12d e3 = Vector12d::Zero();
+  e3.segment<3>(8) = p.segment<3>(8);
+  const Matrix12d Jg = (sign / nu) * (Matrix12d::Identity() - p * e3.transpose());
+  const Matrix12d J = Jg * L;
+  u.P_covariance = J * cov_m * J.transpose();
+  u.P_covariance = 0.5 * (u.P_covariance + u.P_covariance.transpose()).eval();
+  return u;
 }
 
 ExitCode DltStatusExitCode(DltStatus status) {

@@ -72,6 +72,25 @@ struct DltResult {
   size_t deepest_behind = 0;  // index of the deepest point behind the camera, when n_behind > 0
 };
 
+using Matrix12d = Eigen::Matrix<double, 12, 12>;
+
+// First-order uncertainty of the DLT estimate (docs/math/dlt.md#covariance): pixel noise i.i.d.
+// N(0, σ²) per coordinate, propagated through the smallest eigenvector of the normalized AᵀA
+// (the algebraic estimator's own sensitivity, not the maximum-likelihood one's) and the
+// denormalization into the file's gauge.
+struct DltUncertainty {
+  // σ̂ = √(Σ‖π(P X_i) − q_i‖² / dof), dof = 2N − 11 (P has 11 degrees of freedom).
+  double sigma_px = 0;
+  int dof = 0;
+  // Cov(vec P), P row-major, in the gauge of docs/conventions.md#projection-matrix
+  // (‖P(2, 0:3)‖ = 1, positive depth). Rank 11: the gauge's normal, ∂‖P(2, 0:3)‖/∂vec P, is its
+  // null direction.
+  Matrix12d P_covariance = Matrix12d::Zero();
+};
+
+// `P` is SolveDlt's (status kOk) for the same observations; needs ≥ 6 of them.
+DltUncertainty EstimateDltUncertainty(std::span<const Observation> observations, const Matrix34d& P);
+
 // Solves P from the observations (points in one world frame). Never throws on bad geometry: the
 // status says what went wrong.
 DltResult SolveDlt(std::span<const Observation> observations, const DltOptions& options = {});

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 
 #include <Eigen/Geometry>
 
@@ -53,6 +54,8 @@ void ApplyRefinement(CalibrationResult* r, Refinement refinement) {
       cam.views.push_back({c.views[v].name, refinement.poses[v], refinement.fit.views[v].stats.rms_px});
     }
   }
+  // The start's covariance (DLT) does not describe the refined camera: replaced or dropped.
+  cam.covariance.reset();
   if (!refinement.covariance.empty()) cam.covariance = refinement.covariance;
   r->refinement = std::move(refinement);
 }
@@ -84,6 +87,9 @@ void StartVolume(CalibrationResult* r, const CalibrationOptions& options) {
     cam.camera = Camera::FromK(d->K, c.image_size);
     cam.camera_from_world = d->camera_from_world;
     cam.P = dlt.P;
+    r->dlt_uncertainty = EstimateDltUncertainty(obs, dlt.P);
+    r->dlt_covariance = DecompositionCovariance(*d, r->dlt_uncertainty->P_covariance);
+    cam.covariance = r->dlt_covariance;
     r->eq13 = DecomposeProjectionEq13(dlt.P);
     r->dlt = std::move(dlt);
   } else {
@@ -202,9 +208,160 @@ PlanePrincipalPointDecision DecidePlanePrincipalPoint(const Correspondences& c, 
   return d;
 }
 
+CalibrationResult CalibrateOnce(Correspondences correspondences, const CalibrationOptions& options);
+
+// Parameters the solve estimated, of which `per_view` belong to one view alone.
+std::pair<size_t, size_t> EstimatedParameters(const CalibrationResult& r) {
+  const bool volume = r.used.rig == Rig::kVolume;
+  const size_t per_view = volume ? 0 : 6;
+  if (r.refinement) {
+    const size_t lens = r.refinement->free.MovedParams(r.refinement->camera.model).size();
+    return {lens + 6 * r.refinement->poses.size(), per_view};
+  }
+  if (volume) return {11, 0};  // DLT's P, or Tsai's pinhole with κ₁ (12): the share differs by < 1/N
+  return {4 + 6 * r.used.views.size(), per_view};  // Zhang: fx, fy, cx, cy and each board's pose
+}
+
+// Solve → test → reject until the test passes (docs/math/uncertainty.md#view-rejection).
+CalibrationResult CalibrateRejecting(Correspondences c, const CalibrationOptions& options) {
+  const ViewRejectionOptions& o = options.reject_views;
+  std::vector<std::string> warnings;
+  if (c.rig == Rig::kPlanarViews) warnings = DropSparseViews(&c, kMinPointsPerPlanarView);
+  // Where each kept view and point came from in the input.
+  std::vector<size_t> view_index(c.views.size());
+  std::vector<std::vector<size_t>> point_index(c.views.size());
+  for (size_t v = 0; v < c.views.size(); ++v) {
+    view_index[v] = v;
+    for (size_t i = 0; i < c.views[v].observations.size(); ++i) point_index[v].push_back(i);
+  }
+  const size_t min_views = c.rig == Rig::kVolume ? kMinVolumeViewsKept : kMinPlanarViewsKept;
+  std::vector<Rejection> rejections;
+  const auto erase_view = [&](size_t v) {
+    c.views.erase(c.views.begin() + static_cast<std::ptrdiff_t>(v));
+    view_index.erase(view_index.begin() + static_cast<std::ptrdiff_t>(v));
+    point_index.erase(point_index.begin() + static_cast<std::ptrdiff_t>(v));
+  };
+  // Rejects test.worst_view, or returns the refusal when too few views would remain.
+  const auto reject_view = [&](const RejectionTest& t, int round, const char* of) -> std::optional<CalibrationResult> {
+    const size_t v = *t.worst_view;
+    Rejection x;
+    x.kind = Rejection::Kind::kView;
+    x.round = round;
+    x.view = view_index[v];
+    x.view_name = c.views[v].name;
+    x.rms_px = t.view_rms_px[v];
+    x.threshold_px = t.view_threshold_px[v];
+    char buf[360];
+    std::snprintf(buf, sizeof buf,
+                  "view RMS %.4g px > %.4g px%s: chi-square threshold for its dof at false alarm %g over %zu views, "
+                  "robust sigma %.4g px from the median view",
+                  x.rms_px, x.threshold_px, of, o.view_false_alarm, c.views.size(), t.sigma_px);
+    x.because = buf;
+    if (c.views.size() - 1 < min_views) {
+      CalibrationResult refused;
+      refused.exit_code = ExitCode::kBadInput;
+      refused.rejections = rejections;
+      refused.message = "--reject-views: view \"" + x.view_name + "\" is inconsistent with the others (" + x.because +
+                        "), but rejecting it would leave " + std::to_string(c.views.size() - 1) + " views, fewer than the " +
+                        std::to_string(min_views) + (c.rig == Rig::kVolume ? " a volume" : " planar views") +
+                        " need; recapture that view or add views, or drop --reject-views";
+      return refused;
+    }
+    rejections.push_back(x);
+    erase_view(v);
+    return std::nullopt;
+  };
+  for (int round = 1;; ++round) {
+    CalibrationResult r = CalibrateOnce(c, options);
+    r.warnings.insert(r.warnings.begin(), warnings.begin(), warnings.end());
+    r.rejections = rejections;
+    r.rejection_rounds = round;
+    if (r.exit_code != ExitCode::kOk && options.refine && round < o.max_rounds) {
+      // A refinement that fails with a bad view in (a mislabelled one can pull it into an
+      // unobservable corner) is no verdict on the views: the closed-form start of the same set is
+      // tested instead, for its worst view only (its residuals also hold the unmodelled
+      // distortion, so its corners are not judged).
+      CalibrationOptions start = options;
+      start.refine = false;
+      const CalibrationResult s = CalibrateOnce(c, start);
+      if (s.exit_code == ExitCode::kOk) {
+        const auto [num_params, per_view] = EstimatedParameters(s);
+        const RejectionTest t = TestResiduals(c, *s.camera.fit, num_params, per_view, o);
+        if (t.worst_view) {
+          if (auto refused = reject_view(t, round, " (of the closed-form start: the refinement failed with it)")) {
+            return *refused;
+          }
+          continue;
+        }
+      }
+    }
+    if (r.exit_code != ExitCode::kOk) {
+      if (!rejections.empty()) {
+        r.exit_code = ExitCode::kBadInput;
+        r.message = "--reject-views: after rejecting " + std::to_string(rejections.size()) +
+                    " views or corners (last: view \"" + rejections.back().view_name +
+                    "\"), the rest cannot be solved: " + r.message +
+                    "; fix or recapture the rejected views, or drop --reject-views";
+      }
+      return r;
+    }
+    const auto [num_params, per_view] = EstimatedParameters(r);
+    const RejectionTest t = TestResiduals(c, *r.camera.fit, num_params, per_view, o);
+    r.rejection_sigma_px = t.sigma_px;
+    if (!t.worst_view && t.corners.empty()) return r;
+    if (round >= o.max_rounds) {
+      r.warnings.push_back("--reject-views: still rejecting after " + std::to_string(o.max_rounds) +
+                           " rounds; the last solve is kept with what it would have rejected");
+      return r;
+    }
+    if (t.worst_view) {
+      if (auto refused = reject_view(t, round, "")) return *refused;
+      continue;
+    }
+    // Corners, from the last of each view backwards so that indices stay valid; reported in order.
+    const size_t first = rejections.size();
+    for (auto it = t.corners.rbegin(); it != t.corners.rend(); ++it) {
+      Rejection x;
+      x.kind = Rejection::Kind::kCorner;
+      x.round = round;
+      x.view = view_index[it->view];
+      x.view_name = c.views[it->view].name;
+      x.point = point_index[it->view][it->point];
+      x.rms_px = it->residual_px;
+      x.threshold_px = it->threshold_px;
+      char buf[300];
+      std::snprintf(buf, sizeof buf,
+                    "corner residual %.4g px > %.4g px: chi-square(2) threshold at false alarm %g over %zu corners, "
+                    "robust sigma %.4g px",
+                    x.rms_px, x.threshold_px, o.corner_false_alarm, NumObservations(c), t.sigma_px);
+      x.because = buf;
+      rejections.push_back(x);
+      auto& obs = c.views[it->view].observations;
+      obs.erase(obs.begin() + static_cast<std::ptrdiff_t>(it->point));
+      point_index[it->view].erase(point_index[it->view].begin() + static_cast<std::ptrdiff_t>(it->point));
+    }
+    std::reverse(rejections.begin() + static_cast<std::ptrdiff_t>(first), rejections.end());
+    if (c.rig == Rig::kPlanarViews) {
+      for (size_t v = c.views.size(); v-- > 0;) {
+        if (c.views[v].observations.size() >= kMinPointsPerPlanarView) continue;
+        warnings.push_back("--reject-views: view \"" + c.views[v].name + "\" has fewer than " +
+                           std::to_string(kMinPointsPerPlanarView) + " corners left after rejecting corners; dropped");
+        erase_view(v);
+      }
+    }
+  }
+}
+
 }  // namespace
 
 CalibrationResult Calibrate(Correspondences correspondences, const CalibrationOptions& options) {
+  if (options.reject_views.enabled) return CalibrateRejecting(std::move(correspondences), options);
+  return CalibrateOnce(std::move(correspondences), options);
+}
+
+namespace {
+
+CalibrationResult CalibrateOnce(Correspondences correspondences, const CalibrationOptions& options) {
   CalibrationResult r;
   r.used = std::move(correspondences);
   r.camera.name = r.used.camera;
@@ -247,5 +404,7 @@ CalibrationResult Calibrate(Correspondences correspondences, const CalibrationOp
   ApplyRefinement(&r, std::move(refined));
   return r;
 }
+
+}  // namespace
 
 }  // namespace vstcal

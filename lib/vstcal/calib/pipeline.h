@@ -13,6 +13,7 @@
 #include "vstcal/calib/dlt.h"
 #include "vstcal/calib/refine.h"
 #include "vstcal/calib/tsai.h"
+#include "vstcal/calib/view_rejection.h"
 #include "vstcal/calib/zhang.h"
 #include "vstcal/core/error.h"
 #include "vstcal/core/enum_names.h"
@@ -36,6 +37,10 @@ struct CalibrationOptions {
   static constexpr EnumNames<PlanePrincipalPoint, 3> kPlanePrincipalPointNames = {{{PlanePrincipalPoint::kHold, "no"}, {PlanePrincipalPoint::kFree, "yes"}, {PlanePrincipalPoint::kAuto, "auto"}}};
   PlanePrincipalPoint plane_principal_point = PlanePrincipalPoint::kHold;
   double plane_principal_point_max_sigma = 0.005;
+
+  // Reject views (then corners) inconsistent with the others and re-solve, until none is
+  // (docs/math/uncertainty.md#view-rejection). Off by default for every rig.
+  ViewRejectionOptions reject_views;
 };
 
 // How a refined one-plane calibration treated the principal point (CalibrationOptions).
@@ -58,13 +63,25 @@ struct CalibrationResult {
   Correspondences used;     // the correspondences the result refers to (sparse views dropped)
 
   std::optional<DltResult> dlt;
+  // The DLT camera's first-order uncertainty (docs/math/dlt.md#covariance), kept beside a
+  // refinement's so that the two can be compared; `camera.covariance` is this one unrefined.
+  std::optional<DltUncertainty> dlt_uncertainty;
+  std::optional<ParameterCovariance> dlt_covariance;
   std::optional<Eq13Decomposition> eq13;
   std::optional<TsaiResult> tsai;
   std::optional<Refinement> refinement;
   std::optional<PlanePrincipalPointDecision> plane_principal_point;  // one plane, refined
+
+  // With reject_views: what was rejected, in order, and the last test's robust σ̂ (every view and
+  // corner of `used` passed it). `used` then holds only what was kept.
+  std::vector<Rejection> rejections;
+  std::optional<double> rejection_sigma_px;
+  int rejection_rounds = 0;
 };
 
-// Never throws on bad geometry: exit_code and message say what went wrong. Throws InputError for
+// Never throws on bad geometry: exit_code and message say what went wrong; with reject_views, a
+// rejection that would leave fewer views than the rig needs (kMinPlanarViewsKept,
+// kMinVolumeViewsKept) or a set the solver refuses is kBadInput, naming the view. Throws InputError for
 // options that cannot apply (an unknown distortion term; a plane_principal_point other than kHold
 // for points that are not one plane).
 CalibrationResult Calibrate(Correspondences correspondences, const CalibrationOptions& options);

@@ -3,6 +3,10 @@
 #include <Eigen/QR>
 #include <algorithm>
 #include <cmath>
+#include <string>
+
+#include "vstcal/core/error.h"
+#include "vstcal/geometry/rotation.h"
 
 namespace vstcal {
 
@@ -31,6 +35,58 @@ std::optional<ProjectionDecomposition> DecomposeProjection(const Matrix34d& P) {
   out.camera_from_world.R = R;
   out.camera_from_world.t = K.triangularView<Eigen::Upper>().solve(Eigen::Vector3d(P.col(3)));
   return out;
+}
+
+ParameterCovariance DecompositionCovariance(const ProjectionDecomposition& d,
+                                            const Eigen::Matrix<double, 12, 12>& P_covariance) {
+  using Matrix12x11 = Eigen::Matrix<double, 12, 11>;
+  const Eigen::Matrix3d& K = d.K;
+  const Matrix34d Rt = d.camera_from_world.matrix3x4();
+  const auto vec = [](const Matrix34d& M) {
+    Eigen::Matrix<double, 12, 1> v;
+    for (int i = 0; i < 12; ++i) v(i) = M(i / 4, i % 4);
+    return v;
+  };
+  Matrix12x11 J;
+  // dP = dK [R|t] for the intrinsics (fx, fy, cx, cy, s at K(0,0), K(1,1), K(0,2), K(1,2), K(0,1)).
+  const int at[5][2] = {{0, 0}, {1, 1}, {0, 2}, {1, 2}, {0, 1}};
+  for (int k = 0; k < 5; ++k) {
+    Eigen::Matrix3d dK = Eigen::Matrix3d::Zero();
+    dK(at[k][0], at[k][1]) = 1;
+    J.col(k) = vec(dK * Rt);
+  }
+  // R' = Exp(ω) R, t' = Exp(ω) t + ρ: d[R|t] = [ω]×[R|t] + [0|ρ].
+  for (int k = 0; k < 3; ++k) {
+    J.col(5 + k) = vec(K * Hat<double>(Eigen::Vector3d::Unit(k)) * Rt);
+    Matrix34d dP = Matrix34d::Zero();
+    dP.col(3) = K.col(k);
+    J.col(8 + k) = vec(dP);
+  }
+  // J⁺ by least squares on unit columns (px and length units differ by orders of magnitude).
+  const Eigen::Matrix<double, 11, 1> scale = J.colwise().norm().transpose();
+  const Matrix12x11 Js = J * scale.cwiseInverse().asDiagonal();
+  const Eigen::HouseholderQR<Matrix12x11> qr(Js);
+  const Eigen::Matrix<double, 11, 12> pinv = scale.cwiseInverse().asDiagonal() * qr.solve(Eigen::Matrix<double, 12, 12>::Identity());
+  ParameterCovariance out;
+  out.parameters = {"fx", "fy", "cx", "cy", "s"};
+  for (const char* axis : {"rx", "ry", "rz", "tx", "ty", "tz"}) out.parameters.push_back(std::string("camera_from_world.") + axis);
+  out.matrix = pinv * P_covariance * pinv.transpose();
+  out.matrix = (0.5 * (out.matrix + out.matrix.transpose())).eval();
+  return out;
+}
+
+Eigen::Matrix3d CameraCentreCovariance(const ParameterCovariance& covariance, const Rigid3d& camera_from_world) {
+  Eigen::Matrix3d rho = Eigen::Matrix3d::Zero();
+  const char* axes[3] = {"camera_from_world.tx", "camera_from_world.ty", "camera_from_world.tz"};
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) {
+      const auto a = covariance.Find(axes[i]), b = covariance.Find(axes[j]);
+      VSTCAL_CHECK(a && b, "the covariance names camera_from_world's translation");
+      rho(i, j) = covariance.matrix(static_cast<Eigen::Index>(*a), static_cast<Eigen::Index>(*b));
+    }
+  }
+  const Eigen::Matrix3d& R = camera_from_world.R;
+  return R.transpose() * rho * R;
 }
 
 Eq13Decomposition DecomposeProjectionEq13(const Matrix34d& P) {

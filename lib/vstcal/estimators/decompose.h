@@ -5,6 +5,7 @@
 #include <optional>
 
 #include "vstcal/scene/calibrated_camera.h"
+#include "vstcal/scene/parameter_covariance.h"
 #include "vstcal/camera/intrinsics.h"
 
 namespace vstcal {
@@ -18,6 +19,20 @@ struct ProjectionDecomposition {
 // P must be normalized (NormalizeProjectionScale) with det P(:, 0:3) > 0, which SolveDlt
 // guarantees; nullopt when the block is singular or mirrored.
 std::optional<ProjectionDecomposition> DecomposeProjection(const Matrix34d& P);
+
+// The covariance of the decomposed camera from Cov(vec P) (P row-major, in the gauge
+// ‖P(2, 0:3)‖ = 1 that K[R|t] with K(2,2) = 1 satisfies), over fx, fy, cx, cy, s and
+// camera_from_world's tangent (rx, ry, rz, tx, ty, tz; docs/conventions.md#poses-in-optimisation).
+// P(θ) = K[R|t] maps the 11 parameters onto the 11-dimensional gauge surface, so the
+// decomposition's Jacobian is the pseudo-inverse of ∂vec P/∂θ: Σ_θ = J⁺ Σ_P J⁺ᵀ
+// (docs/math/dlt.md#covariance). `P_covariance` must lie in the surface's tangent space, as
+// EstimateDltUncertainty's does.
+ParameterCovariance DecompositionCovariance(const ProjectionDecomposition& d,
+                                            const Eigen::Matrix<double, 12, 12>& P_covariance);
+
+// Cov(C) of the camera centre C = −Rᵀt in world coordinates from a covariance over
+// camera_from_world's tangent: a left perturbation (ω, ρ) moves C by −Rᵀρ.
+Eigen::Matrix3d CameraCentreCovariance(const ParameterCovariance& covariance, const Rigid3d& camera_from_world);
 
 // Seed 001 Eq. 13–14 (Forsyth & Ponce) written out literally, as an independent route to the
 // same numbers: with P = [A b] and rows a₁, a₂, a₃ of A,

@@ -27,6 +27,11 @@ OrderedJson CalibrationBlocksToJson(const CalibrationResult& r, const Calibratio
   OrderedJson j = OrderedJson::object();
   if (r.dlt) {
     j["dlt"] = DltDiagnosticsToJson(*r.dlt, r.eq13, options.dlt);
+    if (r.dlt_uncertainty && r.dlt_covariance) {
+      const auto d = DecomposeProjection(r.dlt->P);
+      VSTCAL_CHECK(d.has_value(), "a solved DLT P decomposes");
+      j["dlt"]["uncertainty"] = DltUncertaintyToJson(*r.dlt_uncertainty, *r.dlt_covariance, d->camera_from_world);
+    }
   }
   if (r.tsai) {
     const TsaiResult& t = *r.tsai;
@@ -40,6 +45,24 @@ OrderedJson CalibrationBlocksToJson(const CalibrationResult& r, const Calibratio
                  {"plane_rms", t.plane_rms},
                  {"conversion", {{"k1", t.camera.Param("k1")}, {"k2", t.camera.Param("k2")}, {"k3", t.camera.Param("k3")},
                                  {"max_error_px", t.conversion_max_error_px}}}};
+  }
+  if (options.reject_views.enabled) {
+    OrderedJson rejected = OrderedJson::array();
+    for (const Rejection& x : r.rejections) {
+      rejected.push_back({{"kind", x.kind == Rejection::Kind::kView ? "view" : "corner"},
+                          {"round", x.round},
+                          {"view", x.view_name},
+                          {"view_index", x.view},
+                          {"point_index", x.point ? OrderedJson(*x.point) : OrderedJson(nullptr)},
+                          {x.kind == Rejection::Kind::kView ? "rms_px" : "residual_px", x.rms_px},
+                          {"threshold_px", x.threshold_px},
+                          {"because", x.because}});
+    }
+    j["view_rejection"] = {{"view_false_alarm", options.reject_views.view_false_alarm},
+                           {"corner_false_alarm", options.reject_views.corner_false_alarm},
+                           {"rounds", r.rejection_rounds},
+                           {"sigma_px", r.rejection_sigma_px ? OrderedJson(*r.rejection_sigma_px) : OrderedJson(nullptr)},
+                           {"rejected", std::move(rejected)}};
   }
   if (r.refinement) {
     const Refinement& f = *r.refinement;

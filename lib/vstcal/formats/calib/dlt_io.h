@@ -14,6 +14,12 @@ namespace vstcal {
 OrderedJson DltDiagnosticsToJson(const DltResult& dlt, const std::optional<Eq13Decomposition>& eq13,
                                  const DltOptions& options);
 
+// The DLT's first-order uncertainty (docs/formats.md#camera-dlt-uncertainty): σ̂ and its degrees of
+// freedom, Cov(vec P) in its gauge, and the σ's of the decomposed K, rotation and camera centre
+// (`covariance` over fx … camera_from_world.tz, at `camera_from_world`).
+OrderedJson DltUncertaintyToJson(const DltUncertainty& u, const ParameterCovariance& covariance,
+                                 const Rigid3d& camera_from_world);
+
 std::string_view DltSolverName(DltOptions::Solver solver);
 
 }  // namespace vstcal

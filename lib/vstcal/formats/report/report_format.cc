@@ -173,6 +173,13 @@ ReportCamera ReportCameraFrom(const JsonDocument& doc, const std::string& name) 
       if (s > 0) rc.sigma_px = s;
     }
   }
+  // An unrefined DLT camera's σ̂ (its covariance is the DLT's first-order one).
+  if (const auto dlt = doc.root().find("dlt"); dlt && !rc.sigma_px) {
+    if (const auto u = dlt->find("uncertainty")) {
+      const double s = u->at("sigma_px").NonNegativeNumber();
+      if (s > 0) rc.sigma_px = s;
+    }
+  }
   return rc;
 }
 

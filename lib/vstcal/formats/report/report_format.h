@@ -13,7 +13,8 @@
 
 namespace vstcal {
 
-// A vstcal/camera@1 file with σ̂ (refinement.sigma_px, when present and positive) beside it.
+// A vstcal/camera@1 file with σ̂ (refinement.sigma_px, else dlt.uncertainty.sigma_px, when present
+// and positive) beside it.
 ReportCamera ReadReportCamera(const std::filesystem::path& path);
 // The same from a camera@1 document already in memory (a camera just solved), named `name`.
 ReportCamera ReportCameraFrom(const JsonDocument& doc, const std::string& name);
