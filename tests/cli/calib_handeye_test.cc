@@ -130,5 +130,31 @@ TEST_F(CliCalibHandEye, NoiseFromAStaticSegment) {
   EXPECT_FALSE(fs::exists(Path("out/n2.json")));
 }
 
+// The loop a user can run without a headset: calib-synth --rig handeye writes the corners with
+// their times, the tracker's TUM log (m), the camera and the truth; calib-handeye solve finds the
+// truth within its reported σ's.
+TEST_F(CliCalibHandEye, SynthesizedRecordingSolvedToItsTruth) {
+  const CommandResult synth = Run("calib-synth", {"--rig", "handeye", "--image-size", "640x480", "--fx", "600", "--grid", "9x6", "--spacing",
+                                                  "30", "--noise", "0.2", "--time-offset", "0.04", "-o", "in/rec.json"});
+  ASSERT_EQ(synth.exit_code, kOk) << synth.err;
+  EXPECT_NE(synth.err.find("calib-synth: a hand-eye recording: 30 timed views"), std::string::npos) << synth.err;
+  EXPECT_EQ(List("in"), (std::vector<std::string>{"rec.handeye.truth.json", "rec.json", "rec.poses.txt", "rec.truth.json"}));
+  const CommandResult r = Run(kTool, {"solve", "in/rec.json", "--poses", "in/rec.poses.txt", "--camera", "in/rec.truth.json", "-o", "out/he.json"});
+  ASSERT_EQ(r.exit_code, kOk) << r.err;
+  const Json he = ReadJson("out/he.json"), truth = ReadJson("in/rec.handeye.truth.json");
+  EXPECT_EQ(truth.at("format"), "vstcal/handeye@1");
+  EXPECT_FALSE(truth.contains("covariance"));
+  const Json& cov = he.at("covariance").at("matrix");
+  EXPECT_LT(std::abs(he.at("time_offset_s").get<double>() - truth.at("time_offset_s").get<double>()), 4 * std::sqrt(cov[12][12].get<double>()));
+  for (int i = 0; i < 3; ++i) {
+    // ρ's σ bounds t's spread up to the rotation's lever (dt = −[t]× ω + ρ): 1 mm is far beyond both here.
+    EXPECT_NEAR(he.at("hmd_from_camera").at("t")[i].get<double>(), truth.at("hmd_from_camera").at("t")[i].get<double>(), 1.0) << i;
+  }
+  // Flags of one set-up are refused for another.
+  EXPECT_TRUE(FailsWith(Run("calib-synth", {"--rig", "planar-views", "--image-size", "640x480", "--fx", "600", "--time-offset", "0.1", "-o", "out/x.json"}),
+                        "calib-synth", kBadInput, "--time-offset: applies to --rig handeye only", {}));
+  EXPECT_TRUE(OutDirEmpty() || List("out") == std::vector<std::string>{"he.json"});
+}
+
 }  // namespace
 }  // namespace vstcal::cli_test

@@ -10,6 +10,7 @@ namespace {
 const std::vector<std::string> kVolumeOnly = {"--near",     "--far",          "--interval", "--camera-distance",
                                               "--tilt-deg", "--tilt-direction-deg", "--roll-deg", "--no-test-points"};
 const std::vector<std::string> kPlanarOnly = {"--views", "--distance", "--max-tilt-deg"};
+const std::vector<std::string> kHandEyeOnly = {"--time-offset", "--duration", "--rate", "--tracker-noise-deg", "--tracker-noise"};
 
 }  // namespace
 
@@ -37,8 +38,10 @@ void SynthFlags::Add(CLI::App& app) {
                       ->check(kFinite)}) {
     o->excludes(camera_file);
   }
-  app.add_option("--rig", rig, "volume (a template moved between planes) or planar-views (a board waved about)")
-      ->check(CLI::IsMember({"volume", "planar-views"}))
+  app.add_option("--rig", rig,
+                 "volume (a template moved between planes), planar-views (a board waved about) or handeye (a headset "
+                 "carrying the camera moved in front of the board, with the tracker's log)")
+      ->check(CLI::IsMember({"volume", "planar-views", "handeye"}))
       ->capture_default_str();
   app.add_option("--grid", grid, "template corners COLSxROWS")->capture_default_str();
   app.add_option("--spacing", spec.spacing, "corner spacing")->check(kFinite)->capture_default_str();
@@ -66,16 +69,32 @@ void SynthFlags::Add(CLI::App& app) {
   app.add_option("--max-tilt-deg", views.max_tilt_deg, "planar views: largest board tilt")
       ->check(kFinite)
       ->capture_default_str();
+  HandEyeSpec& he = request.handeye_spec;
+  app.add_option("--time-offset", he.time_offset, "handeye: the tracker's clock ahead of the camera's, s")->check(kFinite)->capture_default_str();
+  app.add_option("--duration", he.duration, "handeye: the recording's length, s")->check(kPositiveFinite)->capture_default_str();
+  app.add_option("--rate", he.rate_hz, "handeye: the tracker's reports a second")->check(kPositiveFinite)->capture_default_str();
+  app.add_option("--tracker-noise-deg", he.tracker_noise_deg, "handeye: the tracker's rotation noise per axis, degrees")
+      ->check(kFinite)
+      ->capture_default_str();
+  app.add_option("--tracker-noise", he.tracker_noise, "handeye: the tracker's translation noise per axis (length unit)")
+      ->check(kFinite)
+      ->capture_default_str();
 }
 
 app::SynthRequest SynthFlags::Finish(const CLI::App& app) {
   request.planar_views = rig == "planar-views";
-  for (const std::string& flag : request.planar_views ? kVolumeOnly : kPlanarOnly) {
-    if (app.count(flag) > 0) {
-      throw InputError(flag + ": applies to --rig " + (request.planar_views ? "volume" : "planar-views") +
-                       " only; remove it or change --rig");
-    }
+  request.handeye = rig == "handeye";
+  // The flags of the other set-ups; --views and --distance serve hand-eye recordings too.
+  std::vector<std::pair<std::string, const char*>> refused;
+  if (rig != "volume") for (const std::string& f : kVolumeOnly) refused.emplace_back(f, "volume");
+  if (rig == "volume") for (const std::string& f : kPlanarOnly) refused.emplace_back(f, "planar-views or handeye");
+  if (rig == "handeye") refused.emplace_back("--max-tilt-deg", "planar-views");
+  if (rig != "handeye") for (const std::string& f : kHandEyeOnly) refused.emplace_back(f, "handeye");
+  for (const auto& [flag, where] : refused) {
+    if (app.count(flag) > 0) throw InputError(flag + ": applies to --rig " + where + " only; remove it or change --rig");
   }
+  if (request.handeye && app.count("--views") == 0) request.views.num_views = 30;
+  if (request.handeye && app.count("--distance") == 0) request.views.distance = request.handeye_spec.distance;
   VolumeSpec& spec = request.volume;
   std::tie(spec.grid_cols, spec.grid_rows) =
       ParseSize(grid, "--grid", "COLSxROWS (e.g. 13x9)", static_cast<int>(limits::kMaxPoints));

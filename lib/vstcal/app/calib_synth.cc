@@ -4,12 +4,65 @@
 
 #include "vstcal/formats/camera/camera_io.h"
 #include "vstcal/formats/camera/correspondences_io.h"
+#include "vstcal/formats/handeye/handeye_io.h"
+#include "vstcal/formats/handeye/pose_log_io.h"
 
 namespace vstcal::app {
 
 std::string DefaultTruthPath(const std::string& output) {
   return std::filesystem::path(output).replace_extension(".truth.json").string();
 }
+
+namespace {
+
+// The file beside `output` with its stem and another suffix ("rec.json" → "rec.poses.txt").
+std::string Beside(const std::string& output, const std::string& suffix) {
+  const std::filesystem::path p(output);
+  return (p.parent_path() / (p.stem().string() + suffix)).string();
+}
+
+Outcome SynthesizeHandEyeFiles(const SynthRequest& request, const Camera& camera, const Provenance& provenance) {
+  HandEyeSpec spec = request.handeye_spec;
+  spec.grid_cols = request.volume.grid_cols;
+  spec.grid_rows = request.volume.grid_rows;
+  spec.spacing = request.volume.spacing;
+  spec.noise_px = request.volume.noise_px;
+  spec.seed = request.volume.seed;
+  spec.views = request.views.num_views;
+  spec.distance = request.views.distance;
+  const HandEyeRecording r = SynthesizeHandEye(camera, spec);
+  Correspondences corners;
+  corners.camera = request.volume.camera_name;
+  corners.image_size = camera.image_size;
+  corners.length_unit = request.volume.length_unit;
+  corners.rig = Rig::kPlanarViews;
+  for (const TimedView& v : r.views) corners.views.push_back({v.name, "", std::nullopt, v.time, v.observations});
+  CalibratedCamera truth;
+  truth.camera = camera;
+  truth.length_unit = corners.length_unit;
+  truth.method = "synthetic";
+  PoseLog log;
+  log.length_unit = corners.length_unit;
+  log.poses = r.log;
+  HandEyeSolution truth_he;
+  truth_he.hmd_from_camera = spec.hmd_from_camera;
+  truth_he.tracker_from_board = spec.tracker_from_board;
+  truth_he.time_offset = spec.time_offset;
+  truth_he.views = corners.views.size();
+  truth_he.corners = NumObservations(corners);
+  const std::string poses = Beside(request.output, ".poses.txt"), handeye = Beside(request.output, ".handeye.truth.json");
+  Outcome out;
+  out.files = {{request.output, DumpJson(CorrespondencesToJson(corners, provenance))},
+               {request.truth, DumpJson(CameraToJson(truth, provenance))},
+               {poses, PoseLogToTum(InUnit(log, LengthUnit::kMetre))},
+               {handeye, DumpJson(HandEyeToJson(truth_he, corners.length_unit, provenance))}};
+  out.summary = "calib-synth: a hand-eye recording: " + std::to_string(corners.views.size()) + " timed views (" +
+                std::to_string(NumObservations(corners)) + " corners), " + std::to_string(log.poses.size()) +
+                " tracker reports; wrote " + request.output + ", " + request.truth + ", " + poses + " (TUM, m) and " + handeye;
+  return out;
+}
+
+}  // namespace
 
 Outcome Synthesize(SynthRequest request, const Provenance& provenance) {
   if (request.truth.empty()) request.truth = DefaultTruthPath(request.output);
@@ -19,6 +72,7 @@ Outcome Synthesize(SynthRequest request, const Provenance& provenance) {
   Outcome outcome;
   CalibratedCamera truth;
   Correspondences corners;
+  if (request.handeye) return SynthesizeHandEyeFiles(request, camera, provenance);
   if (request.planar_views) {
     PlanarViewsSpec views = request.views;
     views.grid_cols = spec.grid_cols;

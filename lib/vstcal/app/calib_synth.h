@@ -9,6 +9,7 @@
 #include "vstcal/capture/synthetic_camera.h"
 #include "vstcal/capture/synthetic_views.h"
 #include "vstcal/capture/synthetic_volume.h"
+#include "vstcal/handeye/synthetic.h"
 #include "vstcal/json/provenance.h"
 
 namespace vstcal::app {
@@ -23,6 +24,12 @@ struct SynthRequest {
   VolumeSpec volume;          // its grid, spacing, noise, seed, unit and camera name serve both set-ups
   bool test_points = true;    // volume: seed 000's five test points
   PlanarViewsSpec views;      // planar views: number, distance and tilt of the poses
+  // A hand-eye recording instead (issue 22): a headset carrying the camera moved in front of the
+  // board, the tracker's log beside the corners (OUTPUT's stem .poses.txt, TUM text in metres) and
+  // the true X, Z and time offset (stem .handeye.truth.json, vstcal/handeye@1 without covariance).
+  // Its grid, spacing, corner noise and seed are `volume`'s, its views and distance `views`'.
+  bool handeye = false;
+  HandEyeSpec handeye_spec;
 };
 
 // The correspondences and the truth camera; the summary (no final newline) counts the points, views

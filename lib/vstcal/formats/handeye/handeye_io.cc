@@ -42,6 +42,11 @@ OrderedJson HandEyeToJson(const HandEyeSolution& s, LengthUnit length_unit, cons
     for (Eigen::Index c = 0; c < s.covariance.cols(); ++c) row.push_back(s.covariance(r, c));
     matrix.push_back(std::move(row));
   }
+  if (s.covariance.size() == 0) {  // a truth (calib-synth): nothing was estimated
+    j["fit"] = {{"views", s.views}, {"corners", s.corners}};
+    j["provenance"] = ProvenanceToJson(provenance);
+    return j;
+  }
   j["covariance"] = {{"parameters", s.names}, {"matrix", std::move(matrix)}};
   j["fit"] = {{"views", s.views}, {"corners", s.corners}, {"rms_px", s.rms_px}, {"sigma_px", s.sigma_px}, {"iterations", s.iterations}};
   j["start"] = {{"method", "park-martin"},

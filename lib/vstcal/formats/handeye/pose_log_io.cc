@@ -2,6 +2,7 @@
 
 #include <cerrno>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <sstream>
 
@@ -127,6 +128,18 @@ OrderedJson PoseLogToJson(const PoseLog& log, const Provenance& provenance) {
   j["poses"] = std::move(poses);
   j["provenance"] = ProvenanceToJson(provenance);
   return j;
+}
+
+std::string PoseLogToTum(const PoseLog& log) {
+  std::string text = "# timestamp tx ty tz qx qy qz qw (tracker_from_hmd, " + std::string(LengthUnitName(log.length_unit)) + ")\n";
+  for (const TrackedPose& p : log.poses) {
+    const auto q = QuaternionWxyzFromRotation(p.tracker_from_hmd.R);
+    char line[400];
+    std::snprintf(line, sizeof line, "%.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g\n", p.time, p.tracker_from_hmd.t.x(),
+                  p.tracker_from_hmd.t.y(), p.tracker_from_hmd.t.z(), q[1], q[2], q[3], q[0]);
+    text += line;
+  }
+  return text;
 }
 
 PoseLog InUnit(PoseLog log, LengthUnit unit) {

@@ -31,6 +31,8 @@ PoseLog ReadPoseLog(const std::filesystem::path& path, LengthUnit tum_unit = Len
 PoseLog PoseLogFromTum(const std::string& text, const std::string& name, LengthUnit unit);
 PoseLog PoseLogFromJson(const JsonDocument& doc);
 OrderedJson PoseLogToJson(const PoseLog& log, const Provenance& provenance);
+// TUM text in the log's own unit, %.17g: read back with that unit, the same numbers.
+std::string PoseLogToTum(const PoseLog& log);
 
 // The log with its translations in `unit`.
 PoseLog InUnit(PoseLog log, LengthUnit unit);
