@@ -229,6 +229,27 @@ TEST_F(CliCalibCapture, SkipUnreadableListsTheImageAsRejected) {
   EXPECT_EQ(images[0]["reason"], "unreadable: truncated PNG (it does not end with the IEND chunk)");
 }
 
+// Issue 24: the docs' 6 × 9 board of 25 mm squares (300 × 225 mm) fits neither A4 nor Letter: a
+// warning names A3; with --paper a4 the board gets 23.3 mm squares (landscape, paper_test's
+// arithmetic); a board larger than A3 is named with its size.
+TEST_F(CliCalibCapture, TargetFitsThePaperOrWarns) {
+  CommandResult r = Run(kTool, {"target", "--rows", "6", "--cols", "9", "--square-size", "25", "--dpi", "0", "-o", "out/big"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("calib-capture: warning: the 300 × 225 mm sheet fits neither A4 nor Letter; it needs A3 (297 × 420 mm)"),
+            std::string::npos)
+      << r.err;
+  r = Run(kTool, {"target", "--rows", "6", "--cols", "9", "--paper", "a4", "--dpi", "0", "-o", "out/a4"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.err.find("warning"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("23.3 mm squares on a 279.6 × 209.7 mm sheet (fits A4 (210 × 297 mm) landscape)"), std::string::npos) << r.err;
+  EXPECT_EQ(ReadJson("out/a4.target.json").at("square_size"), 23.3);
+  EXPECT_EQ(ReadJson("out/a4.target.json").at("margin"), 23.3);
+  r = Run(kTool, {"target", "--rows", "6", "--cols", "9", "--square-size", "20", "--dpi", "0", "-o", "out/small"});
+  EXPECT_EQ(r.err.find("warning"), std::string::npos) << r.err;  // 240 × 180 mm fits A4 landscape
+  r = Run(kTool, {"target", "--rows", "6", "--cols", "9", "--square-size", "40", "--dpi", "0", "-o", "out/huge"});
+  EXPECT_NE(r.err.find("it needs a sheet larger than A3: 480 × 360 mm"), std::string::npos) << r.err;
+}
+
 // ---- bad input: exit code 2 (3 for too few usable images), one line, nothing written ----
 
 struct BadCase {
@@ -281,8 +302,21 @@ std::vector<BadCase> BadCases() {
        },
        {"render", "in/board.target.json", "--camera", "in/big.json", "-o", "out/r"}, kBadInput, "in/big.json: image_size: ",
        {"more than 100 megapixels"}},
+      // Issue 24: --paper with a size that does not fit: refused with the size that does.
+      {"TargetDoesNotFitThePaper", [](CliCalibCapture*) {},
+       {"target", "--rows", "6", "--cols", "9", "--square-size", "25", "--paper", "a4", "-o", "out/b"}, kBadInput, "--square-size: ",
+       {"25 mm squares make a 300 × 225 mm sheet, larger than A4 (210 × 297 mm) either way",
+        "at most 23.3 mm fits (landscape): give --square-size 23.3, or leave it out to fit the paper"}},
+      {"TargetTagsDoNotFitTheLetter", [](CliCalibCapture*) {},
+       {"target", "--type", "apriltag-grid", "--rows", "6", "--cols", "6", "--tag-size", "30", "--paper", "letter", "-o", "out/b"},
+       kBadInput, "--tag-size: ", {"give --tag-size 27.8"}},
+      {"TargetUnknownPaper", [](CliCalibCapture*) {}, {"target", "--rows", "6", "--cols", "9", "--paper", "a5", "-o", "out/b"}, kBadInput,
+       "--paper: ", {"\"a5\" is not a paper size; give a4, letter, a3 or WxH in mm"}},
+      {"TargetMarginFillsThePaper", [](CliCalibCapture*) {},
+       {"target", "--rows", "6", "--cols", "9", "--margin", "60", "--paper", "100x100", "-o", "out/b"}, kBadInput, "--paper: ",
+       {"leave no room for the board on 100 × 100 mm"}},
       {"TargetOutputFolderMissing", [](CliCalibCapture*) {},
-       {"target", "--rows", "6", "--cols", "9", "--square-size", "25", "-o", "out/no/b"}, kBadInput, "out/no/b.target.json: ",
+       {"target", "--rows", "6", "--cols", "9", "--square-size", "20", "-o", "out/no/b"}, kBadInput, "out/no/b.target.json: ",
        {"cannot write: directory out/no does not exist; create it first"}},
       // One rule for every tool's output files (issue 24: detect created the folder): refused.
       {"DetectOutputFolderMissing", views, {"detect", "in/board.target.json", "in/views", "-o", "out/no/c.json"}, kBadInput,
