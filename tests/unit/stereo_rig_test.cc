@@ -34,6 +34,7 @@ StereoRig FullRig() {
   intrinsics.matrix = Eigen::Vector3d(0.04, 0.05, 1e-8).asDiagonal();
   intrinsics.matrix(0, 1) = intrinsics.matrix(1, 0) = 0.03;
   rig.left.covariance = intrinsics;
+  rig.view_pairing = ViewPairing{"([0-9]+)$", "names differ only by left/right (left01 ↔ right01); paired by the number in the name"};
   return rig;
 }
 
@@ -60,10 +61,86 @@ TEST(StereoRigIo, ReadsBackEveryField) {
   EXPECT_EQ(back.rectification->valid_roi_right, rig.rectification->valid_roi_right);
   EXPECT_EQ(back.fit->views[1].name, "pair-01");
   EXPECT_EQ(back.left.covariance->matrix, rig.left.covariance->matrix);
+  ASSERT_TRUE(back.view_pairing);
+  EXPECT_EQ(back.view_pairing->match_views, "([0-9]+)$");
+  EXPECT_EQ(back.view_pairing->rule, rig.view_pairing->rule);
   const OrderedJson j = StereoRigToJson(rig, kProvenance);
   EXPECT_EQ(j["baseline"].get<double>(), rig.right_from_left.t.norm());
   EXPECT_TRUE(j["left"].find("provenance") == j["left"].end());  // one provenance, the rig's
   EXPECT_TRUE(StereoRigToJson(ZedLikeRig(), kProvenance)["fit"].is_null());
+}
+
+// A stored pairing is an expression with a group, as --match-views takes it.
+TEST(StereoRigIo, ViewPairingIsAnExpressionWithAGroup) {
+  OrderedJson j = StereoRigToJson(FullRig(), kProvenance);
+  j["view_pairing"]["match_views"] = "[0-9]+$";
+  EXPECT_NE(ErrorOf([&] { Read(DumpJson(j)); }).find("rig.json: view_pairing.match_views: "), std::string::npos) << ErrorOf([&] { Read(DumpJson(j)); });
+  EXPECT_NE(ErrorOf([&] { Read(DumpJson(j)); }).find("has no group"), std::string::npos);
+  j["view_pairing"]["match_views"] = "((";
+  EXPECT_NE(ErrorOf([&] { Read(DumpJson(j)); }).find("is not a regular expression"), std::string::npos);
+}
+
+// Pairing by the names, derived by hand for each naming the issue lists: the key is the number
+// that changes from view to view, the rest of the names one text per camera that differs by a
+// left/right token. Each derived expression, applied as --match-views, gives both cameras' views
+// the same keys.
+TEST(ViewPairing, DerivedFromNamesThatDifferByALeftRightToken) {
+  struct Case {
+    std::vector<std::string> left, right;
+    std::string pattern, token;
+    size_t paired;
+  };
+  const std::vector<Case> cases = {
+      {{"left01", "left02", "left03"}, {"right01", "right02", "right04"}, "([0-9]+)$", "left/right", 2},
+      {{"img_left_3", "img_left_4"}, {"img_right_3", "img_right_4"}, "([0-9]+)$", "left/right", 2},
+      {{"L7.png", "L8.png"}, {"R7.png", "R8.png"}, "([0-9]+)[^0-9]*$", "L/R", 2},
+      {{"cam0_img5", "cam0_img6"}, {"cam1_img5", "cam1_img6"}, "([0-9]+)$", "cam0/cam1", 2},
+      {{"5_cam0", "6_cam0"}, {"5_cam1", "6_cam1"}, "^[^0-9]*([0-9]+)", "cam0/cam1", 2},
+      {{"0_img5", "0_img6"}, {"1_img5", "1_img6"}, "([0-9]+)$", "0/1", 2},
+      {{"s2_l_07_x", "s2_l_08_x"}, {"s2_r_07_x", "s2_r_08_x"}, "([0-9]+)[^0-9]*$", "l/r", 2},
+      {{"s2_l_07_v9", "s2_l_08_v9"}, {"s2_r_07_v9", "s2_r_08_v9"}, "^[^0-9]*(?:[0-9]+[^0-9]*){1}([0-9]+)", "l/r", 2},
+      {{"left01"}, {"right01"}, "([0-9]+)$", "left/right", 1},  // one view each: the last number
+  };
+  for (const Case& c : cases) {
+    const DerivedPairing d = DeriveViewPairing(c.left, c.right);
+    ASSERT_TRUE(d.pairing) << c.left[0] << ": " << d.problem;
+    EXPECT_EQ(d.pairing->match_views, c.pattern) << c.left[0];
+    EXPECT_NE(d.pairing->rule.find("names differ only by " + c.token + " (" + c.left[0] + " ↔ " + c.right[0] + ")"), std::string::npos)
+        << d.pairing->rule;
+    EXPECT_EQ(d.paired, c.paired) << c.left[0];
+    Correspondences l, r;
+    for (const std::string& n : c.left) l.views.push_back(View{.name = n});
+    for (const std::string& n : c.right) r.views.push_back(View{.name = n});
+    KeyViews(d.pairing->match_views, "l", &l);
+    KeyViews(d.pairing->match_views, "r", &r);
+    EXPECT_EQ(l.views[0].name, r.views[0].name) << c.left[0];
+    EXPECT_NE(l.views[0].name, c.left[0]);
+  }
+}
+
+// Names that cannot be paired by themselves: the reason, and the expression the numbers allow.
+TEST(ViewPairing, RefusedWithTheExpressionTheNumbersAllow) {
+  DerivedPairing d = DeriveViewPairing({"a_01", "a_02"}, {"b_01", "b_02"});  // a/b is no left/right token
+  EXPECT_FALSE(d.pairing);
+  EXPECT_EQ(d.suggestion, "([0-9]+)$");
+  EXPECT_NE(d.problem.find("do not differ by a left/right token"), std::string::npos) << d.problem;
+  d = DeriveViewPairing({"left01", "leftx02"}, {"right01", "right02"});  // another shape? no: one more letter
+  EXPECT_FALSE(d.pairing);
+  EXPECT_EQ(d.suggestion, "([0-9]+)$");
+  EXPECT_NE(d.problem.find("differ by more than their number"), std::string::npos) << d.problem;
+  d = DeriveViewPairing({"left01", "left02"}, {"right03", "right04"});  // no number in common
+  EXPECT_FALSE(d.pairing);
+  EXPECT_EQ(d.suggestion, "");
+  d = DeriveViewPairing({"left_a", "left_b"}, {"right_a", "right_b"});  // no number
+  EXPECT_FALSE(d.pairing);
+  EXPECT_EQ(d.suggestion, "");
+  EXPECT_NE(d.problem.find("no number"), std::string::npos);
+  d = DeriveViewPairing({"left01", "left01b"}, {"right01", "right01b"});  // two shapes
+  EXPECT_FALSE(d.pairing);
+  EXPECT_NE(d.problem.find("one shape"), std::string::npos);
+  d = DeriveViewPairing({"s1_left01", "s2_left02"}, {"s1_right01", "s2_right02"});  // two numbers change
+  EXPECT_FALSE(d.pairing);
+  EXPECT_NE(d.problem.find("more than one number"), std::string::npos);
 }
 
 // R written by another tool with 9 digits is a rotation within 1e-6: replaced by the nearest one.
