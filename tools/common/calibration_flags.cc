@@ -65,6 +65,9 @@ std::vector<CLI::Option*> CalibrationFlags::AddUncertainty(CLI::App& app) {
 
 void CalibrationFlags::AddOutput(CLI::App& app) {
   app.add_option("--residuals", residuals, "also write per-point residuals (vstcal/residuals@1)")->check(kNonEmpty);
+  app.add_option("--undistort", undistort, "check images: write each view's image undistorted through the camera as DIR/<view>.undistorted.png")
+      ->check(kNonEmpty)
+      ->type_name("DIR");
   app.add_flag("-q,--quiet", quiet, "print only warnings and errors");
 }
 
@@ -132,7 +135,7 @@ UncertaintyRequest CalibrationFlags::Uncertainty(const Correspondences& corners)
 int FinishCalibration(const std::string& tool, const std::string& input, const std::string& output,
                       const CalibrationResult& result, const CalibrationOptions& options, const CalibrationFlags& flags,
                       const UncertaintyRequest& request, int argc, char** argv) {
-  const app::Outcome outcome = app::CalibrationOutcome(result, options, {tool, input, output, flags.residuals, request},
+  const app::Outcome outcome = app::CalibrationOutcome(result, options, {tool, input, output, flags.residuals, request, flags.undistort},
                                                        MakeProvenance(tool, argc, argv));
   for (const std::string& w : outcome.warnings) std::cerr << w << "\n";
   app::WriteOutcome(outcome);

@@ -29,6 +29,7 @@ struct CalibrationFlags {
   std::vector<std::vector<double>> at_pixel;  // U,V,DEPTH per --uncertainty-pixel
 
   std::string residuals;
+  std::string undistort;  // --undistort DIR: check images
   bool quiet = false;
 
   CLI::Option* loss_scale_option = nullptr;  // set by AddRefinement: --loss-scale needs a robust --loss
