@@ -4,6 +4,7 @@
 // file, the field and the fix, and no output file.
 #include <sstream>
 #include <Eigen/Cholesky>
+#include <opencv2/imgcodecs.hpp>
 
 #include "cli_fixture.h"
 #include "support/scenes.h"
@@ -412,6 +413,34 @@ TEST_F(CliCalibStereo, SolvePairsLeftRightNamesByThemselves) {
   const CommandResult hint = Run("reproj-report", {"in/bare.json", "in/a.json", "in/b.json", "-o", "out/r2.json"});
   EXPECT_TRUE(FailsWith(hint, "reproj-report", kBadInput, "in/a.json and in/b.json: views: no view name is in both files",
                         {"pair them by the number in their names with --match-views '([0-9]+)$'"}));
+}
+
+// Issue 24 item 4, the wiring (the geometry is stereo_test.RectifiedPairImage): solve --undistort
+// writes one side-by-side rectified pair per view both files name images for, 2W × H, with the
+// dashed epipolar lines from row 20 every 40 px; without images it is refused and writes nothing.
+TEST_F(CliCalibStereo, SolveUndistortWritesRectifiedPairs) {
+  const testing::StereoViews views = testing::SyntheticStereoViews(SolvableRig(), 6, 12);
+  WriteStereoViews(views);
+  EXPECT_TRUE(Fails({"solve", "in/l.json", "in/r.json", "-o", "out/rig.json", "--undistort", "out/pairs"}, kBadInput,
+                    "--undistort: no view both cameras saw names its image in in/l.json and in/r.json", {"leave out --undistort"}));
+  const int w = views.left.image_size.width, h = views.left.image_size.height;
+  ASSERT_TRUE(cv::imwrite(Path("in/grey.png").string(), cv::Mat(h, w, CV_8UC1, cv::Scalar(128))));
+  for (const char* file : {"in/l.json", "in/r.json"}) {
+    Json c = ReadJson(file);
+    for (Json& v : c["views"]) v["image"] = "grey.png";  // beside the correspondences
+    WriteJson(file, c);
+  }
+  const CommandResult r = Ok({"solve", "in/l.json", "in/r.json", "-o", "out/rig.json", "--undistort", "out/pairs"});
+  EXPECT_NE(r.err.find("wrote 6 rectified pairs (<view>.rectified.png, left | right, epipolar lines every 40 px) in out/pairs"),
+            std::string::npos)
+      << r.err;
+  EXPECT_EQ(List("out/pairs").size(), 6u);
+  const cv::Mat pair = cv::imread(Path("out/pairs/view0.rectified.png").string(), cv::IMREAD_GRAYSCALE);
+  ASSERT_EQ(pair.cols, 2 * w);
+  ASSERT_EQ(pair.rows, h);
+  EXPECT_EQ(pair.at<uint8_t>(20, 0), 0);      // a dash
+  EXPECT_EQ(pair.at<uint8_t>(20, 8), 255);    // the gap between two dashes
+  EXPECT_EQ(pair.at<uint8_t>(h / 2 + 1, w / 2), 128);  // the grey image, resampled
 }
 
 TEST_F(CliCalibStereo, SolveHoldsACameraReadFromAnEarlierCalibration) {

@@ -2,10 +2,16 @@
 // rig from two cameras, and the baseline's σ against Monte Carlo.
 #include <gtest/gtest.h>
 
+#include <opencv2/calib3d.hpp>
+#include <opencv2/imgproc.hpp>
+
 #include <cmath>
 
 #include "support/error_of.h"
+#include "support/capture_scenes.h"
 #include "support/stereo_rigs.h"
+#include "vstcal/capture/target_pattern.h"
+#include "vstcal/image/undistort.h"
 #include "vstcal/core/error.h"
 #include "vstcal/formats/stereo/stereo_io.h"
 #include "vstcal/random/philox.h"
@@ -141,6 +147,70 @@ TEST(ViewPairing, RefusedWithTheExpressionTheNumbersAllow) {
   d = DeriveViewPairing({"s1_left01", "s2_left02"}, {"s1_right01", "s2_right02"});  // two numbers change
   EXPECT_FALSE(d.pairing);
   EXPECT_NE(d.problem.find("more than one number"), std::string::npos);
+}
+
+// OpenCV's (the peer's) corners of a 9 × 6 board in one half of a rectified pair, refined.
+std::vector<cv::Point2f> BoardCorners(const GrayImage& pair, bool right_half) {
+  const int w = pair.width / 2;
+  const cv::Mat whole(pair.height, pair.width, CV_8U, const_cast<uint8_t*>(pair.pixels.data()));
+  const cv::Mat half = whole(cv::Rect(right_half ? w : 0, 0, w, pair.height)).clone();
+  std::vector<cv::Point2f> corners;
+  if (!cv::findChessboardCorners(half, cv::Size(9, 6), corners, cv::CALIB_CB_ADAPTIVE_THRESH | cv::CALIB_CB_NORMALIZE_IMAGE)) return {};
+  cv::cornerSubPix(half, corners, cv::Size(5, 5), cv::Size(-1, -1), cv::TermCriteria(cv::TermCriteria::EPS + cv::TermCriteria::COUNT, 50, 1e-4));
+  return corners;
+}
+
+// Issue 24 item 4: a noise-free board rendered through both distorted cameras of the ZED-like
+// rig, at three poses, rectified by RectifiedPairImage (vstcal's maps, OpenCV's remap, no lines
+// drawn): every corner OpenCV finds in the left half is on the row of its match in the right
+// half, within 0.1 px; in the raw images the rows differ by pixels (the test could fail).
+TEST(RectifiedPairImage, CorrespondingCornersShareARow) {
+  const StereoRig rig = ZedLikeRig();
+  const Rectification rect = Rectify(rig, {}, "rig");
+  const Target board = testing::Chessboard9x6();
+  const Pattern pattern = TargetPattern(board);
+  RenderOptions options;
+  options.blur_px = 0.8;
+  const PixelCornerRays rays_left(rig.left.camera), rays_right(rig.right.camera);
+  double worst = 0, raw_worst = 0;
+  const Rigid3d poses[] = {Rigid3d::FromRotvec(Eigen::Vector3d(0.1, -0.2, 0.05), Eigen::Vector3d(-130, -70, 700)),
+                           Rigid3d::FromRotvec(Eigen::Vector3d(-0.3, 0.1, 0.2), Eigen::Vector3d(-300, 20, 800)),
+                           Rigid3d::FromRotvec(Eigen::Vector3d(0.2, 0.3, -0.1), Eigen::Vector3d(60, -150, 650))};
+  for (const Rigid3d& left_from_board : poses) {
+    const Rigid3d right_from_board = rig.right_from_left * left_from_board;
+    const GrayImage left = RenderView(rays_left, pattern, left_from_board, options, 0);
+    const GrayImage right = RenderView(rays_right, pattern, right_from_board, options, 0);
+    const std::vector<cv::Point2f> l = BoardCorners(RectifiedPairImage(rig, rect, left, right, 0), false);
+    const std::vector<cv::Point2f> r = BoardCorners(RectifiedPairImage(rig, rect, left, right, 0), true);
+    ASSERT_EQ(l.size(), 54u);
+    ASSERT_EQ(r.size(), 54u);
+    for (size_t k = 0; k < 54; ++k) worst = std::max(worst, static_cast<double>(std::abs(l[k].y - r[k].y)));
+    // The same corners in the raw images: side by side without rectification.
+    GrayImage raw(2 * left.width, left.height);
+    for (int v = 0; v < left.height; ++v) {
+      for (int u = 0; u < left.width; ++u) {
+        raw.at(u, v) = left.at(u, v);
+        raw.at(left.width + u, v) = right.at(u, v);
+      }
+    }
+    const std::vector<cv::Point2f> rl = BoardCorners(raw, false), rr = BoardCorners(raw, true);
+    ASSERT_EQ(rl.size(), 54u);
+    ASSERT_EQ(rr.size(), 54u);
+    for (size_t k = 0; k < 54; ++k) raw_worst = std::max(raw_worst, static_cast<double>(std::abs(rl[k].y - rr[k].y)));
+  }
+  EXPECT_LT(worst, 0.1) << raw_worst;
+  EXPECT_GT(raw_worst, 2.0) << worst;
+}
+
+// Undistortion of a pinhole camera is the identity map (pixel centres at integers).
+TEST(RectifiedPairImage, UndistortMapOfAPinholeIsTheIdentity) {
+  const Camera pinhole = ZedLikeRig(false).left.camera;
+  const PixelMap map = UndistortMap(pinhole);
+  for (const auto& [u, v] : {std::pair{0, 0}, std::pair{1279, 719}, std::pair{640, 360}}) {
+    const size_t k = static_cast<size_t>(v) * 1280 + static_cast<size_t>(u);
+    EXPECT_NEAR(map.x[k], u, 1e-3);
+    EXPECT_NEAR(map.y[k], v, 1e-3);
+  }
 }
 
 // R written by another tool with 9 digits is a rotation within 1e-6: replaced by the nearest one.
