@@ -46,9 +46,9 @@ class BrowserTest : public CliTest {
   // with something drawn on it (not blank).
   void ExpectScreenshot(const std::string& page, const std::string& name, int width, int height) const;
 
- private:
   // The value of the JavaScript `expression` once `page` has loaded (its load event), read back from
-  // a copy of the page that runs it; `flags` go to Chromium (e.g. a window size).
+  // a copy of the page that runs it; `flags` go to Chromium (e.g. a window size). Expects no console
+  // message.
   std::string EvaluateOnLoad(const std::string& page, const std::string& expression,
                              const std::vector<std::string>& flags = {}) const;
 };

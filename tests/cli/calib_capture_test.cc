@@ -5,7 +5,9 @@
 // a manifest naming missing images or positions, duplicate images, empty and truncated PNG/JPEG
 // files, images of different sizes, too few usable images — with exit code 2 (3 for too few
 // usable images), one line naming the file and the fix, and no output left behind.
+#include <opencv2/calib3d.hpp>
 #include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 #include <opencv2/videoio.hpp>
 
 #include <fstream>
@@ -306,6 +308,86 @@ TEST_F(CliCalibCapture, SkipUnreadableListsTheImageAsRejected) {
   EXPECT_EQ(images[0]["reason"], "unreadable: truncated PNG (it does not end with the IEND chunk)");
 }
 
+// Issue 24: the docs' 6 × 9 board of 25 mm squares (300 × 225 mm) fits neither A4 nor Letter: a
+// warning names A3; with --paper a4 the board gets 23.3 mm squares (landscape, paper_test's
+// arithmetic); a board larger than A3 is named with its size.
+TEST_F(CliCalibCapture, TargetFitsThePaperOrWarns) {
+  CommandResult r = Run(kTool, {"target", "--rows", "6", "--cols", "9", "--square-size", "25", "--dpi", "0", "-o", "out/big"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("calib-capture: warning: the 300 × 225 mm sheet fits neither A4 nor Letter; it needs A3 (297 × 420 mm)"),
+            std::string::npos)
+      << r.err;
+  r = Run(kTool, {"target", "--rows", "6", "--cols", "9", "--paper", "a4", "--dpi", "0", "-o", "out/a4"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.err.find("warning"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("23.3 mm squares on a 279.6 × 209.7 mm sheet (fits A4 (210 × 297 mm) landscape)"), std::string::npos) << r.err;
+  EXPECT_EQ(ReadJson("out/a4.target.json").at("square_size"), 23.3);
+  EXPECT_EQ(ReadJson("out/a4.target.json").at("margin"), 23.3);
+  r = Run(kTool, {"target", "--rows", "6", "--cols", "9", "--square-size", "20", "--dpi", "0", "-o", "out/small"});
+  EXPECT_EQ(r.err.find("warning"), std::string::npos) << r.err;  // 240 × 180 mm fits A4 landscape
+  r = Run(kTool, {"target", "--rows", "6", "--cols", "9", "--square-size", "40", "--dpi", "0", "-o", "out/huge"});
+  EXPECT_NE(r.err.find("it needs a sheet larger than A3: 480 × 360 mm"), std::string::npos) << r.err;
+}
+
+// The largest distance of a row of a 9 × 6 board's corners from its total-least-squares line, over
+// every row, as OpenCV (the peer) finds the corners in `image`; -1 when it does not find the board.
+double WorstRowBend(const cv::Mat& image) {
+  std::vector<cv::Point2f> corners;
+  if (!cv::findChessboardCorners(image, cv::Size(9, 6), corners, cv::CALIB_CB_ADAPTIVE_THRESH | cv::CALIB_CB_NORMALIZE_IMAGE)) return -1;
+  cv::cornerSubPix(image, corners, cv::Size(5, 5), cv::Size(-1, -1), cv::TermCriteria(cv::TermCriteria::EPS + cv::TermCriteria::COUNT, 50, 1e-4));
+  double worst = 0;
+  for (int row = 0; row < 6; ++row) {
+    const std::vector<cv::Point2f> line_points(corners.begin() + 9 * row, corners.begin() + 9 * row + 9);
+    cv::Vec4f line;
+    cv::fitLine(line_points, line, cv::DIST_L2, 0, 1e-6, 1e-6);
+    for (const cv::Point2f& p : line_points) {
+      worst = std::max(worst, std::abs(static_cast<double>(-line[1] * (p.x - line[2]) + line[0] * (p.y - line[3]))));
+    }
+  }
+  return worst;
+}
+
+// Issue 24 item 4: calib-tsai --undistort writes each view's image undistorted through the solved
+// camera. On noise-free renders through calib-synth's distorted camera (k1 −0.15, k2 0.05), each
+// row of corners OpenCV finds in a written image lies within 0.1 px of a straight line, where the
+// rendered image's rows bend by more than 0.5 px.
+TEST_F(CliCalibCapture, UndistortedImagesHaveStraightRows) {
+  Camera();
+  Board();
+  Ok({"render", "in/board.target.json", "--camera", "in/camera.truth.json", "-o", "in/views", "--rig", "planar-views", "--views", "6",
+      "--distance", "900", "--blur-px", "0.8", "--noise", "0"});
+  Ok({"detect", "in/board.target.json", "in/views", "-q", "-o", "in/corners.json"});
+  const Json views = ReadJson("in/corners.json")["views"];
+  ASSERT_GE(views.size(), 5u);
+  const CommandResult r = Run("calib-tsai", {"in/corners.json", "-o", "out/cam.json", "--undistort", "out/und"});
+  ASSERT_EQ(r.exit_code, kOk) << r.err;
+  EXPECT_NE(r.err.find("wrote " + std::to_string(views.size()) + " undistorted images (<view>.undistorted.png) in out/und"),
+            std::string::npos)
+      << r.err;
+  double bent = 0, straight = 0;
+  for (const Json& v : views) {
+    const std::string name = v["name"];
+    const cv::Mat rendered = cv::imread(Path(v["image"]).string(), cv::IMREAD_GRAYSCALE);
+    const cv::Mat undistorted = cv::imread(Path("out/und/" + name + ".undistorted.png").string(), cv::IMREAD_GRAYSCALE);
+    ASSERT_FALSE(undistorted.empty()) << name;
+    EXPECT_EQ(undistorted.size(), rendered.size());
+    const double before = WorstRowBend(rendered), after = WorstRowBend(undistorted);
+    ASSERT_GE(before, 0) << name;
+    ASSERT_GE(after, 0) << name;
+    bent = std::max(bent, before);
+    straight = std::max(straight, after);
+  }
+  EXPECT_GT(bent, 0.5) << straight;  // 0.81 px at 900 mm
+  EXPECT_LT(straight, 0.1) << bent;
+  // Without images to undistort: refused, nothing written.
+  Json corners = ReadJson("in/corners.json");
+  for (Json& v : corners["views"]) v.erase("image");
+  WriteJson("in/no-images.json", corners);
+  EXPECT_TRUE(FailsWith(Run("calib-tsai", {"in/no-images.json", "-o", "out/c2.json", "--undistort", "out/und2"}), "calib-tsai", kBadInput,
+                        "--undistort: in/no-images.json names no image", {"leave out --undistort"}));
+  EXPECT_FALSE(fs::exists(Path("out/c2.json")));
+}
+
 // ---- bad input: exit code 2 (3 for too few usable images), one line, nothing written ----
 
 struct BadCase {
@@ -358,8 +440,21 @@ std::vector<BadCase> BadCases() {
        },
        {"render", "in/board.target.json", "--camera", "in/big.json", "-o", "out/r"}, kBadInput, "in/big.json: image_size: ",
        {"more than 100 megapixels"}},
+      // Issue 24: --paper with a size that does not fit: refused with the size that does.
+      {"TargetDoesNotFitThePaper", [](CliCalibCapture*) {},
+       {"target", "--rows", "6", "--cols", "9", "--square-size", "25", "--paper", "a4", "-o", "out/b"}, kBadInput, "--square-size: ",
+       {"25 mm squares make a 300 × 225 mm sheet, larger than A4 (210 × 297 mm) either way",
+        "at most 23.3 mm fits (landscape): give --square-size 23.3, or leave it out to fit the paper"}},
+      {"TargetTagsDoNotFitTheLetter", [](CliCalibCapture*) {},
+       {"target", "--type", "apriltag-grid", "--rows", "6", "--cols", "6", "--tag-size", "30", "--paper", "letter", "-o", "out/b"},
+       kBadInput, "--tag-size: ", {"give --tag-size 27.8"}},
+      {"TargetUnknownPaper", [](CliCalibCapture*) {}, {"target", "--rows", "6", "--cols", "9", "--paper", "a5", "-o", "out/b"}, kBadInput,
+       "--paper: ", {"\"a5\" is not a paper size; give a4, letter, a3 or WxH in mm"}},
+      {"TargetMarginFillsThePaper", [](CliCalibCapture*) {},
+       {"target", "--rows", "6", "--cols", "9", "--margin", "60", "--paper", "100x100", "-o", "out/b"}, kBadInput, "--paper: ",
+       {"leave no room for the board on 100 × 100 mm"}},
       {"TargetOutputFolderMissing", [](CliCalibCapture*) {},
-       {"target", "--rows", "6", "--cols", "9", "--square-size", "25", "-o", "out/no/b"}, kBadInput, "out/no/b.target.json: ",
+       {"target", "--rows", "6", "--cols", "9", "--square-size", "20", "-o", "out/no/b"}, kBadInput, "out/no/b.target.json: ",
        {"cannot write: directory out/no does not exist; create it first"}},
       // One rule for every tool's output files (issue 24: detect created the folder): refused.
       {"DetectOutputFolderMissing", views, {"detect", "in/board.target.json", "in/views", "-o", "out/no/c.json"}, kBadInput,

@@ -4,6 +4,7 @@
 // file, the field and the fix, and no output file.
 #include <sstream>
 #include <Eigen/Cholesky>
+#include <opencv2/imgcodecs.hpp>
 
 #include "cli_fixture.h"
 #include "support/scenes.h"
@@ -359,14 +360,87 @@ TEST_F(CliCalibStereo, SolveSummaryShowsEachEstimateWithItsSigma) {
 TEST_F(CliCalibStereo, SolveUsesViewsOfOneCameraAndMatchesByPattern) {
   testing::StereoViews views = testing::SyntheticStereoViews(SolvableRig(), 7, 12);
   views.left.views.pop_back();  // view6: right camera only
-  for (View& v : views.left.views) v.name = "left-" + v.name;
-  for (View& v : views.right.views) v.name = "right-" + v.name;
+  for (View& v : views.left.views) v.name = "cam-a-" + v.name;
+  for (View& v : views.right.views) v.name = "cam-b-" + v.name;
   WriteStereoViews(views);
-  EXPECT_TRUE(Fails({"solve", "in/l.json", "in/r.json", "-o", "out/rig.json"}, kDegenerate,
-                    "in/l.json and in/r.json: 0 usable views are seen by both cameras", {"name the views alike"}));
   const CommandResult r = Ok({"solve", "in/l.json", "in/r.json", "--match-views", "(view[0-9]+)$", "-o", "out/rig.json"});
   EXPECT_NE(r.err.find("1 views seen by the right camera only (view6): used for its intrinsics"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("6 views seen by both cameras"), std::string::npos) << r.err;
+  // The rig keeps the expression it was given: reproj-report pairs the views again without it.
+  EXPECT_EQ(ReadJson("out/rig.json")["view_pairing"]["match_views"], "(view[0-9]+)$");
+  const CommandResult report = Run("reproj-report", {"out/rig.json", "in/l.json", "in/r.json", "-o", "out/report.json"});
+  ASSERT_EQ(report.exit_code, kOk) << report.err;
+  EXPECT_EQ(ReadJson("out/report.json")["stereo"]["views"][0]["name"], "view0");
+}
+
+// Issue 24: views named after their files (left-view0 / right-view0, as detect names left01.jpg's
+// view left01) are paired with no flag; stderr says the rule and the count; the rig keeps the rule
+// and reproj-report on it needs no flag. Names that differ by no left/right token are refused
+// with the exact --match-views to use, which then works.
+TEST_F(CliCalibStereo, SolvePairsLeftRightNamesByThemselves) {
+  testing::StereoViews views = testing::SyntheticStereoViews(SolvableRig(), 7, 12);
+  views.left.views.pop_back();  // view6: right camera only
+  testing::StereoViews other = views;
+  for (View& v : views.left.views) v.name = "left" + v.name.substr(4);  // left0 … left5
+  for (View& v : views.right.views) v.name = "right" + v.name.substr(4);
+  WriteStereoViews(views);
+  const CommandResult r = Ok({"solve", "in/l.json", "in/r.json", "-o", "out/rig.json"});
+  EXPECT_NE(r.err.find("calib-stereo: note: paired 6 views by themselves: names differ only by left/right (left0 ↔ right0); "
+                       "paired by the number in the name, as --match-views '([0-9]+)$'; the rig keeps this rule"),
+            std::string::npos)
+      << r.err;
+  EXPECT_NE(r.err.find("6 views seen by both cameras"), std::string::npos) << r.err;
+  const Json rig = ReadJson("out/rig.json");
+  EXPECT_EQ(rig["view_pairing"]["match_views"], "([0-9]+)$");
+  const CommandResult report = Run("reproj-report", {"out/rig.json", "in/l.json", "in/r.json", "-o", "out/report.json"});
+  ASSERT_EQ(report.exit_code, kOk) << report.err;
+  const Json s = ReadJson("out/report.json")["stereo"];
+  EXPECT_EQ(s["views"].size(), 6u);
+  EXPECT_EQ(s["views"][0]["name"], "0");
+  // Names that differ by "a"/"b": the numbers allow a pairing, which the message spells out.
+  for (View& v : other.left.views) v.name = "a_" + v.name;
+  for (View& v : other.right.views) v.name = "b_" + v.name;
+  WriteStereoViews(other, "in/a.json", "in/b.json");
+  EXPECT_TRUE(Fails({"solve", "in/a.json", "in/b.json", "-o", "out/ab.json"}, kBadInput,
+                    "in/a.json and in/b.json: views: no view name is in both files and they cannot be paired by themselves: ",
+                    {"the names \"a_view0\" and \"b_view0\" do not differ by a left/right token",
+                     "pair them by the number in their names with --match-views '([0-9]+)$'"}));
+  Ok({"solve", "in/a.json", "in/b.json", "--match-views", "([0-9]+)$", "-o", "out/ab.json"});
+  // reproj-report on a rig without a rule says the same.
+  Json bare = rig;
+  bare.erase("view_pairing");
+  WriteJson("in/bare.json", bare);
+  const CommandResult hint = Run("reproj-report", {"in/bare.json", "in/a.json", "in/b.json", "-o", "out/r2.json"});
+  EXPECT_TRUE(FailsWith(hint, "reproj-report", kBadInput, "in/a.json and in/b.json: views: no view name is in both files",
+                        {"pair them by the number in their names with --match-views '([0-9]+)$'"}));
+}
+
+// Issue 24 item 4, the wiring (the geometry is stereo_test.RectifiedPairImage): solve --undistort
+// writes one side-by-side rectified pair per view both files name images for, 2W × H, with the
+// dashed epipolar lines from row 20 every 40 px; without images it is refused and writes nothing.
+TEST_F(CliCalibStereo, SolveUndistortWritesRectifiedPairs) {
+  const testing::StereoViews views = testing::SyntheticStereoViews(SolvableRig(), 6, 12);
+  WriteStereoViews(views);
+  EXPECT_TRUE(Fails({"solve", "in/l.json", "in/r.json", "-o", "out/rig.json", "--undistort", "out/pairs"}, kBadInput,
+                    "--undistort: no view both cameras saw names its image in in/l.json and in/r.json", {"leave out --undistort"}));
+  const int w = views.left.image_size.width, h = views.left.image_size.height;
+  ASSERT_TRUE(cv::imwrite(Path("in/grey.png").string(), cv::Mat(h, w, CV_8UC1, cv::Scalar(128))));
+  for (const char* file : {"in/l.json", "in/r.json"}) {
+    Json c = ReadJson(file);
+    for (Json& v : c["views"]) v["image"] = "grey.png";  // beside the correspondences
+    WriteJson(file, c);
+  }
+  const CommandResult r = Ok({"solve", "in/l.json", "in/r.json", "-o", "out/rig.json", "--undistort", "out/pairs"});
+  EXPECT_NE(r.err.find("wrote 6 rectified pairs (<view>.rectified.png, left | right, epipolar lines every 40 px) in out/pairs"),
+            std::string::npos)
+      << r.err;
+  EXPECT_EQ(List("out/pairs").size(), 6u);
+  const cv::Mat pair = cv::imread(Path("out/pairs/view0.rectified.png").string(), cv::IMREAD_GRAYSCALE);
+  ASSERT_EQ(pair.cols, 2 * w);
+  ASSERT_EQ(pair.rows, h);
+  EXPECT_EQ(pair.at<uint8_t>(20, 0), 0);      // a dash
+  EXPECT_EQ(pair.at<uint8_t>(20, 8), 255);    // the gap between two dashes
+  EXPECT_EQ(pair.at<uint8_t>(h / 2 + 1, w / 2), 128);  // the grey image, resampled
 }
 
 TEST_F(CliCalibStereo, SolveHoldsACameraReadFromAnEarlierCalibration) {

@@ -4,6 +4,8 @@
 // read back from the rendered DOM and compared with the JSON report written by the same run.
 #include <opencv2/imgcodecs.hpp>
 
+#include <algorithm>
+
 #include "browser_fixture.h"
 
 namespace vstcal::cli_test {
@@ -39,7 +41,36 @@ TEST_F(CliReprojReportHtml, RendersOfflineWithEveryImageAndTheJsonsNumbers) {
   // 3. The browser decodes every image.
   EXPECT_EQ(ImagesLoaded("out/report.html"), "9 loaded, 0 broken");
 
-  // 4. A screenshot, kept in the build tree for a person to look at.
+  // 4. Residual vectors on every view (issue 24): one plot per view and camera, in the views table's
+  // order (the largest RMS first, from the JSON here), each laid out on the page with its dots and
+  // one vector per measured point drawn (the SVG paths' subpaths, and a bounding box that is not
+  // empty: the browser drew them).
+  const std::string plots = EvaluateOnLoad(
+      "out/report.html",
+      "[...document.querySelectorAll('div.small-multiples')].map(d => d.dataset.camera + ':' + "
+      "[...d.querySelectorAll('figure.view-residuals')].map(f => { const r = f.querySelector('svg').getBoundingClientRect(); "
+      "const vectors = [...f.querySelectorAll('path.vectors')]; const dots = f.querySelector('path.points'); "
+      "const subpaths = vectors.reduce((n, p) => n + (p.getAttribute('d').match(/M/g) || []).length, 0); "
+      "const drawn = r.width > 100 && r.height > 50 && dots.getBBox().width > 0 && vectors.every(p => p.getBBox().width + p.getBBox().height > 0) && "
+      "subpaths == f.dataset.drawn && (dots.getAttribute('d').match(/M/g) || []).length == f.dataset.drawn; "
+      "return f.dataset.view + (drawn ? '' : ' NOT DRAWN') + ' ' + f.dataset.drawn; }).join(',')).join(';')");
+  std::string expected;
+  for (size_t k = 0; k < report["cameras"].size(); ++k) {
+    const Json& views = report["cameras"][k]["views"];
+    std::vector<size_t> order(views.size());
+    for (size_t v = 0; v < order.size(); ++v) order[v] = v;
+    std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) {
+      return views[a]["error_px"]["rms"].get<double>() > views[b]["error_px"]["rms"].get<double>();
+    });
+    expected += (k ? ";" : "") + std::to_string(k) + ":";
+    for (size_t i = 0; i < order.size(); ++i) {
+      expected += (i ? "," : "") + views[order[i]]["name"].get<std::string>() + " " + std::to_string(views[order[i]]["error_px"]["n"].get<size_t>());
+    }
+  }
+  EXPECT_EQ(plots, expected);
+  EXPECT_EQ(report["cameras"][0]["views"].size(), 3u);  // three planes: three plots a camera
+
+  // 5. A screenshot, kept in the build tree for a person to look at.
   EXPECT_EQ(TablesWiderThanThePage("out/report.html", 1000), "none");
   ExpectScreenshot("out/report.html", "reproj-report.png", 1000, 2400);
 }

@@ -20,6 +20,7 @@ extern "C" {
 
 #include "support/capture_scenes.h"
 #include "support/error_of.h"
+#include "vstcal/capture/paper.h"
 #include "vstcal/capture/pattern.h"
 #include "vstcal/capture/target_drawing.h"
 #include "vstcal/formats/capture/target_io.h"
@@ -283,6 +284,101 @@ TEST(TargetDrawing, PngCarriesItsResolution) {
   const cv::Mat decoded = cv::imdecode(cv::Mat(1, static_cast<int>(png.size()), CV_8U, const_cast<char*>(png.data())), cv::IMREAD_UNCHANGED);
   ASSERT_EQ(decoded.cols, 4);
   EXPECT_EQ(decoded.at<uint8_t>(2, 3), 128);
+}
+
+// The scale bar: a path "M x y h L" whose L, in the SVG's user units, is the stated length in mm;
+// the user units are millimetres (width in mm equals the viewBox's width). 9×6 inner corners of
+// 25 mm squares: a 250 mm wide pattern holds a 200 mm bar; 5 mm squares (50 mm pattern): 50 mm.
+TEST(TargetDrawing, SvgScaleBarHasItsStatedLengthInMillimetres) {
+  for (const auto& [square, bar] : {std::pair{25.0, 200.0}, std::pair{5.0, 50.0}}) {
+    Target t = Chessboard9x6();
+    t.square_size = t.margin = square;
+    const std::string svg = TargetSvg(t);
+    std::smatch size, line, stated;
+    ASSERT_TRUE(std::regex_search(svg, size, std::regex("width=\"([0-9.]+)mm\" height=\"[0-9.]+mm\" viewBox=\"0 0 ([0-9.]+) ")));
+    EXPECT_EQ(std::stod(size[1]), std::stod(size[2]));  // one user unit is one millimetre
+    ASSERT_TRUE(std::regex_search(svg, stated, std::regex("id=\"scale-bar\" data-length-mm=\"([0-9.]+)\"")));
+    ASSERT_TRUE(std::regex_search(svg, line, std::regex("id=\"scale-bar-line\" d=\"M([0-9.]+) ([0-9.]+)h([0-9.]+)\"")));
+    EXPECT_EQ(std::stod(stated[1]), bar);
+    EXPECT_EQ(std::stod(line[3]), bar);
+    EXPECT_NE(svg.find(">" + std::to_string(static_cast<int>(bar)) + " mm (check with a ruler)</text>"), std::string::npos);
+    // In the bottom margin, below the pattern (which ends at margin + 7 squares) and on the sheet.
+    EXPECT_GT(std::stod(line[2]), 8 * square);
+    EXPECT_LT(std::stod(line[2]), 9 * square);
+    EXPECT_EQ(std::stod(line[1]), square);  // starts at the pattern's left edge
+    // Eleven ticks, the end ones at the bar's ends.
+    std::smatch ticks;
+    ASSERT_TRUE(std::regex_search(svg, ticks, std::regex("id=\"scale-bar-ticks\" d=\"([^\"]+)\"")));
+    const std::string d = ticks[1];
+    EXPECT_EQ(std::count(d.begin(), d.end(), 'M'), 11);
+    EXPECT_NE(d.find("M" + line[1].str() + " "), std::string::npos);
+    const double end = std::stod(line[1]) + bar;
+    char end_text[32];
+    std::snprintf(end_text, sizeof end_text, "M%g ", end);
+    EXPECT_NE(d.find(end_text), std::string::npos);
+  }
+}
+
+// Fitting to paper, by hand. 6 × 9 inner corners with the default margin (one square): the sheet
+// is (9 + 3)·s across and (6 + 3)·s down. A4 portrait (210 across, 297 down): s ≤ min(210/12,
+// 297/9) = 17.5; landscape (297 across, 210 down): s ≤ min(297/12, 210/9) = 23.33… → 23.3 (0.1 mm
+// steps): landscape is chosen. Letter landscape: min(279.4/12, 215.9/9) = 23.283 → 23.2.
+TEST(Paper, FitsAChessboardToA4AndLetter) {
+  Target t = Chessboard9x6();
+  t.square_size = 0;
+  const std::optional<PaperFit> a4 = FitToPaper(t, {}, *PaperFromName("a4"));
+  ASSERT_TRUE(a4);
+  EXPECT_EQ(a4->size, 23.3);
+  EXPECT_TRUE(a4->landscape);
+  EXPECT_NEAR(a4->sheet_width_mm, 12 * 23.3, 1e-9);
+  EXPECT_NEAR(a4->sheet_height_mm, 9 * 23.3, 1e-9);
+  const std::optional<PaperFit> letter = FitToPaper(t, {}, *PaperFromName("Letter"));
+  ASSERT_TRUE(letter);
+  EXPECT_EQ(letter->size, 23.2);
+  EXPECT_TRUE(letter->landscape);
+  // A tall strip, 20 × 2 inner corners: portrait wins: 5·s ≤ 210 → 42 vs 23·s ≤ 297 → 12.91…;
+  // landscape: 5·s ≤ 297, 23·s ≤ 210 → 9.13…: portrait, 12.9.
+  t.rows = 20;
+  t.cols = 2;
+  const std::optional<PaperFit> strip = FitToPaper(t, {}, *PaperFromName("a4"));
+  ASSERT_TRUE(strip);
+  EXPECT_EQ(strip->size, 12.9);
+  EXPECT_FALSE(strip->landscape);
+}
+
+// A margin given as a length stays fixed: 6 × 9 with a 10 mm margin on A4 landscape:
+// 10·s + 20 ≤ 297 → 27.7, 7·s + 20 ≤ 210 → 27.14… → 27.1. A custom 100x100 sheet with 60 mm
+// margins leaves no room. AprilTag 6 × 6 with the default gap (tag / 4) and margin (the gap): the
+// sheet is 6·t + 5·t/4 + 2·t/4 = 7.75·t square; on A4: 210 / 7.75 = 27.096… → 27.0. In inches
+// (0.001 in steps): 210 mm / 25.4 / 7.75 = 1.06680… → 1.066 in.
+TEST(Paper, KeepsLengthsGivenOutrightAndFitsTagGrids) {
+  Target t = Chessboard9x6();
+  const std::optional<PaperFit> fixed = FitToPaper(t, {.margin = 10}, *PaperFromName("a4"));
+  ASSERT_TRUE(fixed);
+  EXPECT_EQ(fixed->size, 27.1);
+  EXPECT_TRUE(fixed->landscape);
+  EXPECT_FALSE(FitToPaper(t, {.margin = 60}, *PaperFromName("100x100")));
+  Target grid = AprilGrid6x4();
+  grid.rows = 6;
+  const std::optional<PaperFit> tags = FitToPaper(grid, {}, *PaperFromName("A4"));
+  ASSERT_TRUE(tags);
+  EXPECT_EQ(tags->size, 27.0);
+  EXPECT_EQ(WithSize(grid, tags->size, {}).tag_gap, 6.75);
+  grid.length_unit = LengthUnit::kInch;
+  EXPECT_EQ(FitToPaper(grid, {}, *PaperFromName("A4"))->size, 1.066);
+}
+
+TEST(Paper, NamesAndTheSmallestStandardSheet) {
+  EXPECT_EQ(PaperFromName("LETTER")->width_mm, 215.9);
+  const std::optional<Paper> custom = PaperFromName("350x250");
+  ASSERT_TRUE(custom);
+  EXPECT_EQ(custom->width_mm, 250);  // portrait: width ≤ height
+  EXPECT_EQ(custom->height_mm, 350);
+  for (const char* bad : {"a5", "x", "0x10", "10x", "-1x5", "10x10x10", "infx10"}) EXPECT_FALSE(PaperFromName(bad)) << bad;
+  EXPECT_EQ(SmallestStandardPaper(300, 225)->name, "A3");   // the docs' old 6 × 9 board of 25 mm squares
+  EXPECT_EQ(SmallestStandardPaper(275, 214)->name, "Letter");  // not A4 (210 wide) but Letter
+  EXPECT_EQ(SmallestStandardPaper(200, 290)->name, "A4");
+  EXPECT_FALSE(SmallestStandardPaper(430, 200));
 }
 
 TEST(TargetDrawing, RefusesHugeRasters) {

@@ -7,6 +7,9 @@
 #include "vstcal/pages/gnuplot.h"
 #include "vstcal/pages/html.h"
 #include "vstcal/pages/html_page.h"
+#include "vstcal/pages/view_residuals.h"
+
+#include <regex>
 
 namespace vstcal {
 namespace {
@@ -40,6 +43,46 @@ TEST(RunGnuplot, DrawsAnSvgAndReportsItsErrors) {
   } catch (const InternalError& e) {
     EXPECT_NE(std::string(e.what()).find("gnuplot failed: "), std::string::npos) << e.what();
   }
+}
+
+// The per-view residual plots stay bounded (issue 24): 60 views of 600 points give the 48 views of
+// largest RMS (view 59 first: its RMS is the largest), each with one point in ⌈600 / 250⌉ = 3, i.e.
+// 200 vectors, and the cuts said; the whole under 48 × 200 × 60 bytes.
+TEST(ViewResidualPlots, WorstFirstCappedAndDecimated) {
+  ReprojReport r;
+  r.correspondences.image_size = {640, 480};
+  CameraReport cam;
+  cam.overall.error_px = ErrorStats{36000, 1, 1, 1, 1, 1};
+  for (int v = 0; v < 60; ++v) {
+    ViewReport view;
+    view.name = "v" + std::to_string(v);
+    for (int p = 0; p < 600; ++p) {
+      PointError e;
+      e.measured = Eigen::Vector2d(10 + p % 600, 20 + v);
+      e.predicted = e.measured + Eigen::Vector2d(0.6, 0.8);
+      e.error_px = 1;
+      view.points.push_back(e);
+    }
+    view.error_px = ErrorStats{600, 1, 0.5 + v / 100.0, 1, 1, 1};
+    cam.views.push_back(view);
+  }
+  r.cameras.push_back(cam);
+  const std::string html = ViewResidualPlots(r, 0);
+  const std::regex figure("<figure class=\"view-residuals\" data-view=\"(v[0-9]+)\" data-drawn=\"([0-9]+)\"");
+  std::vector<std::string> names;
+  for (auto it = std::sregex_iterator(html.begin(), html.end(), figure); it != std::sregex_iterator(); ++it) {
+    names.push_back((*it)[1]);
+    EXPECT_EQ((*it)[2], "200");
+  }
+  ASSERT_EQ(names.size(), kMaxViewPlots);
+  EXPECT_EQ(names.front(), "v59");
+  EXPECT_EQ(names.back(), "v12");  // 59 … 12: the 48 largest
+  EXPECT_NE(html.find("The 48 largest-RMS views of 60 are drawn"), std::string::npos);
+  EXPECT_NE(html.find("(one point in 3)"), std::string::npos);
+  EXPECT_LT(html.size(), 48u * 200 * 60);
+  // A vector is the residual times the overlay's scale: 2 % of the 800 px diagonal over p95 = 1 px
+  // is 16, rounded down to 10: (0.6, 0.8) px → l6.0 8.0.
+  EXPECT_NE(html.find("M10.5 79.5l6.0 8.0"), std::string::npos);
 }
 
 TEST(ErrSimReportHtml, UndefinedStatisticsAndNoBudgetAreDashesNotNumbers) {

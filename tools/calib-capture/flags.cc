@@ -46,14 +46,19 @@ void TargetFlags::Add(CLI::App* app) {
       ->capture_default_str();
   app->add_option("--rows", t.rows, "inner corners (tags for apriltag-grid) along Y, down the sheet")->required();
   app->add_option("--cols", t.cols, "inner corners (tags) along X, across the sheet")->required();
-  app->add_option("--square-size", t.square_size, "chessboard, charuco: side of a square")->check(kPositiveFinite);
+  app->add_option("--square-size", t.square_size, "chessboard, charuco: side of a square (with --paper: default the largest that fits)")
+      ->check(kPositiveFinite);
   app->add_option("--marker-size", marker_size, "charuco: side of a marker (default 0.75 × square size)")->check(kFinite);
   app->add_option("--dictionary", t.dictionary, "charuco: OpenCV ArUco dictionary")->capture_default_str();
-  app->add_option("--tag-size", t.tag_size, "apriltag-grid: side of a tag's black square")->check(kPositiveFinite);
+  app->add_option("--tag-size", t.tag_size, "apriltag-grid: side of a tag's black square (with --paper: default the largest that fits)")
+      ->check(kPositiveFinite);
   app->add_option("--tag-gap", tag_gap, "apriltag-grid: white between tags (default tag size / 4)")->check(kFinite);
   app->add_option("--family", t.family, "apriltag-grid: libapriltag family")->capture_default_str();
   app->add_option("--first-id", t.first_id, "apriltag-grid: id of the top-left tag")->capture_default_str();
   app->add_option("--margin", margin, "white border around the pattern (default a square, or the tag gap)")->check(kFinite);
+  app->add_option("--paper", paper,
+                  "a4, letter, a3 or WxH (mm): the sheet to print on; the board gets the largest square (tag) size that fits, "
+                  "or a size given that does not fit is refused with the one that would");
   app->add_option("--length-unit", unit, "mm, cm, m or in")->check(kLengthUnit)->capture_default_str();
   app->add_option("--dpi", request.dpi, "resolution of the PNG (0: no PNG)")->check(kFinite)->capture_default_str();
   app->add_option("-o,--output", request.output, "writes OUTPUT.target.json, OUTPUT.svg, OUTPUT.png")->required()->check(kNonEmpty);
@@ -66,11 +71,17 @@ app::TargetRequest TargetFlags::Finish() {
   const bool tags = t.type == TargetType::kAprilTagGrid;
   if (tags && t.square_size != 0) throw InputError("--square-size: an apriltag-grid has tags, not squares; give --tag-size");
   if (!tags && t.tag_size != 0) throw InputError("--tag-size: applies to --type apriltag-grid; give --square-size");
-  if (tags && !(t.tag_size > 0)) throw InputError("--tag-size: required for --type apriltag-grid (side of a tag's black square)");
-  if (!tags && !(t.square_size > 0)) throw InputError("--square-size: required for --type " + type + " (side of a square)");
-  if (t.type == TargetType::kCharuco) t.marker_size = marker_size.value_or(0.75 * t.square_size);
-  if (tags) t.tag_gap = tag_gap.value_or(0.25 * t.tag_size);
-  t.margin = margin.value_or(tags ? t.tag_gap : t.square_size);
+  if (!paper.empty()) {
+    request.paper = PaperFromName(paper);
+    if (!request.paper) throw InputError("--paper: \"" + paper + "\" is not a paper size; give a4, letter, a3 or WxH in mm (e.g. 250x350)");
+  }
+  const double size = tags ? t.tag_size : t.square_size;
+  if (!(size > 0) && !request.paper) {
+    throw InputError(tags ? "--tag-size: required for --type apriltag-grid (side of a tag's black square), or give --paper to fit the largest"
+                          : "--square-size: required for --type " + type + " (side of a square), or give --paper to fit the largest");
+  }
+  request.given = {margin, tag_gap, marker_size};
+  if (size > 0) t = WithSize(t, size, request.given);
   return request;
 }
 

@@ -13,6 +13,7 @@ struct TargetFlags {
   app::TargetRequest request;
   std::string type = "chessboard", unit = "mm";
   std::optional<double> marker_size, tag_gap, margin;
+  std::string paper;
   void Add(CLI::App* app);
   app::TargetRequest Finish();  // defaults that depend on other flags
 };

@@ -46,6 +46,7 @@ int main(int argc, char** argv) {
     } else {
       outputs = app::MakeTarget(target.Finish(), provenance);
     }
+    for (const std::string& w : outputs.warnings) std::cerr << w << "\n";
     app::WriteOutcome(outputs);
     if (!quiet) std::cerr << outputs.summary << "\n";
     return 0;

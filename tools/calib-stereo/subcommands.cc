@@ -55,8 +55,12 @@ Subcommand AddSolve(CLI::App& parent) {
   app->add_flag("--hold-right", f->request.options.hold_right, "hold the right intrinsics fixed (at --right-camera, else at its own calibration)");
   app->add_option("--match-views", f->request.options.view_key_pattern,
                   "match views by the first group of this regular expression in their names, e.g. '([0-9]+)$' pairs left01 "
-                  "with right01 (default: by the whole name)")
+                  "with right01 (default: by the whole name, or by the number in names that differ only by a left/right token)")
       ->check(kNonEmpty);
+  app->add_option("--undistort", f->request.undistort_folder,
+                  "check images: write each pair both cameras saw, rectified side by side with epipolar lines, as DIR/<view>.rectified.png")
+      ->check(kNonEmpty)
+      ->type_name("DIR");
   app->add_option("--min-common-views", f->request.options.min_common_views, "planar views both cameras must share (default 3)")
       ->check(CLI::Range(1, 1000000));
   // The joint problem is least squares: no --loss, --loss-scale.

@@ -65,6 +65,9 @@ std::vector<CLI::Option*> CalibrationFlags::AddUncertainty(CLI::App& app) {
 
 void CalibrationFlags::AddOutput(CLI::App& app) {
   app.add_option("--residuals", residuals, "also write per-point residuals (vstcal/residuals@1)")->check(kNonEmpty);
+  app.add_option("--undistort", undistort, "check images: write each view's image undistorted through the camera as DIR/<view>.undistorted.png")
+      ->check(kNonEmpty)
+      ->type_name("DIR");
   app.add_flag("-q,--quiet", quiet, "print only warnings and errors");
 }
 
@@ -158,7 +161,8 @@ int FinishCalibration(const std::string& tool, const CornerInput& input, const R
                       const CalibrationResult& result, const CalibrationOptions& options, const CalibrationFlags& flags,
                       const UncertaintyRequest& request, int argc, char** argv, app::Outcome extra) {
   app::Outcome outcome = WithCornersAndPage(
-      app::CalibrationOutcome(result, options, {tool, input.Name(), output, flags.residuals, request}, MakeProvenance(tool, argc, argv)),
+      app::CalibrationOutcome(result, options, {tool, input.Name(), output, flags.residuals, request, flags.undistort},
+                              MakeProvenance(tool, argc, argv)),
       read, input);
   for (auto& file : extra.files) outcome.files.push_back(std::move(file));
   for (auto& w : extra.warnings) outcome.warnings.push_back(std::move(w));

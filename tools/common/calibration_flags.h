@@ -30,6 +30,7 @@ struct CalibrationFlags {
   std::vector<std::vector<double>> at_pixel;  // U,V,DEPTH per --uncertainty-pixel
 
   std::string residuals;
+  std::string undistort;  // --undistort DIR: check images
   bool quiet = false;
 
   bool reject_views = false;

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <cstdio>
 #include <set>
 
@@ -69,7 +70,53 @@ std::string Flag(std::string field) {
 
 }  // namespace
 
-Outcome MakeTarget(const TargetRequest& request, const Provenance& provenance) {
+namespace {
+
+std::string Number(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", v);
+  return buf;
+}
+
+std::string Sheet(double w_mm, double h_mm) { return Number(std::round(w_mm * 10) / 10) + " × " + Number(std::round(h_mm * 10) / 10) + " mm"; }
+
+std::string PaperName(const Paper& p) {
+  return p.name.find("mm") != std::string::npos ? p.name : p.name + " (" + Number(p.width_mm) + " × " + Number(p.height_mm) + " mm)";
+}
+
+// The target with its size fitted to the paper, or checked against it.
+Target FitTarget(const TargetRequest& request) {
+  Target t = request.target;
+  if (!request.paper) return t;
+  const Paper& paper = *request.paper;
+  const bool tags = t.type == TargetType::kAprilTagGrid;
+  const double size = tags ? t.tag_size : t.square_size;
+  const std::string field = tags ? "--tag-size" : "--square-size";
+  const std::string unit(LengthUnitName(t.length_unit));
+  const std::optional<PaperFit> fit = FitToPaper(t, request.given, paper);
+  if (size == 0) {
+    if (!fit) {
+      throw InputError("--paper: the margin" + std::string(tags ? " and tag gap" : "") + " given leave no room for the board on " +
+                       PaperName(paper) + "; give a smaller --margin" + (tags ? " or --tag-gap" : "") + ", or a larger --paper");
+    }
+    return WithSize(t, fit->size, request.given);
+  }
+  t = WithSize(t, size, request.given);
+  const Rect sheet = SheetExtent(t);
+  const double mm = MetresPer(t.length_unit) * 1000;
+  if (SheetFitsPaper(sheet.width() * mm, sheet.height() * mm, paper)) return t;
+  throw InputError(field + ": " + Number(size) + " " + unit + (tags ? " tags" : " squares") + " make a " +
+                   Sheet(sheet.width() * mm, sheet.height() * mm) + " sheet, larger than " + PaperName(paper) + " either way; " +
+                   (fit ? "at most " + Number(fit->size) + " " + unit + " fits (" + (fit->landscape ? "landscape" : "portrait") + "): give " +
+                              field + " " + Number(fit->size) + ", or leave it out to fit the paper"
+                        : "the margin given leaves no room: give a smaller --margin or a larger --paper"));
+}
+
+}  // namespace
+
+Outcome MakeTarget(const TargetRequest& request_in, const Provenance& provenance) {
+  TargetRequest request = request_in;
+  request.target = FitTarget(request_in);
   if (const auto problem = CheckTarget(request.target)) throw InputError(Flag(problem->field) + ": " + problem->reason + "; " + problem->fix);
   if (request.output.empty()) throw InputError("-o/--output: give the output's name (e.g. board)");
   if (!(request.dpi >= 0)) throw InputError("--dpi: must be ≥ 0 (0: no PNG)");
@@ -86,10 +133,18 @@ Outcome MakeTarget(const TargetRequest& request, const Provenance& provenance) {
   }
   const Rect sheet = SheetExtent(request.target);
   const double mm = MetresPer(request.target.length_unit) * 1000;
-  char size[96];
-  std::snprintf(size, sizeof size, "%.1f × %.1f mm", sheet.width() * mm, sheet.height() * mm);
-  out.summary = "calib-capture: " + DescribeTarget(request.target) + " on a " + size + " sheet; wrote " + Join(out.files, 3) + png +
-                "; print at 100 % (actual size)";
+  const double w = sheet.width() * mm, h = sheet.height() * mm;
+  std::string on = "";
+  if (request.paper) {
+    on = " (fits " + PaperName(*request.paper) + (w > h ? " landscape" : " portrait") + ")";
+  } else if (!SheetFitsPaper(w, h, StandardPapers()[0]) && !SheetFitsPaper(w, h, StandardPapers()[1])) {
+    const std::optional<Paper> needs = SmallestStandardPaper(w, h);
+    out.warnings.push_back("calib-capture: warning: the " + Sheet(w, h) + " sheet fits neither A4 nor Letter; it needs " +
+                           (needs ? PaperName(*needs) : "a sheet larger than A3: " + Sheet(w, h)) +
+                           " (or give --paper a4 or --paper letter to fit the board)");
+  }
+  out.summary = "calib-capture: " + DescribeTarget(request.target) + " on a " + Sheet(w, h) + " sheet" + on + "; wrote " + Join(out.files, 3) +
+                png + "; print at 100 % (actual size)";
   return out;
 }
 

@@ -13,16 +13,23 @@
 #include "vstcal/capture/plan.h"
 #include "vstcal/capture/render_scene.h"
 #include "vstcal/app/outcome.h"
+#include "vstcal/capture/paper.h"
 #include "vstcal/capture/target.h"
 #include "vstcal/json/provenance.h"
 
 namespace vstcal::app {
 
 // calib-capture target: OUTPUT.target.json, OUTPUT.svg and (dpi > 0) OUTPUT.png.
+// With a paper, a target whose size (square_size, or tag_size) is 0 gets the largest size whose
+// sheet fits on it, the lengths not in `given` following the size (paper.h); a target with a size
+// that does not fit is refused with the size that would. Without a paper, a sheet larger than both
+// A4 and Letter gets a warning naming the paper it needs.
 struct TargetRequest {
   Target target;
   std::string output;  // path prefix, e.g. "board" or "prints/board"
   double dpi = 300;    // 0: no PNG
+  std::optional<Paper> paper;
+  TargetLengths given;  // with a paper: the lengths given outright
 };
 Outcome MakeTarget(const TargetRequest& request, const Provenance& provenance);
 

@@ -6,8 +6,12 @@
 #include <cstdio>
 #include <filesystem>
 #include <initializer_list>
+#include <map>
 
+#include "vstcal/capture/target_drawing.h"
 #include "vstcal/core/error.h"
+#include "vstcal/image/image_io.h"
+#include "vstcal/stereo/rectify.h"
 #include "vstcal/core/string_printf.h"
 #include "vstcal/formats/camera/camera_convert.h"
 #include "vstcal/formats/camera/correspondences_io.h"
@@ -78,6 +82,59 @@ Outcome Assemble(const AssembleRequest& request, const Provenance& provenance) {
   return out;
 }
 
+namespace {
+
+// The image a view names, as given or beside its correspondences file; `field` names it in errors.
+GrayImage LoadViewImage(const std::string& image, const std::string& file, const std::string& field, const ImageSize& size) {
+  namespace fs = std::filesystem;
+  fs::path path = image;
+  if (!fs::exists(path) && path.is_relative()) path = fs::path(file).parent_path() / image;
+  if (!fs::is_regular_file(path)) {
+    throw InputError(field + "\"" + image + "\" not found (as given or beside the correspondences); run from the folder the path is " +
+                     "relative to, or leave out --undistort");
+  }
+  LoadedImage loaded = LoadImageFile(path);
+  if (!loaded.problem.empty()) throw InputError(field + path.string() + ": " + loaded.problem + "; give a PNG or JPEG");
+  if (loaded.image.width != size.width || loaded.image.height != size.height) {
+    throw InputError(field + path.string() + " is " + std::to_string(loaded.image.width) + "x" + std::to_string(loaded.image.height) +
+                     " px but image_size is " + std::to_string(size.width) + "x" + std::to_string(size.height) +
+                     "; give the image the corners were detected in");
+  }
+  return std::move(loaded.image);
+}
+
+// FOLDER/<key>.rectified.png for each view key both files name an image for; the summary's line.
+std::string AddRectifiedPairs(const StereoRig& rig, Correspondences left, Correspondences right, const SolveRequest& request, Outcome* out) {
+  const Rectification rectification = rig.rectification ? *rig.rectification : Rectify(rig, {}, request.output);
+  if (rig.view_pairing) {
+    KeyViews(rig.view_pairing->match_views, request.left, &left);
+    KeyViews(rig.view_pairing->match_views, request.right, &right);
+  }
+  std::map<std::string, size_t> right_index;
+  for (size_t v = 0; v < right.views.size(); ++v) right_index.emplace(right.views[v].name, v);
+  size_t written = 0;
+  for (size_t v = 0; v < left.views.size(); ++v) {
+    const auto it = right_index.find(left.views[v].name);
+    if (it == right_index.end() || left.views[v].image.empty() || right.views[it->second].image.empty()) continue;
+    const GrayImage l = LoadViewImage(left.views[v].image, request.left, request.left + ": views[" + std::to_string(v) + "].image: ",
+                                      rig.left.camera.image_size);
+    const GrayImage r = LoadViewImage(right.views[it->second].image, request.right,
+                                      request.right + ": views[" + std::to_string(it->second) + "].image: ", rig.right.camera.image_size);
+    out->files.emplace_back(std::filesystem::path(request.undistort_folder) / (left.views[v].name + ".rectified.png"),
+                            EncodePng(RectifiedPairImage(rig, rectification, l, r)));
+    ++written;
+  }
+  if (written == 0) {
+    throw InputError("--undistort: no view both cameras saw names its image in " + request.left + " and " + request.right +
+                     " (views[].image); detect the corners with calib-capture detect, which records each view's image, or leave out --undistort");
+  }
+  out->folders.push_back(request.undistort_folder);
+  return "wrote " + std::to_string(written) + " rectified pairs (<view>.rectified.png, left | right, epipolar lines every 40 px) in " +
+         request.undistort_folder + (rig.rectification ? "" : " (OpenCV's default rectification; --rectify keeps it in the rig)") + "\n";
+}
+
+}  // namespace
+
 Outcome Solve(const SolveRequest& request, const Provenance& provenance) {
   std::error_code ec;
   if (std::filesystem::equivalent(request.left, request.right, ec)) {
@@ -101,6 +158,7 @@ Outcome Solve(const SolveRequest& request, const Provenance& provenance) {
   StereoRig& rig = solved.rig;
   if (request.rectify) rig.rectification = Rectify(rig, *request.rectify, request.output);
   out.files.emplace_back(request.output, DumpJson(StereoRigToJson(rig, provenance)));
+  if (!request.undistort_folder.empty()) out.summary += AddRectifiedPairs(rig, left, right, request, &out);
   for (const auto& note : solved.notes) out.summary += "note: " + note + "\n";
   // A volume is one board pose (the world) whatever its planes; say so rather than "1 views".
   const std::string seen = left.rig == Rig::kVolume

@@ -39,6 +39,10 @@ struct SolveRequest {
   std::string left_camera, right_camera;  // empty: none
   StereoSolveOptions options;
   std::optional<RectifyOptions> rectify;
+  // Check images: every view pair both files name images for, rectified side by side with
+  // epipolar lines (RectifiedPairImage; the rig's rectification, else OpenCV's default one), as
+  // FOLDER/<view key>.rectified.png; empty: none.
+  std::string undistort_folder;
 };
 Outcome Solve(const SolveRequest& request, const Provenance& provenance);
 

@@ -4,7 +4,10 @@
 #include <cstdio>
 #include <vector>
 
+#include "vstcal/capture/target_drawing.h"
 #include "vstcal/core/error.h"
+#include "vstcal/image/image_io.h"
+#include "vstcal/image/undistort.h"
 #include "vstcal/formats/calib/calibration_io.h"
 #include "vstcal/formats/calib/residuals_io.h"
 #include "vstcal/formats/camera/camera_io.h"
@@ -40,6 +43,46 @@ std::string UncertaintySummary(const CalibrationResult& result, const Uncertaint
   return text;
 }
 
+namespace {
+
+// FOLDER/<view>.undistorted.png for every view that names its image; the count of those that do not.
+size_t AddUndistortedImages(const CalibrationResult& result, const CalibrationFiles& files, Outcome* outcome) {
+  namespace fs = std::filesystem;
+  const Camera& camera = result.camera.camera;
+  const PixelMap map = UndistortMap(camera);
+  size_t without = 0;
+  for (size_t v = 0; v < result.used.views.size(); ++v) {
+    const View& view = result.used.views[v];
+    if (view.image.empty()) {
+      ++without;
+      continue;
+    }
+    const std::string field = files.input + ": views[" + std::to_string(v) + "].image: ";
+    fs::path path = view.image;
+    if (!fs::exists(path) && path.is_relative()) path = fs::path(files.input).parent_path() / view.image;
+    if (!fs::is_regular_file(path)) {
+      throw InputError(field + "\"" + view.image + "\" not found (as given or beside the correspondences); run from the folder the path is " +
+                       "relative to, or leave out --undistort");
+    }
+    const LoadedImage loaded = LoadImageFile(path);
+    if (!loaded.problem.empty()) throw InputError(field + path.string() + ": " + loaded.problem + "; give a PNG or JPEG");
+    if (loaded.image.width != camera.image_size.width || loaded.image.height != camera.image_size.height) {
+      throw InputError(field + path.string() + " is " + std::to_string(loaded.image.width) + "x" + std::to_string(loaded.image.height) +
+                       " px but image_size is " + std::to_string(camera.image_size.width) + "x" +
+                       std::to_string(camera.image_size.height) + "; give the image the corners were detected in");
+    }
+    outcome->files.emplace_back(fs::path(files.undistort_folder) / (view.name + ".undistorted.png"), EncodePng(Remap(loaded.image, map)));
+  }
+  if (without == result.used.views.size()) {
+    throw InputError("--undistort: " + files.input + " names no image (views[].image); detect the corners with calib-capture detect, "
+                     "which records each view's image, or leave out --undistort");
+  }
+  outcome->folders.push_back(files.undistort_folder);
+  return without;
+}
+
+}  // namespace
+
 Outcome CalibrationOutcome(const CalibrationResult& result, const CalibrationOptions& options,
                            const CalibrationFiles& files, const Provenance& provenance) {
   if (result.exit_code != ExitCode::kOk) throw Error(result.exit_code, files.input + ": " + result.message);
@@ -59,6 +102,8 @@ Outcome CalibrationOutcome(const CalibrationResult& result, const CalibrationOpt
   if (!files.residuals.empty()) {
     outcome.files.emplace_back(files.residuals, DumpJson(ResidualsToJson(result.used, *result.camera.fit, provenance)));
   }
+  const size_t before = outcome.files.size();
+  const size_t without_image = files.undistort_folder.empty() ? 0 : AddUndistortedImages(result, files, &outcome);
   std::string& text = outcome.summary;
   text = files.tool + ": " + files.input + ": " + std::to_string(NumObservations(result.used)) + " points in " +
          std::to_string(result.used.views.size()) + " views, method " + result.camera.method + "\n" +
@@ -83,6 +128,10 @@ Outcome CalibrationOutcome(const CalibrationResult& result, const CalibrationOpt
   }
   text += UncertaintySummary(result, files.uncertainty);
   text += "  wrote " + files.output + (files.residuals.empty() ? "" : " and " + files.residuals) + "\n";
+  if (!files.undistort_folder.empty()) {
+    text += "  wrote " + std::to_string(outcome.files.size() - before) + " undistorted images (<view>.undistorted.png) in " +
+            files.undistort_folder + (without_image ? " (" + std::to_string(without_image) + " views name no image)" : "") + "\n";
+  }
   return outcome;
 }
 
@@ -106,6 +155,7 @@ Outcome CalibrateHalves(const Correspondences& corners, const CalibrationOptions
     half_files.input = files.input + " (half " + name + ")";
     half_files.output = (output.parent_path() / (output.stem().string() + ".half-" + name + ".json")).string();
     half_files.residuals.clear();
+    half_files.undistort_folder.clear();  // the check images are the whole's
     Outcome one = CalibrationOutcome(result, options, half_files, provenance);
     out.files.push_back(std::move(one.files.front()));
     for (std::string& w : one.warnings) out.warnings.push_back(std::move(w));

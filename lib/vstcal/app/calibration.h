@@ -18,6 +18,9 @@ struct CalibrationFiles {
   std::string output;     // camera@1
   std::string residuals;  // residuals@1; empty: none
   UncertaintyRequest uncertainty;
+  // Check images: each view's image (views[].image, as given or beside the input) resampled
+  // undistorted through the camera (image/undistort.h), as FOLDER/<view>.undistorted.png; empty: none.
+  std::string undistort_folder;
 };
 
 // Throws Error with the result's exit code and "<input>: <message>" for a failed result.

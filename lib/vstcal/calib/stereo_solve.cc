@@ -292,12 +292,29 @@ std::string List(const std::vector<std::string>& names) {
 
 StereoSolveResult SolveStereo(Correspondences left, Correspondences right, const StereoSolveOptions& options,
                               const std::string& left_file, const std::string& right_file) {
+  StereoSolveResult out;
+  std::optional<ViewPairing> pairing;
   if (!options.view_key_pattern.empty()) {
-    KeyViews(options.view_key_pattern, left_file, &left);
-    KeyViews(options.view_key_pattern, right_file, &right);
+    pairing = ViewPairing{options.view_key_pattern, ""};
+  } else if (left.rig == Rig::kPlanarViews && !ShareAName(ViewNames(left), ViewNames(right))) {
+    // No name in common: pair by the number in the names when they differ only by a left/right token.
+    const DerivedPairing derived = DeriveViewPairing(ViewNames(left), ViewNames(right));
+    if (!derived.pairing) {
+      throw InputError(left_file + " and " + right_file + ": views: no view name is in both files and they cannot be paired by themselves: " +
+                       derived.problem + "; " +
+                       (derived.suggestion.empty() ? std::string("give --match-views with a group that takes the key both names share, e.g. '([0-9]+)$'")
+                                                   : "pair them by the number in their names with --match-views '" + derived.suggestion + "'"));
+    }
+    pairing = derived.pairing;
+    out.notes.push_back("paired " + std::to_string(derived.paired) + " views by themselves: " + pairing->rule + ", as --match-views '" +
+                        pairing->match_views + "'; the rig keeps this rule");
+  }
+  if (pairing) {
+    KeyViews(pairing->match_views, left_file, &left);
+    KeyViews(pairing->match_views, right_file, &right);
   }
   CheckInputs(left, right, options, left_file, right_file);
-  StereoSolveResult out;
+  out.rig.view_pairing = pairing;
   std::optional<Solo> solo_left = CalibrateAlone(left, options, left_file, &out);
   if (!solo_left) return out;
   std::optional<Solo> solo_right = CalibrateAlone(right, options, right_file, &out);

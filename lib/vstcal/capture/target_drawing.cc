@@ -41,6 +41,36 @@ void PutBigEndian(uint32_t v, std::string* out) {
   for (int shift = 24; shift >= 0; shift -= 8) out->push_back(static_cast<char>((v >> shift) & 0xFF));
 }
 
+// A ruler check for the print: a bar of a round length (the longest of 200, 100, 50 … mm that the
+// pattern's width holds), ticked every tenth and labelled, in the outer half of the bottom margin,
+// where it stays clear of the pattern's edge. Its length runs between the centres of its end
+// ticks, which are the ends of the bar (butt caps): "h<length>" in its path.
+std::string ScaleBar(const Rect& sheet, const Rect& pattern, double mm) {
+  const double width = pattern.width() * mm, margin = (sheet.y1 - pattern.y1) * mm;
+  double length = 0;
+  for (double l : {200.0, 100.0, 50.0, 20.0, 10.0, 5.0, 2.0, 1.0}) {
+    if (l <= width) {
+      length = l;
+      break;
+    }
+  }
+  if (length == 0 || !(margin > 0)) return "";
+  const double u = std::min(0.4 * margin, 8.0);  // height of the bar with its label
+  const double x0 = (pattern.x0 - sheet.x0) * mm, top = (pattern.y1 - sheet.y0) * mm + 0.5 * margin;
+  const double line = top + 0.45 * u, stroke = std::min(0.25, u / 20);
+  std::string ticks;
+  for (int k = 0; k <= 10; ++k) {
+    const double x = x0 + length * k / 10;
+    ticks += "M" + Mm(x) + " " + Mm(k % 5 == 0 ? top : top + 0.2 * u) + "V" + Mm(line);
+  }
+  const std::string label = Mm(length) + " mm";
+  return "<g id=\"scale-bar\" data-length-mm=\"" + Mm(length) + "\" stroke=\"#000\" stroke-width=\"" + Mm(stroke) +
+         "\" stroke-linecap=\"butt\" fill=\"none\">\n<path id=\"scale-bar-line\" d=\"M" + Mm(x0) + " " + Mm(line) + "h" +
+         Mm(length) + "\"/>\n<path id=\"scale-bar-ticks\" d=\"" + ticks + "\"/>\n<text x=\"" + Mm(x0 + 0.5 * length) + "\" y=\"" +
+         Mm(top + u) + "\" font-family=\"sans-serif\" font-size=\"" + Mm(0.45 * u) +
+         "\" text-anchor=\"middle\" stroke=\"none\" fill=\"#000\">" + label + " (check with a ruler)</text>\n</g>\n";
+}
+
 }  // namespace
 
 std::string TargetSvg(const Target& t) {
@@ -61,7 +91,9 @@ std::string TargetSvg(const Target& t) {
     svg += "M" + Mm(x0) + " " + Mm(y0) + "H" + Mm((r.x1 - sheet.x0) * mm) + "V" + Mm((r.y1 - sheet.y0) * mm) + "H" +
            Mm(x0) + "Z";
   }
-  svg += "\"/>\n</svg>\n";
+  svg += "\"/>\n";
+  svg += ScaleBar(sheet, PatternExtent(t), mm);
+  svg += "</svg>\n";
   return svg;
 }
 

@@ -10,7 +10,9 @@
 namespace vstcal {
 
 // An SVG whose width and height are the sheet's size in millimetres, with a viewBox in
-// millimetres: printed at 100 % (no "fit to page"), every square has its stated size.
+// millimetres: printed at 100 % (no "fit to page"), every square has its stated size. A scale bar
+// (group id "scale-bar", its length in data-length-mm, ticked every tenth) in the bottom margin
+// lets a ruler check the print.
 std::string TargetSvg(const Target& target);
 
 // The sheet rasterised at `dpi` pixels per inch, each pixel's grey the exact fraction of its area

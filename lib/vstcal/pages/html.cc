@@ -9,6 +9,7 @@
 #include "vstcal/pages/charts.h"
 #include "vstcal/pages/html_page.h"
 #include "vstcal/pages/overlay.h"
+#include "vstcal/pages/view_residuals.h"
 
 namespace vstcal {
 namespace {
@@ -70,12 +71,8 @@ std::string CameraSection(const ReprojReport& r, size_t k) {
        " without a pose, " + std::to_string(c.n_no_ray) + " without a ray.</p>\n";
   s += ParametersTable(c, key);
   // Worst first: the view a user should look at (or drop) heads the table.
-  std::vector<size_t> order(c.views.size());
-  std::iota(order.begin(), order.end(), size_t{0});
-  auto rms = [&](size_t v) { return c.views[v].error_px ? c.views[v].error_px->rms : -1.0; };
-  std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return rms(a) > rms(b); });
   std::string views;
-  for (const size_t v : order) {
+  for (const size_t v : WorstViewsFirst(c)) {
     views += StatsRow(c.views[v].name, key + "/views/" + std::to_string(v) + "/error_px", c.views[v].error_px);
   }
   s += StatsTable("|residual| px per view, the largest RMS first", views);
@@ -153,6 +150,7 @@ std::string ReprojReportHtml(const ReprojReport& r, const std::filesystem::path&
     const OverlayPicture overlay = DrawResidualOverlay(r, k, dir);
     s += Figure("image/png", Base64(overlay.png.data(), overlay.png.size()), "residual vectors camera " + std::to_string(k),
                 "Camera " + std::to_string(k) + ": residual vectors, " + overlay.caption + ".");
+    s += ViewResidualPlots(r, k);
   }
   s += "</section>\n";
   for (size_t k = 0; k < r.cameras.size(); ++k) s += CameraSection(r, k);

@@ -63,7 +63,9 @@ std::string PageStart(const std::string& title) {
          "table{border-collapse:collapse;margin:0.8em 0;font-size:90%}"
          "td,th{border:1px solid #ccc;padding:2px 6px;text-align:right}th{background:#f4f4f4}caption{text-align:left;"
          "font-weight:bold;padding:4px 0}td.none{color:#999}figure{margin:1em 0}img{max-width:100%;border:1px solid #ddd}"
-         "figcaption{font-size:90%;color:#555}\n</style></head><body>\n";
+         "figcaption{font-size:90%;color:#555}"
+         ".small-multiples{display:flex;flex-wrap:wrap;gap:8px}.small-multiples>p{flex-basis:100%;margin:0}"
+         "figure.view-residuals{margin:0;width:240px}figure.view-residuals svg{display:block}\n</style></head><body>\n";
 }
 
 std::string Base64(const unsigned char* data, size_t size) {

@@ -71,8 +71,7 @@ OverlayPicture DrawResidualOverlay(std::span<const OverlayView> all_views, const
   const double shrink = std::min(1.0, static_cast<double>(kMaxWidth) / size.width);
   if (shrink < 1.0) cv::resize(canvas, canvas, cv::Size(), shrink, shrink, cv::INTER_AREA);
   const double p95 = overall ? std::max(overall->p95, 1e-12) : 1.0;
-  const double diagonal = std::hypot(size.width, size.height);
-  const double scale = RoundScale(0.02 * diagonal / p95);
+  const double scale = ResidualVectorScale(size, overall);
   const int thickness = std::max(2, static_cast<int>(std::lround(std::max(canvas.cols, canvas.rows) / 600.0)));
   // Pixel centres are at integers with (0, 0) the top-left pixel's centre: OpenCV's drawing
   // convention too, so coordinates go in as they are (times the shrink, in 1/16 px).
@@ -104,6 +103,11 @@ OverlayPicture DrawResidualOverlay(std::span<const OverlayView> all_views, const
                 drawn, scale, p95, p95 * scale, p95);
   picture.caption = on + text;
   return picture;
+}
+
+double ResidualVectorScale(const ImageSize& size, const std::optional<ErrorStats>& overall) {
+  const double p95 = overall ? std::max(overall->p95, 1e-12) : 1.0;
+  return RoundScale(0.02 * std::hypot(size.width, size.height) / p95);
 }
 
 OverlayPicture DrawResidualOverlay(const ReprojReport& report, size_t camera, const std::filesystem::path& dir) {

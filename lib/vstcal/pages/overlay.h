@@ -34,6 +34,10 @@ struct OverlayView {
 OverlayPicture DrawResidualOverlay(std::span<const OverlayView> views, const ImageSize& size,
                                    const std::optional<ErrorStats>& overall, const std::filesystem::path& correspondences_dir);
 
+// The vectors' magnification above: 2 % of the image diagonal over the p95 of `overall`, rounded down
+// to 1, 2 or 5 × 10ᵏ (the per-view plots of the page use the same, so that they compare).
+double ResidualVectorScale(const ImageSize& size, const std::optional<ErrorStats>& overall);
+
 // Camera `camera` of `report`, every view of its correspondences as above.
 OverlayPicture DrawResidualOverlay(const ReprojReport& report, size_t camera, const std::filesystem::path& correspondences_dir);
 

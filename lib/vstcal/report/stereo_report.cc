@@ -241,9 +241,14 @@ std::vector<std::string> ExclusionNotes(const StereoReport& report) {
 StereoReport BuildStereoReport(const StereoRig& rig, Correspondences left, Correspondences right,
                                const std::string& rig_file, const std::string& left_file,
                                const std::string& right_file, const StereoReportOptions& options) {
-  if (!options.view_key_pattern.empty()) {
-    KeyViews(options.view_key_pattern, left_file, &left);
-    KeyViews(options.view_key_pattern, right_file, &right);
+  // The pairing asked for, else the one the rig's solve used.
+  const std::string pattern = !options.view_key_pattern.empty() ? options.view_key_pattern
+                              : rig.view_pairing                 ? rig.view_pairing->match_views
+                                                                 : std::string();
+  const std::vector<std::string> names_left = ViewNames(left), names_right = ViewNames(right);
+  if (!pattern.empty()) {
+    KeyViews(pattern, left_file, &left);
+    KeyViews(pattern, right_file, &right);
   }
   CheckInputs(rig, left, right, rig_file, left_file, right_file);
   StereoReport report;
@@ -273,9 +278,12 @@ StereoReport BuildStereoReport(const StereoRig& rig, Correspondences left, Corre
     if (!left_names.contains(v.name)) report.right_only_views.push_back(v.name);
   }
   if (common.empty()) {
-    throw InputError(left_file + " and " + right_file +
-                     ": views: no view name is in both files; views are matched by name, as calib-stereo solve "
-                     "matches them: give both cameras' views of the same target poses under the same names");
+    const DerivedPairing derived = pattern.empty() ? DeriveViewPairing(names_left, names_right) : DerivedPairing{};
+    throw InputError(left_file + " and " + right_file + ": views: no view " + (pattern.empty() ? "name" : "key") +
+                     " is in both files; views are matched by name" + (pattern.empty() ? "" : " through \"" + pattern + "\"") +
+                     ", as calib-stereo solve matches them: " +
+                     (derived.suggestion.empty() ? std::string("give both cameras' views of the same target poses under the same names")
+                                                 : "pair them by the number in their names with --match-views '" + derived.suggestion + "'"));
   }
 
   // A volume has one world frame: one left pose from every common view's left pixels.

@@ -128,7 +128,7 @@ struct StereoReport {
 struct StereoReportOptions {
   // Views match when their keys are equal: the name, or given this pattern the first group of its
   // match in the name (calib-stereo solve's --match-views: "([0-9]+)$" pairs left01 with right01);
-  // the report names views by their keys.
+  // the report names views by their keys. Empty: the rig's own view_pairing, else by name.
   std::string view_key_pattern;
   int grid_cols = 8, grid_rows = 6;  // image cells of the per-region reprojection statistics
 };

@@ -17,6 +17,7 @@
 
 #include "vstcal/scene/calibrated_camera.h"
 #include "vstcal/scene/fit.h"
+#include "vstcal/scene/view_keys.h"
 #include "vstcal/core/units.h"
 #include "vstcal/geometry/rigid3.h"
 
@@ -60,6 +61,9 @@ struct StereoRig {
   // in the right camera's frame, docs/conventions.md#poses-in-optimisation).
   std::optional<ParameterCovariance> covariance;
   std::optional<Rectification> rectification;
+  // How the solve paired the two cameras' views (given or derived from their names); later pairings
+  // of correspondences with this rig use it. Absent: by name.
+  std::optional<ViewPairing> view_pairing;
 
   double baseline() const { return right_from_left.t.norm(); }
 };

@@ -1,5 +1,7 @@
 #include "vstcal/stereo/rectify.h"
 
+#include "vstcal/image/undistort.h"
+
 #include <opencv2/calib3d.hpp>
 
 #include "vstcal/camera/opencv_mat.h"
@@ -49,6 +51,24 @@ Rectification Rectify(const StereoRig& rig, const RectifyOptions& options, std::
   r.valid_roi_left = {roi1.x, roi1.y, roi1.width, roi1.height};
   r.valid_roi_right = {roi2.x, roi2.y, roi2.width, roi2.height};
   return r;
+}
+
+GrayImage RectifiedPairImage(const StereoRig& rig, const Rectification& r, const GrayImage& left, const GrayImage& right, int line_spacing) {
+  const ImageSize size = rig.left.camera.image_size;
+  const GrayImage l = Remap(left, RectifyMap(rig.left.camera, r.left_rect_from_left.transpose(), r.P_left.leftCols<3>(), size));
+  const GrayImage rr = Remap(right, RectifyMap(rig.right.camera, r.right_rect_from_right.transpose(), r.P_right.leftCols<3>(), size));
+  GrayImage pair(2 * size.width, size.height, 0);
+  for (int v = 0; v < size.height; ++v) {
+    for (int u = 0; u < size.width; ++u) {
+      pair.at(u, v) = l.at(u, v);
+      pair.at(size.width + u, v) = rr.at(u, v);
+    }
+  }
+  // Dashed, black and white, so that a line shows on dark and light alike.
+  for (int v = line_spacing / 2; line_spacing > 0 && v < size.height; v += line_spacing) {
+    for (int u = 0; u < pair.width; ++u) pair.at(u, v) = (u / 8) % 2 ? 255 : 0;
+  }
+  return pair;
 }
 
 }  // namespace vstcal

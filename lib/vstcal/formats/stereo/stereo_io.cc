@@ -142,6 +142,23 @@ OrderedJson RectificationToJson(const Rectification& r) {
   return j;
 }
 
+ViewPairing ReadViewPairing(const JsonNode& node) {
+  node.ExpectObject();
+  ViewPairing pairing;
+  const JsonNode pattern = node.at("match_views");
+  pairing.match_views = pattern.String();
+  try {
+    Correspondences none;
+    KeyViews(pairing.match_views, "", &none);  // checks the expression only
+  } catch (const InputError& e) {
+    std::string why = e.what();
+    if (why.starts_with("--match-views: ")) why = why.substr(15);
+    pattern.Fail(why.substr(0, why.find("; ")), "give an expression whose first group is the key, e.g. \"([0-9]+)$\"");
+  }
+  if (const auto rule = node.find("rule")) pairing.rule = rule->String();
+  return pairing;
+}
+
 OrderedJson RigCameraToJson(const CalibratedCamera& camera, const Provenance& provenance) {
   OrderedJson j = CameraToJson(camera, provenance);
   j.erase("provenance");  // the rig's provenance is the cameras'
@@ -199,6 +216,7 @@ StereoRig StereoRigFromJson(const JsonDocument& doc) {
   if (const auto fit = root.find("fit"); fit && !fit->json().is_null()) rig.fit = ReadFit(*fit);
   if (const auto cov = root.find("covariance")) rig.covariance = ReadRelativePoseCovariance(*cov);
   if (const auto rect = root.find("rectification")) rig.rectification = ReadRectification(*rect, rig);
+  if (const auto pairing = root.find("view_pairing")) rig.view_pairing = ReadViewPairing(*pairing);
   return rig;
 }
 
@@ -227,6 +245,9 @@ OrderedJson StereoRigToJson(const StereoRig& rig, const Provenance& provenance) 
                                 {"rotation_deg", {RadToDeg(rotation.x()), RadToDeg(rotation.y()), RadToDeg(rotation.z())}}};
   }
   if (rig.rectification) j["rectification"] = RectificationToJson(*rig.rectification);
+  if (rig.view_pairing) {
+    j["view_pairing"] = {{"match_views", rig.view_pairing->match_views}, {"rule", rig.view_pairing->rule}};
+  }
   j["provenance"] = ProvenanceToJson(provenance);
   return j;
 }
