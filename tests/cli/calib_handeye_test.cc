@@ -25,7 +25,7 @@ class CliCalibHandEye : public CliTest {
     Correspondences c;
     c.image_size = r.camera.image_size;
     c.rig = Rig::kPlanarViews;
-    for (const TimedView& v : r.views) c.views.push_back({v.name, "", std::nullopt, v.time, v.observations});
+    for (const TimedView& v : r.views) c.views.push_back({v.name, "", std::nullopt, v.observations, v.time});
     WriteText("in/corners.json", DumpJson(CorrespondencesToJson(c, Provenance{})));
     CalibratedCamera camera;
     camera.camera = r.camera;

@@ -19,6 +19,7 @@
 #include "vstcal/formats/stereo/registration_io.h"
 #include "vstcal/formats/stereo/stereo_io.h"
 #include "vstcal/formats/stereo/stereo_peer_formats.h"
+#include "vstcal/estimators/uncertainty.h"
 #include "vstcal/report/fit_summary.h"
 
 namespace vstcal::app {
@@ -57,6 +58,22 @@ std::string RigParametersText(const StereoRig& rig) {
     }
     text += line + " (rad, " + std::string(LengthUnitName(rig.length_unit)) + ")\n";
   }
+  // The views that fit worst, by their epipolar error (both cameras at once), as calib-tsai names its own.
+  if (rig.fit && rig.fit->views.size() > 1) {
+    std::vector<StereoViewFit> views = rig.fit->views;
+    std::stable_sort(views.begin(), views.end(), [](const StereoViewFit& a, const StereoViewFit& b) { return a.epipolar.rms_px > b.epipolar.rms_px; });
+    text += "worst views by epipolar RMS:";
+    for (size_t i = 0; i < std::min<size_t>(3, views.size()); ++i) text += Format("%s %s %.4f px", i ? "," : "", views[i].name.c_str(), views[i].epipolar.rms_px);
+    text += "\n";
+  }
+  // What a user of each camera inherits (intrinsics only: a camera-frame direction, so any depth).
+  const auto at_centre = [](const CalibratedCamera& c) -> std::string {
+    const Eigen::Vector2d centre(0.5 * c.camera.image_size.width - 0.5, 0.5 * c.camera.image_size.height - 0.5);
+    const auto e = ProjectionUncertaintyAtPixel(c, centre, 1000.0, ProjectionUncertaintyKind::kIntrinsicsOnly);
+    return e ? Format("%.4f px", e->sigma_major_px) : std::string("(no covariance)");
+  };
+  text += "projection 1-sigma (major axis), intrinsics only, at the image centre: left " + at_centre(rig.left) + ", right " +
+          at_centre(rig.right) + "\n";
   return text;
 }
 

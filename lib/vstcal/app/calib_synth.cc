@@ -36,7 +36,7 @@ Outcome SynthesizeHandEyeFiles(const SynthRequest& request, const Camera& camera
   corners.image_size = camera.image_size;
   corners.length_unit = request.volume.length_unit;
   corners.rig = Rig::kPlanarViews;
-  for (const TimedView& v : r.views) corners.views.push_back({v.name, "", std::nullopt, v.time, v.observations});
+  for (const TimedView& v : r.views) corners.views.push_back({v.name, "", std::nullopt, v.observations, v.time});
   CalibratedCamera truth;
   truth.camera = camera;
   truth.length_unit = corners.length_unit;

@@ -36,8 +36,8 @@ struct View {
   std::string name;
   std::string image;                  // source image, may be empty
   std::optional<double> plane_offset;  // template offset along its normal, length unit
-  std::optional<double> time;          // when the image was taken, s on the camera's clock (hand-eye)
   std::vector<Observation> observations;
+  std::optional<double> time;          // when the image was taken, s on the camera's clock (hand-eye)
 };
 
 // A point never used in a solve: it measures registration error (seed 000 §4.2).
