@@ -96,6 +96,13 @@ std::string ChainDigest(const ChainModel& model) {
   for (const auto& m : model.extrinsic_mixing) {
     if (!m.isIdentity(0.0)) h.Add(m);
   }
+  // Likewise only when used: the eyes' shared and correlated terms.
+  for (const ChainModel::EyeCoupling& c : model.couplings) {
+    h.Add("coupling");
+    h.Add(static_cast<double>(c.left));
+    h.Add(static_cast<double>(c.right));
+    h.Add(c.alpha);
+  }
   for (const ChainParameter& p : model.parameters) {
     h.Add(p.name());
     h.Add(p.distribution.Describe());
