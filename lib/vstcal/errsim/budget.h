@@ -30,14 +30,28 @@ double SystematicMisperceptionRms(const ChainEvaluator& chain);
 struct BudgetEntry {
   Source source;
   ScenarioTotals alone, halved;
-  // Its alone mean square over the sum of every source's (exact for independent, linearly adding
-  // sources; a ranking otherwise). NaN where some total is undefined.
+  // Its alone mean square over the whole chain's (docs/math/sensitivity.md#shares-of-the-whole).
+  // NaN where some total is undefined or the whole is zero to rounding.
   double share_of_image_ms = 0;
   double share_of_misregistration_ms = 0;
   double share_of_misperception_ms = 0;
 };
 
+// One measure's whole: the whole chain's mean square, the sum of the sources' alone mean squares,
+// and what they leave out — the remainder, whole − Σ parts: for independent sources and a chain
+// linear to first order Σ_{i≠j} μ_i·μ_j (means in common), plus the interactions of a nonlinear
+// chain. The shares and the remainder's share add to 1.
+struct WholeOfMeasure {
+  double mean_square = 0;        // of the "all" scenario
+  double parts_mean_square = 0;  // Σ over sources of the alone mean square
+  double remainder_mean_square = 0;
+  double remainder_share = 0;    // NaN when undefined or none
+  // The whole is zero to rounding (≤ 1e-9 of the measure's scale, squared): no shares, "none".
+  bool none = false;
+};
+
 struct ErrorBudget {
+  WholeOfMeasure image, misregistration, misperception;
   std::vector<BudgetEntry> entries;            // in source order
   std::vector<size_t> by_misregistration;      // entry indices, largest share first (ties: image share)
   std::vector<size_t> by_misperception;        // entry indices, largest share first

@@ -87,8 +87,9 @@ std::string Budget(const OrderedJson& r) {
   const std::string unit = r.at("length_unit").get<std::string>();
   std::string s = "<section><h2>Error budget</h2>\n<p>Each source alone and the whole chain with that source halved (" +
                   std::to_string(budget.at("samples").get<uint64_t>()) +
-                  " samples a scenario, common random numbers); ranked by its share of the mean square "
-                  "(docs/math/vst-chain.md#budget).</p>\n";
+                  " samples a scenario, common random numbers); ranked by its share of the whole chain's mean square. "
+                  "The shares and the row of interactions and means in common (what the sources' parts leave out) add "
+                  "to 1 (docs/math/sensitivity.md#shares-of-the-whole).</p>\n";
   for (const std::string measure : {"misregistration", "misperception"}) {
     s += ChartOrNote(BudgetScript(r, measure), "error budget, " + measure,
                      "Error budget of the " + measure + " (" + unit + "), sources ranked largest share first.");
@@ -106,6 +107,15 @@ std::string Budget(const OrderedJson& r) {
                 Escape(entries[i].at("correction").get<std::string>()) + "</td></tr>\n";
       }
     }
+    // What the sources' parts leave out, and the whole they are shares of: the share column adds to 1.
+    const std::string whole = "/budget/whole/" + measure;
+    const bool none = budget.at("whole").at(measure).at("none").get<bool>();
+    rows += "<tr><th>interactions and means in common</th>" + ValueCell(r, whole + "/remainder_share") + EmptyCells(2) +
+            ValueCell(r, "/budget/whole/image/remainder_share") + EmptyCells(1) +
+            "<td style=\"text-align:left\">" + std::string(none ? "none: the whole chain's mean square is 0 to rounding" : "") +
+            "</td></tr>\n";
+    rows += "<tr><th>whole chain (RMS)</th>" + EmptyCells(1) + ValueCell(r, "/totals/" + measure + "_rms") + EmptyCells(2) +
+            ValueCell(r, "/totals/image_rms_px") + EmptyCells(1) + "</tr>\n";
     s += Table("ranked by " + measure,
                "<th>source</th><th>share of mean square</th><th>alone RMS (" + unit + ")</th><th>whole chain, halved (" +
                    unit + ")</th><th>share of image mean square</th><th>image RMS halved (px)</th><th>correction</th>",
@@ -178,7 +188,7 @@ std::string ErrSimHtml(const OrderedJson& output) {
   if (format == "vstcal/err-sim-sweep@2") return ErrSimSweepHtml(output);
   if (format == "vstcal/err-sim-sobol@2") return ErrSimSobolHtml(output);
   if (format == "vstcal/err-sim-linear@2") return ErrSimLinearHtml(output);
-  VSTCAL_CHECK(format == "vstcal/err-sim-report@2", "--html is offered for run, merge, sweep, sobol and linear only");
+  VSTCAL_CHECK(format == "vstcal/err-sim-report@3", "--html is offered for run, merge, sweep, sobol and linear only");
   return ErrSimReportHtml(output);
 }
 

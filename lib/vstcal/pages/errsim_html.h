@@ -1,7 +1,7 @@
 // err-sim's pages. The run page (html_page.h: self-contained, opens offline): the error distributions per
 // test point and eye as quantile bars, the error budget as ranked bars with the halved-source
 // column, and the tables behind them. It is drawn from the report as written
-// (vstcal/err-sim-report@2, formats/errsim/report_format.h), never recomputed: each number shown
+// (vstcal/err-sim-report@3, formats/errsim/report_format.h), never recomputed: each number shown
 // carries the JSON pointer it comes from, e.g. data-key="/test_points/0/image/left/pixel_px/p95".
 #pragma once
 

@@ -74,7 +74,34 @@ std::string Pad(const std::string& s, size_t width) {
   return s + std::string(width > n ? width - n : 0, ' ');
 }
 
-std::string Percent(double share) { return Fixed(100 * share, 1) + " %"; }
+
+// Shares that add to 1, printed to 0.1 % so that the printed values add to 100.0 % too: each is
+// the difference of the rounded running sums (a share's rounding is carried to the next row).
+// The rows in `order`; NaN shares print as "—" and carry nothing.
+std::vector<std::string> PercentsAddingUp(const std::vector<double>& shares) {
+  std::vector<std::string> out;
+  double running = 0;
+  long long printed = 0;
+  for (const double share : shares) {
+    if (!std::isfinite(share)) {
+      out.push_back(Fixed(share, 1));
+      continue;
+    }
+    running += share;
+    const long long next = std::llround(1000 * running);
+    out.push_back(Fixed((next - printed) / 10.0, 1) + " %");
+    printed = next;
+  }
+  return out;
+}
+
+OrderedJson WholeToJson(const WholeOfMeasure& w) {
+  return {{"mean_square", NumberOrNull(w.mean_square)},
+          {"parts_mean_square", NumberOrNull(w.parts_mean_square)},
+          {"remainder_mean_square", NumberOrNull(w.remainder_mean_square)},
+          {"remainder_share", NumberOrNull(w.remainder_share)},
+          {"none", w.none}};
+}
 
 }  // namespace
 
@@ -153,6 +180,9 @@ OrderedJson ReportToJson(const ChainEvaluator& chain, const SimulationResult& re
       return list;
     };
     j["budget"] = {{"samples", run.options.budget_samples},
+                   {"whole", {{"image", WholeToJson(budget.image)},
+                              {"misregistration", WholeToJson(budget.misregistration)},
+                              {"misperception", WholeToJson(budget.misperception)}}},
                    {"ranking", {{"misregistration", ranking(budget.by_misregistration)},
                                 {"misperception", ranking(budget.by_misperception)}}},
                    {"entries", std::move(entries)}};
@@ -216,22 +246,42 @@ std::string ReportText(const ChainEvaluator& chain, const SimulationResult& resu
   out << "\n";
   if (run.options.budget) {
     const ErrorBudget budget = Budget(model, result);
+    // Each source's share of the whole chain's mean square, then what the parts leave out and the
+    // whole: the rows add to 100 % (docs/math/sensitivity.md#shares-of-the-whole).
     auto table = [&](const char* what, const std::vector<size_t>& order, double BudgetEntry::*share,
-                     double ScenarioTotals::*total, const std::string& total_unit, bool with_image) {
+                     double ScenarioTotals::*total, const WholeOfMeasure& whole, const std::string& total_unit,
+                     bool with_image) {
+      const ScenarioTotals& w = t;
       out << "  error budget of the " << what << " (" << run.options.budget_samples
-          << " samples per scenario), ranked by share of its mean square:\n";
-      out << "    " << Pad("#", 3) << Pad("source", 26) << Pad("share", 9);
+          << " samples per scenario), ranked by share of the whole chain's mean square";
+      if (whole.none) out << " (none: the whole chain's is 0 to rounding)";
+      out << ":\n";
+      size_t name_width = std::string("interactions and means in common").size() + 2;
+      out << "    " << Pad("#", 3) << Pad("source", name_width) << Pad("share", 9);
       if (with_image) out << Pad("image", 9);
       out << Pad("alone", 22) << "all, this halved\n";
-      int rank = 1, silent = 0;
+      std::vector<const BudgetEntry*> shown;
+      int silent = 0;
       for (const size_t i : order) {
         const BudgetEntry& e = budget.entries[i];
         if (!with_image && e.alone.*total == 0) {  // the misperception table: sources that do not touch what the eyes see
           ++silent;
           continue;
         }
-        out << "    " << Pad(std::to_string(rank++), 3) << Pad(std::string(SourceKey(e.source)), 26) << Pad(Percent(e.*share), 9);
-        if (with_image) out << Pad(Percent(e.share_of_image_ms), 9);
+        shown.push_back(&e);
+      }
+      std::vector<double> shares, image_shares;
+      for (const BudgetEntry* e : shown) shares.push_back(e->*share), image_shares.push_back(e->share_of_image_ms);
+      shares.push_back(whole.remainder_share);
+      image_shares.push_back(budget.image.remainder_share);
+      const std::vector<std::string> percents = PercentsAddingUp(shares), image_percents = PercentsAddingUp(image_shares);
+      auto cell = [](bool none, const std::string& percent) { return none ? std::string("none") : percent; };
+      int rank = 1;
+      for (size_t r = 0; r < shown.size(); ++r) {
+        const BudgetEntry& e = *shown[r];
+        out << "    " << Pad(std::to_string(rank++), 3) << Pad(std::string(SourceKey(e.source)), name_width)
+            << Pad(cell(whole.none, percents[r]), 9);
+        if (with_image) out << Pad(cell(budget.image.none, image_percents[r]), 9);
         // Built by appending: GCC 12's -Wrestrict misfires on "literal" + std::string.
         std::string alone = Fixed(e.alone.*total, 2).append(" ").append(total_unit);
         std::string halved = Fixed(e.halved.*total, 2).append(" ").append(total_unit);
@@ -240,17 +290,26 @@ std::string ReportText(const ChainEvaluator& chain, const SimulationResult& resu
           halved.append(" ").append(Fixed(e.halved.image_rms_px, 2)).append(" px");
         }
         out << Pad(alone, 22) << halved << "\n";
-        if (rank <= 4) out << "       → " << SourceCorrection(e.source) << "\n";
+        // No advice against a share of nothing.
+        if (rank <= 4 && !whole.none) out << "       → " << SourceCorrection(e.source) << "\n";
       }
+      out << "    " << Pad("", 3) << Pad("interactions and means in common", name_width)
+          << (with_image ? Pad(cell(whole.none, percents.back()), 9) + cell(budget.image.none, image_percents.back())
+                         : cell(whole.none, percents.back()));
+      out << "\n    " << Pad("", 3) << Pad("whole chain", name_width) << Pad(whole.none ? "none" : "100.0 %", 9);
+      if (with_image) out << Pad(budget.image.none ? "none" : "100.0 %", 9);
+      std::string all_rms = Fixed(w.*total, 2).append(" ").append(total_unit);
+      if (with_image) all_rms.append(" ").append(Fixed(w.image_rms_px, 2)).append(" px");
+      out << all_rms << "\n";
       if (silent > 0) {
         out << "    (" << silent << " other source" << (silent > 1 ? "s do" : " does")
             << " not move what the eyes see of the physical world: 0 here)\n";
       }
     };
     table("misregistration", budget.by_misregistration, &BudgetEntry::share_of_misregistration_ms,
-          &ScenarioTotals::misregistration_rms, unit, true);
+          &ScenarioTotals::misregistration_rms, budget.misregistration, unit, true);
     table("misperception (from the errors, beside the systematic part)", budget.by_misperception,
-          &BudgetEntry::share_of_misperception_ms, &ScenarioTotals::misperception_rms, unit, false);
+          &BudgetEntry::share_of_misperception_ms, &ScenarioTotals::misperception_rms, budget.misperception, unit, false);
   }
   return out.str();
 }
