@@ -695,6 +695,37 @@ TEST_F(CliErrSim, CheckAgainstAReRunOfItsChainPasses) {
   ExpectVerdicts(accepted, accepted, r.out, 0.10, 3);
 }
 
+// The text reads right: the systematic offset's visual angle beside its size; no share of a whole
+// that is zero to rounding ("none", no advice); no name cut in the Sobol table; the sweep's
+// per-parameter figure called a gain, not a slope (a slope is one output's).
+TEST_F(CliErrSim, TextSummariesReadRight) {
+  Json c = SmallChain();
+  c["display"]["eye_centre"] = {0.0, 0.0, -100.0};  // eyes 100 mm behind the cameras
+  WriteJson("in/chain.json", c);
+  CommandResult r = Run("err-sim", {"run", "in/chain.json", "-o", "out/r.json", "--samples", "400", "--without", "display"});
+  ASSERT_EQ(r.exit_code, kOk) << r.err;
+  const Json report = ReadJson("out/r.json");
+  EXPECT_NE(r.err.find("systematic  its angle"), std::string::npos) << r.err;
+  // Point b's row: the size, then the angle the JSON has, to 3 decimals.
+  char angle[32];
+  std::snprintf(angle, sizeof angle, "%.3f", report["test_points"][1]["misperception"]["systematic"]["angular_deg"].get<double>());
+  EXPECT_NE(r.err.find(std::string("    b               100.00      ") + angle), std::string::npos) << r.err;
+  EXPECT_TRUE(report["budget"]["whole"]["misperception"]["none"].get<bool>());
+  EXPECT_TRUE(report["budget"]["entries"][0]["share_of_misperception_ms"].is_null());
+  const std::string misperception = r.err.substr(r.err.find("error budget of the misperception"));
+  EXPECT_NE(misperception.find("(none: the whole chain's is 0 to rounding)"), std::string::npos) << misperception;
+  EXPECT_EQ(misperception.find("→"), std::string::npos) << misperception;
+  EXPECT_EQ(misperception.find("100.0 %"), std::string::npos) << misperception;
+  r = Run("err-sim", {"sobol", "in/chain.json", "-o", "out/s.json", "--samples", "64", "--bootstrap", "5"});
+  ASSERT_EQ(r.exit_code, kOk) << r.err;
+  EXPECT_NE(r.err.find("tracker_alignment  tracking"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("virtual_object_alignment"), std::string::npos) << r.err;
+  r = Run("err-sim", {"sweep", "in/chain.json", "-o", "out/w.json", "--parameter", "tracking.latency", "--points", "3"});
+  ASSERT_EQ(r.exit_code, kOk) << r.err;
+  EXPECT_NE(r.err.find("image gain"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("slope at nominal"), std::string::npos) << r.err;
+}
+
 // A report of the previous version (@2: the budget's shares were of the sum of the parts) stays an
 // accepted report: check reads only its per-point statistics, which did not change.
 TEST_F(CliErrSim, CheckReadsAVersion2Report) {

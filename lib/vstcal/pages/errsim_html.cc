@@ -137,8 +137,10 @@ std::string ErrSimSweepHtml(const OrderedJson& r) {
   const std::string unit = r.at("length_unit").get<std::string>();
   std::string s = PageStart("err-sim sweep: " + r.at("chain").get<std::string>());
   s += "<h1>err-sim sweep: " + Escape(r.at("chain").get<std::string>()) + "</h1>\n<p>Each parameter swept on its own, "
-       "every other at its mean; the slope is d(output)/d(parameter) at the middle of the range, by automatic "
-       "differentiation (docs/tools/err-sim.md).</p>\n";
+       "every other at its mean; a slope is one output's d(output)/d(parameter) at the nominal point (every "
+       "parameter at its mean), by automatic differentiation, and the steepest slope the largest of them in "
+       "magnitude; the text summary's gain is another quantity, the RMS over test points of the error's "
+       "derivative (docs/tools/err-sim.md).</p>\n";
   const OrderedJson& parameters = r.at("parameters");
   std::vector<std::string> sources;
   for (const auto& p : parameters) {
@@ -176,7 +178,7 @@ std::string ErrSimSweepHtml(const OrderedJson& r) {
     }
     s += Table("the sweeps of " + source,
                "<th>parameter</th><th>unit</th><th>lo</th><th>hi</th><th>image RMS at lo (px)</th><th>at hi</th>"
-               "<th>3-D RMS at lo (" + unit + ")</th><th>at hi</th><th>largest slope (output unit per unit)</th><th>of output</th>",
+               "<th>3-D RMS at lo (" + unit + ")</th><th>at hi</th><th>steepest slope (output unit per unit)</th><th>of output</th>",
                rows);
     s += "</section>\n";
   }

@@ -23,7 +23,7 @@ std::string ErrSimReportHtml(const OrderedJson& report);
 
 // `sweep` is a vstcal/err-sim-sweep@2 output: per source, the curves of the image and the 3-D
 // misregistration along each parameter's swept range; per parameter, its range, the measures at both
-// ends and its largest slope (autodiff, at the middle) over the outputs, with that output's name.
+// ends and its steepest slope (autodiff, at the nominal point) over the outputs, with that output's name.
 std::string ErrSimSweepHtml(const OrderedJson& sweep);
 
 // `sobol` is a vstcal/err-sim-sobol@2 output: the first-order and total index of each source with

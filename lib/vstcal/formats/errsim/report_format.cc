@@ -199,17 +199,20 @@ std::string ReportText(const ChainEvaluator& chain, const SimulationResult& resu
   const ErrorOutputs outputs(model);
   const auto stats = all.AllStatistics();
   const std::string unit(LengthUnitName(model.geometry.length_unit));
+  // The test point column as wide as the longest name (names are never cut, and the columns stay aligned).
+  size_t point_width = 16;
+  for (const ChainTestPoint& tp : model.geometry.test_points) point_width = std::max(point_width, tp.name.size() + 2);
   std::ostringstream out;
   out << "err-sim: " << run.chain_path << ": " << run.options.samples << " samples, seed " << run.options.seed;
   if (all.undefined_samples() > 0) out << ", " << all.undefined_samples() << " with some test point undefined";
   out << "\n  image misregistration (px, overlay − video in each eye's frame):\n";
-  out << "    " << Pad("test point", 16) << Pad("eye", 7) << Pad("mean", 9) << Pad("rms", 9) << Pad("p95", 9) << Pad("p99", 9)
+  out << "    " << Pad("test point", point_width) << Pad("eye", 7) << Pad("mean", 9) << Pad("rms", 9) << Pad("p95", 9) << Pad("p99", 9)
       << Pad("max", 9) << "undefined\n";
   for (size_t k = 0; k < outputs.num_points(); ++k) {
     for (int e = 0; e < kNumEyes; ++e) {
       const OutputStatistics& s = stats[outputs.offset(k) + ErrorOutputs::kPixel + e];
       const double undefined = 1 - static_cast<double>(s.count) / static_cast<double>(run.options.samples);
-      out << "    " << Pad(model.geometry.test_points[k].name, 16) << Pad(std::string(kEyeNames[e]), 7)
+      out << "    " << Pad(model.geometry.test_points[k].name, point_width) << Pad(std::string(kEyeNames[e]), 7)
           << Pad(Fixed(s.count ? s.mean : NAN, 2), 9) << Pad(Fixed(s.count ? s.rms : NAN, 2), 9)
           << Pad(Fixed(s.count ? s.p95.value : NAN, 2), 9) << Pad(Fixed(s.count ? s.p99.value : NAN, 2), 9)
           << Pad(Fixed(s.count ? s.max : NAN, 2), 9) << Fixed(100 * undefined, 2) << " %\n";
@@ -217,15 +220,19 @@ std::string ReportText(const ChainEvaluator& chain, const SimulationResult& resu
   }
   auto measure_table = [&](const char* title, size_t first, bool systematic) {
     out << "  " << title << " (" << unit << "; Holloway's terms seen from the cyclopean eye, degrees):\n";
-    out << "    " << Pad("test point", 16);
-    if (systematic) out << Pad("systematic", 12);
+    out << "    " << Pad("test point", point_width);
+    // The systematic offset's size and the visual angle it subtends from the cyclopean eye: the
+    // size is the camera–eye offset at every depth, the angle is what shrinks with distance.
+    if (systematic) out << Pad("systematic", 12) << Pad("its angle", 11);
     out << Pad("linear rms", 12) << Pad("p95", 9) << Pad("lateral rms", 13) << Pad("depth mean", 12) << Pad("depth rms", 11)
         << "angular rms\n";
     for (size_t k = 0; k < outputs.num_points(); ++k) {
       const size_t o = outputs.offset(k) + first;
       auto v = [&](size_t i, double OutputStatistics::*field) { return stats[o + i].count ? stats[o + i].*field : NAN; };
-      out << "    " << Pad(model.geometry.test_points[k].name, 16);
-      if (systematic) out << Pad(Fixed(chain.systematic(k).error.linear, 2), 12);
+      out << "    " << Pad(model.geometry.test_points[k].name, point_width);
+      if (systematic) {
+        out << Pad(Fixed(chain.systematic(k).error.linear, 2), 12) << Pad(Fixed(kDeg * chain.systematic(k).error.angular, 3), 11);
+      }
       out << Pad(Fixed(v(ErrorOutputs::kLinear, &OutputStatistics::rms), 2), 12)
           << Pad(Fixed(stats[o].count ? stats[o].p95.value : NAN, 2), 9)
           << Pad(Fixed(v(ErrorOutputs::kLateral, &OutputStatistics::rms), 2), 13)
