@@ -74,7 +74,22 @@ TEST_F(CliErrSim, RunWritesTheReport) {
     EXPECT_NEAR(total, 1.0, 1e-12) << measure;
   }
   EXPECT_NE(r.err.find("interactions and means in common"), std::string::npos) << r.err;
-  EXPECT_NE(r.err.find("whole chain                       100.0 %  100.0 %"), std::string::npos) << r.err;
+  const size_t whole = r.err.find("       whole chain ");
+  ASSERT_NE(whole, std::string::npos) << r.err;
+  EXPECT_NE(r.err.substr(whole, r.err.find('\n', whole) - whole).find("100.0 %  100.0 %"), std::string::npos) << r.err;
+  // The tree source → term: tracking's latency and translation alone, the advice naming the
+  // dominant term, each term in the JSON with its shares.
+  for (const Json& e : report["budget"]["entries"]) {
+    ASSERT_FALSE(e["terms"].empty()) << e["source"];
+    if (e["source"] == "tracking") {
+      ASSERT_EQ(e["terms"].size(), 2u);
+      EXPECT_EQ(e["terms"][0]["term"], "tracking.translation");
+      EXPECT_EQ(e["terms"][1]["term"], "tracking.latency");
+      EXPECT_TRUE(e["terms"][1]["share_of_image_ms"].is_number());
+    }
+  }
+  EXPECT_NE(r.err.find("         tracking.latency"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("→ mostly "), std::string::npos) << r.err;
   EXPECT_EQ(report["test_points"].size(), 3u);
   EXPECT_EQ(report["budget"]["entries"].size(), 7u);
   EXPECT_EQ(report["budget"]["ranking"]["misregistration"].size(), 7u);

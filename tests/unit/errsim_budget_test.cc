@@ -186,6 +186,48 @@ TEST(ErrorBudget, TheRemainderOfRandomTermsWithMeansIsTheirCrossTerm) {
   EXPECT_LT(budget.misregistration.remainder_share, 0);  // opposite means cancel: the parts overstate the whole
 }
 
+// The budget's tree: the display's IPD error and its common eye offset, each alone. On a parallel
+// rig with a collimated display the IPD error δI moves the seen point by (δI/b)(P − c) and the
+// common offset δo by δo itself: the IPD term alone is σ_I·|P − c|/b RMS (as above), the offset
+// term σ_o·√3, and the two parts add to the source's (independent, zero-mean, linear) to Monte
+// Carlo error. A source of one term is that term, without a scenario of its own.
+TEST(ErrorBudget, EachTermOfASourceAlone) {
+  const double baseline = 63.0, sigma_ipd = 3.0, sigma_offset = 2.0;
+  ChainGeometry g = testing::ParallelRig(Points(), 700.0, baseline);
+  ChainModel model = ChainModel::WithZeroErrors(g);
+  SetNormal(&model, "display.ipd", sigma_ipd);
+  for (const char* axis : {"x", "y", "z"}) SetNormal(&model, std::string("display.eye_offset.") + axis, sigma_offset);
+  SetNormal(&model, "tracking.translation.y", 1.5);
+  const auto scenarios = MakeScenarios(model, true);
+  EXPECT_EQ(scenarios.size(), 1u + 2 * 2 + 2);  // all; tracking and display alone and halved; display's two terms
+  const uint64_t n = 40000;
+  const SimulationResult r = RunSimulation(scenarios, Options(n), ChainDigest(model));
+  const ErrorBudget budget = Budget(model, r);
+  const Rigid3d hmd_from_world = g.hmd_from_tracker * g.tracker_from_world;
+  double ipd_ms = 0;
+  for (const ChainTestPoint& tp : g.test_points) ipd_ms += std::pow(sigma_ipd * (hmd_from_world * tp.point_in_world).norm() / baseline, 2);
+  ipd_ms /= g.test_points.size();
+  for (const BudgetEntry& e : budget.entries) {
+    if (e.source == Source::kTracking) {
+      ASSERT_EQ(e.terms.size(), 1u);
+      EXPECT_EQ(e.terms[0].name, "tracking.translation");
+      EXPECT_EQ(e.terms[0].alone.misregistration_rms, e.alone.misregistration_rms);
+      continue;
+    }
+    ASSERT_EQ(e.terms.size(), 2u);
+    EXPECT_EQ(e.terms[0].name, "display.eye_offset");
+    EXPECT_EQ(e.terms[1].name, "display.ipd");
+    const double offset_ms = 3 * sigma_offset * sigma_offset;
+    const double rel = 5 * std::sqrt(2.0 / n);
+    EXPECT_NEAR(std::pow(e.terms[1].alone.misperception_rms, 2), ipd_ms, rel * ipd_ms);
+    EXPECT_NEAR(std::pow(e.terms[0].alone.misperception_rms, 2), offset_ms, rel * offset_ms);
+    const double parts = std::pow(e.terms[0].alone.misperception_rms, 2) + std::pow(e.terms[1].alone.misperception_rms, 2);
+    EXPECT_NEAR(std::pow(e.alone.misperception_rms, 2), parts, 5 * 2 * std::sqrt(ipd_ms * offset_ms / n));
+    EXPECT_NEAR(e.terms[1].share_of_misperception_ms, std::pow(e.terms[1].alone.misperception_rms, 2) / budget.misperception.mean_square, 1e-12);
+    EXPECT_EQ(DominantTerm(e, &TermPart::share_of_misperception_ms), ipd_ms > offset_ms ? 1u : 0u);
+  }
+}
+
 TEST(Simulation, SameBitsForAnyThreadCountAndShardSplit) {
   const ChainModel model = LinearishChain(testing::ParallelRig(Points()));
   const auto scenarios = MakeScenarios(model, true);

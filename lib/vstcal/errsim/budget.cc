@@ -70,8 +70,14 @@ ErrorBudget Budget(const ChainModel& model, const SimulationResult& result) {
     const Source source = static_cast<Source>(s);
     const std::string key(SourceKey(source));
     if (!HasScenario(result, "alone:" + key)) continue;
-    budget.entries.push_back({source, Totals(model, ScenarioSummary(result, "alone:" + key), OutputSet::kTotals),
-                              Totals(model, ScenarioSummary(result, "halved:" + key), OutputSet::kTotals)});
+    BudgetEntry e{source, Totals(model, ScenarioSummary(result, "alone:" + key), OutputSet::kTotals),
+                  Totals(model, ScenarioSummary(result, "halved:" + key), OutputSet::kTotals), {}};
+    const std::vector<TermGroup> terms = ActiveTerms(model, source);
+    for (const TermGroup& t : terms) {
+      e.terms.push_back({t.name, terms.size() == 1 ? e.alone
+                                                   : Totals(model, ScenarioSummary(result, "term:" + t.name), OutputSet::kTotals)});
+    }
+    budget.entries.push_back(std::move(e));
   }
   const ScenarioTotals all = Totals(model, ScenarioSummary(result, "all"), OutputSet::kFull);
   // What "zero to rounding" means for each measure: 1e-9 of the image's size (px), of the test
@@ -82,7 +88,7 @@ ErrorBudget Budget(const ChainModel& model, const SimulationResult& result) {
   const Rigid3d hmd_from_world = g.hmd_from_tracker * g.tracker_from_world;
   for (const ChainTestPoint& tp : g.test_points) length_scale += (hmd_from_world * tp.point_in_world).squaredNorm();
   length_scale = std::sqrt(length_scale / std::max<size_t>(1, g.test_points.size()));
-  auto whole = [&](double ScenarioTotals::*total, double BudgetEntry::*share, double scale) {
+  auto whole = [&](double ScenarioTotals::*total, double BudgetEntry::*share, double TermPart::*term_share, double scale) {
     WholeOfMeasure w;
     w.mean_square = all.*total * (all.*total);
     for (const BudgetEntry& e : budget.entries) w.parts_mean_square += e.alone.*total * (e.alone.*total);
@@ -93,14 +99,16 @@ ErrorBudget Budget(const ChainModel& model, const SimulationResult& result) {
     for (BudgetEntry& e : budget.entries) {
       e.*share = w.none ? kNaN : Share(e.alone.*total * (e.alone.*total), w.mean_square);
       sum += e.*share;
+      for (TermPart& t : e.terms) t.*term_share = w.none ? kNaN : Share(t.alone.*total * (t.alone.*total), w.mean_square);
     }
     w.remainder_share = w.none || !std::isfinite(sum) || !(w.mean_square > 0) ? kNaN : 1.0 - sum;
     return w;
   };
-  budget.image = whole(&ScenarioTotals::image_rms_px, &BudgetEntry::share_of_image_ms, image_scale);
-  budget.misregistration =
-      whole(&ScenarioTotals::misregistration_rms, &BudgetEntry::share_of_misregistration_ms, length_scale);
-  budget.misperception = whole(&ScenarioTotals::misperception_rms, &BudgetEntry::share_of_misperception_ms, length_scale);
+  budget.image = whole(&ScenarioTotals::image_rms_px, &BudgetEntry::share_of_image_ms, &TermPart::share_of_image_ms, image_scale);
+  budget.misregistration = whole(&ScenarioTotals::misregistration_rms, &BudgetEntry::share_of_misregistration_ms,
+                                 &TermPart::share_of_misregistration_ms, length_scale);
+  budget.misperception = whole(&ScenarioTotals::misperception_rms, &BudgetEntry::share_of_misperception_ms,
+                               &TermPart::share_of_misperception_ms, length_scale);
   // NaN shares (undefined totals) rank last.
   auto rank = [&](auto share, auto tie) {
     std::vector<size_t> order(budget.entries.size());
@@ -118,6 +126,15 @@ ErrorBudget Budget(const ChainModel& model, const SimulationResult& result) {
   budget.by_misperception = rank([](const BudgetEntry& e) { return e.share_of_misperception_ms; },
                                  [](const BudgetEntry& e) { return e.share_of_misregistration_ms; });
   return budget;
+}
+
+size_t DominantTerm(const BudgetEntry& e, double TermPart::*share) {
+  size_t best = 0;
+  for (size_t i = 1; i < e.terms.size(); ++i) {
+    const double x = e.terms[i].*share, y = e.terms[best].*share;
+    if (std::isfinite(x) && (!std::isfinite(y) || x > y)) best = i;
+  }
+  return best;
 }
 
 }  // namespace vstcal

@@ -4,6 +4,7 @@
 // with it halved, and its share of each mean square, ranked for each measure.
 #pragma once
 
+#include <string>
 #include <vector>
 
 #include "vstcal/errsim/chain_model.h"
@@ -27,9 +28,19 @@ ScenarioTotals Totals(const ChainModel& model, const MonteCarloSummary& summary,
 // √(mean over test points of the systematic misperception's linear term²).
 double SystematicMisperceptionRms(const ChainEvaluator& chain);
 
+// One term of a source alone (simulation.h's TermGroup), its shares of the whole chain's mean
+// square. The terms of a source need not add to the source's part: what they leave out is the
+// interaction and the means in common within the source.
+struct TermPart {
+  std::string name;  // "display.screen_shift"
+  ScenarioTotals alone;
+  double share_of_image_ms = 0, share_of_misregistration_ms = 0, share_of_misperception_ms = 0;
+};
+
 struct BudgetEntry {
   Source source;
   ScenarioTotals alone, halved;
+  std::vector<TermPart> terms;  // in kTerms order; one when the source has one active term
   // Its alone mean square over the whole chain's (docs/math/sensitivity.md#shares-of-the-whole).
   // NaN where some total is undefined or the whole is zero to rounding.
   double share_of_image_ms = 0;
@@ -57,5 +68,8 @@ struct ErrorBudget {
   std::vector<size_t> by_misperception;        // entry indices, largest share first
 };
 ErrorBudget Budget(const ChainModel& model, const SimulationResult& result);
+
+// The index of the term of `e` with the largest share by `share` (the first on ties, NaN last).
+size_t DominantTerm(const BudgetEntry& e, double TermPart::*share);
 
 }  // namespace vstcal

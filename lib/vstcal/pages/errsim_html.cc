@@ -105,6 +105,20 @@ std::string Budget(const OrderedJson& r) {
                 ValueCell(r, key + "/halved/" + measure + "_rms") + ValueCell(r, key + "/share_of_image_ms") +
                 ValueCell(r, key + "/halved/image_rms_px") + "<td style=\"text-align:left\">" +
                 Escape(entries[i].at("correction").get<std::string>()) + "</td></tr>\n";
+        // The source's terms alone, largest share first (the tree source → term).
+        const OrderedJson& terms = entries[i].at("terms");
+        if (terms.size() < 2) continue;
+        std::vector<size_t> order(terms.size());
+        for (size_t t = 0; t < order.size(); ++t) order[t] = t;
+        const std::string share = "share_of_" + measure + "_ms";
+        auto value = [&](size_t t) { return terms[t].at(share).is_number() ? terms[t].at(share).get<double>() : -1.0; };
+        std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return value(a) > value(b); });
+        for (const size_t t : order) {
+          const std::string term_key = key + "/terms/" + std::to_string(t);
+          rows += "<tr><th style=\"padding-left:2em\">" + Name(terms[t].at("term").get<std::string>()) + "</th>" +
+                  ValueCell(r, term_key + "/" + share) + ValueCell(r, term_key + "/alone/" + measure + "_rms") + EmptyCells(1) +
+                  ValueCell(r, term_key + "/share_of_image_ms") + EmptyCells(1) + "<td></td></tr>\n";
+        }
       }
     }
     // What the sources' parts leave out, and the whole they are shares of: the share column adds to 1.

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 #include <cstdio>
 #include <sstream>
 
@@ -172,6 +173,17 @@ OrderedJson ReportToJson(const ChainEvaluator& chain, const SimulationResult& re
       b["alone"] = TotalsToJson(e.alone);
       b["halved"] = TotalsToJson(e.halved);
       b["correction"] = SourceCorrection(e.source);
+      OrderedJson terms = OrderedJson::array();
+      for (const TermPart& t : e.terms) {
+        terms.push_back({{"term", t.name},
+                         {"share_of_misregistration_ms", NumberOrNull(t.share_of_misregistration_ms)},
+                         {"share_of_image_ms", NumberOrNull(t.share_of_image_ms)},
+                         {"share_of_misperception_ms", NumberOrNull(t.share_of_misperception_ms)},
+                         {"alone", TotalsToJson(t.alone)}});
+      }
+      b["terms"] = std::move(terms);
+      b["dominant_term"] = {{"misregistration", e.terms[DominantTerm(e, &TermPart::share_of_misregistration_ms)].name},
+                            {"misperception", e.terms[DominantTerm(e, &TermPart::share_of_misperception_ms)].name}};
       entries.push_back(std::move(b));
     }
     auto ranking = [&](const std::vector<size_t>& order) {
@@ -256,14 +268,17 @@ std::string ReportText(const ChainEvaluator& chain, const SimulationResult& resu
     // Each source's share of the whole chain's mean square, then what the parts leave out and the
     // whole: the rows add to 100 % (docs/math/sensitivity.md#shares-of-the-whole).
     auto table = [&](const char* what, const std::vector<size_t>& order, double BudgetEntry::*share,
-                     double ScenarioTotals::*total, const WholeOfMeasure& whole, const std::string& total_unit,
-                     bool with_image) {
+                     double TermPart::*term_share, double ScenarioTotals::*total, const WholeOfMeasure& whole,
+                     const std::string& total_unit, bool with_image) {
       const ScenarioTotals& w = t;
       out << "  error budget of the " << what << " (" << run.options.budget_samples
           << " samples per scenario), ranked by share of the whole chain's mean square";
       if (whole.none) out << " (none: the whole chain's is 0 to rounding)";
       out << ":\n";
       size_t name_width = std::string("interactions and means in common").size() + 2;
+      for (const BudgetEntry& e : budget.entries) {
+        for (const TermPart& term : e.terms) name_width = std::max(name_width, term.name.size() + 4);
+      }
       out << "    " << Pad("#", 3) << Pad("source", name_width) << Pad("share", 9);
       if (with_image) out << Pad("image", 9);
       out << Pad("alone", 22) << "all, this halved\n";
@@ -297,8 +312,36 @@ std::string ReportText(const ChainEvaluator& chain, const SimulationResult& resu
           halved.append(" ").append(Fixed(e.halved.image_rms_px, 2)).append(" px");
         }
         out << Pad(alone, 22) << halved << "\n";
-        // No advice against a share of nothing.
-        if (rank <= 4 && !whole.none) out << "       → " << SourceCorrection(e.source) << "\n";
+        // Its terms alone, largest share first, when it has several: the tree source → term.
+        std::vector<size_t> terms(e.terms.size());
+        std::iota(terms.begin(), terms.end(), size_t{0});
+        auto key = [&](size_t i) { return std::isfinite(e.terms[i].*term_share) ? e.terms[i].*term_share : -1.0; };
+        std::stable_sort(terms.begin(), terms.end(), [&](size_t a, size_t b) { return key(a) > key(b); });
+        size_t small = 0;
+        for (const size_t i : terms) {
+          if (e.terms.size() < 2) break;
+          const TermPart& term = e.terms[i];
+          // Terms below what the column shows (0.0 %) are counted, not listed.
+          if (!whole.none && !(term.*term_share >= 0.0005)) {
+            ++small;
+            continue;
+          }
+          std::string term_alone = Fixed(term.alone.*total, 2).append(" ").append(total_unit);
+          if (with_image) term_alone.append(" ").append(Fixed(term.alone.image_rms_px, 2)).append(" px");
+          out << "    " << Pad("", 3) << Pad("  " + term.name, name_width)
+              << Pad(whole.none ? std::string("none") : Fixed(100 * (term.*term_share), 1) + " %", 9);
+          if (with_image) out << Pad(budget.image.none ? std::string("none") : Fixed(100 * term.share_of_image_ms, 1) + " %", 9);
+          out << term_alone << "\n";
+        }
+        if (small > 0 && small < e.terms.size()) {
+          out << "    " << Pad("", 3) << "  (" << small << " more term" << (small > 1 ? "s" : "") << " below 0.05 %)\n";
+        }
+        // No advice against a share of nothing; the advice is the source's, aimed at its dominant term.
+        if (rank <= 4 && !whole.none) {
+          out << "       → ";
+          if (e.terms.size() > 1) out << "mostly " << e.terms[DominantTerm(e, term_share)].name << ": ";
+          out << SourceCorrection(e.source) << "\n";
+        }
       }
       out << "    " << Pad("", 3) << Pad("interactions and means in common", name_width)
           << (with_image ? Pad(cell(whole.none, percents.back()), 9) + cell(budget.image.none, image_percents.back())
@@ -314,9 +357,10 @@ std::string ReportText(const ChainEvaluator& chain, const SimulationResult& resu
       }
     };
     table("misregistration", budget.by_misregistration, &BudgetEntry::share_of_misregistration_ms,
-          &ScenarioTotals::misregistration_rms, budget.misregistration, unit, true);
+          &TermPart::share_of_misregistration_ms, &ScenarioTotals::misregistration_rms, budget.misregistration, unit, true);
     table("misperception (from the errors, beside the systematic part)", budget.by_misperception,
-          &BudgetEntry::share_of_misperception_ms, &ScenarioTotals::misperception_rms, budget.misperception, unit, false);
+          &BudgetEntry::share_of_misperception_ms, &TermPart::share_of_misperception_ms, &ScenarioTotals::misperception_rms,
+          budget.misperception, unit, false);
   }
   return out.str();
 }
