@@ -187,7 +187,7 @@ void RegisterAnalysis(py::module_& m) {
   m.def("err_sim", &ErrSim, py::arg("chain"), py::arg("samples") = py::none(), py::arg("seed") = py::none(),
         py::arg("threads") = 0, py::arg("budget") = true, py::arg("budget_samples") = py::none(),
         py::arg("only") = std::vector<std::string>{}, py::arg("without") = std::vector<std::string>{},
-        "err-sim run on a vstcal/vst-chain@1 file: the vstcal/err-sim-report@2 document as a dict (the same numbers "
+        "err-sim run on a vstcal/vst-chain@1 file: the vstcal/err-sim-report@3 document as a dict (the same numbers "
         "as `err-sim run` for the same samples and seed). Raises vstcal.DegenerateError when a test point has no "
         "defined sample.");
 }

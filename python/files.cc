@@ -55,6 +55,7 @@ const std::vector<FormatEntry>& Formats() {
       {"vstcal/registration@1", {}},
       {"vstcal/stereo-plan@1", {}},
       {"vstcal/capture-plan-comparison@1", {}},
+      {"vstcal/err-sim-report@3", {}},
       {"vstcal/err-sim-report@2", {}},
       {"vstcal/err-sim-sweep@2", {}},
       {"vstcal/err-sim-sobol@2", {}},

@@ -11,7 +11,7 @@ def test_err_sim_is_err_sim_run(vstcal, tmp_path):
     chain = DATASETS / "vst" / "seed001.json"
     run_tool("err-sim", "run", chain, "--samples", "3000", "--seed", "11", "-o", tmp_path / "report.json")
     report = vstcal.err_sim(str(chain), samples=3000, seed=11)
-    assert report["format"] == "vstcal/err-sim-report@2"
+    assert report["format"] == "vstcal/err-sim-report@3"
     assert without_provenance(report) == without_provenance(load(tmp_path / "report.json"))
     # the thread count does not change a number (err-sim's sharding and merging rely on it)
     assert without_provenance(vstcal.err_sim(str(chain), samples=3000, seed=11, threads=1)) == without_provenance(report)

@@ -33,9 +33,16 @@ TEST_F(CliErrSimHtml, RendersOfflineWithEveryImageAndTheJsonsNumbers) {
   EXPECT_EQ(ExpectInlinePictures(dom.out), 3u + 2);
 
   // Whole chain (6), per point and eye (6 statistics), per point misregistration (7) and
-  // misperception (7), per source and ranked measure (5): every one the JSON's.
+  // misperception (7), per source and ranked measure (5), and per ranked measure the row of
+  // interactions and means in common (its share and the image's) and the whole chain's (its RMS
+  // and the image's, 4): every one the JSON's.
+  // Each term of a source with several, under it in each ranked measure: its share, alone RMS and
+  // image share (3).
   const size_t sources = report["budget"]["entries"].size();
-  EXPECT_EQ(ExpectNumbersOf(report, dom.out), 6 + points * (2 * 6 + 7 + 7) + 2 * sources * 5);
+  size_t terms = 0;
+  for (const Json& e : report["budget"]["entries"]) terms += e["terms"].size() > 1 ? e["terms"].size() : 0;
+  EXPECT_GT(terms, 10u);
+  EXPECT_EQ(ExpectNumbersOf(report, dom.out), 6 + points * (2 * 6 + 7 + 7) + 2 * sources * 5 + 2 * 4 + 2 * 3 * terms);
   // The budget rows follow the report's ranking, and each shows its source's halved column.
   const std::vector<std::string> keys = Attributes(dom.out, "data-key");
   std::vector<std::string> halved;

@@ -64,8 +64,32 @@ TEST_F(CliErrSim, RunWritesTheReport) {
   EXPECT_TRUE(r.out.empty());
   EXPECT_NE(r.err.find("error budget"), std::string::npos) << r.err;
   const Json report = ReadJson("out/report.json");
-  EXPECT_EQ(report["format"], "vstcal/err-sim-report@2");
+  EXPECT_EQ(report["format"], "vstcal/err-sim-report@3");
   EXPECT_EQ(report["samples"], 3000);
+  // Shares of the whole: every measure's sources and its remainder row add to 1, in the file and
+  // in the text.
+  for (const char* measure : {"image", "misregistration"}) {
+    double total = report["budget"]["whole"][measure]["remainder_share"].get<double>();
+    for (const Json& e : report["budget"]["entries"]) total += e["share_of_" + std::string(measure) + "_ms"].get<double>();
+    EXPECT_NEAR(total, 1.0, 1e-12) << measure;
+  }
+  EXPECT_NE(r.err.find("interactions and means in common"), std::string::npos) << r.err;
+  const size_t whole = r.err.find("       whole chain ");
+  ASSERT_NE(whole, std::string::npos) << r.err;
+  EXPECT_NE(r.err.substr(whole, r.err.find('\n', whole) - whole).find("100.0 %  100.0 %"), std::string::npos) << r.err;
+  // The tree source → term: tracking's latency and translation alone, the advice naming the
+  // dominant term, each term in the JSON with its shares.
+  for (const Json& e : report["budget"]["entries"]) {
+    ASSERT_FALSE(e["terms"].empty()) << e["source"];
+    if (e["source"] == "tracking") {
+      ASSERT_EQ(e["terms"].size(), 2u);
+      EXPECT_EQ(e["terms"][0]["term"], "tracking.translation");
+      EXPECT_EQ(e["terms"][1]["term"], "tracking.latency");
+      EXPECT_TRUE(e["terms"][1]["share_of_image_ms"].is_number());
+    }
+  }
+  EXPECT_NE(r.err.find("         tracking.latency"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("→ mostly "), std::string::npos) << r.err;
   EXPECT_EQ(report["test_points"].size(), 3u);
   EXPECT_EQ(report["budget"]["entries"].size(), 7u);
   EXPECT_EQ(report["budget"]["ranking"]["misregistration"].size(), 7u);
@@ -686,6 +710,79 @@ TEST_F(CliErrSim, CheckAgainstAReRunOfItsChainPasses) {
   ExpectVerdicts(accepted, accepted, r.out, 0.10, 3);
 }
 
+// The text reads right: the systematic offset's visual angle beside its size; no share of a whole
+// that is zero to rounding ("none", no advice); no name cut in the Sobol table; the sweep's
+// per-parameter figure called a gain, not a slope (a slope is one output's).
+TEST_F(CliErrSim, TextSummariesReadRight) {
+  Json c = SmallChain();
+  c["display"]["eye_centre"] = {0.0, 0.0, -100.0};  // eyes 100 mm behind the cameras
+  WriteJson("in/chain.json", c);
+  CommandResult r = Run("err-sim", {"run", "in/chain.json", "-o", "out/r.json", "--samples", "400", "--without", "display"});
+  ASSERT_EQ(r.exit_code, kOk) << r.err;
+  const Json report = ReadJson("out/r.json");
+  EXPECT_NE(r.err.find("systematic  its angle"), std::string::npos) << r.err;
+  // Point b's row: the size, then the angle the JSON has, to 3 decimals.
+  char angle[32];
+  std::snprintf(angle, sizeof angle, "%.3f", report["test_points"][1]["misperception"]["systematic"]["angular_deg"].get<double>());
+  EXPECT_NE(r.err.find(std::string("    b               100.00      ") + angle), std::string::npos) << r.err;
+  EXPECT_TRUE(report["budget"]["whole"]["misperception"]["none"].get<bool>());
+  EXPECT_TRUE(report["budget"]["entries"][0]["share_of_misperception_ms"].is_null());
+  const std::string misperception = r.err.substr(r.err.find("error budget of the misperception"));
+  EXPECT_NE(misperception.find("(none: the whole chain's is 0 to rounding)"), std::string::npos) << misperception;
+  EXPECT_EQ(misperception.find("→"), std::string::npos) << misperception;
+  EXPECT_EQ(misperception.find("100.0 %"), std::string::npos) << misperception;
+  r = Run("err-sim", {"sobol", "in/chain.json", "-o", "out/s.json", "--samples", "64", "--bootstrap", "5"});
+  ASSERT_EQ(r.exit_code, kOk) << r.err;
+  EXPECT_NE(r.err.find("tracker_alignment  tracking"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("virtual_object_alignment"), std::string::npos) << r.err;
+  r = Run("err-sim", {"sweep", "in/chain.json", "-o", "out/w.json", "--parameter", "tracking.latency", "--points", "3"});
+  ASSERT_EQ(r.exit_code, kOk) << r.err;
+  EXPECT_NE(r.err.find("image gain"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("slope at nominal"), std::string::npos) << r.err;
+}
+
+// A report of the previous version (@2: the budget's shares were of the sum of the parts) stays an
+// accepted report: check reads only its per-point statistics, which did not change.
+TEST_F(CliErrSim, CheckReadsAVersion2Report) {
+  WriteJson("in/chain.json", SmallChain());
+  ASSERT_EQ(Run("err-sim", {"run", "in/chain.json", "-o", "in/accepted.json", "--no-budget", "-q"}).exit_code, kOk);
+  Json v2 = ReadJson("in/accepted.json");
+  v2["format"] = "vstcal/err-sim-report@2";
+  WriteJson("in/v2.json", v2);
+  const CommandResult r = Run("err-sim", {"check", "in/v2.json", "--report", "in/accepted.json"});
+  ASSERT_EQ(r.exit_code, kOk) << r.err;
+  EXPECT_NE(r.out.find("32 metrics: 32 pass"), std::string::npos) << r.out;
+  v2["format"] = "vstcal/err-sim-report@1";
+  WriteJson("in/v1.json", v2);
+  EXPECT_TRUE(FailsWith(Run("err-sim", {"check", "in/v1.json", "--report", "in/accepted.json"}), "err-sim", kBadInput,
+                        "in/v1.json: format: unsupported version", {"vstcal/err-sim-report@3"}));
+}
+
+// Eye terms shared or correlated: a correlation outside [-1, 1], or a term both shared and per
+// eye, is one line naming the field and the fix, exit 2, nothing written; a valid one runs.
+TEST_F(CliErrSim, SharedAndCorrelatedEyeTerms) {
+  Json c = SmallChain();
+  c["sources"]["camera_intrinsic"] = {{"shared", {{"fx", Normal(1.0)}}}, {"both", {{"cx", Normal(1.0)}}}, {"correlation", {{"cx", 0.9}}}};
+  WriteJson("in/chain.json", c);
+  const CommandResult r = Run("err-sim", {"run", "in/chain.json", "-o", "out/r.json", "--samples", "500", "--no-budget", "-q"});
+  ASSERT_EQ(r.exit_code, kOk) << r.err;
+  std::filesystem::remove(Path("out/r.json"));
+  c["sources"]["camera_intrinsic"]["correlation"]["cx"] = -1.2;
+  WriteJson("in/chain.json", c);
+  EXPECT_TRUE(FailsWith(Run("err-sim", {"run", "in/chain.json", "-o", "out/r.json", "--html", "out/r.html"}), "err-sim", kBadInput,
+                        "in/chain.json: sources.camera_intrinsic.correlation.cx: must lie within [-1, 1], got -1.2",
+                        {"-1 ≤ ρ ≤ 1"}));
+  c["sources"]["camera_intrinsic"]["correlation"]["cx"] = 0.5;
+  c["sources"]["camera_intrinsic"]["both"]["fx"] = Normal(1.0);
+  WriteJson("in/chain.json", c);
+  EXPECT_TRUE(FailsWith(Run("err-sim", {"run", "in/chain.json", "-o", "out/r.json"}), "err-sim", kBadInput,
+                        "in/chain.json: sources.camera_intrinsic.shared.fx: given in both \"shared\" and \"both\"",
+                        {"give the term once"}));
+  EXPECT_TRUE(FailsWith(Run("err-sim", {"normalize", "in/chain.json", "-o", "out/n.json"}), "err-sim", kBadInput,
+                        "in/chain.json: sources.camera_intrinsic.shared.fx: ", {}));
+  EXPECT_TRUE(OutDirEmpty());
+}
+
 // Tracking four times as noisy: the misregistration rises far beyond 10 % and its noise; the check
 // fails — from a given report and from a re-run of the changed chain alike.
 TEST_F(CliErrSim, CheckFailsWhenAMetricRisesBeyondNoise) {
@@ -762,7 +859,7 @@ TEST_F(CliErrSim, CheckRefusesBadThresholdsAndNames) {
   EXPECT_TRUE(FailsWith(Run("err-sim", {"check", "in/accepted.json", "--report", "in/accepted.json", "--chain", "in/chain.json"}),
                         "err-sim", kBadInput, "--chain: ", {"drop one of the two"}));
   EXPECT_TRUE(FailsWith(Run("err-sim", {"check", "in/chain.json", "--junit", "out/c.xml"}), "err-sim", kBadInput,
-                        "in/chain.json: format: ", {"vstcal/err-sim-report@2"}));
+                        "in/chain.json: format: ", {"vstcal/err-sim-report@3"}));
   EXPECT_TRUE(FailsWith(Run("err-sim", {"check", "in/accepted.json", "--report", "in/accepted.json", "--junit",
                                         "in/accepted.json"}),
                         "err-sim", kBadInput, "in/accepted.json", {"input"}));

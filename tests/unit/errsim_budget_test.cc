@@ -74,8 +74,17 @@ TEST(ErrorBudget, AloneMeanSquaresAddUpAndHalvingRemovesThreeQuarters) {
     const double ms_alone = e.alone.image_rms_px * e.alone.image_rms_px;
     EXPECT_NEAR(e.halved.image_rms_px * e.halved.image_rms_px, all.image_rms_px * all.image_rms_px - 0.75 * ms_alone, tolerance)
         << SourceKey(e.source);
-    EXPECT_NEAR(e.share_of_image_ms, ms_alone / sum, 1e-12);
+    EXPECT_NEAR(e.share_of_image_ms, ms_alone / (all.image_rms_px * all.image_rms_px), 1e-12);
   }
+  // Shares of the whole and what they leave out add to 1; zero-mean sources leave out only noise.
+  for (const auto& [whole, share] : {std::pair{budget.image, &BudgetEntry::share_of_image_ms},
+                                     std::pair{budget.misregistration, &BudgetEntry::share_of_misregistration_ms}}) {
+    double total = whole.remainder_share;
+    for (const BudgetEntry& e : budget.entries) total += e.*share;
+    EXPECT_NEAR(total, 1.0, 1e-15);
+    EXPECT_FALSE(whole.none);
+  }
+  EXPECT_NEAR(budget.image.remainder_mean_square, 0.0, tolerance);
   EXPECT_EQ(budget.entries[budget.by_misperception[0]].source, Source::kDisplay);
   EXPECT_EQ(budget.entries[budget.by_misregistration[0]].source, Source::kTrackerAlignment);
 }
@@ -121,6 +130,101 @@ TEST(ErrorBudget, ContributionsAreMeasuredFromTheSystematicError) {
         EXPECT_GT(e.alone.misregistration_rms, 0.1) << SourceKey(e.source);
       }
     }
+  }
+}
+
+// Two sources with means in the same direction: tracking's translation error a and the rig mount's
+// b, both along hmd x (ParallelRig's cameras have the hmd's axes). Both are left perturbations in
+// the hmd frame, so the renderer sees every point moved by exactly a + b: the misregistration is
+// (a + b, 0, 0) at every point and each eye's pixel error f·(a + b)/z_k. The whole chain's mean
+// square is (a + b)², each source's part a² and b², and what the parts leave out is the cross term
+// 2ab — exactly, for fixed biases (docs/math/sensitivity.md#shares-of-the-whole).
+TEST(ErrorBudget, TheRemainderIsTheCrossTermOfTwoMeans) {
+  const double a = 3.0, b = 5.0, focal = 700.0;
+  ChainModel model = ChainModel::WithZeroErrors(testing::ParallelRig(Points(), focal));
+  model.Find("tracking.translation.x")->distribution = Distribution::MakeFixed(a);
+  model.Find("camera_extrinsic.rig.translation.x")->distribution = Distribution::MakeFixed(b);
+  const SimulationResult r = RunSimulation(MakeScenarios(model, true), Options(64), ChainDigest(model));
+  const ErrorBudget budget = Budget(model, r);
+  ASSERT_EQ(budget.entries.size(), 2u);
+  EXPECT_NEAR(budget.misregistration.mean_square, (a + b) * (a + b), 1e-9);
+  EXPECT_NEAR(budget.misregistration.remainder_mean_square, 2 * a * b, 1e-9);
+  EXPECT_NEAR(budget.misregistration.remainder_share, 2 * a * b / ((a + b) * (a + b)), 1e-12);
+  // Image: mean over points and eyes of (f·a/z)², with z the point's depth in each camera.
+  const ChainEvaluator chain(model);
+  double inverse_z2 = 0;
+  for (size_t k = 0; k < chain.num_points(); ++k) {
+    for (int e = 0; e < kNumEyes; ++e) inverse_z2 += 1 / std::pow(chain.real_depth(e, k), 2);
+  }
+  inverse_z2 /= 2.0 * chain.num_points();
+  EXPECT_NEAR(budget.image.remainder_mean_square, 2 * a * b * focal * focal * inverse_z2, 1e-9);
+  EXPECT_NEAR(budget.image.remainder_share, 2 * a * b / ((a + b) * (a + b)), 1e-9);
+  for (const BudgetEntry& e : budget.entries) {
+    const double mean = e.source == Source::kTracking ? a : b;
+    EXPECT_NEAR(e.share_of_misregistration_ms, mean * mean / ((a + b) * (a + b)), 1e-12);
+  }
+  EXPECT_EQ(budget.entries[0].share_of_misregistration_ms + budget.entries[1].share_of_misregistration_ms +
+                budget.misregistration.remainder_share,
+            1.0);
+  // No display error: the misperception is none, not a share of rounding.
+  EXPECT_TRUE(budget.misperception.none);
+  EXPECT_TRUE(std::isnan(budget.entries[0].share_of_misperception_ms));
+}
+
+// The same two terms random, N(a, σ²) and N(b, σ²): E|e₁ + e₂|² = a² + σ² + b² + σ² + 2ab, so the
+// remainder estimates 2ab, with Monte Carlo error 2σ²/√N (the sample mean of the product of the
+// two zero-mean parts; common random numbers cancel the rest).
+TEST(ErrorBudget, TheRemainderOfRandomTermsWithMeansIsTheirCrossTerm) {
+  const double a = 2.0, b = -1.5, sigma = 1.0;
+  ChainModel model = ChainModel::WithZeroErrors(testing::ParallelRig(Points()));
+  model.Find("tracking.translation.x")->distribution = Distribution::MakeNormal(a, sigma);
+  model.Find("camera_extrinsic.rig.translation.x")->distribution = Distribution::MakeNormal(b, sigma);
+  const uint64_t n = 40000;
+  const SimulationResult r = RunSimulation(MakeScenarios(model, true), Options(n), ChainDigest(model));
+  const ErrorBudget budget = Budget(model, r);
+  EXPECT_NEAR(budget.misregistration.remainder_mean_square, 2 * a * b, 5 * 2 * sigma * sigma / std::sqrt(n));
+  EXPECT_LT(budget.misregistration.remainder_share, 0);  // opposite means cancel: the parts overstate the whole
+}
+
+// The budget's tree: the display's IPD error and its common eye offset, each alone. On a parallel
+// rig with a collimated display the IPD error δI moves the seen point by (δI/b)(P − c) and the
+// common offset δo by δo itself: the IPD term alone is σ_I·|P − c|/b RMS (as above), the offset
+// term σ_o·√3, and the two parts add to the source's (independent, zero-mean, linear) to Monte
+// Carlo error. A source of one term is that term, without a scenario of its own.
+TEST(ErrorBudget, EachTermOfASourceAlone) {
+  const double baseline = 63.0, sigma_ipd = 3.0, sigma_offset = 2.0;
+  ChainGeometry g = testing::ParallelRig(Points(), 700.0, baseline);
+  ChainModel model = ChainModel::WithZeroErrors(g);
+  SetNormal(&model, "display.ipd", sigma_ipd);
+  for (const char* axis : {"x", "y", "z"}) SetNormal(&model, std::string("display.eye_offset.") + axis, sigma_offset);
+  SetNormal(&model, "tracking.translation.y", 1.5);
+  const auto scenarios = MakeScenarios(model, true);
+  EXPECT_EQ(scenarios.size(), 1u + 2 * 2 + 2);  // all; tracking and display alone and halved; display's two terms
+  const uint64_t n = 40000;
+  const SimulationResult r = RunSimulation(scenarios, Options(n), ChainDigest(model));
+  const ErrorBudget budget = Budget(model, r);
+  const Rigid3d hmd_from_world = g.hmd_from_tracker * g.tracker_from_world;
+  double ipd_ms = 0;
+  for (const ChainTestPoint& tp : g.test_points) ipd_ms += std::pow(sigma_ipd * (hmd_from_world * tp.point_in_world).norm() / baseline, 2);
+  ipd_ms /= g.test_points.size();
+  for (const BudgetEntry& e : budget.entries) {
+    if (e.source == Source::kTracking) {
+      ASSERT_EQ(e.terms.size(), 1u);
+      EXPECT_EQ(e.terms[0].name, "tracking.translation");
+      EXPECT_EQ(e.terms[0].alone.misregistration_rms, e.alone.misregistration_rms);
+      continue;
+    }
+    ASSERT_EQ(e.terms.size(), 2u);
+    EXPECT_EQ(e.terms[0].name, "display.eye_offset");
+    EXPECT_EQ(e.terms[1].name, "display.ipd");
+    const double offset_ms = 3 * sigma_offset * sigma_offset;
+    const double rel = 5 * std::sqrt(2.0 / n);
+    EXPECT_NEAR(std::pow(e.terms[1].alone.misperception_rms, 2), ipd_ms, rel * ipd_ms);
+    EXPECT_NEAR(std::pow(e.terms[0].alone.misperception_rms, 2), offset_ms, rel * offset_ms);
+    const double parts = std::pow(e.terms[0].alone.misperception_rms, 2) + std::pow(e.terms[1].alone.misperception_rms, 2);
+    EXPECT_NEAR(std::pow(e.alone.misperception_rms, 2), parts, 5 * 2 * std::sqrt(ipd_ms * offset_ms / n));
+    EXPECT_NEAR(e.terms[1].share_of_misperception_ms, std::pow(e.terms[1].alone.misperception_rms, 2) / budget.misperception.mean_square, 1e-12);
+    EXPECT_EQ(DominantTerm(e, &TermPart::share_of_misperception_ms), ipd_ms > offset_ms ? 1u : 0u);
   }
 }
 

@@ -159,6 +159,22 @@ TEST(SampleMeasurer, LanesGiveTheBitsOfOneSampleAtATimeOnSeed001) {
   EXPECT_LT(c.divergent_groups, 2500u / 20);
 }
 
+// Errors shared and correlated between the eyes (ChainModel::couplings) go through the same
+// lanes: seed 001 with fx shared, cx correlated and the screen shift correlated per component.
+TEST(SampleMeasurer, LanesGiveTheBitsOfOneSampleAtATimeWithCoupledEyes) {
+  ChainModel model = ReadChain(std::string(VSTCAL_SOURCE_DIR) + "/datasets/vst/seed001.json");
+  auto slot = [&](Term term, int eye, int i) { return model.layout.Offset(term, eye) + i; };
+  model.parameters[slot(Term::kLens, 1, 0)].distribution = Distribution::MakeFixed(0);
+  model.couplings = {{slot(Term::kLens, 0, 0), slot(Term::kLens, 1, 0), 1.0},
+                     {slot(Term::kLens, 0, 2), slot(Term::kLens, 1, 2), 0.9},
+                     {slot(Term::kScreenShift, 0, 0), slot(Term::kScreenShift, 1, 0), -0.4},
+                     {slot(Term::kScreenShift, 0, 1), slot(Term::kScreenShift, 1, 1), 0.7}};
+  const LaneComparison c = CompareLanesWithDouble(model, 1000);
+  EXPECT_EQ(c.mismatches, 0u);
+  EXPECT_EQ(c.defined, c.samples);
+  EXPECT_LT(c.divergent_groups, 1000u / 20);
+}
+
 TEST(SampleMeasurer, LanesThatTakeDifferentBranchesAreRedoneOneAtATime) {
   // Fiducial alignment, a correlated lens, occlusion outputs, and errors large enough that some
   // samples put the near point behind a virtual camera, rotate by more than 0.1 rad or see an

@@ -95,7 +95,7 @@ TEST(ErrSimReportHtml, UndefinedStatisticsAndNoBudgetAreDashesNotNumbers) {
   point["misregistration"] = {{"linear", stats}};
   point["misperception"] = {{"systematic", {{"linear", 3.0}}}, {"linear", nullptr}};
   const OrderedJson report = {
-      {"format", "vstcal/err-sim-report@2"}, {"chain", "c.json"}, {"length_unit", "mm"}, {"samples", 20}, {"seed", 1},
+      {"format", "vstcal/err-sim-report@3"}, {"chain", "c.json"}, {"length_unit", "mm"}, {"samples", 20}, {"seed", 1},
       {"sources", {{"active", {"tracking"}}}}, {"undefined_samples", 10},
       {"test_points", {point}},
       {"totals", {{"image_rms_px", 2.5}, {"misregistration_rms", 2.5}, {"misperception_rms", nullptr},

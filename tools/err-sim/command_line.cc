@@ -65,7 +65,7 @@ ErrSimCommandLine::ErrSimCommandLine(CLI::App& app) {
 
   check_ = app.add_subcommand("check", "compare a new run (or --report) with an accepted report: fail (exit code 4) "
                                        "when a metric rose beyond its allowance by more than the Monte Carlo noise");
-  check_->add_option("ACCEPTED", check_request_.accepted, "the accepted report (vstcal/err-sim-report@2)")->required()->check(kNonEmpty);
+  check_->add_option("ACCEPTED", check_request_.accepted, "the accepted report (vstcal/err-sim-report@3 or @2)")->required()->check(kNonEmpty);
   check_->add_option("--report", check_request_.report, "the new report (default: re-run the accepted report's chain "
                                                          "with its samples, seed and sources)")->check(kNonEmpty);
   check_->add_option("--chain", check_request_.chain, "the chain to re-run (default: the accepted report's \"chain\")")->check(kNonEmpty);

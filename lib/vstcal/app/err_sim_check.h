@@ -1,4 +1,4 @@
-// err-sim check as a library call (docs/tools/err-sim.md#check): an accepted vstcal/err-sim-report@2
+// err-sim check as a library call (docs/tools/err-sim.md#check): an accepted vstcal/err-sim-report@3 (or @2)
 // against a new one — given, or made by re-running the accepted report's chain with its samples,
 // seed and sources — metric by metric (errsim/report_check.h), with the verdicts as a table and as
 // JUnit XML for CI.

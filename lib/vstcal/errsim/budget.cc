@@ -66,23 +66,49 @@ double SystematicMisperceptionRms(const ChainEvaluator& chain) {
 
 ErrorBudget Budget(const ChainModel& model, const SimulationResult& result) {
   ErrorBudget budget;
-  double image = 0, misregistration = 0, misperception = 0;
   for (int s = 0; s < kNumSources; ++s) {
     const Source source = static_cast<Source>(s);
     const std::string key(SourceKey(source));
     if (!HasScenario(result, "alone:" + key)) continue;
     BudgetEntry e{source, Totals(model, ScenarioSummary(result, "alone:" + key), OutputSet::kTotals),
-                  Totals(model, ScenarioSummary(result, "halved:" + key), OutputSet::kTotals)};
-    image += e.alone.image_rms_px * e.alone.image_rms_px;
-    misregistration += e.alone.misregistration_rms * e.alone.misregistration_rms;
-    misperception += e.alone.misperception_rms * e.alone.misperception_rms;
-    budget.entries.push_back(e);
+                  Totals(model, ScenarioSummary(result, "halved:" + key), OutputSet::kTotals), {}};
+    const std::vector<TermGroup> terms = ActiveTerms(model, source);
+    for (const TermGroup& t : terms) {
+      e.terms.push_back({t.name, terms.size() == 1 ? e.alone
+                                                   : Totals(model, ScenarioSummary(result, "term:" + t.name), OutputSet::kTotals)});
+    }
+    budget.entries.push_back(std::move(e));
   }
-  for (BudgetEntry& e : budget.entries) {
-    e.share_of_image_ms = Share(e.alone.image_rms_px * e.alone.image_rms_px, image);
-    e.share_of_misregistration_ms = Share(e.alone.misregistration_rms * e.alone.misregistration_rms, misregistration);
-    e.share_of_misperception_ms = Share(e.alone.misperception_rms * e.alone.misperception_rms, misperception);
-  }
+  const ScenarioTotals all = Totals(model, ScenarioSummary(result, "all"), OutputSet::kFull);
+  // What "zero to rounding" means for each measure: 1e-9 of the image's size (px), of the test
+  // points' RMS distance from the head (length unit); a mean square below its square is rounding.
+  const ChainGeometry& g = model.geometry;
+  double image_scale = 0, length_scale = 0;
+  for (const Camera& c : g.cameras) image_scale = std::max<double>({image_scale, 1.0 * c.image_size.width, 1.0 * c.image_size.height});
+  const Rigid3d hmd_from_world = g.hmd_from_tracker * g.tracker_from_world;
+  for (const ChainTestPoint& tp : g.test_points) length_scale += (hmd_from_world * tp.point_in_world).squaredNorm();
+  length_scale = std::sqrt(length_scale / std::max<size_t>(1, g.test_points.size()));
+  auto whole = [&](double ScenarioTotals::*total, double BudgetEntry::*share, double TermPart::*term_share, double scale) {
+    WholeOfMeasure w;
+    w.mean_square = all.*total * (all.*total);
+    for (const BudgetEntry& e : budget.entries) w.parts_mean_square += e.alone.*total * (e.alone.*total);
+    w.remainder_mean_square = w.mean_square - w.parts_mean_square;
+    w.none = std::isfinite(w.mean_square) && w.mean_square <= std::pow(1e-9 * scale, 2);
+    // The remainder's share is 1 − Σ shares, so that the rows add to 1 to the last bit.
+    double sum = 0;
+    for (BudgetEntry& e : budget.entries) {
+      e.*share = w.none ? kNaN : Share(e.alone.*total * (e.alone.*total), w.mean_square);
+      sum += e.*share;
+      for (TermPart& t : e.terms) t.*term_share = w.none ? kNaN : Share(t.alone.*total * (t.alone.*total), w.mean_square);
+    }
+    w.remainder_share = w.none || !std::isfinite(sum) || !(w.mean_square > 0) ? kNaN : 1.0 - sum;
+    return w;
+  };
+  budget.image = whole(&ScenarioTotals::image_rms_px, &BudgetEntry::share_of_image_ms, &TermPart::share_of_image_ms, image_scale);
+  budget.misregistration = whole(&ScenarioTotals::misregistration_rms, &BudgetEntry::share_of_misregistration_ms,
+                                 &TermPart::share_of_misregistration_ms, length_scale);
+  budget.misperception = whole(&ScenarioTotals::misperception_rms, &BudgetEntry::share_of_misperception_ms,
+                               &TermPart::share_of_misperception_ms, length_scale);
   // NaN shares (undefined totals) rank last.
   auto rank = [&](auto share, auto tie) {
     std::vector<size_t> order(budget.entries.size());
@@ -100,6 +126,15 @@ ErrorBudget Budget(const ChainModel& model, const SimulationResult& result) {
   budget.by_misperception = rank([](const BudgetEntry& e) { return e.share_of_misperception_ms; },
                                  [](const BudgetEntry& e) { return e.share_of_misregistration_ms; });
   return budget;
+}
+
+size_t DominantTerm(const BudgetEntry& e, double TermPart::*share) {
+  size_t best = 0;
+  for (size_t i = 1; i < e.terms.size(); ++i) {
+    const double x = e.terms[i].*share, y = e.terms[best].*share;
+    if (std::isfinite(x) && (!std::isfinite(y) || x > y)) best = i;
+  }
+  return best;
 }
 
 }  // namespace vstcal

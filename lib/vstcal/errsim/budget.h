@@ -4,6 +4,7 @@
 // with it halved, and its share of each mean square, ranked for each measure.
 #pragma once
 
+#include <string>
 #include <vector>
 
 #include "vstcal/errsim/chain_model.h"
@@ -27,21 +28,48 @@ ScenarioTotals Totals(const ChainModel& model, const MonteCarloSummary& summary,
 // √(mean over test points of the systematic misperception's linear term²).
 double SystematicMisperceptionRms(const ChainEvaluator& chain);
 
+// One term of a source alone (simulation.h's TermGroup), its shares of the whole chain's mean
+// square. The terms of a source need not add to the source's part: what they leave out is the
+// interaction and the means in common within the source.
+struct TermPart {
+  std::string name;  // "display.screen_shift"
+  ScenarioTotals alone;
+  double share_of_image_ms = 0, share_of_misregistration_ms = 0, share_of_misperception_ms = 0;
+};
+
 struct BudgetEntry {
   Source source;
   ScenarioTotals alone, halved;
-  // Its alone mean square over the sum of every source's (exact for independent, linearly adding
-  // sources; a ranking otherwise). NaN where some total is undefined.
+  std::vector<TermPart> terms;  // in kTerms order; one when the source has one active term
+  // Its alone mean square over the whole chain's (docs/math/sensitivity.md#shares-of-the-whole).
+  // NaN where some total is undefined or the whole is zero to rounding.
   double share_of_image_ms = 0;
   double share_of_misregistration_ms = 0;
   double share_of_misperception_ms = 0;
 };
 
+// One measure's whole: the whole chain's mean square, the sum of the sources' alone mean squares,
+// and what they leave out — the remainder, whole − Σ parts: for independent sources and a chain
+// linear to first order Σ_{i≠j} μ_i·μ_j (means in common), plus the interactions of a nonlinear
+// chain. The shares and the remainder's share add to 1.
+struct WholeOfMeasure {
+  double mean_square = 0;        // of the "all" scenario
+  double parts_mean_square = 0;  // Σ over sources of the alone mean square
+  double remainder_mean_square = 0;
+  double remainder_share = 0;    // NaN when undefined or none
+  // The whole is zero to rounding (≤ 1e-9 of the measure's scale, squared): no shares, "none".
+  bool none = false;
+};
+
 struct ErrorBudget {
+  WholeOfMeasure image, misregistration, misperception;
   std::vector<BudgetEntry> entries;            // in source order
   std::vector<size_t> by_misregistration;      // entry indices, largest share first (ties: image share)
   std::vector<size_t> by_misperception;        // entry indices, largest share first
 };
 ErrorBudget Budget(const ChainModel& model, const SimulationResult& result);
+
+// The index of the term of `e` with the largest share by `share` (the first on ties, NaN last).
+size_t DominantTerm(const BudgetEntry& e, double TermPart::*share);
 
 }  // namespace vstcal

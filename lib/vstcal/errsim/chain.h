@@ -98,6 +98,7 @@ class ChainEvaluator {
   // such a chain, naming the point).
   Undefined nominal_undefined(size_t point) const { return nominal_undefined_[point]; }
 
+  // The chain at θ; shared and correlated eye terms (model().couplings) are applied first.
   template <typename T>
   void Evaluate(const T* theta, ChainSample<T>* out) const;
 
@@ -120,6 +121,9 @@ class ChainEvaluator {
   }
   template <typename T>
   Rigid3<T> VirtualFromObject(const T* theta) const;
+  // The chain at θ whose slots are read as they are (no coupling between the eyes).
+  template <typename T>
+  void EvaluateUncoupled(const T* theta, ChainSample<T>* out) const;
   // (ω, ρ) ← M·(ω, ρ) with M = model().extrinsic_mixing[eye]: standard normals to a rig's
   // correlated camera-pose error. Summed in j order, so every scalar type gives the same bits.
   template <typename T>
@@ -202,6 +206,29 @@ Vec3<T> ChainEvaluator::DisplayedDirection(int eye, const Vec2<T>& centred, cons
 
 template <typename T>
 void ChainEvaluator::Evaluate(const T* theta, ChainSample<T>* out) const {
+  // Branching on a constant of the chain: a chain without couplings reads θ in place, with the
+  // bits it always had.
+  if (model_.couplings.empty()) return EvaluateUncoupled(theta, out);
+  const size_t n = static_cast<size_t>(layout_.size());
+  // On the stack for the Monte Carlo scalars (no allocation per sample); Jets go to the heap.
+  auto couple = [&](T* coupled) {
+    for (size_t j = 0; j < n; ++j) coupled[j] = theta[j];
+    for (const ChainModel::EyeCoupling& c : model_.couplings) coupled[c.right] += T(c.alpha) * theta[c.left];
+    EvaluateUncoupled(static_cast<const T*>(coupled), out);
+  };
+  constexpr size_t kOnStack = 512;
+  if constexpr (sizeof(T) <= 64) {
+    if (n <= kOnStack) {
+      std::array<T, kOnStack> small;
+      return couple(small.data());
+    }
+  }
+  std::vector<T> large(n);
+  couple(large.data());
+}
+
+template <typename T>
+void ChainEvaluator::EvaluateUncoupled(const T* theta, ChainSample<T>* out) const {
   namespace fo = fixed_order;
   const Rigid3<T> tracker_from_virtual = fo::PerturbLeft(tracker_from_virtual_, Vec(At(theta, Term::kTrackerAlignmentRotation)),
                                                          Vec(At(theta, Term::kTrackerAlignmentTranslation)));

@@ -101,6 +101,17 @@ struct ChainModel {
   // (camera_extrinsic.right.covariance) when those six slots hold standard normals.
   using Matrix6d = Eigen::Matrix<double, 6, 6>;
   std::array<Matrix6d, kNumEyes> extrinsic_mixing = {Matrix6d::Identity(), Matrix6d::Identity()};
+  // Errors shared or correlated between the eyes (docs/math/vst-chain.md#correlated-eyes): the
+  // chain reads slot `right` of θ as θ[right] + alpha·θ[left], where θ[left] is the left eye's
+  // slot of the same term and component. A shared term has alpha 1 and θ[right] fixed at 0; a
+  // correlation ρ has alpha = ρ·σ_R/σ_L and θ[right] ~ N(μ_R − alpha·μ_L, σ_R·√(1 − ρ²)). The
+  // slots of θ stay independent (what Sobol indices and linear propagation assume) and the map
+  // is linear in θ, so scaling a source scales the coupled error with it.
+  struct EyeCoupling {
+    int left = 0, right = 0;
+    double alpha = 0;
+  };
+  std::vector<EyeCoupling> couplings;  // in right-slot order
   ParameterLayout layout;
   std::vector<ChainParameter> parameters;  // size layout.size(), in θ order
   uint64_t samples = 0;

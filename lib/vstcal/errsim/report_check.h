@@ -14,7 +14,7 @@
 
 namespace vstcal {
 
-// The measures checked at every test point: those of vstcal/err-sim-report@2 that carry a standard
+// The measures checked at every test point: those of vstcal/err-sim-report@3 (@2 alike) that carry a standard
 // error — each stats object's mean (with mean_standard_error) and each eye's wrong-occlusion rate
 // (with standard_error). Left out: the signed depth means (a bias of either sign; depth_abs is
 // checked), and RMS, percentiles, maxima and the totals, which the report gives without one.

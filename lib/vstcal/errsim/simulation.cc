@@ -8,6 +8,46 @@
 
 namespace vstcal {
 
+namespace {
+
+bool ParameterActive(const ChainParameter& p) { return !(p.distribution.IsConstant() && p.distribution.Mean() == 0); }
+
+std::string TermName(const TermDecl& d) {
+  std::string name(SourceKey(d.source));
+  if (!d.group.empty()) name.append(".").append(d.group);
+  return name.append(".").append(d.extent == TermExtent::kLens ? std::string_view("lens") : d.name);
+}
+
+}  // namespace
+
+std::vector<TermGroup> ActiveTerms(const ChainModel& model, Source source) {
+  std::vector<TermGroup> out;
+  const bool rig_covariance = !model.extrinsic_mixing[1].isIdentity(0.0);
+  for (const TermDecl& d : kTerms) {
+    if (d.source != source) continue;
+    const bool active = std::any_of(model.parameters.begin(), model.parameters.end(),
+                                    [&](const ChainParameter& p) { return p.slot.term == d.term && ParameterActive(p); });
+    if (!active) continue;
+    if (rig_covariance && (d.term == Term::kCameraRotation || d.term == Term::kCameraTranslation)) {
+      if (out.empty() || out.back().name != "camera_extrinsic.pose") out.push_back({"camera_extrinsic.pose", {}});
+      out.back().terms.push_back(d.term);
+      continue;
+    }
+    out.push_back({TermName(d), {d.term}});
+  }
+  return out;
+}
+
+ChainModel WithTermsOnly(const ChainModel& model, const TermGroup& group) {
+  ChainModel m = model;
+  for (ChainParameter& p : m.parameters) {
+    if (std::find(group.terms.begin(), group.terms.end(), p.slot.term) == group.terms.end()) {
+      p.distribution = Distribution::MakeFixed(0);
+    }
+  }
+  return m;
+}
+
 std::vector<Scenario> MakeScenarios(const ChainModel& model, bool budget) {
   std::vector<Scenario> out = {{"all", model}};
   if (!budget) return out;
@@ -18,6 +58,12 @@ std::vector<Scenario> MakeScenarios(const ChainModel& model, bool budget) {
     alone[s] = true;
     out.push_back({"alone:" + std::string(SourceKey(source)), model.WithSources(alone)});
     out.push_back({"halved:" + std::string(SourceKey(source)), model.WithSourceScaled(source, 0.5)});
+  }
+  // The terms of each source with more than one (a source of one term is that term).
+  for (int s = 0; s < kNumSources; ++s) {
+    const std::vector<TermGroup> terms = ActiveTerms(model, static_cast<Source>(s));
+    if (terms.size() < 2) continue;
+    for (const TermGroup& t : terms) out.push_back({"term:" + t.name, WithTermsOnly(model, t)});
   }
   return out;
 }
@@ -95,6 +141,13 @@ std::string ChainDigest(const ChainModel& model) {
   // Only when used: a chain without a rig covariance keeps the digest it always had.
   for (const auto& m : model.extrinsic_mixing) {
     if (!m.isIdentity(0.0)) h.Add(m);
+  }
+  // Likewise only when used: the eyes' shared and correlated terms.
+  for (const ChainModel::EyeCoupling& c : model.couplings) {
+    h.Add("coupling");
+    h.Add(static_cast<double>(c.left));
+    h.Add(static_cast<double>(c.right));
+    h.Add(c.alpha);
   }
   for (const ChainParameter& p : model.parameters) {
     h.Add(p.name());

@@ -21,8 +21,22 @@ struct Scenario {
   ChainModel model;
 };
 
+// One error term of a source as the budget's tree ranks it: a row of kTerms, both eyes together
+// ("display.screen_shift", "tracking.latency", "camera_extrinsic.rig.rotation",
+// "camera_intrinsic.lens"). With a rig covariance the right camera's rotation and translation are
+// one correlated draw, so camera_extrinsic's rotation and translation are one term, "pose".
+struct TermGroup {
+  std::string name;
+  std::vector<Term> terms;
+};
+// The terms of `source` with some random or non-zero parameter, in kTerms order.
+std::vector<TermGroup> ActiveTerms(const ChainModel& model, Source source);
+// The chain with only the parameters of `group`'s terms.
+ChainModel WithTermsOnly(const ChainModel& model, const TermGroup& group);
+
 // "all" (model as given), then for every active source, when `budget` is set, "alone:<s>" and
-// "halved:<s>" (every draw of s multiplied by ½).
+// "halved:<s>" (every draw of s multiplied by ½), then for every active source with more than one
+// active term "term:<term>" for each of them (that term alone).
 std::vector<Scenario> MakeScenarios(const ChainModel& model, bool budget);
 
 // The chain with only the sources in `only` (all when empty), minus those in `without`.

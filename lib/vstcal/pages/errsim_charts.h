@@ -1,5 +1,5 @@
 // err-sim's charts as gnuplot scripts (drawn by RunGnuplot, gnuplot.h): every number is read from
-// the vstcal/err-sim-report@2 JSON (docs/formats.md#err-sim-report) and handed to gnuplot as an
+// the vstcal/err-sim-report@3 JSON (docs/formats.md#err-sim-report) and handed to gnuplot as an
 // inline data block, so the pictures show exactly what the report file holds.
 #pragma once
 

@@ -87,8 +87,9 @@ std::string Budget(const OrderedJson& r) {
   const std::string unit = r.at("length_unit").get<std::string>();
   std::string s = "<section><h2>Error budget</h2>\n<p>Each source alone and the whole chain with that source halved (" +
                   std::to_string(budget.at("samples").get<uint64_t>()) +
-                  " samples a scenario, common random numbers); ranked by its share of the mean square "
-                  "(docs/math/vst-chain.md#budget).</p>\n";
+                  " samples a scenario, common random numbers); ranked by its share of the whole chain's mean square. "
+                  "The shares and the row of interactions and means in common (what the sources' parts leave out) add "
+                  "to 1 (docs/math/sensitivity.md#shares-of-the-whole).</p>\n";
   for (const std::string measure : {"misregistration", "misperception"}) {
     s += ChartOrNote(BudgetScript(r, measure), "error budget, " + measure,
                      "Error budget of the " + measure + " (" + unit + "), sources ranked largest share first.");
@@ -104,8 +105,31 @@ std::string Budget(const OrderedJson& r) {
                 ValueCell(r, key + "/halved/" + measure + "_rms") + ValueCell(r, key + "/share_of_image_ms") +
                 ValueCell(r, key + "/halved/image_rms_px") + "<td style=\"text-align:left\">" +
                 Escape(entries[i].at("correction").get<std::string>()) + "</td></tr>\n";
+        // The source's terms alone, largest share first (the tree source → term).
+        const OrderedJson& terms = entries[i].at("terms");
+        if (terms.size() < 2) continue;
+        std::vector<size_t> order(terms.size());
+        for (size_t t = 0; t < order.size(); ++t) order[t] = t;
+        const std::string share = "share_of_" + measure + "_ms";
+        auto value = [&](size_t t) { return terms[t].at(share).is_number() ? terms[t].at(share).get<double>() : -1.0; };
+        std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return value(a) > value(b); });
+        for (const size_t t : order) {
+          const std::string term_key = key + "/terms/" + std::to_string(t);
+          rows += "<tr><th style=\"padding-left:2em\">" + Name(terms[t].at("term").get<std::string>()) + "</th>" +
+                  ValueCell(r, term_key + "/" + share) + ValueCell(r, term_key + "/alone/" + measure + "_rms") + EmptyCells(1) +
+                  ValueCell(r, term_key + "/share_of_image_ms") + EmptyCells(1) + "<td></td></tr>\n";
+        }
       }
     }
+    // What the sources' parts leave out, and the whole they are shares of: the share column adds to 1.
+    const std::string whole = "/budget/whole/" + measure;
+    const bool none = budget.at("whole").at(measure).at("none").get<bool>();
+    rows += "<tr><th>interactions and means in common</th>" + ValueCell(r, whole + "/remainder_share") + EmptyCells(2) +
+            ValueCell(r, "/budget/whole/image/remainder_share") + EmptyCells(1) +
+            "<td style=\"text-align:left\">" + std::string(none ? "none: the whole chain's mean square is 0 to rounding" : "") +
+            "</td></tr>\n";
+    rows += "<tr><th>whole chain (RMS)</th>" + EmptyCells(1) + ValueCell(r, "/totals/" + measure + "_rms") + EmptyCells(2) +
+            ValueCell(r, "/totals/image_rms_px") + EmptyCells(1) + "</tr>\n";
     s += Table("ranked by " + measure,
                "<th>source</th><th>share of mean square</th><th>alone RMS (" + unit + ")</th><th>whole chain, halved (" +
                    unit + ")</th><th>share of image mean square</th><th>image RMS halved (px)</th><th>correction</th>",
@@ -127,8 +151,10 @@ std::string ErrSimSweepHtml(const OrderedJson& r) {
   const std::string unit = r.at("length_unit").get<std::string>();
   std::string s = PageStart("err-sim sweep: " + r.at("chain").get<std::string>());
   s += "<h1>err-sim sweep: " + Escape(r.at("chain").get<std::string>()) + "</h1>\n<p>Each parameter swept on its own, "
-       "every other at its mean; the slope is d(output)/d(parameter) at the middle of the range, by automatic "
-       "differentiation (docs/tools/err-sim.md).</p>\n";
+       "every other at its mean; a slope is one output's d(output)/d(parameter) at the nominal point (every "
+       "parameter at its mean), by automatic differentiation, and the steepest slope the largest of them in "
+       "magnitude; the text summary's gain is another quantity, the RMS over test points of the error's "
+       "derivative (docs/tools/err-sim.md).</p>\n";
   const OrderedJson& parameters = r.at("parameters");
   std::vector<std::string> sources;
   for (const auto& p : parameters) {
@@ -166,7 +192,7 @@ std::string ErrSimSweepHtml(const OrderedJson& r) {
     }
     s += Table("the sweeps of " + source,
                "<th>parameter</th><th>unit</th><th>lo</th><th>hi</th><th>image RMS at lo (px)</th><th>at hi</th>"
-               "<th>3-D RMS at lo (" + unit + ")</th><th>at hi</th><th>largest slope (output unit per unit)</th><th>of output</th>",
+               "<th>3-D RMS at lo (" + unit + ")</th><th>at hi</th><th>steepest slope (output unit per unit)</th><th>of output</th>",
                rows);
     s += "</section>\n";
   }
@@ -178,7 +204,7 @@ std::string ErrSimHtml(const OrderedJson& output) {
   if (format == "vstcal/err-sim-sweep@2") return ErrSimSweepHtml(output);
   if (format == "vstcal/err-sim-sobol@2") return ErrSimSobolHtml(output);
   if (format == "vstcal/err-sim-linear@2") return ErrSimLinearHtml(output);
-  VSTCAL_CHECK(format == "vstcal/err-sim-report@2", "--html is offered for run, merge, sweep, sobol and linear only");
+  VSTCAL_CHECK(format == "vstcal/err-sim-report@3", "--html is offered for run, merge, sweep, sobol and linear only");
   return ErrSimReportHtml(output);
 }
 

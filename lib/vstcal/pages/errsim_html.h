@@ -1,7 +1,7 @@
 // err-sim's pages. The run page (html_page.h: self-contained, opens offline): the error distributions per
 // test point and eye as quantile bars, the error budget as ranked bars with the halved-source
 // column, and the tables behind them. It is drawn from the report as written
-// (vstcal/err-sim-report@2, formats/errsim/report_format.h), never recomputed: each number shown
+// (vstcal/err-sim-report@3, formats/errsim/report_format.h), never recomputed: each number shown
 // carries the JSON pointer it comes from, e.g. data-key="/test_points/0/image/left/pixel_px/p95".
 #pragma once
 
@@ -23,7 +23,7 @@ std::string ErrSimReportHtml(const OrderedJson& report);
 
 // `sweep` is a vstcal/err-sim-sweep@2 output: per source, the curves of the image and the 3-D
 // misregistration along each parameter's swept range; per parameter, its range, the measures at both
-// ends and its largest slope (autodiff, at the middle) over the outputs, with that output's name.
+// ends and its steepest slope (autodiff, at the nominal point) over the outputs, with that output's name.
 std::string ErrSimSweepHtml(const OrderedJson& sweep);
 
 // `sobol` is a vstcal/err-sim-sobol@2 output: the first-order and total index of each source with

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <functional>
 #include <set>
 #include <system_error>
 
@@ -177,7 +178,7 @@ std::vector<std::string_view> AllLensParameterNames() {
   return names;
 }
 
-constexpr std::array<std::string_view, 4> kEyeKeys = {"", "both", "left", "right"};
+constexpr std::array<std::string_view, 5> kEyeKeys = {"", "both", "left", "right", "shared"};
 int EyeKeyRank(const std::string& key) {
   return static_cast<int>(std::find(kEyeKeys.begin(), kEyeKeys.end(), key) - kEyeKeys.begin());
 }
@@ -206,6 +207,8 @@ class SourcesReader {
       if (a.term != b.term) return a.term < b.term;
       return EyeKeyRank(a.eye_key) < EyeKeyRank(b.eye_key);
     });
+    std::stable_sort(spec_->correlations.begin(), spec_->correlations.end(),
+                     [](const CorrelationSpec& a, const CorrelationSpec& b) { return a.term < b.term; });
   }
 
  private:
@@ -230,7 +233,7 @@ class SourcesReader {
     }
   }
 
-  // "left" / "right" / "both" sub-objects: read(node, key) for each one given.
+  // "left" / "right" / "both" / "shared" sub-objects: read(node, key) for each one given.
   template <typename Read>
   void PerEye(const JsonNode& node, Read read) {
     const auto both = node.find("both");
@@ -239,8 +242,74 @@ class SourcesReader {
         node.at(eye).Fail("both \"both\" and " + Quoted(eye) + " are given", "give either \"both\" or \"left\"/\"right\"");
       }
     }
-    for (const std::string_view key : {"both", "left", "right"}) {
+    for (const std::string_view key : {"both", "left", "right", "shared"}) {
       if (const auto n = node.find(key)) read(*n, std::string(key));
+    }
+  }
+
+  // The eye keys under which a per-eye term (term, key) was given.
+  std::vector<const TermSpec*> Given(Term term, const std::string& key) const {
+    std::vector<const TermSpec*> out;
+    for (const TermSpec& t : spec_->terms) {
+      if (t.term == term && t.key == key) out.push_back(&t);
+    }
+    return out;
+  }
+
+  // A shared term is one draw for both eyes: it cannot also be drawn per eye.
+  void CheckShared(const JsonNode& node, Source source) {
+    const auto shared = node.find("shared");
+    if (!shared) return;
+    for (const TermSpec& t : spec_->terms) {
+      if (t.eye_key != "shared" || Declaration(t.term).source != source) continue;
+      for (const TermSpec* other : Given(t.term, t.key)) {
+        if (other->eye_key == "shared") continue;
+        shared->at(t.key).Fail("given in both \"shared\" and " + Quoted(other->eye_key),
+                               "give the term once: in \"shared\" (one draw for both eyes) or in \"left\"/\"right\"/\"both\" "
+                               "(a draw per eye, optionally with a \"correlation\")");
+      }
+    }
+  }
+
+  // sources.<source>.correlation.<key>: ρ between the eyes' draws of a per-eye term given for
+  // both eyes as normal distributions; a number, or one per component.
+  void ReadCorrelations(const JsonNode& node, Source source, const std::vector<std::string_view>& keys,
+                        const std::function<const TermDecl*(std::string_view)>& term_of) {
+    const auto correlation = node.find("correlation");
+    if (!correlation) return;
+    ExpectKeys(*correlation, keys, "per-eye term of " + std::string(SourceKey(source)) + " to correlate");
+    for (const std::string_view key : keys) {
+      const auto value = correlation->find(key);
+      if (!value) continue;
+      const TermDecl* d = term_of(key);
+      const int n = d->extent == TermExtent::kLens ? 1 : d->components;
+      CorrelationSpec c{d->term, std::string(key), std::vector<double>(n)};
+      for (int i = 0; i < n; ++i) {
+        c.rho[i] = Component(*value, i, n);
+        if (!(c.rho[i] >= -1 && c.rho[i] <= 1)) {
+          (value->json().is_array() ? value->at(i) : *value)
+              .Fail("must lie within [-1, 1], got " + Number(c.rho[i]),
+                    "give the correlation ρ between the eyes' draws, -1 ≤ ρ ≤ 1 (ρ = 1 with equal σ's is \"shared\")");
+        }
+      }
+      bool left = false, right = false;
+      for (const TermSpec* t : Given(d->term, c.key)) {
+        if (t->eye_key == "shared") {
+          value->Fail("the term is \"shared\" (one draw for both eyes, ρ = 1)",
+                      "delete the correlation, or give the term in \"both\" or \"left\"/\"right\"");
+        }
+        if (t->distribution.kind != DistributionSpec::Kind::kNormal) {
+          value->Fail("needs normal distributions, but the " + (t->eye_key == "both" ? std::string("term") : t->eye_key + " eye's") +
+                          " is not normal",
+                      "give normal σ's for both eyes, or put the term in \"shared\" for one draw of any distribution");
+        }
+        left = left || t->eye_key == "both" || t->eye_key == "left";
+        right = right || t->eye_key == "both" || t->eye_key == "right";
+      }
+      if (!left || !right) {
+        value->Fail("the term is not given for both eyes", "give it in \"both\", or in \"left\" and \"right\", as normal σ's");
+      }
+      spec_->correlations.push_back(std::move(c));
     }
   }
 
@@ -256,7 +325,7 @@ class SourcesReader {
       }
     }
     allowed.insert(allowed.end(), groups.begin(), groups.end());
-    if (!per_eye.empty()) allowed.insert(allowed.end(), {"left", "right", "both"});
+    if (!per_eye.empty()) allowed.insert(allowed.end(), {"left", "right", "both", "shared", "correlation"});
     ExpectKeys(node, allowed, what);
     ReadTerms(node, once, "");
     for (const std::string_view group : groups) {
@@ -273,8 +342,16 @@ class SourcesReader {
     for (const TermDecl* d : per_eye) keys.push_back(d->file_key);
     PerEye(node, [&](const JsonNode& eye, const std::string& key) {
       if (source == Source::kCameraExtrinsic && eye.find("covariance")) return ReadExtrinsicCovariance(eye, key);
-      ExpectKeys(eye, keys, what + " (per eye)");
+      ExpectKeys(eye, keys, what + (key == "shared" ? " (shared by both eyes)" : " (per eye)"));
+      if (key == "shared" && spec_->extrinsic_covariance) {
+        eye.Fail("given with camera_extrinsic.right.covariance, which is the right camera's whole pose error",
+                 "give the left camera's error in \"left\", or drop the covariance to share a draw");
+      }
       ReadTerms(eye, per_eye, key);
+    });
+    CheckShared(node, source);
+    ReadCorrelations(node, source, keys, [&](std::string_view key) {
+      return *std::find_if(per_eye.begin(), per_eye.end(), [&](const TermDecl* d) { return d->file_key == key; });
     });
   }
 
@@ -307,10 +384,17 @@ class SourcesReader {
 
   // σ's per lens parameter, or a calibration covariance (the camera file's or inline).
   void ReadIntrinsics(const JsonNode& node) {
-    ExpectKeys(node, {"left", "right", "both"}, "term of camera_intrinsic");
+    ExpectKeys(node, {"left", "right", "both", "shared", "correlation"}, "term of camera_intrinsic");
     const std::vector<std::string_view> names = AllLensParameterNames();
     PerEye(node, [&](const JsonNode& eye, const std::string& key) {
       const auto cov = eye.find("covariance");
+      if (cov && key == "shared") {
+        cov->Fail("a covariance is one camera's", "give σ's per lens parameter in \"shared\", or the covariance per eye");
+      }
+      if (key == "shared" && !spec_->intrinsic_covariances.empty()) {
+        eye.Fail("given with a camera_intrinsic covariance, whose draw is the eye's whole lens error",
+                 "give σ's per lens parameter for both eyes to share a draw, or drop \"shared\"");
+      }
       if (!cov) {
         ExpectKeys(eye, names, "lens parameter of camera_intrinsic");
         for (const std::string_view name : names) {
@@ -349,6 +433,9 @@ class SourcesReader {
       }
       spec_->intrinsic_covariances.push_back(std::move(c));
     });
+    CheckShared(node, Source::kCameraIntrinsic);
+    static const TermDecl& lens = Declaration(Term::kLens);
+    ReadCorrelations(node, Source::kCameraIntrinsic, names, [](std::string_view) { return &lens; });
   }
 
   void ReadFiducials(const JsonNode& node) {

@@ -63,11 +63,58 @@ Distribution ToInternal(const DistributionSpec& d, size_t i, double scale) {
   return Distribution::MakeFixed(0);
 }
 
+// The eyes whose slots take a term's distribution: a shared term's is drawn once, in the left
+// eye's slots, and the right eye reads them (Couple).
 std::vector<int> EyesOf(const std::string& eye_key) {
   if (eye_key == "left") return {0};
   if (eye_key == "right") return {1};
   if (eye_key == "both") return {0, 1};
   return {0};
+}
+
+// The left and right slots of component i of a per-eye term (for kLens, of lens parameter `key`).
+std::array<int, kNumEyes> EyeSlots(const ChainModel& model, Term term, const std::string& key, int i) {
+  std::array<int, kNumEyes> slots{};
+  for (int e = 0; e < kNumEyes; ++e) {
+    int at = i;
+    if (term == Term::kLens) {
+      const auto names = LensModelParamNames(model.renderer[e].model);
+      at = static_cast<int>(std::find(names.begin(), names.end(), key) - names.begin());
+    }
+    slots[e] = model.layout.Offset(term, e) + at;
+  }
+  return slots;
+}
+
+int ComponentsOf(const ChainModel& model, Term term) {
+  return term == Term::kLens ? 1 : model.layout.Size(term, 0);
+}
+
+// A shared term: the right eye reads the left eye's draw (its own slots stay fixed at 0).
+void Share(const TermSpec& t, ChainModel* model) {
+  for (int i = 0; i < ComponentsOf(*model, t.term); ++i) {
+    const auto slots = EyeSlots(*model, t.term, t.key, i);
+    model->couplings.push_back({slots[0], slots[1], 1.0});
+  }
+}
+
+// Correlation ρ between the eyes' normal draws (L ~ N(μ_L, σ_L²), R ~ N(μ_R, σ_R²)): R = α·L + R'
+// with α = ρ·σ_R/σ_L and R' ~ N(μ_R − α·μ_L, σ_R²·(1 − ρ²)) independent of L, so that
+// cov(L, R) = α·σ_L² = ρ·σ_L·σ_R and var R = α²σ_L² + σ_R²(1 − ρ²) = σ_R². A component with a
+// σ of 0 has no correlation to give and stays independent.
+void Correlate(const CorrelationSpec& c, ChainModel* model) {
+  for (int i = 0; i < ComponentsOf(*model, c.term); ++i) {
+    const auto slots = EyeSlots(*model, c.term, c.key, i);
+    const auto* left = std::get_if<Distribution::Normal>(&model->parameters[slots[0]].distribution.form());
+    Distribution& right_distribution = model->parameters[slots[1]].distribution;
+    const auto* right = std::get_if<Distribution::Normal>(&right_distribution.form());
+    VSTCAL_CHECK(left && right, "a correlation between distributions that are not normal");  // the reader refuses them
+    const double rho = c.rho[static_cast<size_t>(i) % c.rho.size()];
+    if (!(left->sigma > 0 && right->sigma > 0)) continue;
+    const double alpha = rho * right->sigma / left->sigma;
+    right_distribution = Distribution::MakeNormal(right->mean - alpha * left->mean, right->sigma * std::sqrt(1 - rho * rho));
+    model->couplings.push_back({slots[0], slots[1], alpha});
+  }
 }
 
 // V Λ^½ of Σ = V Λ Vᵀ: column j the j-th principal direction scaled by its σ, so that V Λ^½ z
@@ -151,7 +198,7 @@ std::array<AnyLensModel, kNumEyes> ChainSpec::RendererLenses() const {
   for (int e = 0; e < kNumEyes; ++e) {
     int needed = LensModelNumParams(cameras[e].camera.model);
     for (const TermSpec& t : terms) {
-      if (t.term != Term::kLens || (t.eye_key != "both" && t.eye_key != kEyeNames[e])) continue;
+      if (t.term != Term::kLens || (t.eye_key != "both" && t.eye_key != "shared" && t.eye_key != kEyeNames[e])) continue;
       ForEachLensModel([&](auto model) {
         const auto& names = decltype(model)::kParamNames;
         const auto it = std::find(names.begin(), names.end(), t.key);
@@ -215,6 +262,12 @@ ChainModel BuildChainModel(const ChainSpec& spec) {
     }
   }
   if (spec.extrinsic_covariance) ApplyExtrinsicCovariance(spec, spec.extrinsic_covariance->covariance, &model);
+  for (const TermSpec& t : spec.terms) {
+    if (t.eye_key == "shared") Share(t, &model);
+  }
+  for (const CorrelationSpec& c : spec.correlations) Correlate(c, &model);
+  std::sort(model.couplings.begin(), model.couplings.end(),
+            [](const ChainModel::EyeCoupling& a, const ChainModel::EyeCoupling& b) { return a.right < b.right; });
   const ChainEvaluator chain(model);
   for (size_t k = 0; k < chain.num_points(); ++k) {
     if (chain.nominal_undefined(k) != Undefined::kNone) {

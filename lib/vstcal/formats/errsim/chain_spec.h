@@ -50,11 +50,20 @@ struct DistributionSpec {
 };
 
 // A term's distribution where the file puts it: sources.<source>[.<eye_key>][.<group>].<key>.
+// "both": each eye draws its own value from it; "shared": one draw serves both eyes.
 struct TermSpec {
   Term term;
-  std::string eye_key;  // "", "left", "right" or "both"
+  std::string eye_key;  // "", "left", "right", "both" or "shared"
   std::string key;      // the file key ("rotation_deg"; a lens parameter name for kLens)
   DistributionSpec distribution;
+};
+
+// sources.<source>.correlation.<key>: the correlation ρ between the left and the right eye's
+// draw of a per-eye term, per component (docs/math/vst-chain.md#correlated-eyes).
+struct CorrelationSpec {
+  Term term;
+  std::string key;          // the file key ("screen_shift_px"; a lens parameter name for kLens)
+  std::vector<double> rho;  // one per component, each in [−1, 1]
 };
 
 // "rig": {"file": "<stereo@1 path>"}: a calib-stereo rig gives both cameras (their intrinsics and
@@ -100,6 +109,7 @@ struct ChainSpec {
   Eigen::Vector3d linear_velocity = Eigen::Vector3d::Zero();
   std::vector<ChainTestPoint> test_points;
   std::vector<TermSpec> terms;  // in kTerms order, then eye key and key
+  std::vector<CorrelationSpec> correlations;  // in kTerms order, then key
   std::vector<IntrinsicCovarianceSpec> intrinsic_covariances;
   std::optional<ExtrinsicCovarianceSpec> extrinsic_covariance;  // the right eye's
   std::vector<Eigen::Vector3d> fiducials;  // the fiducial form of virtual_object_alignment (empty: pose form)

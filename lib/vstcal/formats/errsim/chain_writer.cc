@@ -62,6 +62,9 @@ OrderedJson SourcesToJson(const ChainSpec& spec) {
     if (!d.group.empty()) at = &(*at)[std::string(d.group)];
     (*at)[t.key] = DistributionToJson(t.distribution);
   }
+  for (const CorrelationSpec& c : spec.correlations) {
+    sources[std::string(SourceKey(Declaration(c.term).source))]["correlation"][c.key] = Components(c.rho);
+  }
   for (const IntrinsicCovarianceSpec& c : spec.intrinsic_covariances) {
     sources["camera_intrinsic"][c.eye_key]["covariance"] = c.from_camera ? OrderedJson("camera") : CovarianceToJson(c.covariance);
   }

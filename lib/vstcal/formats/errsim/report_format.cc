@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 #include <cstdio>
 #include <sstream>
 
@@ -74,7 +75,34 @@ std::string Pad(const std::string& s, size_t width) {
   return s + std::string(width > n ? width - n : 0, ' ');
 }
 
-std::string Percent(double share) { return Fixed(100 * share, 1) + " %"; }
+
+// Shares that add to 1, printed to 0.1 % so that the printed values add to 100.0 % too: each is
+// the difference of the rounded running sums (a share's rounding is carried to the next row).
+// The rows in `order`; NaN shares print as "—" and carry nothing.
+std::vector<std::string> PercentsAddingUp(const std::vector<double>& shares) {
+  std::vector<std::string> out;
+  double running = 0;
+  long long printed = 0;
+  for (const double share : shares) {
+    if (!std::isfinite(share)) {
+      out.push_back(Fixed(share, 1));
+      continue;
+    }
+    running += share;
+    const long long next = std::llround(1000 * running);
+    out.push_back(Fixed((next - printed) / 10.0, 1) + " %");
+    printed = next;
+  }
+  return out;
+}
+
+OrderedJson WholeToJson(const WholeOfMeasure& w) {
+  return {{"mean_square", NumberOrNull(w.mean_square)},
+          {"parts_mean_square", NumberOrNull(w.parts_mean_square)},
+          {"remainder_mean_square", NumberOrNull(w.remainder_mean_square)},
+          {"remainder_share", NumberOrNull(w.remainder_share)},
+          {"none", w.none}};
+}
 
 }  // namespace
 
@@ -145,6 +173,17 @@ OrderedJson ReportToJson(const ChainEvaluator& chain, const SimulationResult& re
       b["alone"] = TotalsToJson(e.alone);
       b["halved"] = TotalsToJson(e.halved);
       b["correction"] = SourceCorrection(e.source);
+      OrderedJson terms = OrderedJson::array();
+      for (const TermPart& t : e.terms) {
+        terms.push_back({{"term", t.name},
+                         {"share_of_misregistration_ms", NumberOrNull(t.share_of_misregistration_ms)},
+                         {"share_of_image_ms", NumberOrNull(t.share_of_image_ms)},
+                         {"share_of_misperception_ms", NumberOrNull(t.share_of_misperception_ms)},
+                         {"alone", TotalsToJson(t.alone)}});
+      }
+      b["terms"] = std::move(terms);
+      b["dominant_term"] = {{"misregistration", e.terms[DominantTerm(e, &TermPart::share_of_misregistration_ms)].name},
+                            {"misperception", e.terms[DominantTerm(e, &TermPart::share_of_misperception_ms)].name}};
       entries.push_back(std::move(b));
     }
     auto ranking = [&](const std::vector<size_t>& order) {
@@ -153,6 +192,9 @@ OrderedJson ReportToJson(const ChainEvaluator& chain, const SimulationResult& re
       return list;
     };
     j["budget"] = {{"samples", run.options.budget_samples},
+                   {"whole", {{"image", WholeToJson(budget.image)},
+                              {"misregistration", WholeToJson(budget.misregistration)},
+                              {"misperception", WholeToJson(budget.misperception)}}},
                    {"ranking", {{"misregistration", ranking(budget.by_misregistration)},
                                 {"misperception", ranking(budget.by_misperception)}}},
                    {"entries", std::move(entries)}};
@@ -169,17 +211,20 @@ std::string ReportText(const ChainEvaluator& chain, const SimulationResult& resu
   const ErrorOutputs outputs(model);
   const auto stats = all.AllStatistics();
   const std::string unit(LengthUnitName(model.geometry.length_unit));
+  // The test point column as wide as the longest name (names are never cut, and the columns stay aligned).
+  size_t point_width = 16;
+  for (const ChainTestPoint& tp : model.geometry.test_points) point_width = std::max(point_width, tp.name.size() + 2);
   std::ostringstream out;
   out << "err-sim: " << run.chain_path << ": " << run.options.samples << " samples, seed " << run.options.seed;
   if (all.undefined_samples() > 0) out << ", " << all.undefined_samples() << " with some test point undefined";
   out << "\n  image misregistration (px, overlay − video in each eye's frame):\n";
-  out << "    " << Pad("test point", 16) << Pad("eye", 7) << Pad("mean", 9) << Pad("rms", 9) << Pad("p95", 9) << Pad("p99", 9)
+  out << "    " << Pad("test point", point_width) << Pad("eye", 7) << Pad("mean", 9) << Pad("rms", 9) << Pad("p95", 9) << Pad("p99", 9)
       << Pad("max", 9) << "undefined\n";
   for (size_t k = 0; k < outputs.num_points(); ++k) {
     for (int e = 0; e < kNumEyes; ++e) {
       const OutputStatistics& s = stats[outputs.offset(k) + ErrorOutputs::kPixel + e];
       const double undefined = 1 - static_cast<double>(s.count) / static_cast<double>(run.options.samples);
-      out << "    " << Pad(model.geometry.test_points[k].name, 16) << Pad(std::string(kEyeNames[e]), 7)
+      out << "    " << Pad(model.geometry.test_points[k].name, point_width) << Pad(std::string(kEyeNames[e]), 7)
           << Pad(Fixed(s.count ? s.mean : NAN, 2), 9) << Pad(Fixed(s.count ? s.rms : NAN, 2), 9)
           << Pad(Fixed(s.count ? s.p95.value : NAN, 2), 9) << Pad(Fixed(s.count ? s.p99.value : NAN, 2), 9)
           << Pad(Fixed(s.count ? s.max : NAN, 2), 9) << Fixed(100 * undefined, 2) << " %\n";
@@ -187,15 +232,19 @@ std::string ReportText(const ChainEvaluator& chain, const SimulationResult& resu
   }
   auto measure_table = [&](const char* title, size_t first, bool systematic) {
     out << "  " << title << " (" << unit << "; Holloway's terms seen from the cyclopean eye, degrees):\n";
-    out << "    " << Pad("test point", 16);
-    if (systematic) out << Pad("systematic", 12);
+    out << "    " << Pad("test point", point_width);
+    // The systematic offset's size and the visual angle it subtends from the cyclopean eye: the
+    // size is the camera–eye offset at every depth, the angle is what shrinks with distance.
+    if (systematic) out << Pad("systematic", 12) << Pad("its angle", 11);
     out << Pad("linear rms", 12) << Pad("p95", 9) << Pad("lateral rms", 13) << Pad("depth mean", 12) << Pad("depth rms", 11)
         << "angular rms\n";
     for (size_t k = 0; k < outputs.num_points(); ++k) {
       const size_t o = outputs.offset(k) + first;
       auto v = [&](size_t i, double OutputStatistics::*field) { return stats[o + i].count ? stats[o + i].*field : NAN; };
-      out << "    " << Pad(model.geometry.test_points[k].name, 16);
-      if (systematic) out << Pad(Fixed(chain.systematic(k).error.linear, 2), 12);
+      out << "    " << Pad(model.geometry.test_points[k].name, point_width);
+      if (systematic) {
+        out << Pad(Fixed(chain.systematic(k).error.linear, 2), 12) << Pad(Fixed(kDeg * chain.systematic(k).error.angular, 3), 11);
+      }
       out << Pad(Fixed(v(ErrorOutputs::kLinear, &OutputStatistics::rms), 2), 12)
           << Pad(Fixed(stats[o].count ? stats[o].p95.value : NAN, 2), 9)
           << Pad(Fixed(v(ErrorOutputs::kLateral, &OutputStatistics::rms), 2), 13)
@@ -216,22 +265,45 @@ std::string ReportText(const ChainEvaluator& chain, const SimulationResult& resu
   out << "\n";
   if (run.options.budget) {
     const ErrorBudget budget = Budget(model, result);
+    // Each source's share of the whole chain's mean square, then what the parts leave out and the
+    // whole: the rows add to 100 % (docs/math/sensitivity.md#shares-of-the-whole).
     auto table = [&](const char* what, const std::vector<size_t>& order, double BudgetEntry::*share,
-                     double ScenarioTotals::*total, const std::string& total_unit, bool with_image) {
+                     double TermPart::*term_share, double ScenarioTotals::*total, const WholeOfMeasure& whole,
+                     const std::string& total_unit, bool with_image) {
+      const ScenarioTotals& w = t;
       out << "  error budget of the " << what << " (" << run.options.budget_samples
-          << " samples per scenario), ranked by share of its mean square:\n";
-      out << "    " << Pad("#", 3) << Pad("source", 26) << Pad("share", 9);
+          << " samples per scenario), ranked by share of the whole chain's mean square";
+      if (whole.none) out << " (none: the whole chain's is 0 to rounding)";
+      out << ":\n";
+      size_t name_width = std::string("interactions and means in common").size() + 2;
+      for (const BudgetEntry& e : budget.entries) {
+        for (const TermPart& term : e.terms) name_width = std::max(name_width, term.name.size() + 4);
+      }
+      out << "    " << Pad("#", 3) << Pad("source", name_width) << Pad("share", 9);
       if (with_image) out << Pad("image", 9);
       out << Pad("alone", 22) << "all, this halved\n";
-      int rank = 1, silent = 0;
+      std::vector<const BudgetEntry*> shown;
+      int silent = 0;
       for (const size_t i : order) {
         const BudgetEntry& e = budget.entries[i];
         if (!with_image && e.alone.*total == 0) {  // the misperception table: sources that do not touch what the eyes see
           ++silent;
           continue;
         }
-        out << "    " << Pad(std::to_string(rank++), 3) << Pad(std::string(SourceKey(e.source)), 26) << Pad(Percent(e.*share), 9);
-        if (with_image) out << Pad(Percent(e.share_of_image_ms), 9);
+        shown.push_back(&e);
+      }
+      std::vector<double> shares, image_shares;
+      for (const BudgetEntry* e : shown) shares.push_back(e->*share), image_shares.push_back(e->share_of_image_ms);
+      shares.push_back(whole.remainder_share);
+      image_shares.push_back(budget.image.remainder_share);
+      const std::vector<std::string> percents = PercentsAddingUp(shares), image_percents = PercentsAddingUp(image_shares);
+      auto cell = [](bool none, const std::string& percent) { return none ? std::string("none") : percent; };
+      int rank = 1;
+      for (size_t r = 0; r < shown.size(); ++r) {
+        const BudgetEntry& e = *shown[r];
+        out << "    " << Pad(std::to_string(rank++), 3) << Pad(std::string(SourceKey(e.source)), name_width)
+            << Pad(cell(whole.none, percents[r]), 9);
+        if (with_image) out << Pad(cell(budget.image.none, image_percents[r]), 9);
         // Built by appending: GCC 12's -Wrestrict misfires on "literal" + std::string.
         std::string alone = Fixed(e.alone.*total, 2).append(" ").append(total_unit);
         std::string halved = Fixed(e.halved.*total, 2).append(" ").append(total_unit);
@@ -240,17 +312,55 @@ std::string ReportText(const ChainEvaluator& chain, const SimulationResult& resu
           halved.append(" ").append(Fixed(e.halved.image_rms_px, 2)).append(" px");
         }
         out << Pad(alone, 22) << halved << "\n";
-        if (rank <= 4) out << "       → " << SourceCorrection(e.source) << "\n";
+        // Its terms alone, largest share first, when it has several: the tree source → term.
+        std::vector<size_t> terms(e.terms.size());
+        std::iota(terms.begin(), terms.end(), size_t{0});
+        auto key = [&](size_t i) { return std::isfinite(e.terms[i].*term_share) ? e.terms[i].*term_share : -1.0; };
+        std::stable_sort(terms.begin(), terms.end(), [&](size_t a, size_t b) { return key(a) > key(b); });
+        size_t small = 0;
+        for (const size_t i : terms) {
+          if (e.terms.size() < 2) break;
+          const TermPart& term = e.terms[i];
+          // Terms below what the column shows (0.0 %) are counted, not listed.
+          if (!whole.none && !(term.*term_share >= 0.0005)) {
+            ++small;
+            continue;
+          }
+          std::string term_alone = Fixed(term.alone.*total, 2).append(" ").append(total_unit);
+          if (with_image) term_alone.append(" ").append(Fixed(term.alone.image_rms_px, 2)).append(" px");
+          out << "    " << Pad("", 3) << Pad("  " + term.name, name_width)
+              << Pad(whole.none ? std::string("none") : Fixed(100 * (term.*term_share), 1) + " %", 9);
+          if (with_image) out << Pad(budget.image.none ? std::string("none") : Fixed(100 * term.share_of_image_ms, 1) + " %", 9);
+          out << term_alone << "\n";
+        }
+        if (small > 0 && small < e.terms.size()) {
+          out << "    " << Pad("", 3) << "  (" << small << " more term" << (small > 1 ? "s" : "") << " below 0.05 %)\n";
+        }
+        // No advice against a share of nothing; the advice is the source's, aimed at its dominant term.
+        if (rank <= 4 && !whole.none) {
+          out << "       → ";
+          if (e.terms.size() > 1) out << "mostly " << e.terms[DominantTerm(e, term_share)].name << ": ";
+          out << SourceCorrection(e.source) << "\n";
+        }
       }
+      out << "    " << Pad("", 3) << Pad("interactions and means in common", name_width)
+          << (with_image ? Pad(cell(whole.none, percents.back()), 9) + cell(budget.image.none, image_percents.back())
+                         : cell(whole.none, percents.back()));
+      out << "\n    " << Pad("", 3) << Pad("whole chain", name_width) << Pad(whole.none ? "none" : "100.0 %", 9);
+      if (with_image) out << Pad(budget.image.none ? "none" : "100.0 %", 9);
+      std::string all_rms = Fixed(w.*total, 2).append(" ").append(total_unit);
+      if (with_image) all_rms.append(" ").append(Fixed(w.image_rms_px, 2)).append(" px");
+      out << all_rms << "\n";
       if (silent > 0) {
         out << "    (" << silent << " other source" << (silent > 1 ? "s do" : " does")
             << " not move what the eyes see of the physical world: 0 here)\n";
       }
     };
     table("misregistration", budget.by_misregistration, &BudgetEntry::share_of_misregistration_ms,
-          &ScenarioTotals::misregistration_rms, unit, true);
+          &TermPart::share_of_misregistration_ms, &ScenarioTotals::misregistration_rms, budget.misregistration, unit, true);
     table("misperception (from the errors, beside the systematic part)", budget.by_misperception,
-          &BudgetEntry::share_of_misperception_ms, &ScenarioTotals::misperception_rms, unit, false);
+          &BudgetEntry::share_of_misperception_ms, &TermPart::share_of_misperception_ms, &ScenarioTotals::misperception_rms,
+          budget.misperception, unit, false);
   }
   return out.str();
 }

@@ -1,4 +1,4 @@
-// vstcal/err-sim-report@2 (docs/formats.md#err-sim-report): the report of a complete run — per test
+// vstcal/err-sim-report@3 (docs/formats.md#err-sim-report): the report of a complete run — per test
 // point and eye the image misregistration, the 3-D misregistration and the misperception with the
 // systematic part on its own, the occlusion decisions, and the error budget ranked for each
 // measure — as JSON and as the text summary err-sim prints. Every statistic of no defined sample
@@ -15,7 +15,10 @@
 
 namespace vstcal {
 
-inline constexpr std::string_view kReportFormat = "vstcal/err-sim-report@2";
+inline constexpr std::string_view kReportFormat = "vstcal/err-sim-report@3";
+// The version before the budget's shares became shares of the whole: its per-point statistics,
+// all err-sim check reads, are the same.
+inline constexpr std::string_view kReportFormatV2 = "vstcal/err-sim-report@2";
 
 OrderedJson ReportToJson(const ChainEvaluator& chain, const SimulationResult& result, const RunDescription& run,
                              const Provenance& provenance);

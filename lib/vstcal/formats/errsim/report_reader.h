@@ -1,4 +1,4 @@
-// What err-sim check reads of a vstcal/err-sim-report@2 (docs/formats.md#err-sim-report): the run
+// What err-sim check reads of a vstcal/err-sim-report@3 (or @2) (docs/formats.md#err-sim-report): the run
 // it describes and the metrics that carry a Monte Carlo standard error (errsim/report_check.h).
 // The rest of the report (percentiles, totals, budget) is not read, nor checked.
 #pragma once

@@ -1,5 +1,6 @@
 #include "vstcal/formats/errsim/sensitivity_format.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -46,9 +47,16 @@ TextAndJson SweepOutput(const ChainModel& model, const RunDescription& run, cons
   OrderedJson j = Header("vstcal/err-sim-sweep@2", run, model);
   j["outputs"] = VectorOutputNames(model);
   OrderedJson list = OrderedJson::array();
+  // One word per quantity: a parameter's "gain" on a measure is the RMS over test points (and eyes)
+  // of |∂e/∂θ|, e the measure's error vector; a "slope" is one output's ∂y/∂θ (slope_per_unit, and
+  // the page's steepest slope).
+  size_t name_width = 44;
+  for (const ParameterSweep& sweep : sweeps) name_width = std::max(name_width, model.parameters[sweep.parameter].name().size() + 1);
   std::string text = "err-sim sweep: " + run.chain_path + ": " + std::to_string(sweeps.size()) +
-                     " parameters, slope at nominal of the RMS errors per unit of the parameter\n" +
-                     "  parameter                                    image          misregistration      misperception\n";
+                     " parameters; gain at the nominal point per unit of the parameter (RMS over the test points of "
+                     "|d error / d parameter|; a slope is one output's, in the JSON)\n" +
+                     "  " + std::string("parameter").append(name_width - 9, ' ') +
+                     " image gain     misregistration gain misperception gain\n";
   for (const ParameterSweep& sweep : sweeps) {
     const ChainParameter& p = model.parameters[sweep.parameter];
     const SweepResult& r = sweep.result;
@@ -82,7 +90,7 @@ TextAndJson SweepOutput(const ChainModel& model, const RunDescription& run, cons
       for (Eigen::Index o = 0; o < r.slope.size(); ++o) slope.push_back(NumberOrNull(r.slope(o) / per));
       const RowRms rms = Rms(r.slope, points);
       char line[320];
-      std::snprintf(line, sizeof line, "  %-44s %10.4g px/%-4s %10.4g %s/%-4s %10.4g %s/%s\n", p.name().c_str(),
+      std::snprintf(line, sizeof line, "  %-*s %10.4g px/%-4s %10.4g %s/%-4s %10.4g %s/%s\n", static_cast<int>(name_width), p.name().c_str(),
                     rms.image_px / per, p.slot.file_unit.c_str(), rms.misregistration / per, unit.c_str(),
                     p.slot.file_unit.c_str(), rms.misperception / per, unit.c_str(), p.slot.file_unit.c_str());
       text += line;
@@ -111,8 +119,15 @@ TextAndJson SobolOutput(const ChainModel& model, const RunDescription& run, cons
   OrderedJson outputs = OrderedJson::array();
   std::string text = "err-sim sobol: " + run.chain_path + ": N = " + std::to_string(run.options.samples) + " (" + sampling +
                      "), " + std::to_string(r.evaluations) + " evaluations; total index S_T per source\n";
-  text += "  " + std::string(34, ' ');
-  for (const std::string& g : r.group_names) text += g.substr(0, 11) + std::string(g.size() < 12 ? 12 - std::min<size_t>(g.size(), 11) : 1, ' ');
+  // Columns as wide as the longest name: a name is never cut.
+  size_t name_width = 34;
+  std::vector<size_t> group_width;
+  for (const OutputSensitivity& o : r.outputs) name_width = std::max(name_width, o.name.size() + 1);
+  for (const std::string& g : r.group_names) group_width.push_back(std::max<size_t>(8, g.size() + 2));
+  text += "  " + std::string(name_width, ' ');
+  for (size_t g = 0; g < r.group_names.size(); ++g) {
+    text += r.group_names[g] + std::string(g + 1 < r.group_names.size() ? group_width[g] - r.group_names[g].size() : 0, ' ');
+  }
   text += "\n";
   for (const OutputSensitivity& o : r.outputs) {
     OrderedJson groups;
@@ -121,11 +136,11 @@ TextAndJson SobolOutput(const ChainModel& model, const RunDescription& run, cons
     }
     outputs.push_back({{"name", o.name}, {"mean", NumberOrNull(o.mean)}, {"variance", NumberOrNull(o.variance)}, {"indices", groups}});
     if (o.name.find("pixel_px") != std::string::npos || o.name.ends_with(".linear")) {
-      char line[64];
-      std::snprintf(line, sizeof line, "  %-34s", o.name.substr(0, 33).c_str());
-      text += line;
-      for (const auto& g : o.groups) {
-        std::snprintf(line, sizeof line, "%-12.3f", g.total.value);
+      text += "  " + o.name + std::string(name_width - o.name.size(), ' ');
+      for (size_t g = 0; g < o.groups.size(); ++g) {
+        char line[64];
+        std::snprintf(line, sizeof line, "%-*.3f", static_cast<int>(g + 1 < o.groups.size() ? group_width[g] : 0),
+                      o.groups[g].total.value);
         text += line;
       }
       text += "\n";
