@@ -190,7 +190,7 @@ TEST_F(CliCalibCompare, MaxSigmaNeedsBothCovariances) {
   EXPECT_TRUE(FailsWith(Run("calib-compare", {"in/a.json", "in/truth.json", "--max-sigma", "3", "--junit", "out/c.xml"}),
                         "calib-compare", kBadInput, "in/truth.json: covariance: none; ", {"--max-sigma", "--max-px"}));
   EXPECT_TRUE(FailsWith(Run("calib-compare", {"in/a.json", "in/a.json", "--junit", "out/c.xml"}), "calib-compare",
-                        kBadInput, "--junit: ", {"no check", "--max-px or --max-sigma"}));
+                        kBadInput, "--junit: ", {"no check", "--max-px, --max-sigma or --cross-validate"}));
   EXPECT_TRUE(FailsWith(Run("calib-compare", {"in/a.json", "in/a.json", "--max-px", "1", "--junit", "in/a.json"}),
                         "calib-compare", kBadInput, "in/a.json", {"input"}));
   EXPECT_TRUE(OutDirEmpty());

@@ -1,5 +1,6 @@
 #include "common/corner_input.h"
 
+#include <filesystem>
 #include <utility>
 
 #include "common/progress.h"
@@ -74,8 +75,12 @@ app::Outcome WithCornersAndPage(app::Outcome solved, const ReadCorners& read, co
   app::Outcome out = std::move(solved);
   if (!input.html.empty()) {
     const auto& [camera_file, camera_json] = out.files.front();
-    const std::string corners_file = input.FromImages() ? (input.corners.empty() ? std::string() : input.corners) : input.inputs.front();
-    out.files.emplace_back(input.html, app::ReprojReportPageOf(camera_file.string(), camera_json, read.corners, corners_file));
+    // A corners file written by this run or read by it names the page and is the folder of its
+    // images' relative paths; corners kept in memory name their images as given.
+    const std::string corners_file = input.FromImages() ? input.corners : input.inputs.front();
+    const std::string folder = corners_file.empty() ? std::string() : std::filesystem::path(corners_file).parent_path().string();
+    out.files.emplace_back(input.html, app::ReprojReportPageOf(camera_file.string(), camera_json, read.corners,
+                                                               corners_file.empty() ? input.Name() : corners_file, folder));
     out.summary += "  wrote " + input.html + " (reproj-report's page: residuals on every view, the parameters ± σ)\n";
   }
   for (const auto& file : read.detected.files) out.files.push_back(file);

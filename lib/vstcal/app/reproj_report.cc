@@ -56,11 +56,11 @@ Outcome RunReprojReport(const ReprojReportRequest& r, const Provenance& provenan
   return outcome;
 }
 
-std::string ReprojReportPageOf(const std::string& camera_file, const std::string& camera_json,
-                               const Correspondences& corners, const std::string& corners_file) {
+std::string ReprojReportPageOf(const std::string& camera_file, const std::string& camera_json, const Correspondences& corners,
+                               const std::string& corners_name, const std::string& images_folder) {
   const std::vector<ReportCamera> cameras = {ReportCameraFrom(JsonDocument::Parse(camera_json, camera_file), camera_file)};
-  const ReprojReport report = BuildReprojReport(cameras, corners, corners_file, ReprojReportOptions{});
-  return ReprojReportHtml(report, FolderOf(corners_file));
+  const ReprojReport report = BuildReprojReport(cameras, corners, corners_name, ReprojReportOptions{});
+  return ReprojReportHtml(report, images_folder);
 }
 
 }  // namespace vstcal::app

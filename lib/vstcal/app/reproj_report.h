@@ -30,9 +30,9 @@ bool IsRigRequest(const ReprojReportRequest& request);
 
 // reproj-report's page for a camera just solved, before any file is written (calib-tsai and
 // calib-dlt --html): the camera as its file will hold it (camera@1 text, named `camera_file`)
-// against the correspondences it was solved from (named `corners_file`, whose folder the views'
-// relative image paths are tried against). The default grid, as reproj-report's.
-std::string ReprojReportPageOf(const std::string& camera_file, const std::string& camera_json,
-                               const Correspondences& corners, const std::string& corners_file);
+// against the correspondences it was solved from (named `corners_name`; the views' relative image
+// paths are tried as given, then against `images_folder`). The default grid, as reproj-report's.
+std::string ReprojReportPageOf(const std::string& camera_file, const std::string& camera_json, const Correspondences& corners,
+                               const std::string& corners_name, const std::string& images_folder);
 
 }  // namespace vstcal::app
