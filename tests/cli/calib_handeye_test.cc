@@ -4,6 +4,8 @@
 // with its exit code, one line naming the file and line or field, and nothing written.
 #include <cstdio>
 #include <random>
+
+#include <opencv2/core.hpp>
 #include <fstream>
 
 #include "cli_fixture.h"
@@ -65,6 +67,15 @@ TEST_F(CliCalibHandEye, RecoversTheCameraOnTheHeadsetAndTheClockOffset) {
     const double t = he.at("hmd_from_camera").at("t")[i], sd = std::sqrt(he.at("covariance").at("matrix")[3 + i][3 + i].get<double>());
     EXPECT_LT(std::abs(t - testing::kHmdFromCamera.t(i)), 1.0) << i << " σ(ρ) " << sd;
   }
+  // OpenCV reads the YAML: calibrateHandEye's names, the same numbers.
+  ASSERT_EQ(Run(kTool, {"solve", "in/corners.json", "--poses", "in/poses.txt", "--camera", "in/camera.json", "-o", "out/he3.json", "--opencv",
+                        "out/he.yaml"}).exit_code, kOk);
+  cv::FileStorage fs(Path("out/he.yaml").string(), cv::FileStorage::READ);
+  cv::Mat t_cam2gripper;
+  fs["t_cam2gripper"] >> t_cam2gripper;
+  ASSERT_EQ(t_cam2gripper.rows, 3);
+  for (int i = 0; i < 3; ++i) EXPECT_NEAR(t_cam2gripper.at<double>(i), he.at("hmd_from_camera").at("t")[i].get<double>(), 1e-9);
+  EXPECT_NEAR(static_cast<double>(fs["time_offset"]), offset, 1e-12);
   // The same log as poses@1 (mm) gives the same answer.
   ASSERT_EQ(Run(kTool, {"solve", "in/corners.json", "--poses", "in/poses.json", "--camera", "in/camera.json", "-o", "out/he2.json"}).exit_code, kOk);
   EXPECT_NEAR(ReadJson("out/he2.json").at("time_offset_s").get<double>(), offset, 1e-9);

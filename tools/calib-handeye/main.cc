@@ -17,7 +17,7 @@ int main(int argc, char** argv) {
   f.Add(app);
   return vstcal::tools::RunTool(app, argc, argv, [&] {
     const bool solving = app.got_subcommand(f.solve_app);
-    vstcal::DeclareOutputs({solving ? f.solve.output : f.noise.output});
+    vstcal::DeclareOutputs({solving ? f.solve.output : f.noise.output, solving ? f.solve.opencv : std::string()});
     const vstcal::Provenance provenance = vstcal::MakeProvenance("calib-handeye", argc, argv);
     const vstcal::app::Outcome outcome =
         solving ? vstcal::app::SolveHandEyeFiles(f.solve, provenance) : vstcal::app::MeasureTrackerNoise(f.noise, provenance);

@@ -95,6 +95,7 @@ Outcome SolveHandEyeFiles(const HandEyeRequest& request, const Provenance& prove
   }();
   Outcome out;
   out.files.emplace_back(request.output, DumpJson(HandEyeToJson(s, corners.length_unit, provenance)));
+  if (!request.opencv.empty()) out.files.emplace_back(request.opencv, HandEyeOpenCvYaml(s, corners.length_unit, provenance));
   const std::string unit(LengthUnitName(corners.length_unit));
   const auto sigma = [&](int i) { return std::sqrt(s.covariance(i, i)); };
   const double deg = 180 / M_PI;
@@ -112,7 +113,7 @@ Outcome SolveHandEyeFiles(const HandEyeRequest& request, const Provenance& prove
                 s.tracker_from_board.t.y(), s.tracker_from_board.t.z(), unit.c_str(), sigma(9), sigma(10), sigma(11));
   t += buf;
   t += Line("  fit: RMS %.4f px, sigma %.4f px%s\n", s.rms_px, s.sigma_px, "");
-  t += "  wrote " + request.output + "\n";
+  t += "  wrote " + request.output + (request.opencv.empty() ? "" : " and " + request.opencv) + "\n";
   return out;
 }
 

@@ -17,6 +17,7 @@ struct HandEyeRequest {
   std::string tum_unit = "m";  // the TUM log's length unit
   double max_time_offset = 0.2;  // s
   std::string output;    // handeye@1
+  std::string opencv;    // the same as OpenCV YAML (HandEyeOpenCvYaml); empty: none
 };
 
 // calib-handeye noise: the tracker's jitter from a static segment of its log.

@@ -1,5 +1,9 @@
 #include "vstcal/formats/handeye/handeye_io.h"
 
+#include <opencv2/core.hpp>
+
+#include "vstcal/camera/opencv_mat.h"
+#include "vstcal/formats/camera/peer_formats.h"
 #include "vstcal/geometry/rotation.h"
 
 namespace vstcal {
@@ -16,6 +20,18 @@ OrderedJson NoiseJson(const NoiseEstimate& e) {
 }
 
 }  // namespace
+
+std::string HandEyeOpenCvYaml(const HandEyeSolution& s, LengthUnit length_unit, const Provenance& provenance) {
+  cv::FileStorage fs(".yaml", cv::FileStorage::WRITE | cv::FileStorage::MEMORY | cv::FileStorage::FORMAT_YAML);
+  fs.writeComment(ProvenanceComment(provenance));
+  fs.writeComment("OpenCV's hand-eye names: gripper = the tracked HMD, base = the tracker, target = the board; x_a = R x_b + t, t in " +
+                  std::string(LengthUnitName(length_unit)));
+  fs << "R_cam2gripper" << ToCvMat(s.hmd_from_camera.R) << "t_cam2gripper" << ToCvMat(s.hmd_from_camera.t);
+  fs << "R_target2base" << ToCvMat(s.tracker_from_board.R) << "t_target2base" << ToCvMat(s.tracker_from_board.t);
+  fs.writeComment("seconds: the tracker's clock reads t + time_offset when the camera's reads t");
+  fs << "time_offset" << s.time_offset;
+  return fs.releaseAndGetString();
+}
 
 OrderedJson TrackerNoiseToJson(const TrackerNoise& n, LengthUnit length_unit, const Provenance& provenance) {
   OrderedJson j;
