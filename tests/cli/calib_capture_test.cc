@@ -292,6 +292,10 @@ TEST_F(CliCalibCapture, VideoEveryKthFrame) {
   EXPECT_EQ(corners["capture"]["images"][1]["image"], "in/video.avi#2");
   EXPECT_EQ(corners["views"][0]["name"], "frame-000000");
   EXPECT_EQ(corners["views"][1]["image"], "in/video.avi#2");
+  // Each frame's time on the video's clock (10 frames a second): what calib-handeye pairs with the tracker.
+  EXPECT_NEAR(corners["views"][0]["time"].get<double>(), 0.0, 1e-9);
+  EXPECT_NEAR(corners["views"][1]["time"].get<double>(), 0.2, 1e-9);
+  EXPECT_NEAR(corners["views"][2]["time"].get<double>(), 0.4, 1e-9);
 }
 
 // --skip-unreadable lists a broken image as rejected, with its reason, and goes on.

@@ -82,8 +82,10 @@ bool SameBytes(const std::filesystem::path& a, const std::filesystem::path& b) {
 }
 
 // Everything after the detections: the checks on the capture as a whole and the views.
+// `times`: each record's time (s, the video's clock), or empty (image files have none).
 CaptureResult Finish(std::vector<ImageRecord> records, std::vector<Detection> detections, const std::vector<std::optional<double>>& offsets,
-                     const std::vector<std::string>& names, const DetectRequest& request, ImageSize size) {
+                     const std::vector<std::string>& names, const DetectRequest& request, ImageSize size,
+                     const std::vector<double>& times = {}) {
   CaptureResult out;
   Correspondences& c = out.correspondences;
   c.camera = request.camera_name;
@@ -96,6 +98,7 @@ CaptureResult Finish(std::vector<ImageRecord> records, std::vector<Detection> de
     View view;
     view.name = records[k].view = names[k];
     view.image = records[k].image;
+    if (!times.empty()) view.time = times[k];
     if (request.rig == Rig::kVolume) {
       view.plane_offset = offsets[k];
       planes.insert(*offsets[k]);
@@ -285,12 +288,14 @@ CaptureResult DetectInVideo(const VideoRequest& video, const DetectRequest& requ
   const unsigned threads = ResolveThreads(request.threads);
   std::vector<ImageRecord> records;
   std::vector<Detection> detections;
+  std::vector<double> times;
   int width = 0, height = 0;
   const OpenCvSingleThreaded single;
   SharedProgress shared(video.max_frames > 0 ? progress : Progress{}, limit);
   for (long frame = 0; records.size() < limit;) {
     // A batch of frames read in order, then searched in parallel.
     std::vector<std::pair<long, GrayImage>> batch;
+    std::vector<double> batch_times;
     for (; batch.size() < 4 * threads && records.size() + batch.size() < limit; ++frame) {
       if (frame % video.every != 0) {
         if (!capture.grab()) break;
@@ -298,6 +303,10 @@ CaptureResult DetectInVideo(const VideoRequest& video, const DetectRequest& requ
       }
       cv::Mat bgr, gray;
       if (!capture.read(bgr) || bgr.empty()) break;
+      // The frame's time on the video's clock, for hand-eye calibration (views[i].time): the
+      // container's timestamp where the backend gives one, else the frame's index over its rate.
+      const double msec = capture.get(cv::CAP_PROP_POS_MSEC), fps = capture.get(cv::CAP_PROP_FPS);
+      batch_times.push_back(std::isfinite(msec) && msec > 0 ? msec / 1000 : (fps > 0 ? static_cast<double>(frame) / fps : 0.0));
       if (bgr.channels() == 1) {
         gray = bgr;
       } else {
@@ -319,6 +328,7 @@ CaptureResult DetectInVideo(const VideoRequest& video, const DetectRequest& requ
       char name[64];
       std::snprintf(name, sizeof name, "#%ld", batch[k].first);
       records.push_back(Record(source + name, found[k], batch[k].second.width, batch[k].second.height));
+      times.push_back(batch_times[k]);
       detections.push_back(std::move(found[k]));
     }
   }
@@ -330,7 +340,7 @@ CaptureResult DetectInVideo(const VideoRequest& video, const DetectRequest& requ
     names.push_back(name);
   }
   return Finish(std::move(records), std::move(detections), std::vector<std::optional<double>>(names.size()), names, request,
-                {width, height});
+                {width, height}, times);
 }
 
 }  // namespace vstcal
