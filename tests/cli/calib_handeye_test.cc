@@ -105,6 +105,22 @@ TEST_F(CliCalibHandEye, RefusesBadLogsAndViews) {
   EXPECT_TRUE(OutDirEmpty());
 }
 
+TEST_F(CliCalibHandEye, RefusesBadFlags) {
+  WriteRecording(testing::RecordHandEye(0.0, 0.0, 8));
+  const std::vector<std::string> base = {"solve", "in/corners.json", "--poses", "in/poses.txt", "--camera", "in/camera.json", "-o", "out/he.json"};
+  std::vector<std::string> args = base;
+  args.insert(args.end(), {"--tum-unit", "furlong"});
+  EXPECT_TRUE(FailsWith(Run(kTool, args), std::string(kTool), kBadInput, "--tum-unit: \"furlong\" is not a length unit", {"mm, cm, m or in"}));
+  args = base;
+  args.insert(args.end(), {"--max-time-offset", "0"});
+  EXPECT_TRUE(FailsWith(Run(kTool, args), std::string(kTool), kBadInput, "--max-time-offset: ", {"> 0 and ≤ 10 s"}));
+  EXPECT_TRUE(FailsWith(Run(kTool, {"noise", "--poses", "in/poses.txt", "--from", "5", "--to", "5"}), std::string(kTool), kBadInput,
+                        "--to: must be after --from", {}));
+  EXPECT_TRUE(FailsWith(Run(kTool, {"noise", "--poses", "in/poses.txt", "--from", "0", "--to", "0.02"}), std::string(kTool), kBadInput,
+                        "segment: 3 reports", {"at least 10 reports"}));
+  EXPECT_TRUE(OutDirEmpty());
+}
+
 TEST_F(CliCalibHandEye, RefusesMotionAboutOneAxis) {
   WriteRecording(testing::RecordHandEye(0.0, 0.1, 7, /*one_axis=*/true));
   const CommandResult r = Run(kTool, {"solve", "in/corners.json", "--poses", "in/poses.txt", "--camera", "in/camera.json", "-o", "out/he.json"});

@@ -98,6 +98,15 @@ Outcome SolveHandEyeFiles(const HandEyeRequest& request, const Provenance& prove
   if (!request.opencv.empty()) out.files.emplace_back(request.opencv, HandEyeOpenCvYaml(s, corners.length_unit, provenance));
   const std::string unit(LengthUnitName(corners.length_unit));
   const auto sigma = [&](int i) { return std::sqrt(s.covariance(i, i)); };
+  // A translation's σ: the left perturbation moves t by dt = −[t]× ω + ρ, so the rotation's
+  // uncertainty reaches it through its lever (docs/math/handeye.md#refinement).
+  const auto translation_sigma = [&](const Rigid3d& pose, int first) {
+    Eigen::Matrix<double, 3, 6> J;
+    J << -Hat(pose.t), Eigen::Matrix3d::Identity();
+    const Eigen::Matrix3d cov = J * s.covariance.block<6, 6>(first, first) * J.transpose();
+    return Eigen::Vector3d(std::sqrt(cov(0, 0)), std::sqrt(cov(1, 1)), std::sqrt(cov(2, 2)));
+  };
+  const Eigen::Vector3d sx = translation_sigma(s.hmd_from_camera, 0), sz = translation_sigma(s.tracker_from_board, 6);
   const double deg = 180 / M_PI;
   std::string& t = out.summary;
   t = "calib-handeye: " + std::to_string(s.views) + " views, " + std::to_string(s.corners) + " corners, " +
@@ -106,11 +115,11 @@ Outcome SolveHandEyeFiles(const HandEyeRequest& request, const Provenance& prove
   const Eigen::Vector3d rx = RotvecFromRotation(s.hmd_from_camera.R) * deg;
   char buf[200];
   std::snprintf(buf, sizeof buf, "  hmd_from_camera: t (%.3f, %.3f, %.3f) %s ± (%.3f, %.3f, %.3f); rotation %.3f° ± (%.3f, %.3f, %.3f)°\n",
-                s.hmd_from_camera.t.x(), s.hmd_from_camera.t.y(), s.hmd_from_camera.t.z(), unit.c_str(), sigma(3), sigma(4), sigma(5),
+                s.hmd_from_camera.t.x(), s.hmd_from_camera.t.y(), s.hmd_from_camera.t.z(), unit.c_str(), sx.x(), sx.y(), sx.z(),
                 rx.norm(), sigma(0) * deg, sigma(1) * deg, sigma(2) * deg);
   t += buf;
   std::snprintf(buf, sizeof buf, "  tracker_from_board: t (%.3f, %.3f, %.3f) %s ± (%.3f, %.3f, %.3f)\n", s.tracker_from_board.t.x(),
-                s.tracker_from_board.t.y(), s.tracker_from_board.t.z(), unit.c_str(), sigma(9), sigma(10), sigma(11));
+                s.tracker_from_board.t.y(), s.tracker_from_board.t.z(), unit.c_str(), sz.x(), sz.y(), sz.z());
   t += buf;
   t += Line("  fit: RMS %.4f px, sigma %.4f px%s\n", s.rms_px, s.sigma_px, "");
   t += "  wrote " + request.output + (request.opencv.empty() ? "" : " and " + request.opencv) + "\n";

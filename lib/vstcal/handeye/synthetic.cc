@@ -25,8 +25,8 @@ HandEyeRecording SynthesizeHandEye(const Camera& camera, const HandEyeSpec& s) {
   if (!(s.duration > 0 && s.rate_hz > 0 && s.spacing > 0 && s.distance > 0) || s.grid_cols < 2 || s.grid_rows < 2) {
     throw InputError("handeye: the duration, the tracker's rate, the spacing, the distance and the grid must be positive");
   }
-  if (s.views < 2) throw InputError("--views: a hand-eye recording needs at least 2 views");
-  if (s.duration * s.rate_hz > 1e6) throw InputError("--duration × --rate: more than 1,000,000 reports; shorten the recording");
+  if (s.views < 2) throw InputError("views: a hand-eye recording needs at least 2 views");
+  if (s.duration * s.rate_hz > 1e6) throw InputError("duration × rate: more than 1,000,000 tracker reports; shorten the recording or lower the rate");
   // Deterministic draws keyed by (seed, stream, index): the same recording on every machine.
   const CounterRng tracker_rng(s.seed, 1), corner_rng(s.seed, 2);
   HandEyeRecording r;

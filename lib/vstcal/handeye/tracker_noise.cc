@@ -37,8 +37,8 @@ TrackerNoise EstimateTrackerNoise(std::span<const TrackedPose> log, double from,
     if (p.time >= from && p.time <= to) segment.push_back(p);
   }
   if (segment.size() < 10) {
-    throw InputError("--from/--to: " + std::to_string(segment.size()) + " reports between " + MessageNumber(from) + " and " + MessageNumber(to) +
-                     " s; give a segment of at least 10 reports in which the headset was held still");
+    throw InputError("segment: " + std::to_string(segment.size()) + " reports between " + MessageNumber(from) + " and " + MessageNumber(to) +
+                     " s; give a segment (from, to) of at least 10 reports in which the headset was held still");
   }
   TrackerNoise out;
   out.reports = segment.size();
@@ -58,7 +58,7 @@ TrackerNoise EstimateTrackerNoise(std::span<const TrackedPose> log, double from,
     const Eigen::Vector3d rho = p.tracker_from_hmd.t - out.mean.t;
     if (omega.norm() > M_PI / 180 || rho.norm() > max_motion) {
       throw DegenerateError("the headset moved at " + MessageNumber(p.time) + " s (" + MessageNumber(omega.norm() * 180 / M_PI) + "°, " +
-                            MessageNumber(rho.norm()) + " from the segment's mean pose); give --from/--to around a time it was held still");
+                            MessageNumber(rho.norm()) + " from the segment's mean pose); give a segment around a time it was held still");
     }
     omegas.push_back(omega);
     rhos.push_back(rho);
