@@ -24,6 +24,8 @@ void HandEyeFlags::Add(CLI::App& app) {
   solve_app->add_option("--max-time-offset", solve.max_time_offset, "search the clocks' offset within ±this many seconds")
       ->capture_default_str();
   solve_app->add_option("-o,--output", solve.output, "the vstcal/handeye@1 file to write")->required()->check(kNonEmpty);
+  solve_app->add_flag("--keep-all-views", solve.keep_all_views,
+                      "do not drop views inconsistent with the others' noise (bad frames; dropped by default)");
   solve_app->add_option("--opencv", solve.opencv, "also write X, Z and the offset as OpenCV YAML (calibrateHandEye's names)")->check(kNonEmpty);
   solve_app->add_flag("-q,--quiet", quiet, "print only errors");
 

@@ -84,6 +84,7 @@ Outcome SolveHandEyeFiles(const HandEyeRequest& request, const Provenance& prove
   const PoseLog log = InUnit(ReadPoseLog(request.poses, *tum_unit), corners.length_unit);
   HandEyeOptions options;
   options.max_time_offset = request.max_time_offset;
+  options.rejection.enabled = !request.keep_all_views;
   const HandEyeSolution s = [&] {
     try {
       return SolveHandEye(camera.camera, log.poses, views, options);
@@ -109,7 +110,8 @@ Outcome SolveHandEyeFiles(const HandEyeRequest& request, const Provenance& prove
   const Eigen::Vector3d sx = translation_sigma(s.hmd_from_camera, 0), sz = translation_sigma(s.tracker_from_board, 6);
   const double deg = 180 / M_PI;
   std::string& t = out.summary;
-  t = "calib-handeye: " + std::to_string(s.views) + " views, " + std::to_string(s.corners) + " corners, " +
+  t = "calib-handeye: " + std::to_string(s.views) + " views" +
+      (s.rejected.empty() ? std::string() : " (of " + std::to_string(s.views + s.rejected.size()) + "; bad frames dropped below)") + ", " + std::to_string(s.corners) + " corners, " +
       std::to_string(log.poses.size()) + " tracker reports\n";
   t += Line("  time offset: %.4f s ± %.4f s%s (the tracker's clock reads t + offset at the camera's t)\n", s.time_offset, sigma(12), "");
   const Eigen::Vector3d rx = RotvecFromRotation(s.hmd_from_camera.R) * deg;
@@ -122,6 +124,11 @@ Outcome SolveHandEyeFiles(const HandEyeRequest& request, const Provenance& prove
                 s.tracker_from_board.t.y(), s.tracker_from_board.t.z(), unit.c_str(), sz.x(), sz.y(), sz.z());
   t += buf;
   t += Line("  fit: RMS %.4f px, sigma %.4f px%s\n", s.rms_px, s.sigma_px, "");
+  for (const Rejection& r : s.rejected) {
+    t += "  dropped view \"" + r.view_name + "\" (RMS " + MessageNumber(r.rms_px) + " px, threshold " + MessageNumber(r.threshold_px) +
+         " px): " + r.because + "\n";
+  }
+  for (const std::string& w : s.warnings) t += "  warning: " + w + "\n";
   t += "  wrote " + request.output + (request.opencv.empty() ? "" : " and " + request.opencv) + "\n";
   return out;
 }

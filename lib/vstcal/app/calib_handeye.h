@@ -18,6 +18,7 @@ struct HandEyeRequest {
   double max_time_offset = 0.2;  // s
   std::string output;    // handeye@1
   std::string opencv;    // the same as OpenCV YAML (HandEyeOpenCvYaml); empty: none
+  bool keep_all_views = false;  // no bad-frame test (HandEyeOptions::rejection)
 };
 
 // calib-handeye noise: the tracker's jitter from a static segment of its log.

@@ -13,7 +13,7 @@
 #include "vstcal/calib/dlt.h"
 #include "vstcal/calib/refine.h"
 #include "vstcal/calib/tsai.h"
-#include "vstcal/calib/view_rejection.h"
+#include "vstcal/estimators/view_rejection.h"
 #include "vstcal/calib/zhang.h"
 #include "vstcal/core/error.h"
 #include "vstcal/core/enum_names.h"

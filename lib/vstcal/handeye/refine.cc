@@ -8,6 +8,7 @@
 
 #include "vstcal/core/error.h"
 #include "vstcal/estimators/pose_refine.h"
+#include "vstcal/scene/fit.h"
 #include "vstcal/geometry/rotation.h"
 
 namespace vstcal {
@@ -80,6 +81,72 @@ double Inconsistency(const HandEyeStart& s, std::span<const HandEyeSample> sampl
   return sum / static_cast<double>(samples.size());
 }
 
+
+// One maximum-likelihood solve over `views` from the given start: fills X, Z, δ, the fit and the
+// covariance of `out`, and returns each view's residuals at the solution.
+std::vector<std::vector<Eigen::Vector2d>> Refine(const Camera& camera, std::span<const TrackedPose> log, std::span<const Eigen::Vector3d> steps,
+                                                 const std::vector<const TimedView*>& views, const Rigid3d& x_start, const Rigid3d& z_start,
+                                                 double delta_start, const HandEyeOptions& options, HandEyeSolution* out) {
+  // X, Z as left perturbations of their starts, δ absolute.
+  Rigid3d x0 = x_start, z0 = z_start;
+  double x[6] = {0, 0, 0, 0, 0, 0}, z[6] = {0, 0, 0, 0, 0, 0}, delta = delta_start;
+  ceres::Problem problem;
+  std::vector<ceres::CostFunction*> costs;
+  out->corners = 0;
+  for (const TimedView* v : views) {
+    auto* cost = new ceres::DynamicAutoDiffCostFunction<ViewCost, 13>(new ViewCost{&camera, log, steps, &x0, &z0, v});
+    cost->AddParameterBlock(6);
+    cost->AddParameterBlock(6);
+    cost->AddParameterBlock(1);
+    cost->SetNumResiduals(static_cast<int>(2 * v->observations.size()));
+    problem.AddResidualBlock(cost, nullptr, {x, z, &delta});
+    costs.push_back(cost);
+    out->corners += v->observations.size();
+  }
+  out->views = views.size();
+  ceres::Solver::Options solver;
+  solver.max_num_iterations = options.max_iterations;
+  solver.linear_solver_type = ceres::DENSE_QR;
+  solver.num_threads = 1;
+  solver.function_tolerance = 1e-12;
+  solver.parameter_tolerance = 1e-12;
+  ceres::Solver::Summary summary;
+  ceres::Solve(solver, &problem, &summary);
+  out->iterations += static_cast<int>(summary.iterations.size());
+  out->hmd_from_camera = PerturbLeft(x0, Eigen::Vector3d(x[0], x[1], x[2]), Eigen::Vector3d(x[3], x[4], x[5]));
+  out->tracker_from_board = PerturbLeft(z0, Eigen::Vector3d(z[0], z[1], z[2]), Eigen::Vector3d(z[3], z[4], z[5]));
+  out->time_offset = delta;
+
+  // The covariance at the solution: references moved there, tangents zero, J of all residuals.
+  x0 = out->hmd_from_camera;
+  z0 = out->tracker_from_board;
+  std::fill(std::begin(x), std::end(x), 0.0);
+  std::fill(std::begin(z), std::end(z), 0.0);
+  double cost = 0;
+  ceres::CRSMatrix crs;
+  problem.Evaluate(ceres::Problem::EvaluateOptions{}, &cost, nullptr, nullptr, &crs);
+  Eigen::MatrixXd J = Eigen::MatrixXd::Zero(crs.num_rows, crs.num_cols);
+  for (int r = 0; r < crs.num_rows; ++r) {
+    for (int i = crs.rows[static_cast<size_t>(r)]; i < crs.rows[static_cast<size_t>(r) + 1]; ++i) {
+      J(r, crs.cols[static_cast<size_t>(i)]) = crs.values[static_cast<size_t>(i)];
+    }
+  }
+  const double residuals = static_cast<double>(crs.num_rows);
+  out->rms_px = std::sqrt(2 * cost / residuals);
+  out->sigma_px = residuals > kHandEyeParameters ? std::sqrt(2 * cost / (residuals - kHandEyeParameters)) : 0.0;
+  out->covariance = out->sigma_px * out->sigma_px * (J.transpose() * J).inverse();
+
+  std::vector<std::vector<Eigen::Vector2d>> per_view;
+  const double* parameters[] = {x, z, &delta};
+  for (size_t k = 0; k < views.size(); ++k) {
+    std::vector<double> r(2 * views[k]->observations.size());
+    costs[k]->Evaluate(parameters, r.data(), nullptr);
+    std::vector<Eigen::Vector2d> pixels;
+    for (size_t i = 0; i < views[k]->observations.size(); ++i) pixels.emplace_back(r[2 * i], r[2 * i + 1]);
+    per_view.push_back(std::move(pixels));
+  }
+  return per_view;
+}
 }  // namespace
 
 std::vector<Eigen::Vector3d> LogSteps(std::span<const TrackedPose> log) {
@@ -135,51 +202,50 @@ HandEyeSolution SolveHandEye(const Camera& camera, std::span<const TrackedPose> 
   }
   if (!std::isfinite(best)) out.start = SolveHandEyeClosedForm(Samples(log, steps, camera_from_board, views, 0.0));  // throws why
 
-  // The refinement: X, Z as left perturbations of their starts, δ absolute.
-  Rigid3d x0 = out.start.hmd_from_camera, z0 = out.start.tracker_from_board;
-  double x[6] = {0, 0, 0, 0, 0, 0}, z[6] = {0, 0, 0, 0, 0, 0}, delta = out.start_time_offset;
-  ceres::Problem problem;
-  for (const TimedView& v : views) {
-    auto* cost = new ceres::DynamicAutoDiffCostFunction<ViewCost, 13>(new ViewCost{&camera, log, steps, &x0, &z0, &v});
-    cost->AddParameterBlock(6);
-    cost->AddParameterBlock(6);
-    cost->AddParameterBlock(1);
-    cost->SetNumResiduals(static_cast<int>(2 * v.observations.size()));
-    problem.AddResidualBlock(cost, nullptr, {x, z, &delta});
-    out.corners += v.observations.size();
-  }
-  out.views = views.size();
-  ceres::Solver::Options solver;
-  solver.max_num_iterations = options.max_iterations;
-  solver.linear_solver_type = ceres::DENSE_QR;
-  solver.num_threads = 1;
-  solver.function_tolerance = 1e-12;
-  solver.parameter_tolerance = 1e-12;
-  ceres::Solver::Summary summary;
-  ceres::Solve(solver, &problem, &summary);
-  out.iterations = static_cast<int>(summary.iterations.size());
-  out.hmd_from_camera = PerturbLeft(x0, Eigen::Vector3d(x[0], x[1], x[2]), Eigen::Vector3d(x[3], x[4], x[5]));
-  out.tracker_from_board = PerturbLeft(z0, Eigen::Vector3d(z[0], z[1], z[2]), Eigen::Vector3d(z[3], z[4], z[5]));
-  out.time_offset = delta;
-
-  // The covariance at the solution: references moved there, tangents zero, J of all residuals.
-  x0 = out.hmd_from_camera;
-  z0 = out.tracker_from_board;
-  std::fill(std::begin(x), std::end(x), 0.0);
-  std::fill(std::begin(z), std::end(z), 0.0);
-  double cost = 0;
-  ceres::CRSMatrix crs;
-  problem.Evaluate(ceres::Problem::EvaluateOptions{}, &cost, nullptr, nullptr, &crs);
-  Eigen::MatrixXd J = Eigen::MatrixXd::Zero(crs.num_rows, crs.num_cols);
-  for (int r = 0; r < crs.num_rows; ++r) {
-    for (int i = crs.rows[static_cast<size_t>(r)]; i < crs.rows[static_cast<size_t>(r) + 1]; ++i) {
-      J(r, crs.cols[static_cast<size_t>(i)]) = crs.values[static_cast<size_t>(i)];
+  // The refinement, then the test of every view against the others' noise: a view that the
+  // solution cannot explain as well as the rest (a tracker glitch, a smeared or mislabelled board)
+  // is dropped and the rest solved again from where they were, until every view is consistent.
+  std::vector<const TimedView*> active;
+  for (const TimedView& v : views) active.push_back(&v);
+  std::vector<size_t> index(views.size());  // active[k] is views[index[k]]
+  for (size_t k = 0; k < views.size(); ++k) index[k] = k;
+  Rigid3d x_start = out.start.hmd_from_camera, z_start = out.start.tracker_from_board;
+  double delta_start = out.start_time_offset;
+  for (int round = 1;; ++round) {
+    const std::vector<std::vector<Eigen::Vector2d>> residuals = Refine(camera, log, steps, active, x_start, z_start, delta_start, options, &out);
+    if (!options.rejection.enabled || round > options.rejection.max_rounds) break;
+    Correspondences c;
+    Fit fit;
+    for (size_t k = 0; k < active.size(); ++k) {
+      c.views.push_back(View{active[k]->name, "", active[k]->observations});
+      fit.views.push_back(ViewFit{active[k]->name, {}, residuals[k]});
     }
+    const RejectionTest test = TestResiduals(c, fit, kHandEyeParameters, 0, options.rejection);
+    if (!test.worst_view) break;
+    if (active.size() <= kMinHandEyeSamples) {
+      out.warnings.push_back("view \"" + active[*test.worst_view]->name + "\" is inconsistent with the others (RMS " +
+                             MessageNumber(test.view_rms_px[*test.worst_view]) + " px, threshold " +
+                             MessageNumber(test.view_threshold_px[*test.worst_view]) + " px) but only " + std::to_string(active.size()) +
+                             " views remain; kept. Record more views");
+      break;
+    }
+    const size_t worst = *test.worst_view;
+    Rejection r;
+    r.kind = Rejection::Kind::kView;
+    r.round = round;
+    r.view = index[worst];
+    r.view_name = active[worst]->name;
+    r.rms_px = test.view_rms_px[worst];
+    r.threshold_px = test.view_threshold_px[worst];
+    r.because = "its corners are inconsistent with the other views' noise (σ̂ " + MessageNumber(test.sigma_px) +
+                " px): a tracker glitch, a smeared or mislabelled board, or a pose log out of step at that time";
+    out.rejected.push_back(std::move(r));
+    active.erase(active.begin() + static_cast<long>(worst));
+    index.erase(index.begin() + static_cast<long>(worst));
+    x_start = out.hmd_from_camera;
+    z_start = out.tracker_from_board;
+    delta_start = out.time_offset;
   }
-  const double residuals = static_cast<double>(crs.num_rows);
-  out.rms_px = std::sqrt(2 * cost / residuals);
-  out.sigma_px = residuals > 13 ? std::sqrt(2 * cost / (residuals - 13)) : 0.0;
-  out.covariance = out.sigma_px * out.sigma_px * (J.transpose() * J).inverse();
   out.names = {"hmd_from_camera.rx", "hmd_from_camera.ry", "hmd_from_camera.rz", "hmd_from_camera.tx", "hmd_from_camera.ty",
                "hmd_from_camera.tz", "tracker_from_board.rx", "tracker_from_board.ry", "tracker_from_board.rz",
                "tracker_from_board.tx", "tracker_from_board.ty", "tracker_from_board.tz", "time_offset"};

@@ -20,6 +20,7 @@
 #include <Eigen/Core>
 
 #include "vstcal/camera/camera.h"
+#include "vstcal/estimators/view_rejection.h"
 #include "vstcal/geometry/rigid3.h"
 #include "vstcal/handeye/closed_form.h"
 #include "vstcal/scene/correspondences.h"
@@ -74,7 +75,14 @@ struct HandEyeOptions {
   double max_time_offset = 0.2;  // s: the coarse search for δ's start spans ±this
   double search_step = 0.005;    // s
   int max_iterations = 100;
+  // Bad frames: after each solve a view inconsistent with the others' noise is dropped and the rest
+  // solved again (docs/math/handeye.md#bad-frames); on by default, views only (a frame's corners
+  // share its one tracker pose, so a bad pose spoils the frame, not a corner).
+  ViewRejectionOptions rejection{.enabled = true};
 };
+
+// X's 6, Z's 6 and δ.
+inline constexpr size_t kHandEyeParameters = 13;
 
 struct HandEyeSolution {
   Rigid3d hmd_from_camera, tracker_from_board;
@@ -89,10 +97,12 @@ struct HandEyeSolution {
   int iterations = 0;
   HandEyeStart start;  // the closed form the refinement started from
   double start_time_offset = 0;
+  std::vector<Rejection> rejected;    // views dropped as bad frames, in the order dropped
+  std::vector<std::string> warnings;  // e.g. an inconsistent view kept because too few remain
 };
 
-// Throws InputError for a log that is not strictly increasing in time or has fewer than 2 reports,
-// a view outside the log's span, and DegenerateError (closed_form.h) for too few views or motion
+// `iterations` counts every solve's (one per rejection round). Throws InputError for a log that is
+// not strictly increasing in time or has fewer than 2 reports, a view outside the log's span, and DegenerateError (closed_form.h) for too few views or motion
 // about one axis.
 HandEyeSolution SolveHandEye(const Camera& camera, std::span<const TrackedPose> log, std::span<const TimedView> views,
                              const HandEyeOptions& options = {});

@@ -71,6 +71,13 @@ OrderedJson HandEyeToJson(const HandEyeSolution& s, LengthUnit length_unit, cons
                 {"time_offset_s", s.start_time_offset},
                 {"pairs", s.start.pairs},
                 {"second_axis_spread", s.start.second_axis_spread}};
+  OrderedJson rejected = OrderedJson::array();
+  for (const Rejection& r : s.rejected) {
+    rejected.push_back({{"round", r.round}, {"view", r.view}, {"name", r.view_name}, {"rms_px", r.rms_px}, {"threshold_px", r.threshold_px},
+                        {"because", r.because}});
+  }
+  j["rejected_views"] = std::move(rejected);
+  j["warnings"] = s.warnings;
   j["provenance"] = ProvenanceToJson(provenance);
   return j;
 }

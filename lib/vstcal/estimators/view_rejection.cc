@@ -1,4 +1,4 @@
-#include "vstcal/calib/view_rejection.h"
+#include "vstcal/estimators/view_rejection.h"
 
 #include <algorithm>
 #include <cmath>
