@@ -298,6 +298,25 @@ TEST_F(CliCalibCapture, VideoEveryKthFrame) {
   EXPECT_NEAR(corners["views"][2]["time"].get<double>(), 0.4, 1e-9);
 }
 
+// Issue 22: --times gives image files their times (EuRoC's order and nanoseconds here: "time,name"),
+// what calib-handeye pairs with the tracker; the views keep them in the order found.
+TEST_F(CliCalibCapture, ImageTimesFromAFile) {
+  Camera();
+  Board();
+  RenderViews("in/views");
+  std::string times = "#timestamp [ns],filename\n";
+  for (int k = 0; k < 5; ++k) times += std::to_string(1403636579000000000LL + 50000000LL * k) + ",view-0" + std::to_string(k) + ".png\n";
+  WriteText("in/times.csv", times);
+  Ok({"detect", "in/board.target.json", "in/views", "--times", "in/times.csv", "--times-unit", "ns", "-o", "out/corners.json"});
+  const Json views = ReadJson("out/corners.json").at("views");
+  ASSERT_EQ(views.size(), 5u);
+  for (size_t k = 0; k < views.size(); ++k) {
+    EXPECT_EQ(views[k]["image"], "in/views/view-0" + std::to_string(k) + ".png");
+    // 1.403636579e9 s: a double keeps it to 0.24 µs.
+    EXPECT_NEAR(views[k]["time"].get<double>(), 1403636579.0 + 0.05 * static_cast<double>(k), 1e-6);
+  }
+}
+
 // --skip-unreadable lists a broken image as rejected, with its reason, and goes on.
 TEST_F(CliCalibCapture, SkipUnreadableListsTheImageAsRejected) {
   Camera();
@@ -582,6 +601,17 @@ std::vector<BadCase> BadCases() {
       {"OffsetPatternDoesNotMatch", views,
        {"detect", "in/board.target.json", "in/views", "--offset-from-name", "z([0-9]+)", "-o", "out/c.json"}, kBadInput, "--offset-from-name: ",
        {"\"view-00.png\" does not match \"z([0-9]+)\""}},
+      {"TimesFileMissesAnImage",
+       [](CliCalibCapture* t) { Views(t), static_cast<T*>(t)->WriteText("in/times.txt", "view-00.png 0.1\nview-01.png 0.2\n"); },
+       {"detect", "in/board.target.json", "in/views", "--times", "in/times.txt", "-o", "out/c.json"}, kBadInput, "in/times.txt: ",
+       {"no line for the image \"view-02.png\"", "give every image its time"}},
+      {"TimesFileNamesNoImage",
+       [](CliCalibCapture* t) { Views(t), static_cast<T*>(t)->WriteText("in/times.txt", "# camera clock\nview-00.png 0.1\nvew-01.png 0.2\n"); },
+       {"detect", "in/board.target.json", "in/views", "--times", "in/times.txt", "-o", "out/c.json"}, kBadInput, "in/times.txt: line 3: ",
+       {"\"vew-01.png\" nor \"0.2\" is the file name of an image given"}},
+      {"TimesWithAVideo", views,
+       {"detect", "in/board.target.json", "--video", "in/views/view-00.png", "--times", "in/times.txt", "-o", "out/c.json"}, kBadInput,
+       "--times: ", {"a video's frames have theirs"}},
       {"NoImages", views, {"detect", "in/board.target.json", "-o", "out/c.json"}, kBadInput, "", {"no images: give"}},
       {"GlobMatchesNothing", views, {"detect", "in/board.target.json", "in/views/*.tif", "-o", "out/c.json"}, kBadInput, "in/views/*.tif: ",
        {"no file matches"}},

@@ -3,6 +3,7 @@
 #include "common/validators.h"
 #include "vstcal/core/error.h"
 #include "vstcal/core/limits.h"
+#include "vstcal/formats/capture/image_times.h"
 
 namespace vstcal::tools {
 
@@ -94,6 +95,12 @@ void DetectFlags::Add(CLI::App* app) {
       ->check(kNonEmpty);
   app->add_option("--video", c.video.file, "a video file instead of images (planar views)")->check(kNonEmpty);
   app->add_option("--camera-index", c.video.camera_index, "a live camera (0: the first) instead of images; needs --frames");
+  app->add_option("--times", c.times_file,
+                  "images: a text file of each image's file name and the time it was taken (for calib-handeye)")
+      ->check(kNonEmpty);
+  app->add_option("--times-unit", c.times_unit, "the --times file's unit")
+      ->check(CLI::IsMember(NamesOf(kTimeUnitNames)))
+      ->capture_default_str();
   app->add_option("--every", c.video.every, "video/camera: keep every k-th frame")->check(kPositiveCount)->capture_default_str();
   app->add_option("--frames", c.video.max_frames, "video/camera: frames to keep (0: the whole video)")->check(kCount);
   app->add_option("--finder", finder, "chessboard: classic, sector-based or classic+sector-based (the second where the first fails)")

@@ -6,6 +6,7 @@
 #include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <map>
 #include <set>
 
 #include "vstcal/formats/capture/capture_io.h"
@@ -17,6 +18,7 @@
 #include "vstcal/core/error.h"
 #include "vstcal/formats/camera/camera_io.h"
 #include "vstcal/formats/camera/correspondences_io.h"
+#include "vstcal/formats/capture/image_times.h"
 #include "vstcal/files/input_protection.h"
 
 namespace vstcal::app {
@@ -209,6 +211,33 @@ ImageArguments ExpandImageArguments(const std::vector<std::string>& arguments) {
   return out;
 }
 
+namespace {
+
+// Each image's time from the --times file, every image checked before any is searched.
+std::map<std::string, double> ImageTimes(const DetectCommand& command, const std::vector<CaptureInput>& files) {
+  if (command.times_file.empty()) return {};
+  if (files.empty()) throw InputError("--times: gives image files their times; a video's frames have theirs (drop --times)");
+  const auto unit = FromName(kTimeUnitNames, command.times_unit);
+  if (!unit) throw InputError("--times-unit: \"" + command.times_unit + "\" is not a time unit; use " + JoinedNames(kTimeUnitNames));
+  std::vector<std::string> names;
+  std::map<std::string, std::string> seen;  // file name → the image that has it
+  for (const CaptureInput& f : files) {
+    const std::string name = fs::path(f.image).filename().string();
+    if (const auto [it, added] = seen.emplace(name, f.image); !added) {
+      throw InputError("--times: " + it->second + " and " + f.image + " have one file name, which the times file cannot tell apart; "
+                       "rename one, or detect each folder on its own");
+    }
+    names.push_back(name);
+  }
+  std::map<std::string, double> times = ReadImageTimes(command.times_file, names, *unit);
+  for (const std::string& name : names) {
+    if (!times.count(name)) throw InputError(command.times_file + ": no line for the image \"" + name + "\"; give every image its time");
+  }
+  return times;
+}
+
+}  // namespace
+
 DetectedCorners DetectCorners(DetectCommand command, const Provenance& provenance, const Progress& progress) {
   const int sources = !command.images.empty() + !command.manifest.empty() + !command.video.file.empty() + (command.video.camera_index >= 0);
   if (sources != 1) {
@@ -253,13 +282,18 @@ DetectedCorners DetectCorners(DetectCommand command, const Provenance& provenanc
   }
   for (const CaptureInput& f : files) inputs.push_back(f.path);
   if (!command.video.file.empty()) inputs.push_back(command.video.file);
+  const std::map<std::string, double> times = ImageTimes(command, files);
+  if (!command.times_file.empty()) inputs.push_back(command.times_file);
 
   if (!command.output.empty()) {
     Outcome planned;
     planned.files.emplace_back(command.output, "");
     RefuseOverwriting(planned, inputs);  // before the work, not only after it
   }
-  const CaptureResult result = files.empty() ? DetectInVideo(command.video, request, progress) : DetectInFiles(files, request, progress);
+  CaptureResult result = files.empty() ? DetectInVideo(command.video, request, progress) : DetectInFiles(files, request, progress);
+  for (View& view : result.correspondences.views) {
+    if (!times.empty()) view.time = times.at(fs::path(view.image).filename().string());
+  }
   DetectedCorners detected;
   Outcome& out = detected.outcome;
   out.folders = {command.overlay_folder};

@@ -44,6 +44,8 @@ struct DetectCommand {
   std::string output;
   std::string overlay_folder;       // a PNG per image with its corners drawn (images only)
   std::string tool = "calib-capture";  // names the summary's line
+  std::string times_file;           // images: when each was taken (formats/capture/image_times.h)
+  std::string times_unit = "s";     // the times file's unit: s, ms, us or ns
 };
 Outcome RunDetect(DetectCommand command, const Provenance& provenance, const Progress& progress = {});
 
