@@ -217,7 +217,7 @@ HandEyeSolution SolveHandEye(const Camera& camera, std::span<const TrackedPose> 
     Correspondences c;
     Fit fit;
     for (size_t k = 0; k < active.size(); ++k) {
-      c.views.push_back(View{active[k]->name, "", active[k]->observations});
+      c.views.push_back(View{active[k]->name, "", std::nullopt, active[k]->observations});
       fit.views.push_back(ViewFit{active[k]->name, {}, residuals[k]});
     }
     const RejectionTest test = TestResiduals(c, fit, kHandEyeParameters, 0, options.rejection);
