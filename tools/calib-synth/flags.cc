@@ -10,7 +10,7 @@ namespace {
 const std::vector<std::string> kVolumeOnly = {"--near",     "--far",          "--interval", "--camera-distance",
                                               "--tilt-deg", "--tilt-direction-deg", "--roll-deg", "--no-test-points"};
 const std::vector<std::string> kPlanarOnly = {"--views", "--distance", "--max-tilt-deg"};
-const std::vector<std::string> kHandEyeOnly = {"--time-offset", "--duration", "--rate", "--tracker-noise-deg", "--tracker-noise"};
+const std::vector<std::string> kHandEyeOnly = {"--time-offset", "--duration", "--rate", "--tracker-noise-deg", "--tracker-noise", "--images"};
 
 }  // namespace
 
@@ -79,6 +79,10 @@ void SynthFlags::Add(CLI::App& app) {
   app.add_option("--tracker-noise", he.tracker_noise, "handeye: the tracker's translation noise per axis (length unit)")
       ->check(kFinite)
       ->capture_default_str();
+  app.add_option("--images", request.images_folder,
+                 "handeye: also render each view as a chessboard photograph into this folder, with board.target.json and "
+                 "times.txt (calib-capture detect --times)")
+      ->check(kNonEmpty);
 }
 
 app::SynthRequest SynthFlags::Finish(const CLI::App& app) {

@@ -113,7 +113,8 @@ Outcome SolveHandEyeFiles(const HandEyeRequest& request, const Provenance& prove
   t = "calib-handeye: " + std::to_string(s.views) + " views" +
       (s.rejected.empty() ? std::string() : " (of " + std::to_string(s.views + s.rejected.size()) + "; bad frames dropped below)") + ", " + std::to_string(s.corners) + " corners, " +
       std::to_string(log.poses.size()) + " tracker reports\n";
-  t += Line("  time offset: %.4f s ± %.4f s%s (the tracker's clock reads t + offset at the camera's t)\n", s.time_offset, sigma(12), "");
+  t += Line("  time offset: %.4f ms ± %.4f ms%s (the tracker's clock reads t + offset at the camera's t)\n", s.time_offset * 1000,
+            sigma(12) * 1000, "");
   const Eigen::Vector3d rx = RotvecFromRotation(s.hmd_from_camera.R) * deg;
   char buf[200];
   std::snprintf(buf, sizeof buf, "  hmd_from_camera: t (%.3f, %.3f, %.3f) %s ± (%.3f, %.3f, %.3f); rotation %.3f° ± (%.3f, %.3f, %.3f)°\n",

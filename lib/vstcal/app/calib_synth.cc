@@ -1,6 +1,15 @@
 #include "vstcal/app/calib_synth.h"
 
+#include <cstdio>
 #include <filesystem>
+
+#include "vstcal/capture/render.h"
+#include "vstcal/capture/render_scene.h"
+#include "vstcal/capture/target.h"
+#include "vstcal/capture/target_drawing.h"
+#include "vstcal/capture/target_pattern.h"
+#include "vstcal/core/error.h"
+#include "vstcal/formats/capture/target_io.h"
 
 #include "vstcal/formats/camera/camera_io.h"
 #include "vstcal/formats/camera/correspondences_io.h"
@@ -19,6 +28,41 @@ namespace {
 std::string Beside(const std::string& output, const std::string& suffix) {
   const std::filesystem::path p(output);
   return (p.parent_path() / (p.stem().string() + suffix)).string();
+}
+
+// The views as photographs of the chessboard whose inner corners are the grid (the target's frame
+// is the grid's: corner (r, c) at (c, r)·spacing), rendered at their true poses with a little blur
+// and sensor noise, named view-NN.png; board.target.json and times.txt (each image's camera time)
+// beside them.
+void AddHandEyeImages(const SynthRequest& request, const Camera& camera, const HandEyeRecording& r, const Provenance& provenance, Outcome* out) {
+  CheckRenderSize(camera.image_size, request.camera_file);
+  Target target;
+  target.type = TargetType::kChessboard;
+  target.length_unit = request.volume.length_unit;
+  target.rows = request.volume.grid_rows;
+  target.cols = request.volume.grid_cols;
+  target.square_size = request.volume.spacing;
+  target.margin = request.volume.spacing;
+  if (const auto problem = CheckTarget(target)) throw InputError("--grid: the board it draws: " + problem->reason + "; " + problem->fix);
+  const std::filesystem::path folder(request.images_folder);
+  const PixelCornerRays rays(camera);
+  const Pattern pattern = TargetPattern(target);
+  RenderOptions options;
+  options.blur_px = 0.7;
+  options.noise = 2;
+  options.seed = request.volume.seed;
+  std::string times = "# calib-synth --rig handeye: each image's time on the camera's clock, s\n";
+  for (size_t k = 0; k < r.views.size(); ++k) {
+    char name[32];
+    std::snprintf(name, sizeof name, "view-%02zu.png", k);
+    out->files.emplace_back(folder / name, EncodePng(RenderView(rays, pattern, r.camera_from_board[k], options, static_cast<uint32_t>(k))));
+    char line[96];
+    std::snprintf(line, sizeof line, "%s %.17g\n", name, r.views[k].time);
+    times += line;
+  }
+  out->files.emplace_back(folder / "board.target.json", DumpJson(TargetToJson(target, provenance)));
+  out->files.emplace_back(folder / "times.txt", times);
+  out->folders.push_back(folder);
 }
 
 Outcome SynthesizeHandEyeFiles(const SynthRequest& request, const Camera& camera, const Provenance& provenance) {
@@ -59,6 +103,10 @@ Outcome SynthesizeHandEyeFiles(const SynthRequest& request, const Camera& camera
   out.summary = "calib-synth: a hand-eye recording: " + std::to_string(corners.views.size()) + " timed views (" +
                 std::to_string(NumObservations(corners)) + " corners), " + std::to_string(log.poses.size()) +
                 " tracker reports; wrote " + request.output + ", " + request.truth + ", " + poses + " (TUM, m) and " + handeye;
+  if (!request.images_folder.empty()) {
+    AddHandEyeImages(request, camera, r, provenance, &out);
+    out.summary += "; rendered the views into " + request.images_folder + " (with board.target.json and times.txt)";
+  }
   return out;
 }
 

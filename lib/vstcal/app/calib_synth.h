@@ -30,6 +30,10 @@ struct SynthRequest {
   // Its grid, spacing, corner noise and seed are `volume`'s, its views and distance `views`'.
   bool handeye = false;
   HandEyeSpec handeye_spec;
+  // Hand-eye: also the views as rendered images of the chessboard the grid is (one more square
+  // each way, squares of `spacing`), with the board's target@1 and each image's time — the input
+  // of calib-capture detect --times, so that the recording can be measured from photographs.
+  std::string images_folder;
 };
 
 // The correspondences and the truth camera; the summary (no final newline) counts the points, views

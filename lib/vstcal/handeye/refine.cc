@@ -1,5 +1,6 @@
 #include "vstcal/handeye/refine.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -222,6 +223,9 @@ HandEyeSolution SolveHandEye(const Camera& camera, std::span<const TrackedPose> 
     }
     const RejectionTest test = TestResiduals(c, fit, kHandEyeParameters, 0, options.rejection);
     if (!test.worst_view) break;
+    std::vector<double> rms = test.view_rms_px;
+    std::nth_element(rms.begin(), rms.begin() + static_cast<long>(rms.size() / 2), rms.end());
+    if (test.view_rms_px[*test.worst_view] < options.min_rms_ratio * rms[rms.size() / 2]) break;
     if (active.size() <= kMinHandEyeSamples) {
       out.warnings.push_back("view \"" + active[*test.worst_view]->name + "\" is inconsistent with the others (RMS " +
                              MessageNumber(test.view_rms_px[*test.worst_view]) + " px, threshold " +

@@ -79,6 +79,11 @@ struct HandEyeOptions {
   // solved again (docs/math/handeye.md#bad-frames); on by default, views only (a frame's corners
   // share its one tracker pose, so a bad pose spoils the frame, not a corner).
   ViewRejectionOptions rejection{.enabled = true};
+  // ... and only when its RMS is at least this many times the median view's. Significance alone
+  // is not enough: with corners good to 0.01 px, what is left is the interpolation between the
+  // tracker's reports, larger where the headset moved faster, and every view would in turn look
+  // inconsistent. A bad frame is off by pixels, not by a few hundredths.
+  double min_rms_ratio = 2;
 };
 
 // X's 6, Z's 6 and δ.

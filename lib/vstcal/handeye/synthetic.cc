@@ -60,7 +60,10 @@ HandEyeRecording SynthesizeHandEye(const Camera& camera, const HandEyeSpec& s) {
         v.observations.push_back({P, *q + s.noise_px * noise, 1.0});
       }
     }
-    if (v.observations.size() >= 4) r.views.push_back(std::move(v));
+    if (v.observations.size() >= 4) {
+      r.views.push_back(std::move(v));
+      r.camera_from_board.push_back(camera_from_board);
+    }
   }
   if (r.views.size() < 2) throw InputError("handeye: fewer than 2 views see the board; move the camera farther (--distance) or use a smaller board");
   return r;

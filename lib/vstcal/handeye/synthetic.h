@@ -32,6 +32,7 @@ struct HandEyeSpec {
 struct HandEyeRecording {
   std::vector<TrackedPose> log;
   std::vector<TimedView> views;  // corners inside the image only
+  std::vector<Rigid3d> camera_from_board;  // each view's true pose (for rendering its image)
 };
 
 // Throws InputError for a spec that cannot be recorded (non-positive sizes, rates or duration,
