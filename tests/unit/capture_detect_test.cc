@@ -204,6 +204,7 @@ TEST(DetectCharuco, SwappedRowsAndColsAreRefused) {
   const Detection d = DetectTarget(view.image, swapped, With(CornerRefiner::kSymmetry));
   EXPECT_NE(d.status, DetectionStatus::kFound);
   EXPECT_NE(d.reason.find("not where the target file puts them"), std::string::npos) << d.reason;
+  EXPECT_NE(d.reason.find(" px off, tolerance "), std::string::npos) << d.reason;  // which markers, and by how much
 }
 
 TEST(DetectAprilGrid, EveryTagWithItsCorners) {

@@ -47,12 +47,27 @@ Detection DetectCharuco(const GrayImage& image, const Target& target, const Dete
                                         " markers, none of this board's ids 0 … " + std::to_string(quads.size() - 1);
     return d;
   }
-  const auto [inconsistent, checkable] = InconsistentMarkers(quads, markers);
-  if (checkable > 0 && 2 * inconsistent > checkable) {
+  const MarkerLayoutCheck layout = CheckMarkerLayout(quads, markers);
+  if (layout.checkable > 0 && 2 * layout.inconsistent.size() > static_cast<size_t>(layout.checkable)) {
     d.status = DetectionStatus::kRejected;
-    d.reason = "layout mismatch: markers not where the target file puts them (" + std::to_string(inconsistent) + " of " +
-               std::to_string(checkable) + " disagree with their neighbours); the target's rows, cols or dictionary do not match the board";
+    d.reason = "layout mismatch: markers not where the target file puts them (" + std::to_string(layout.inconsistent.size()) + " of " +
+               std::to_string(layout.checkable) + " disagree with their neighbours: " + DescribeDisagreements(layout, markers) +
+               "); the target's rows, cols, marker_size or dictionary do not match the board";
     return d;
+  }
+  // A few markers out of place (an id misread, a marker of another board in view): without them.
+  if (!layout.inconsistent.empty()) {
+    std::vector<bool> drop(markers.size(), false);
+    for (const auto& bad : layout.inconsistent) drop[static_cast<size_t>(bad.marker)] = true;
+    std::vector<std::vector<cv::Point2f>> kept_corners;
+    std::vector<int> kept_ids;
+    for (size_t k = 0; k < markers.size(); ++k) {
+      if (drop[k]) continue;
+      kept_corners.push_back(board_corners[k]);
+      kept_ids.push_back(board_ids[k]);
+    }
+    board_corners = std::move(kept_corners);
+    board_ids = std::move(kept_ids);
   }
   const cv::Ptr<cv::aruco::CharucoBoard> board = cv::aruco::CharucoBoard::create(
       target.cols + 1, target.rows + 1, static_cast<float>(target.square_size), static_cast<float>(target.marker_size), dictionary);

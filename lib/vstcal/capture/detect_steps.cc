@@ -9,6 +9,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "vstcal/capture/corner_refinement.h"
+#include "vstcal/estimators/homography.h"
 
 namespace vstcal {
 namespace {
@@ -128,33 +129,63 @@ double MedianGridEdgeBlur(const GrayImage& image, const Target& target, const st
   return blur[blur.size() / 2];
 }
 
-std::pair<int, int> InconsistentMarkers(const std::vector<std::array<Eigen::Vector2d, 4>>& board_quads,
-                                        const std::vector<DetectedMarker>& markers) {
+MarkerLayoutCheck CheckMarkerLayout(const std::vector<std::array<Eigen::Vector2d, 4>>& board_quads, const std::vector<DetectedMarker>& markers) {
   auto centre = [](const std::array<Eigen::Vector2d, 4>& q) { return 0.25 * (q[0] + q[1] + q[2] + q[3]); };
   double pitch = std::numeric_limits<double>::infinity();
   for (size_t i = 1; i < board_quads.size(); ++i) pitch = std::min(pitch, (centre(board_quads[i]) - centre(board_quads[0])).norm());
-  int inconsistent = 0, checkable = 0;
-  for (const DetectedMarker& m : markers) {
-    const auto H = Homography4(board_quads[m.index], m.pixels);
-    if (!H) continue;
-    const double size_px = std::sqrt(std::max(0.0, 0.5 * std::abs((m.pixels[2] - m.pixels[0]).x() * (m.pixels[3] - m.pixels[1]).y() -
-                                                                  (m.pixels[2] - m.pixels[0]).y() * (m.pixels[3] - m.pixels[1]).x())));
-    int neighbours = 0, disagree = 0;
-    for (const DetectedMarker& n : markers) {
-      if (n.index == m.index || (centre(board_quads[n.index]) - centre(board_quads[m.index])).norm() > 1.6 * pitch) continue;
-      ++neighbours;
-      double worst = 0;
+  MarkerLayoutCheck check;
+  for (size_t m = 0; m < markers.size(); ++m) {
+    const Eigen::Vector2d here = centre(board_quads[markers[m].index]);
+    std::vector<Observation> around;
+    Eigen::Vector2d mean = Eigen::Vector2d::Zero();
+    for (size_t n = 0; n < markers.size(); ++n) {
+      if (n == m || (centre(board_quads[markers[n].index]) - here).norm() > 2.1 * pitch) continue;
       for (int k = 0; k < 4; ++k) {
-        const Eigen::Vector3d p = *H * board_quads[n.index][k].homogeneous();
-        worst = std::max(worst, (p.hnormalized() - n.pixels[k]).norm());
+        const Eigen::Vector2d& b = board_quads[markers[n].index][k];
+        around.push_back({Eigen::Vector3d(b.x(), b.y(), 0), markers[n].pixels[k], 1.0});
+        mean += b;
       }
-      if (!(worst <= 0.25 * size_px)) ++disagree;
     }
-    if (neighbours == 0) continue;
-    ++checkable;
-    if (2 * disagree > neighbours) ++inconsistent;
+    const auto H = EstimateHomography(around);
+    if (!H) continue;
+    ++check.checkable;
+    mean /= static_cast<double>(around.size());
+    double spread2 = 0;
+    for (const Observation& o : around) spread2 += (o.point.head<2>() - mean).squaredNorm();
+    const double spread = std::sqrt(spread2 / static_cast<double>(around.size()));
+    const std::array<Eigen::Vector2d, 4>& pixels = markers[m].pixels;
+    const double size_px = std::sqrt(std::max(0.0, 0.5 * std::abs((pixels[2] - pixels[0]).x() * (pixels[3] - pixels[1]).y() -
+                                                                  (pixels[2] - pixels[0]).y() * (pixels[3] - pixels[1]).x())));
+    double error = 0;
+    for (int k = 0; k < 4; ++k) {
+      const Eigen::Vector3d p = *H * board_quads[markers[m].index][k].homogeneous();
+      error += 0.25 * (p.hnormalized() - pixels[k]).norm();
+    }
+    const double tolerance = 0.25 * size_px * std::max(1.0, (here - mean).norm() / std::max(spread, 1e-12));
+    if (!(error <= tolerance)) check.inconsistent.push_back({static_cast<int>(m), error, tolerance});
   }
-  return {inconsistent, checkable};
+  std::sort(check.inconsistent.begin(), check.inconsistent.end(),
+            [](const auto& a, const auto& b) { return a.error_px / a.tolerance_px > b.error_px / b.tolerance_px; });
+  return check;
+}
+
+std::string DescribeDisagreements(const MarkerLayoutCheck& check, const std::vector<DetectedMarker>& markers, size_t shown) {
+  std::string text = check.inconsistent.size() == 1 ? "id " : "ids ";
+  char buf[96];
+  for (size_t i = 0; i < std::min(shown, check.inconsistent.size()); ++i) {
+    const auto& d = check.inconsistent[i];
+    std::snprintf(buf, sizeof buf, "%s%d (%.1f px off, tolerance %.1f px)", i == 0 ? "" : ", ", markers[static_cast<size_t>(d.marker)].index,
+                  d.error_px, d.tolerance_px);
+    text += buf;
+  }
+  if (check.inconsistent.size() > shown) text += " and " + std::to_string(check.inconsistent.size() - shown) + " more";
+  return text;
+}
+
+std::pair<int, int> InconsistentMarkers(const std::vector<std::array<Eigen::Vector2d, 4>>& board_quads,
+                                        const std::vector<DetectedMarker>& markers) {
+  const MarkerLayoutCheck check = CheckMarkerLayout(board_quads, markers);
+  return {static_cast<int>(check.inconsistent.size()), check.checkable};
 }
 
 void Conclude(const DetectorOptions& options, Detection* d) {

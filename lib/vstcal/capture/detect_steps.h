@@ -5,6 +5,7 @@
 #pragma once
 
 #include <array>
+#include <string>
 #include <map>
 #include <optional>
 #include <string>
@@ -43,10 +44,31 @@ struct DetectedMarker {
   int index = 0;
   std::array<Eigen::Vector2d, 4> pixels;
 };
-// Markers whose neighbours (board distance ≤ 1.6 pitches) are not where the marker's own
-// homography puts them, to within a quarter of the marker's size in the image. A layout that
-// does not match the board (rows and cols swapped, another board) fails nearly every marker.
-// Returns how many of the markers that have a neighbour disagree, and how many have one.
+// The markers' layout against the board: each marker's corners predicted from its neighbours'
+// alone (markers within 2.1 pitches on the board: a homography fitted to all their corners,
+// leaving the marker out), and compared with where the marker was found. Interpolated from the
+// markers around it, the prediction is good to a fraction of a pixel whatever the marker's
+// size; predicted from one marker's own four corners (the check before), a marker half the square
+// extrapolated its raw corners' pixel errors by its distance over its size, and OpenCV's tutorial
+// boards failed (docs/experiments/corners.md#charuco). The tolerance is a quarter of the marker's
+// size in the image, widened in proportion when the prediction extrapolates (the marker farther
+// from its neighbours' centre than their own spread). A layout that does not match the board (rows
+// and cols swapped, another board) fails nearly every marker; a marker whose id was misread fails
+// alone.
+struct MarkerLayoutCheck {
+  int checkable = 0;  // markers with enough neighbours to predict them (4 points not on a line)
+  struct Disagreement {
+    int marker = 0;         // index into the markers given
+    double error_px = 0;    // mean distance of its corners from the prediction
+    double tolerance_px = 0;
+  };
+  std::vector<Disagreement> inconsistent;  // worst first
+};
+MarkerLayoutCheck CheckMarkerLayout(const std::vector<std::array<Eigen::Vector2d, 4>>& board_quads, const std::vector<DetectedMarker>& markers);
+// "ids 7 (12.3 px off, tolerance 4.1 px), 12 (…) and 3 more", for a rejection's message: the
+// worst `shown` of the disagreeing markers by their ids on the board (DetectedMarker::index).
+std::string DescribeDisagreements(const MarkerLayoutCheck& check, const std::vector<DetectedMarker>& markers, size_t shown = 3);
+// How many of the checkable markers disagree, and how many are checkable.
 std::pair<int, int> InconsistentMarkers(const std::vector<std::array<Eigen::Vector2d, 4>>& board_quads,
                                         const std::vector<DetectedMarker>& markers);
 
