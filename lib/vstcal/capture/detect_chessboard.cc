@@ -45,6 +45,12 @@ Detection DetectChessboard(const GrayImage& image, const Target& target, const D
   d.corners.resize(grid.size());
   for (size_t id = 0; id < grid.size(); ++id) d.corners[id] = {static_cast<int>(id), grid[orientation.detected_index[id]]};
   RefineXCorners(image, target, options.refiner, kChessboardWindow, &d.corners);
+  if (std::string lost = LostOuterLine(target, d.corners); !lost.empty()) {
+    d.status = DetectionStatus::kRejected;
+    d.reason = std::move(lost);
+    d.corners.clear();
+    return d;
+  }
   d.blur_px = MedianGridEdgeBlur(image, target, d.corners, kChessboardWindow);
   d.status = DetectionStatus::kFound;
   Conclude(options, &d);

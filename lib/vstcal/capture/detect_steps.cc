@@ -129,6 +129,21 @@ double MedianGridEdgeBlur(const GrayImage& image, const Target& target, const st
   return blur[blur.size() / 2];
 }
 
+std::string LostOuterLine(const Target& t, const std::vector<DetectedCorner>& corners) {
+  if (corners.empty()) return {};
+  std::vector<int> per_row(static_cast<size_t>(t.rows), 0), per_col(static_cast<size_t>(t.cols), 0);
+  for (const DetectedCorner& c : corners) {
+    ++per_row[static_cast<size_t>(c.id / t.cols)];
+    ++per_col[static_cast<size_t>(c.id % t.cols)];
+  }
+  std::string line;
+  if (per_row.front() == 0 || per_row.back() == 0) line = "an outer row";
+  if (per_col.front() == 0 || per_col.back() == 0) line = "an outer column";
+  if (line.empty()) return {};
+  return "grid off the board: " + line + " of the grid found has no corner of the board (part of the board is outside the image, and "
+         "its edge was taken for a row of corners); left out rather than numbered wrongly";
+}
+
 MarkerLayoutCheck CheckMarkerLayout(const std::vector<std::array<Eigen::Vector2d, 4>>& board_quads, const std::vector<DetectedMarker>& markers) {
   auto centre = [](const std::array<Eigen::Vector2d, 4>& q) { return 0.25 * (q[0] + q[1] + q[2] + q[3]); };
   double pitch = std::numeric_limits<double>::infinity();

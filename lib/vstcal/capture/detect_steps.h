@@ -38,6 +38,13 @@ int DropAsymmetricCorners(const GrayImage& image, const Target& target, double w
 double MedianGridEdgeBlur(const GrayImage& image, const Target& target, const std::vector<DetectedCorner>& corners,
                           double reach_fraction);
 
+// Why a refined chessboard grid cannot be numbered, or empty. Where a row of the board is outside
+// the image, OpenCV's finders can return a full grid that takes the board's outer edge (its black
+// squares against the white margin) for the missing row: the refinement drops those points, which
+// are no X-junctions, and the colour rule — the grid one row off — has numbered the rest turned by
+// a half. An outer row or column that lost every corner while the rest kept theirs is that grid.
+std::string LostOuterLine(const Target& target, const std::vector<DetectedCorner>& corners);
+
 // A detected square marker: its id on the board (0-based index into `board_quads`) and its four
 // image corners in the order of its board quad (top-left, top-right, bottom-right, bottom-left).
 struct DetectedMarker {
