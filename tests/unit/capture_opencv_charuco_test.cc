@@ -47,7 +47,10 @@ cv::Matx33d ViewHomography(std::mt19937_64& rng, double max_tilt_deg) {
 }
 
 TEST(DetectCharuco, AcceptsWhatOpenCvAcceptsOnBoardsOpenCvDrew) {
-  const BoardCase cases[] = {{"DICT_4X4_50", cv::aruco::DICT_4X4_50, 0.5}, {"DICT_5X5_100", cv::aruco::DICT_5X5_100, 0.7}};
+  const BoardCase cases[] = {{"DICT_4X4_50", cv::aruco::DICT_4X4_50, 0.5},
+                             {"DICT_5X5_100", cv::aruco::DICT_5X5_100, 0.7},
+                             {"DICT_5X5_100", cv::aruco::DICT_5X5_100, 0.8},
+                             {"DICT_6X6_250", cv::aruco::DICT_6X6_250, 0.9}};
   for (const BoardCase& c : cases) {
     const cv::Ptr<cv::aruco::Dictionary> dictionary = cv::aruco::getPredefinedDictionary(c.dictionary_id);
     const cv::Ptr<cv::aruco::CharucoBoard> board =

@@ -120,12 +120,13 @@ std::optional<TargetProblem> CheckTarget(const Target& t) {
     const MarkerFamily* f = FindMarkerFamily(kAruco, t.dictionary);
     if (!f) return TargetProblem{"dictionary", "unknown ArUco dictionary \"" + t.dictionary + "\"", "use one of " + Names(kAruco)};
     if (auto p = Positive("marker_size", t.marker_size)) return p;
-    // One cell of white between the marker's black border and the square's edge on every side.
-    const double largest = t.square_size * (f->bits + 2) / (f->bits + 4);
-    if (t.marker_size > largest) {
-      return TargetProblem{"marker_size", Num(t.marker_size) + " leaves less than one marker cell of white in a square of " +
-                                              Num(t.square_size),
-                           "give a marker_size ≤ " + Num(largest) + " (0.7 × square_size is usual)"};
+    // Any marker OpenCV's CharucoBoard can hold: smaller than its square, so that the black
+    // squares' corners (the X-junctions) stay clear. OpenCV draws and reads markers up to 0.9 of
+    // the square and more; a white gap under one marker cell only makes the markers harder to find.
+    if (!(t.marker_size < t.square_size)) {
+      return TargetProblem{"marker_size", Num(t.marker_size) + " fills a square of " + Num(t.square_size) +
+                                              ": a ChArUco marker sits inside a white square, with white around it",
+                           "give a marker_size < square_size (0.7 × square_size is usual)"};
     }
     const int markers = (t.rows + 1) * (t.cols + 1) / 2;
     if (markers > f->num_codes) {
