@@ -14,6 +14,7 @@
 
 #include "vstcal/capture/detect.h"
 #include "vstcal/capture/target.h"
+#include "vstcal/capture/target_drawing.h"
 
 namespace vstcal {
 namespace {
@@ -22,6 +23,7 @@ struct BoardCase {
   const char* dictionary;
   int dictionary_id;
   double marker_ratio;
+  int first_id = 0;  // a board whose maker offset its ids (board.ids = first_id + k)
 };
 
 constexpr int kCols = 7, kRows = 5;         // inner corners; OpenCV's board is 8 × 6 squares
@@ -50,11 +52,13 @@ TEST(DetectCharuco, AcceptsWhatOpenCvAcceptsOnBoardsOpenCvDrew) {
   const BoardCase cases[] = {{"DICT_4X4_50", cv::aruco::DICT_4X4_50, 0.5},
                              {"DICT_5X5_100", cv::aruco::DICT_5X5_100, 0.7},
                              {"DICT_5X5_100", cv::aruco::DICT_5X5_100, 0.8},
-                             {"DICT_6X6_250", cv::aruco::DICT_6X6_250, 0.9}};
+                             {"DICT_6X6_250", cv::aruco::DICT_6X6_250, 0.9},
+                             {"DICT_5X5_100", cv::aruco::DICT_5X5_100, 0.7, 40}};
   for (const BoardCase& c : cases) {
     const cv::Ptr<cv::aruco::Dictionary> dictionary = cv::aruco::getPredefinedDictionary(c.dictionary_id);
     const cv::Ptr<cv::aruco::CharucoBoard> board =
         cv::aruco::CharucoBoard::create(kCols + 1, kRows + 1, 1.0f, static_cast<float>(c.marker_ratio), dictionary);
+    for (size_t k = 0; k < board->ids.size(); ++k) board->ids[k] = c.first_id + static_cast<int>(k);
     cv::Mat drawn;
     board->draw(cv::Size((kCols + 1) * kPxPerSquare + 2 * kMargin, (kRows + 1) * kPxPerSquare + 2 * kMargin), drawn, kMargin, 1);
     Target target;
@@ -64,6 +68,7 @@ TEST(DetectCharuco, AcceptsWhatOpenCvAcceptsOnBoardsOpenCvDrew) {
     target.square_size = 30;
     target.marker_size = 30 * c.marker_ratio;
     target.dictionary = c.dictionary;
+    target.first_id = c.first_id;
     target.margin = 15;
     ASSERT_FALSE(CheckTarget(target).has_value()) << c.dictionary;
 
@@ -121,8 +126,8 @@ TEST(DetectCharuco, AcceptsWhatOpenCvAcceptsOnBoardsOpenCvDrew) {
     }
     const double opencv_rms = std::sqrt(opencv_sum2 / static_cast<double>(opencv_corners)),
                  ours_rms = std::sqrt(ours_sum2 / static_cast<double>(ours_corners));
-    std::printf("%s marker %.1f: OpenCV %d views (%zu corners, %.3f px RMS), vstcal %d views (%zu corners, %.3f px RMS), both %d, wrong %d\n",
-                c.dictionary, c.marker_ratio, opencv_found, opencv_corners, opencv_rms, ours_found, ours_corners, ours_rms, both, wrong);
+    std::printf("%s marker %.1f first id %d: OpenCV %d views (%zu corners, %.3f px RMS), vstcal %d views (%zu corners, %.3f px RMS), both %d, wrong %d\n",
+                c.dictionary, c.marker_ratio, c.first_id, opencv_found, opencv_corners, opencv_rms, ours_found, ours_corners, ours_rms, both, wrong);
     // Occluded corners are not counted against either: each keeps what it can see.
     EXPECT_GE(ours_corners, opencv_corners * 95 / 100) << c.dictionary;
     EXPECT_LT(ours_rms, opencv_rms) << c.dictionary;
@@ -131,6 +136,42 @@ TEST(DetectCharuco, AcceptsWhatOpenCvAcceptsOnBoardsOpenCvDrew) {
     EXPECT_GE(both, static_cast<int>(std::ceil(0.95 * opencv_found))) << c.dictionary;
     EXPECT_EQ(wrong, 0) << c.dictionary;
   }
+}
+
+// vstcal draws a board with offset ids as OpenCV reads it: every marker OpenCV decodes on vstcal's
+// print has the id first_id + k of the marker vstcal put there.
+TEST(DetectCharuco, OffsetIdsAreDrawnAsOpenCvReadsThem) {
+  Target t;
+  t.type = TargetType::kCharuco;
+  t.rows = kRows;
+  t.cols = kCols;
+  t.square_size = 30;
+  t.marker_size = 21;
+  t.dictionary = "DICT_5X5_100";
+  t.first_id = 40;
+  t.margin = 30;
+  ASSERT_FALSE(CheckTarget(t).has_value());
+  const GrayImage drawn = RasterizeTarget(t, 101.6);  // 4 px a millimetre
+  const cv::Mat image(drawn.height, drawn.width, CV_8U, const_cast<uint8_t*>(drawn.pixels.data()));
+  std::vector<std::vector<cv::Point2f>> corners;
+  std::vector<int> ids;
+  cv::aruco::detectMarkers(image, cv::aruco::getPredefinedDictionary(cv::aruco::DICT_5X5_100), corners, ids);
+  const std::vector<Quad> quads = MarkerQuads(t);
+  ASSERT_EQ(ids.size(), quads.size());
+  const Rect sheet = SheetExtent(t);
+  for (size_t k = 0; k < ids.size(); ++k) {
+    const int index = ids[k] - t.first_id;
+    ASSERT_GE(index, 0);
+    ASSERT_LT(index, static_cast<int>(quads.size()));
+    // The decoded marker's first corner is the quad's top-left one, at 4 px a unit from the sheet's corner.
+    const Eigen::Vector2d expected = 4 * (quads[static_cast<size_t>(index)][0] - Eigen::Vector2d(sheet.x0, sheet.y0));
+    EXPECT_LT((Eigen::Vector2d(corners[k][0].x, corners[k][0].y) - expected).norm(), 2.0) << ids[k];
+  }
+  // Read back with first_id 0 (ids 0 … 23), the board's markers are another board's: none of its.
+  Target zero = t;
+  zero.first_id = 0;
+  const Detection d = DetectTarget(drawn, zero, DetectorOptions{});
+  EXPECT_NE(d.status, DetectionStatus::kFound);
 }
 
 }  // namespace

@@ -160,8 +160,15 @@ TEST(Target, CheckTargetNamesTheFieldAndTheFix) {
     EXPECT_FALSE(problem->fix.empty());
   }
   Target charuco = Charuco7x5();
-  charuco.marker_size = 25;  // 5×5 markers: at most 30·7/9 = 23.3 leaves a white cell around
+  charuco.marker_size = 27;  // 0.9 of the square: OpenCV's boards have such markers
+  EXPECT_FALSE(CheckTarget(charuco).has_value());
+  charuco.marker_size = 30;  // fills the square: no white square around it
+  ASSERT_TRUE(CheckTarget(charuco).has_value());
   EXPECT_EQ(CheckTarget(charuco)->field, "marker_size");
+  charuco = Charuco7x5();
+  charuco.first_id = 90;  // markers 90 … 113 of DICT_5X5_100's 100
+  ASSERT_TRUE(CheckTarget(charuco).has_value());
+  EXPECT_EQ(CheckTarget(charuco)->field, "first_id");
   charuco = Charuco7x5();
   charuco.dictionary = "DICT_4X4_50";
   charuco.rows = charuco.cols = 11;  // 144 squares, 72 markers

@@ -55,7 +55,7 @@ void TargetFlags::Add(CLI::App* app) {
       ->check(kPositiveFinite);
   app->add_option("--tag-gap", tag_gap, "apriltag-grid: white between tags (default tag size / 4)")->check(kFinite);
   app->add_option("--family", t.family, "apriltag-grid: libapriltag family")->capture_default_str();
-  app->add_option("--first-id", t.first_id, "apriltag-grid: id of the top-left tag")->capture_default_str();
+  app->add_option("--first-id", t.first_id, "apriltag-grid: id of the top-left tag; charuco: id of the first marker (OpenCV's boards: 0)")->capture_default_str();
   app->add_option("--margin", margin, "white border around the pattern (default a square, or the tag gap)")->check(kFinite);
   app->add_option("--paper", paper,
                   "a4, letter, a3 or WxH (mm): the sheet to print on; the board gets the largest square (tag) size that fits, "
@@ -72,6 +72,7 @@ app::TargetRequest TargetFlags::Finish() {
   const bool tags = t.type == TargetType::kAprilTagGrid;
   if (tags && t.square_size != 0) throw InputError("--square-size: an apriltag-grid has tags, not squares; give --tag-size");
   if (!tags && t.tag_size != 0) throw InputError("--tag-size: applies to --type apriltag-grid; give --square-size");
+  if (t.type == TargetType::kChessboard && t.first_id != 0) throw InputError("--first-id: a chessboard has no ids; remove it");
   if (!paper.empty()) {
     request.paper = PaperFromName(paper);
     if (!request.paper) throw InputError("--paper: \"" + paper + "\" is not a paper size; give a4, letter, a3 or WxH in mm (e.g. 250x350)");

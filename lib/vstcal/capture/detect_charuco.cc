@@ -34,8 +34,9 @@ Detection DetectCharuco(const GrayImage& image, const Target& target, const Dete
   std::vector<std::vector<cv::Point2f>> board_corners;
   std::vector<int> board_ids;
   for (size_t k = 0; k < marker_ids.size(); ++k) {
-    if (marker_ids[k] < 0 || marker_ids[k] >= static_cast<int>(quads.size())) continue;  // another board's marker
-    DetectedMarker m{marker_ids[k], {}};
+    const int index = marker_ids[k] - target.first_id;  // the board's k-th marker has id first_id + k
+    if (index < 0 || index >= static_cast<int>(quads.size())) continue;  // another board's marker
+    DetectedMarker m{index, {}};
     for (int c = 0; c < 4; ++c) m.pixels[c] = Eigen::Vector2d(marker_corners[k][c].x, marker_corners[k][c].y);
     markers.push_back(m);
     board_corners.push_back(marker_corners[k]);
@@ -43,8 +44,9 @@ Detection DetectCharuco(const GrayImage& image, const Target& target, const Dete
   }
   if (markers.empty()) {
     d.reason = marker_ids.empty() ? "no " + target.dictionary + " marker"
-                                  : std::to_string(marker_ids.size()) + " " + target.dictionary +
-                                        " markers, none of this board's ids 0 … " + std::to_string(quads.size() - 1);
+                                  : std::to_string(marker_ids.size()) + " " + target.dictionary + " markers, none of this board's ids " +
+                                        std::to_string(target.first_id) + " … " + std::to_string(target.first_id + static_cast<int>(quads.size()) - 1) +
+                                        " (the target's first_id, rows and cols)";
     return d;
   }
   const MarkerLayoutCheck layout = CheckMarkerLayout(quads, markers);
@@ -71,6 +73,7 @@ Detection DetectCharuco(const GrayImage& image, const Target& target, const Dete
   }
   const cv::Ptr<cv::aruco::CharucoBoard> board = cv::aruco::CharucoBoard::create(
       target.cols + 1, target.rows + 1, static_cast<float>(target.square_size), static_cast<float>(target.marker_size), dictionary);
+  for (size_t k = 0; k < board->ids.size(); ++k) board->ids[k] = target.first_id + static_cast<int>(k);
   std::vector<cv::Point2f> corners;
   std::vector<int> ids;
   cv::aruco::interpolateCornersCharuco(board_corners, board_ids, gray, board, corners, ids);

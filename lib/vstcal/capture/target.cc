@@ -129,6 +129,13 @@ std::optional<TargetProblem> CheckTarget(const Target& t) {
                            "give a marker_size < square_size (0.7 × square_size is usual)"};
     }
     const int markers = (t.rows + 1) * (t.cols + 1) / 2;
+    if (t.first_id < 0 || static_cast<long>(t.first_id) + markers > f->num_codes) {
+      if (t.first_id != 0) {
+        return TargetProblem{"first_id", "markers " + std::to_string(t.first_id) + " … " + std::to_string(t.first_id + markers - 1) +
+                                             " are not all in " + t.dictionary + " (ids 0 … " + std::to_string(f->num_codes - 1) + ")",
+                             "use a smaller first_id, a larger dictionary or a smaller board"};
+      }
+    }
     if (markers > f->num_codes) {
       return TargetProblem{"dictionary", t.dictionary + " has " + std::to_string(f->num_codes) + " markers, the board needs " +
                                              std::to_string(markers),

@@ -61,7 +61,7 @@ Pattern TargetPattern(const Target& t) {
   }
   const std::vector<Quad> markers = MarkerQuads(t);
   for (size_t k = 0; k < markers.size(); ++k) {
-    const MarkerCells cells = t.type == TargetType::kCharuco ? ArucoMarkerCells(t.dictionary, static_cast<int>(k))
+    const MarkerCells cells = t.type == TargetType::kCharuco ? ArucoMarkerCells(t.dictionary, t.first_id + static_cast<int>(k))
                                                              : AprilTagCells(t.family, t.first_id + static_cast<int>(k));
     const double side = markers[k][1].x() - markers[k][0].x();
     AddMarkerCells(cells, markers[k][0].x(), markers[k][0].y(), side / cells.side, &black);

@@ -19,7 +19,7 @@ struct TypeFields {
 };
 constexpr std::array<TypeFields, 3> kTypeFields = {{
     {TargetType::kChessboard, {"square_size"}},
-    {TargetType::kCharuco, {"square_size", "marker_size", "dictionary"}},
+    {TargetType::kCharuco, {"square_size", "marker_size", "dictionary", "first_id"}},
     {TargetType::kAprilTagGrid, {"tag_size", "tag_gap", "family", "first_id"}},
 }};
 
@@ -66,6 +66,8 @@ Target TargetFromJson(const JsonDocument& doc) {
   if (t.type == TargetType::kCharuco) {
     t.marker_size = root.at("marker_size").Number();
     t.dictionary = root.at("dictionary").String();
+    // Optional: boards OpenCV made carry ids 0, 1, … unless their maker offset them.
+    if (const auto first = root.find("first_id")) t.first_id = first->Integer();
   }
   const auto margin = root.find("margin");
   t.margin = margin ? margin->Number() : (t.type == TargetType::kAprilTagGrid ? t.tag_gap : t.square_size);
@@ -96,6 +98,7 @@ OrderedJson TargetToJson(const Target& t, const Provenance& provenance) {
   if (t.type == TargetType::kCharuco) {
     j["marker_size"] = t.marker_size;
     j["dictionary"] = t.dictionary;
+    if (t.first_id != 0) j["first_id"] = t.first_id;
   }
   j["margin"] = t.margin;
   const Rect sheet = SheetExtent(t);
