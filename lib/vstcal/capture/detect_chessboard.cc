@@ -10,7 +10,7 @@
 //    passes instead of 56: on a view it cannot read, the adaptive passes are what took 1–40 s),
 //    then the sector-based finder (a Radon-transform search whose cost is set by the image size);
 //  - where OpenCV's board-presence check (checkChessboard, what CALIB_CB_FAST_CHECK uses) sees no
-//    board in a large search image, the sector-based finder searches it at half the size again.
+//    board in a reduced search image, the sector-based finder searches it at half the size again.
 #include <algorithm>
 #include <cstdio>
 
@@ -30,9 +30,6 @@ constexpr double kChessboardWindow = 0.4;
 // The largest image the finders search (1280×720 and smaller are searched as they are). The
 // sector-based finder takes 0.1–0.7 s of one core on a 1 MP image.
 constexpr double kSearchPixels = 1.0e6;
-// A search image larger than this that the presence check finds no board in is searched by the
-// sector-based finder at half its size (a board-less 12 MP image is then refused in ≈ 0.3 s).
-constexpr double kUncheckedSectorPixels = 0.35e6;
 
 // An image the finders search: `factor` × `factor` full-resolution pixels averaged into each of
 // its pixels. Its pixel (x, y) is centred on full-resolution pixel factor·(x, y) + (factor − 1)/2.
@@ -88,7 +85,10 @@ Search Find(const cv::Mat& gray, const cv::Size& size, ChessboardFinder finder) 
       s.found = Classic(search.image, size, false, &s.points);
       if (s.found) break;
       s.board_like = cv::checkChessboard(search.image, size);
-      if (s.board_like || search.image.total() <= kUncheckedSectorPixels) {
+      // A reduced image (more than 1 MP) where the presence check sees no board is searched at
+      // half the size again: a board-less 12 MP image is then refused in ≈ 0.3 s. Images of
+      // 1 MP or less are searched whole (the check misses boards of small squares there).
+      if (s.board_like || search.factor == 1) {
         s.found = SectorBased(search.image, size, &s.points);
       } else {
         const SearchImage half = Shrink(search, 2);

@@ -355,7 +355,13 @@ CaptureResult DetectInVideo(const VideoRequest& video, const DetectRequest& requ
     // A batch of frames read in order, then searched in parallel.
     std::vector<std::pair<long, GrayImage>> batch;
     std::vector<double> batch_times;
-    for (; batch.size() < 4 * threads && records.size() + batch.size() < limit; ++frame) {
+    // Up to 4 frames a thread, fewer where their pixels would pass the memory bound (MemoryGate).
+    size_t max_batch = 4 * threads;
+    if (width > 0) {
+      const double frame_bytes = static_cast<double>(width) * height + kFinderBytes;
+      max_batch = std::clamp<size_t>(static_cast<size_t>(kBytesInFlight / frame_bytes), 1, max_batch);
+    }
+    for (; batch.size() < max_batch && records.size() + batch.size() < limit; ++frame) {
       if (frame % video.every != 0) {
         if (!capture.grab()) break;
         continue;
