@@ -70,16 +70,16 @@ TEST(BoundedDetection, HardViewsTheSectorBasedFinderFindsAreFound) {
   EXPECT_LT(std::sqrt(sum2 / std::max(n, 1)), 0.05);
 }
 
-// 3000×2000 is searched at a third of its size (1000×666): a corner found there at (x, y) is the
+// 2400×1800 is searched at a third of its size (800×600): a corner found there at (x, y) is the
 // full image's 3·(x, y) + 1. Without refinement the corners carry that mapping: a mapping of
 // 3·(x, y) would put them 1 px up and left on average. Refined, they are as accurate as ever.
 TEST(BoundedDetection, LargeImageCornersMapBackToFullResolution) {
-  const Camera camera = testing::DistortedCamera(3000, 2000, 2400);
+  const Camera camera = testing::DistortedCamera(2400, 1800, 1800);
   const Target t = testing::Chessboard9x6();
   RenderOptions o;
   o.blur_px = 1.2;
   o.noise = 2;
-  const RenderedView view = testing::RenderTestView(camera, t, testing::TestViewPose(camera, t, 120, 2, 3), o, 2);
+  const RenderedView view = testing::RenderTestView(camera, t, testing::TestViewPose(camera, t, 90, 2, 3), o, 2);
   DetectorOptions raw;
   raw.refiner = CornerRefiner::kNone;
   const Detection unrefined = DetectTarget(view.image, t, raw);
