@@ -65,7 +65,21 @@ constexpr double kFinderBytes = 48e6;
 
 class MemoryGate {
  public:
-  // Waits until `bytes` more fit (or nothing else is in flight).
+  // Holds `bytes` of the gate from construction (waiting until they fit, or until nothing else
+  // is in flight) to destruction.
+  class Pass {
+   public:
+    Pass(MemoryGate& gate, double bytes) : gate_(gate), bytes_(bytes) { gate_.Enter(bytes_); }
+    ~Pass() { gate_.Leave(bytes_); }
+    Pass(const Pass&) = delete;
+    Pass& operator=(const Pass&) = delete;
+
+   private:
+    MemoryGate& gate_;
+    double bytes_;
+  };
+
+ private:
   void Enter(double bytes) {
     std::unique_lock<std::mutex> lock(mutex_);
     freed_.wait(lock, [&] { return in_flight_ == 0 || in_flight_ + bytes <= kBytesInFlight; });
@@ -79,7 +93,6 @@ class MemoryGate {
     freed_.notify_all();
   }
 
- private:
   std::mutex mutex_;
   std::condition_variable freed_;
   double in_flight_ = 0;
@@ -256,13 +269,7 @@ CaptureResult DetectInFiles(const std::vector<CaptureInput>& inputs, const Detec
     ParallelFor(inputs.size(), request.threads, [&](size_t k) {
       std::optional<double> pixels;
       if (header_sizes[k]) pixels = static_cast<double>(header_sizes[k]->first) * header_sizes[k]->second;
-      const double bytes = ImageBytes(pixels);
-      gate.Enter(bytes);
-      struct Leave {
-        MemoryGate& gate;
-        double bytes;
-        ~Leave() { gate.Leave(bytes); }
-      } leave{gate, bytes};
+      const MemoryGate::Pass pass(gate, ImageBytes(pixels));
       LoadedImage loaded = LoadImageFile(inputs[k].path);
       Slot& s = slots[k];
       s.problem = std::move(loaded.problem);
