@@ -171,13 +171,19 @@ LoadedImage LoadImageFile(const std::filesystem::path& path) {
 std::optional<std::pair<int, int>> ReadImageHeaderSize(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) return std::nullopt;
-  // A JPEG's frame header follows its metadata (EXIF with a thumbnail, ICC profile: tens of KiB).
-  std::string head(256 * 1024, '\0');
-  in.read(head.data(), static_cast<std::streamsize>(head.size()));
-  head.resize(static_cast<size_t>(in.gcount()));
+  // A PNG's size is in its first 33 bytes; a JPEG's frame header follows its metadata (EXIF with
+  // a thumbnail, an ICC profile: tens of KiB), so up to 256 KiB are read where 16 KiB do not reach it.
+  std::string head;
   std::optional<Size> size;
-  if (IsPng(head)) size = PngHeaderSize(head);
-  if (IsJpeg(head)) size = JpegFrameSize(head);
+  for (const size_t reach : {size_t{16 * 1024}, size_t{256 * 1024}}) {
+    const size_t had = head.size();
+    head.resize(reach);
+    in.read(head.data() + had, static_cast<std::streamsize>(reach - had));
+    head.resize(had + static_cast<size_t>(in.gcount()));
+    if (IsPng(head)) size = PngHeaderSize(head);
+    if (IsJpeg(head)) size = JpegFrameSize(head);
+    if (size || head.size() < reach || !IsJpeg(head)) break;
+  }
   if (!size || size->width <= 0 || size->height <= 0 || size->width > INT32_MAX || size->height > INT32_MAX) return std::nullopt;
   return std::pair<int, int>(static_cast<int>(size->width), static_cast<int>(size->height));
 }
