@@ -10,6 +10,21 @@
 //   BM_CaptureDetectFiles     DetectInFiles over 32 PNG files on disk: read, decode, detect,
 //                             account, on 1 or 2 threads (real time: images per second)
 //   BM_RenderView             the renderer, one 640×480 view with blur and noise
+// Bounded time per image (issue 25 item 3), each image once (Iterations = the set's size), with
+// the tail per image as counters (p99_s, max_s: thread CPU seconds) beside the mean:
+//   BM_CaptureDetectHard      DetectTarget on 60 hard views (30 of a 9×6 board, 30 of the 10×10):
+//                             tilted 45°–60° (HardViewPose), squares 12–41 px, blur σ 0–1.5 px,
+//                             noise σ 0–3, lighting falling by 0–60 %; found, wrong ids, RMS
+//   BM_OpenCvHardClassicThenSB  the peer on the same views: cv::findChessboardCorners (adaptive
+//                             threshold), then findChessboardCornersSB where it fails — what
+//                             DetectTarget ran before the bound, and what OpenCV users run —
+//                             with vstcal's steps after it (untimed) for the former accuracy
+//   BM_CaptureBoardless       DetectTarget on images without a board: uniform noise 640×480,
+//                             blurred noise 12 MP, one grey 12 MP, one grey 100 MP
+//   BM_OpenCvBoardless        cv::findChessboardCorners on the board-less images it finishes in
+//                             minutes (noise 640×480, one grey 12 MP); 12 MP blurred noise took
+//                             it 84 s (issue 25)
+//   BM_CaptureDetect12MP      DetectTarget on a 4000×3000 view of the board (squares ≈ 150 px)
 // OpenCV runs single-threaded in the per-image benchmarks (cv::setNumThreads(1)), as it does
 // inside DetectInFiles, which parallelises over images instead.
 #include <benchmark/benchmark.h>
@@ -18,8 +33,13 @@
 #include <opencv2/core/utility.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include <time.h>
+
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 
 #include "support/capture_scenes.h"
 #include "vstcal/capture/chessboard_orientation.h"
@@ -154,12 +174,202 @@ void BM_RenderView(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations());
 }
 
+// Thread CPU seconds of f().
+double CpuSeconds(const std::function<void()>& f) {
+  timespec a{}, b{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &a);
+  f();
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &b);
+  return static_cast<double>(b.tv_sec - a.tv_sec) + 1e-9 * static_cast<double>(b.tv_nsec - a.tv_nsec);
+}
+
+// The tail of per-image times as counters: mean, p99 (nearest rank) and max, CPU seconds.
+void ReportTail(benchmark::State& state, std::vector<double> seconds) {
+  if (seconds.empty()) return;
+  std::sort(seconds.begin(), seconds.end());
+  double sum = 0;
+  for (const double t : seconds) sum += t;
+  const size_t rank = static_cast<size_t>(std::ceil(0.99 * static_cast<double>(seconds.size())));
+  state.counters["mean_s"] = sum / static_cast<double>(seconds.size());
+  state.counters["p99_s"] = seconds[std::max<size_t>(rank, 1) - 1];
+  state.counters["max_s"] = seconds.back();
+  state.counters["images"] = static_cast<double>(seconds.size());
+}
+
+struct HardView {
+  Target board;
+  testing::RenderedView view;
+};
+
+// 60 hard views at 640×480 (f 600) or 1280×720 (f 1000): 30 of the 9×6 board, 30 of the 10×10.
+const std::vector<HardView>& HardViews(int width) {
+  static std::map<int, std::vector<HardView>> sets;
+  std::vector<HardView>& s = sets[width];
+  if (s.empty()) {
+    const bool vga = width == 640;
+    const Camera camera = testing::DistortedCamera(width, vga ? 480 : 720, vga ? 600 : 1000);
+    for (int tb = 0; tb < 2; ++tb) {
+      const Target board = tb == 0 ? testing::Chessboard9x6() : Board();
+      for (int k = 0; k < 30; ++k) {
+        RenderOptions o;
+        o.blur_px = 0.3 * (k % 6);
+        o.noise = k % 4;
+        o.lighting = 0.2 * (k % 4);
+        o.lighting_direction_deg = 37 * k;
+        o.seed = static_cast<uint64_t>(k + 1);
+        const double square_px = 12 + (k * 7) % 30;
+        const Rigid3d pose = testing::HardViewPose(camera, board, square_px, k, static_cast<uint64_t>(11 + tb + (vga ? 0 : 2)));
+        s.push_back({board, testing::RenderTestView(camera, board, pose, o, static_cast<uint32_t>(k))});
+      }
+    }
+  }
+  return s;
+}
+
+// Found views, wrong ids and the corner RMS against the truth, as counters.
+struct Accuracy {
+  size_t found = 0, wrong = 0, matched = 0;
+  double sum2 = 0;
+  void Add(const Detection& d, const testing::RenderedView& view) {
+    if (d.status != DetectionStatus::kFound) return;
+    ++found;
+    const testing::CornerErrors e = testing::CompareWithTruth(d, view);
+    wrong += static_cast<size_t>(e.wrong_id);
+    sum2 += e.rms_px * e.rms_px * e.matched;
+    matched += static_cast<size_t>(e.matched);
+  }
+  void Report(benchmark::State& state) const {
+    state.counters["found"] = static_cast<double>(found);
+    state.counters["wrong_ids"] = static_cast<double>(wrong);
+    state.counters["rms_px"] = matched > 0 ? std::sqrt(sum2 / static_cast<double>(matched)) : 0.0;
+  }
+};
+
+void BM_CaptureDetectHard(benchmark::State& state) {
+  cv::setNumThreads(1);
+  const std::vector<HardView>& views = HardViews(static_cast<int>(state.range(0)));
+  size_t k = 0;
+  Accuracy accuracy;
+  std::vector<double> seconds;
+  for (auto _ : state) {
+    const HardView& h = views[k++ % views.size()];
+    Detection d;
+    seconds.push_back(CpuSeconds([&] { d = DetectTarget(h.view.image, h.board, DetectorOptions{}); }));
+    accuracy.Add(d, h.view);
+  }
+  accuracy.Report(state);
+  ReportTail(state, seconds);
+}
+
+// The peer's finders timed; vstcal's steps (orientation, refinement, blur: ≈ 0.25 ms) then run
+// untimed on their corners, for the accuracy of the pipeline DetectTarget was before the bound.
+void BM_OpenCvHardClassicThenSB(benchmark::State& state) {
+  cv::setNumThreads(1);
+  const std::vector<HardView>& views = HardViews(static_cast<int>(state.range(0)));
+  size_t k = 0;
+  Accuracy accuracy;
+  std::vector<double> seconds;
+  std::vector<cv::Point2f> corners;
+  for (auto _ : state) {
+    const HardView& h = views[k++ % views.size()];
+    const cv::Mat gray = AsMat(h.view.image);
+    const cv::Size size(h.board.cols, h.board.rows);
+    bool ok = false;
+    seconds.push_back(CpuSeconds([&] {
+      ok = cv::findChessboardCorners(gray, size, corners, cv::CALIB_CB_ADAPTIVE_THRESH | cv::CALIB_CB_NORMALIZE_IMAGE) ||
+           cv::findChessboardCornersSB(gray, size, corners, cv::CALIB_CB_NORMALIZE_IMAGE);
+    }));
+    if (!ok) continue;
+    std::vector<Eigen::Vector2d> grid;
+    for (const cv::Point2f& p : corners) grid.emplace_back(p.x, p.y);
+    const GridOrientation o = OrientChessboard(h.view.image, h.board, grid, false);
+    if (!o.problem.empty()) continue;
+    Detection d;
+    d.corners.resize(grid.size());
+    for (size_t id = 0; id < grid.size(); ++id) d.corners[id] = {static_cast<int>(id), grid[o.detected_index[id]]};
+    RefineXCorners(h.view.image, h.board, CornerRefiner::kSymmetry, 0.4, &d.corners);
+    d.blur_px = MedianGridEdgeBlur(h.view.image, h.board, d.corners, 0.4);
+    d.status = DetectionStatus::kFound;
+    Conclude(DetectorOptions{}, &d);
+    accuracy.Add(d, h.view);
+  }
+  accuracy.Report(state);
+  ReportTail(state, seconds);
+}
+
+// Board-less images: 0 uniform noise 640×480, 1 blurred noise (σ 2 px) 4000×3000, 2 one grey
+// 4000×3000, 3 one grey 10000×10000 (the largest image calib-capture reads).
+GrayImage Boardless(int which) {
+  const int w = which == 0 ? 640 : which == 3 ? 10000 : 4000, h = which == 0 ? 480 : which == 3 ? 10000 : 3000;
+  GrayImage image(w, h, 128);
+  if (which <= 1) {
+    cv::Mat m = AsMat(image);
+    cv::setRNGSeed(7);
+    cv::randu(m, 0, 256);
+    if (which == 1) cv::GaussianBlur(m, m, cv::Size(0, 0), 2);
+  }
+  return image;
+}
+
+void BM_CaptureBoardless(benchmark::State& state) {
+  cv::setNumThreads(1);
+  const GrayImage image = Boardless(static_cast<int>(state.range(0)));
+  size_t found = 0;
+  std::vector<double> seconds;
+  for (auto _ : state) {
+    Detection d;
+    seconds.push_back(CpuSeconds([&] { d = DetectTarget(image, Board(), DetectorOptions{}); }));
+    found += d.status != DetectionStatus::kNotFound;
+  }
+  if (found != 0) state.SkipWithError("a board was found in a board-less image");
+  ReportTail(state, seconds);
+}
+
+void BM_OpenCvBoardless(benchmark::State& state) {
+  cv::setNumThreads(1);
+  const GrayImage image = Boardless(static_cast<int>(state.range(0)));
+  std::vector<cv::Point2f> corners;
+  std::vector<double> seconds;
+  for (auto _ : state) {
+    seconds.push_back(CpuSeconds([&] {
+      cv::findChessboardCorners(AsMat(image), cv::Size(10, 10), corners, cv::CALIB_CB_ADAPTIVE_THRESH | cv::CALIB_CB_NORMALIZE_IMAGE);
+    }));
+  }
+  ReportTail(state, seconds);
+}
+
+void BM_CaptureDetect12MP(benchmark::State& state) {
+  cv::setNumThreads(1);
+  static const testing::RenderedView view = [] {
+    const Camera camera = testing::DistortedCamera(4000, 3000, 3000);
+    RenderOptions o;
+    o.blur_px = 1.5;
+    o.noise = 2;
+    return testing::RenderTestView(camera, Board(), testing::TestViewPose(camera, Board(), 150, 3, 9), o, 3);
+  }();
+  std::vector<double> seconds;
+  double rms = 0;
+  for (auto _ : state) {
+    Detection d;
+    seconds.push_back(CpuSeconds([&] { d = DetectTarget(view.image, Board(), DetectorOptions{}); }));
+    if (d.status != DetectionStatus::kFound) state.SkipWithError("the 12 MP view was not found");
+    rms = testing::CompareWithTruth(d, view).rms_px;
+  }
+  state.counters["rms_px"] = rms;
+  ReportTail(state, seconds);
+}
+
 BENCHMARK(BM_CaptureDetect)->Arg(640)->Arg(1280)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_OpenCvFindChessboard)->Arg(640)->Arg(1280)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_OpenCvFindAndSubPix)->Arg(640)->Arg(1280)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_CaptureSteps)->Arg(640)->Arg(1280)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_CaptureDetectFiles)->Args({640, 1})->Args({640, 2})->Args({1280, 2})->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_RenderView)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_CaptureDetectHard)->Arg(640)->Arg(1280)->Iterations(60)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_OpenCvHardClassicThenSB)->Arg(640)->Arg(1280)->Iterations(60)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_CaptureBoardless)->Arg(0)->Arg(1)->Arg(2)->Arg(3)->Iterations(3)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_OpenCvBoardless)->Arg(0)->Arg(2)->Iterations(1)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_CaptureDetect12MP)->Iterations(3)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 

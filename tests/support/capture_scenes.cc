@@ -52,13 +52,16 @@ Camera DistortedCamera(int width, int height, double f) {
   return Camera::FromK(pinhole.K(), pinhole.image_size, RadialTangentialModel{}, d);
 }
 
-Rigid3d TestViewPose(const Camera& camera, const Target& target, double square_px, int k, uint64_t seed,
-                     double extra_roll_deg) {
+namespace {
+
+Rigid3d ViewPose(const Camera& camera, const Target& target, double square_px, int k, uint64_t seed, double extra_roll_deg,
+                 double min_tilt_deg, double max_tilt_deg) {
   const CounterRng rng(seed, 0x5CE7u);
   const auto a = rng.Uniform2(static_cast<uint64_t>(k), 0), b = rng.Uniform2(static_cast<uint64_t>(k), 1);
   const double square = target.type == TargetType::kAprilTagGrid ? target.tag_size : target.square_size;
   const double depth = camera.params[0] * square / square_px;
-  const double tilt = DegToRad(35.0) * a[0], axis = 2 * kPi * a[1];
+  // Written so that a minimum of 0 gives exactly the former DegToRad(35.0) * a[0].
+  const double tilt = DegToRad(min_tilt_deg) + (DegToRad(max_tilt_deg) - DegToRad(min_tilt_deg)) * a[0], axis = 2 * kPi * a[1];
   const double roll = DegToRad(60.0 * (b[0] - 0.5) + extra_roll_deg);
   const Eigen::Matrix3d R = RotationFromRotvec(Eigen::Vector3d(tilt * std::cos(axis), tilt * std::sin(axis), 0)) *
                             RotationFromRotvec(Eigen::Vector3d(0, 0, roll));
@@ -67,6 +70,17 @@ Rigid3d TestViewPose(const Camera& camera, const Target& target, double square_p
   const Eigen::Vector3d centre(0.5 * (lo.x() + hi.x()), 0.5 * (lo.y() + hi.y()), 0);
   const Eigen::Vector3d shift(0.05 * depth * (b[1] - 0.5), 0, depth);
   return Rigid3d{R, shift - R * centre};
+}
+
+}  // namespace
+
+Rigid3d TestViewPose(const Camera& camera, const Target& target, double square_px, int k, uint64_t seed,
+                     double extra_roll_deg) {
+  return ViewPose(camera, target, square_px, k, seed, extra_roll_deg, 0, 35);
+}
+
+Rigid3d HardViewPose(const Camera& camera, const Target& target, double square_px, int k, uint64_t seed) {
+  return ViewPose(camera, target, square_px, k, seed, 0, 45, 60);
 }
 
 RenderedView RenderTestView(const Camera& camera, const Target& target, const Rigid3d& camera_from_board,

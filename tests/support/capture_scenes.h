@@ -39,6 +39,8 @@ struct RenderedView {
 // (plus `extra_roll_deg`), all from Philox draws keyed by (seed, k).
 Rigid3d TestViewPose(const Camera& camera, const Target& target, double square_px, int k, uint64_t seed,
                      double extra_roll_deg = 0);
+// The same family tilted by 45° to 60° (the hard views of bench_capture and the bounded-time tests).
+Rigid3d HardViewPose(const Camera& camera, const Target& target, double square_px, int k, uint64_t seed);
 RenderedView RenderTestView(const Camera& camera, const Target& target, const Rigid3d& camera_from_board,
                             const RenderOptions& options, uint32_t view);
 

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <condition_variable>
 #include <map>
 #include <mutex>
 #include <set>
@@ -53,6 +54,52 @@ class SharedProgress {
   size_t total_, done_ = 0;
   std::mutex mutex_;
 };
+
+// Memory of a capture at any thread count: an image holds its decoded pixels twice while it is
+// decoded (OpenCV's matrix and the GrayImage), and the finders work on a copy of at most 1 MP
+// (detect_chessboard.cc) with their own buffers, under kFinderBytes. Images start only while the
+// bytes reserved stay under kBytesInFlight (one image alone always may: a 100 MP image takes
+// about 300 MB), so a capture stays under 1 GB whatever the thread count.
+constexpr double kBytesInFlight = 768e6;
+constexpr double kFinderBytes = 48e6;
+
+class MemoryGate {
+ public:
+  // Holds `bytes` of the gate from construction (waiting until they fit, or until nothing else
+  // is in flight) to destruction.
+  class Pass {
+   public:
+    Pass(MemoryGate& gate, double bytes) : gate_(gate), bytes_(bytes) { gate_.Enter(bytes_); }
+    ~Pass() { gate_.Leave(bytes_); }
+    Pass(const Pass&) = delete;
+    Pass& operator=(const Pass&) = delete;
+
+   private:
+    MemoryGate& gate_;
+    double bytes_;
+  };
+
+ private:
+  void Enter(double bytes) {
+    std::unique_lock<std::mutex> lock(mutex_);
+    freed_.wait(lock, [&] { return in_flight_ == 0 || in_flight_ + bytes <= kBytesInFlight; });
+    in_flight_ += bytes;
+  }
+  void Leave(double bytes) {
+    {
+      const std::lock_guard<std::mutex> lock(mutex_);
+      in_flight_ -= bytes;
+    }
+    freed_.notify_all();
+  }
+
+  std::mutex mutex_;
+  std::condition_variable freed_;
+  double in_flight_ = 0;
+};
+
+// What an image of `pixels` reserves (kMaxImageMegapixels when its header gave no size).
+double ImageBytes(std::optional<double> pixels) { return 2 * pixels.value_or(kMaxImageMegapixels * 1e6) + kFinderBytes; }
 
 std::string TargetName(const DetectRequest& r) { return r.target_file.empty() ? "the target" : r.target_file; }
 
@@ -193,6 +240,21 @@ CaptureResult DetectInFiles(const std::vector<CaptureInput>& inputs, const Detec
     if (!inserted) throw InputError(inputs[k].image + ": listed twice (also as " + inputs[it->second].image + "); list each image once");
   }
 
+  // Sizes from the headers first: images of mixed sizes are refused before any is searched.
+  std::vector<std::optional<std::pair<int, int>>> header_sizes(inputs.size());
+  std::optional<size_t> first_sized;
+  for (size_t k = 0; k < inputs.size(); ++k) {
+    header_sizes[k] = ReadImageHeaderSize(inputs[k].path);
+    if (!header_sizes[k]) continue;
+    if (!first_sized) first_sized = k;
+    const auto [w, h] = *header_sizes[k];
+    const auto [rw, rh] = *header_sizes[*first_sized];
+    if (w != rw || h != rh) {
+      throw InputError(inputs[k].image + ": " + Size(w, h) + " pixels, but " + inputs[*first_sized].image + " has " + Size(rw, rh) +
+                       "; one calibration takes images of one camera at one size");
+    }
+  }
+
   struct Slot {
     std::string problem;
     uint64_t digest = 0;
@@ -203,7 +265,11 @@ CaptureResult DetectInFiles(const std::vector<CaptureInput>& inputs, const Detec
   {
     const OpenCvSingleThreaded single;
     SharedProgress shared(progress, inputs.size());
+    MemoryGate gate;
     ParallelFor(inputs.size(), request.threads, [&](size_t k) {
+      std::optional<double> pixels;
+      if (header_sizes[k]) pixels = static_cast<double>(header_sizes[k]->first) * header_sizes[k]->second;
+      const MemoryGate::Pass pass(gate, ImageBytes(pixels));
       LoadedImage loaded = LoadImageFile(inputs[k].path);
       Slot& s = slots[k];
       s.problem = std::move(loaded.problem);
@@ -296,7 +362,13 @@ CaptureResult DetectInVideo(const VideoRequest& video, const DetectRequest& requ
     // A batch of frames read in order, then searched in parallel.
     std::vector<std::pair<long, GrayImage>> batch;
     std::vector<double> batch_times;
-    for (; batch.size() < 4 * threads && records.size() + batch.size() < limit; ++frame) {
+    // Up to 4 frames a thread, fewer where their pixels would pass the memory bound (MemoryGate).
+    size_t max_batch = 4 * threads;
+    if (width > 0) {
+      const double frame_bytes = static_cast<double>(width) * height + kFinderBytes;
+      max_batch = std::clamp<size_t>(static_cast<size_t>(kBytesInFlight / frame_bytes), 1, max_batch);
+    }
+    for (; batch.size() < max_batch && records.size() + batch.size() < limit; ++frame) {
       if (frame % video.every != 0) {
         if (!capture.grab()) break;
         continue;

@@ -29,8 +29,15 @@ bool IsPng(const std::string& b) { return b.size() >= 8 && b.compare(0, 8, "\x89
 bool IsJpeg(const std::string& b) { return b.size() >= 3 && b.compare(0, 3, "\xFF\xD8\xFF") == 0; }
 
 // The header's size, or a problem.
+// The IHDR chunk's size, from the first 33 bytes.
+std::optional<Size> PngHeaderSize(const std::string& b) {
+  if (b.size() < 33 || b.compare(12, 4, "IHDR") != 0) return std::nullopt;
+  return Size{BigEndian32(b, 16), BigEndian32(b, 20)};
+}
+
 std::optional<Size> PngSize(const std::string& b, std::string* problem) {
-  if (b.size() < 33 || b.compare(12, 4, "IHDR") != 0) {
+  const std::optional<Size> size = PngHeaderSize(b);
+  if (!size) {
     *problem = "truncated PNG (no complete IHDR header)";
     return std::nullopt;
   }
@@ -39,17 +46,12 @@ std::optional<Size> PngSize(const std::string& b, std::string* problem) {
     *problem = "truncated PNG (it does not end with the IEND chunk)";
     return std::nullopt;
   }
-  return Size{BigEndian32(b, 16), BigEndian32(b, 20)};
+  return size;
 }
 
-std::optional<Size> JpegSize(const std::string& b, std::string* problem) {
-  // A complete JPEG ends with EOI (FF D9); some cameras pad after it, so look at the last 4 KiB.
-  const size_t tail = b.size() > 4096 ? b.size() - 4096 : 2;
-  if (b.find("\xFF\xD9", tail) == std::string::npos) {
-    *problem = "truncated JPEG (no end-of-image marker FF D9 at the end)";
-    return std::nullopt;
-  }
-  // Walk the markers to the first start-of-frame (SOF0 … SOF15 but DHT C4, JPG C8, DAC CC).
+// The first start-of-frame's size (SOF0 … SOF15 but DHT C4, JPG C8, DAC CC), walking the markers
+// of `b` (the file or its beginning); nullopt when none is reached.
+std::optional<Size> JpegFrameSize(const std::string& b) {
   size_t at = 2;
   while (at + 9 < b.size()) {
     if (static_cast<uint8_t>(b[at]) != 0xFF) break;
@@ -65,8 +67,19 @@ std::optional<Size> JpegSize(const std::string& b, std::string* problem) {
     if (length < 2) break;
     at += 2 + length;
   }
-  *problem = "corrupt JPEG (no frame header before the image data)";
   return std::nullopt;
+}
+
+std::optional<Size> JpegSize(const std::string& b, std::string* problem) {
+  // A complete JPEG ends with EOI (FF D9); some cameras pad after it, so look at the last 4 KiB.
+  const size_t tail = b.size() > 4096 ? b.size() - 4096 : 2;
+  if (b.find("\xFF\xD9", tail) == std::string::npos) {
+    *problem = "truncated JPEG (no end-of-image marker FF D9 at the end)";
+    return std::nullopt;
+  }
+  const std::optional<Size> size = JpegFrameSize(b);
+  if (!size) *problem = "corrupt JPEG (no frame header before the image data)";
+  return size;
 }
 
 uint64_t Fnv1a(const std::string& bytes) {
@@ -142,9 +155,37 @@ LoadedImage LoadImageFile(const std::filesystem::path& path) {
     out.problem = std::string("cannot open (") + std::strerror(errno) + ")";
     return out;
   }
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
-  return DecodeImage(buffer.str());
+  // One copy of the bytes (a string stream would hold two while a 100 MP file is decoded).
+  std::string bytes(ec ? 0 : static_cast<size_t>(bytes_on_disk), '\0');
+  if (ec) {
+    std::ostringstream buffer;
+    buffer << in.rdbuf();
+    bytes = buffer.str();
+  } else if (!in.read(bytes.data(), static_cast<std::streamsize>(bytes.size())) || in.peek() != std::char_traits<char>::eof()) {
+    out.problem = "the file changed while it was read";
+    return out;
+  }
+  return DecodeImage(bytes);
+}
+
+std::optional<std::pair<int, int>> ReadImageHeaderSize(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return std::nullopt;
+  // A PNG's size is in its first 33 bytes; a JPEG's frame header follows its metadata (EXIF with
+  // a thumbnail, an ICC profile: tens of KiB), so up to 256 KiB are read where 16 KiB do not reach it.
+  std::string head;
+  std::optional<Size> size;
+  for (const size_t reach : {size_t{16 * 1024}, size_t{256 * 1024}}) {
+    const size_t had = head.size();
+    head.resize(reach);
+    in.read(head.data() + had, static_cast<std::streamsize>(reach - had));
+    head.resize(had + static_cast<size_t>(in.gcount()));
+    if (IsPng(head)) size = PngHeaderSize(head);
+    if (IsJpeg(head)) size = JpegFrameSize(head);
+    if (size || head.size() < reach || !IsJpeg(head)) break;
+  }
+  if (!size || size->width <= 0 || size->height <= 0 || size->width > INT32_MAX || size->height > INT32_MAX) return std::nullopt;
+  return std::pair<int, int>(static_cast<int>(size->width), static_cast<int>(size->height));
 }
 
 }  // namespace vstcal

@@ -5,7 +5,9 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
+#include <utility>
 
 #include "vstcal/image/image.h"
 
@@ -25,6 +27,11 @@ struct LoadedImage {
 // the header before anything is decoded.
 LoadedImage LoadImageFile(const std::filesystem::path& path);
 LoadedImage DecodeImage(const std::string& bytes);
+
+// The width and height a PNG's or JPEG's header states, read from the file's first 256 KiB
+// without decoding (nullopt for other formats, unreadable files and headers not in that reach):
+// lets a capture refuse images of mixed sizes before it searches any of them.
+std::optional<std::pair<int, int>> ReadImageHeaderSize(const std::filesystem::path& path);
 
 // Writes nothing; PNG bytes of a grey image are capture/target_drawing.h's EncodePng.
 
