@@ -180,10 +180,16 @@ HandEyeSolution SolveHandEye(const Camera& camera, std::span<const TrackedPose> 
   out.rms_px = std::sqrt(2 * cost / residuals);
   out.sigma_px = residuals > 13 ? std::sqrt(2 * cost / (residuals - 13)) : 0.0;
   out.covariance = out.sigma_px * out.sigma_px * (J.transpose() * J).inverse();
-  out.names = {"hmd_from_camera.rx", "hmd_from_camera.ry", "hmd_from_camera.rz", "hmd_from_camera.tx", "hmd_from_camera.ty",
-               "hmd_from_camera.tz", "tracker_from_board.rx", "tracker_from_board.ry", "tracker_from_board.rz",
-               "tracker_from_board.tx", "tracker_from_board.ty", "tracker_from_board.tz", "time_offset"};
+  out.names = HandEyeCovarianceNames();
   return out;
+}
+
+const std::vector<std::string>& HandEyeCovarianceNames() {
+  static const std::vector<std::string> names = {
+      "hmd_from_camera.rx",    "hmd_from_camera.ry",    "hmd_from_camera.rz",    "hmd_from_camera.tx",    "hmd_from_camera.ty",
+      "hmd_from_camera.tz",    "tracker_from_board.rx", "tracker_from_board.ry", "tracker_from_board.rz", "tracker_from_board.tx",
+      "tracker_from_board.ty", "tracker_from_board.tz", "time_offset"};
+  return names;
 }
 
 }  // namespace vstcal

@@ -91,6 +91,10 @@ struct HandEyeSolution {
   double start_time_offset = 0;
 };
 
+// The names of HandEyeSolution::covariance's rows, in order: X's left-perturbation tangent (ω rad,
+// ρ length unit; hmd frame), Z's (tracker frame), δ (s). handeye@1 writes them; err-sim reads them.
+const std::vector<std::string>& HandEyeCovarianceNames();
+
 // Throws InputError for a log that is not strictly increasing in time or has fewer than 2 reports,
 // a view outside the log's span, and DegenerateError (closed_form.h) for too few views or motion
 // about one axis.
