@@ -528,7 +528,7 @@ class SourcesReader {
       if (!cov) {
         ExpectKeys(eye, names, "lens parameter of camera_intrinsic");
         for (const std::string_view name : names) {
-          if (const auto term = eye.find(name)) spec_->terms.push_back({Term::kLens, key, std::string(name), ReadDistribution(*term, 1)});
+          if (const auto term = eye.find(name)) spec_->terms.push_back({Term::kLens, key, std::string(name), ReadDistribution(*term, 1), ""});
         }
         return;
       }
