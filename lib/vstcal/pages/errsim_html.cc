@@ -149,7 +149,7 @@ std::string Budget(const OrderedJson& r) {
     s += Table("ranked by " + measure,
                "<th>source</th><th>share of mean square</th><th>alone RMS (" + unit + ")</th><th>whole chain, halved (" +
                    unit + ")</th><th>share of image mean square</th><th>image RMS halved (px)</th><th>correction</th>"
-                   "<th>distributions (measured: from a file; assumed: typed into the chain)</th>",
+                   "<th title=\"measured: from a calibration's file; assumed: typed into the chain\">distributions</th>",
                rows);
   }
   return s + "</section>\n";
