@@ -9,8 +9,10 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <map>
 
 #include "support/stereo_rigs.h"
+#include "vstcal/core/error.h"
 #include "vstcal/errsim/budget.h"
 #include "vstcal/errsim/chain.h"
 #include "vstcal/errsim/simulation.h"
@@ -139,12 +141,12 @@ class ErrSimHandEye : public ::testing::Test {
   std::filesystem::path dir_;
 };
 
-struct Run {
+struct RunReport {
   OrderedJson json;
   std::string text;
 };
 
-Run ReportOf(const ChainModel& model, bool budget) {
+RunReport ReportOf(const ChainModel& model, bool budget) {
   SimulationOptions options;
   options.samples = model.samples;
   options.budget = budget;
@@ -175,7 +177,7 @@ TEST_F(ErrSimHandEye, ChainFromAMeasurementIsTheHandWrittenChain) {
   // The right camera through the rig: right_from_left · X⁻¹.
   const Rigid3d right = rig_.right_from_left * he_.hmd_from_camera.inverse();
   EXPECT_LT((measured.geometry.camera_from_hmd[1].t - right.t).norm(), 1e-12);
-  const Run a = ReportOf(measured, true), b = ReportOf(by_hand, true);
+  const RunReport a = ReportOf(measured, true), b = ReportOf(by_hand, true);
   EXPECT_EQ(DumpJson(WithoutOrigins(a.json)), DumpJson(WithoutOrigins(b.json)));  // same seed: the same bits
   EXPECT_NE(DumpJson(a.json), DumpJson(b.json));                                  // but not the same provenance
   EXPECT_EQ(DumpJson(ReportOf(measured, false).json), DumpJson(ReportOf(by_hand, false).json));
@@ -260,7 +262,7 @@ TEST_F(ErrSimHandEye, BudgetSaysWhereEachDistributionCameFrom) {
   EXPECT_EQ(OriginsOf(m, {Term::kCameraRotation, Term::kCameraTranslation}), std::vector{rig});
   EXPECT_EQ(OriginsOf(m, {Term::kIpd}), std::vector{DistributionOrigin{}});
 
-  const Run r = ReportOf(m, true);
+  const RunReport r = ReportOf(m, true);
   std::map<std::string, OrderedJson> by_source;
   for (const auto& e : r.json.at("budget").at("entries")) by_source[e.at("source").get<std::string>()] = e;
   ASSERT_EQ(by_source.size(), 4u);

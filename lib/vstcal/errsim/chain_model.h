@@ -90,7 +90,7 @@ struct ChainParameter {
   Source source = Source::kTrackerAlignment;
   Distribution distribution = Distribution::MakeFixed(0);
   const std::string& name() const { return slot.name; }
-  DistributionOrigin origin;  // assumed unless the chain reader says otherwise
+  DistributionOrigin origin = {};  // assumed unless the chain reader says otherwise
 };
 
 struct ChainModel {

@@ -389,8 +389,7 @@ std::string ReportText(const ChainEvaluator& chain, const SimulationResult& resu
     // Where each source's σ's come from, beside what it does alone (misregistration): a budget built
     // from measurements reads differently from one built from guesses.
     out << "  where the distributions come from (measured: a calibration's file; assumed: typed into the chain), "
-           "each source alone:
-";
+           "each source alone:\n";
     for (const size_t i : budget.by_misregistration) {
       const BudgetEntry& e = budget.entries[i];
       const std::string key(SourceKey(e.source));
