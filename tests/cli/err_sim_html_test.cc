@@ -55,6 +55,13 @@ TEST_F(CliErrSimHtml, RendersOfflineWithEveryImageAndTheJsonsNumbers) {
     EXPECT_EQ(report.at(Json::json_pointer(entry + "/source")), report["budget"]["ranking"]["misregistration"][i]) << i;
   }
 
+  // Where each row's distributions came from (issue 21 item 4): seed 001 types every σ, so every
+  // source and term row of both ranked tables says "assumed".
+  size_t assumed = 0;
+  for (size_t at = 0; (at = dom.out.find("<td class=\"origin\" style=\"text-align:left\">assumed</td>", at)) != std::string::npos; ++at) ++assumed;
+  EXPECT_EQ(assumed, 2 * (sources + terms));
+  for (const Json& e : report["budget"]["entries"]) EXPECT_EQ(e["origin"], Json::parse(R"([{"kind": "assumed"}])")) << e["source"];
+
   EXPECT_EQ(ImagesLoaded("out/run.html"), "5 loaded, 0 broken");
   EXPECT_EQ(TablesWiderThanThePage("out/run.html", 1000), "none");
   ExpectScreenshot("out/run.html", "err-sim.png", 1000, 2400);

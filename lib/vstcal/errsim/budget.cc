@@ -73,10 +73,14 @@ ErrorBudget Budget(const ChainModel& model, const SimulationResult& result) {
     BudgetEntry e{source, Totals(model, ScenarioSummary(result, "alone:" + key), OutputSet::kTotals),
                   Totals(model, ScenarioSummary(result, "halved:" + key), OutputSet::kTotals), {}};
     const std::vector<TermGroup> terms = ActiveTerms(model, source);
+    std::vector<Term> all_terms;
     for (const TermGroup& t : terms) {
       e.terms.push_back({t.name, terms.size() == 1 ? e.alone
                                                    : Totals(model, ScenarioSummary(result, "term:" + t.name), OutputSet::kTotals)});
+      e.terms.back().origins = OriginsOf(model, t.terms);
+      all_terms.insert(all_terms.end(), t.terms.begin(), t.terms.end());
     }
+    e.origins = OriginsOf(model, all_terms);
     budget.entries.push_back(std::move(e));
   }
   const ScenarioTotals all = Totals(model, ScenarioSummary(result, "all"), OutputSet::kFull);

@@ -35,6 +35,7 @@ struct TermPart {
   std::string name;  // "display.screen_shift"
   ScenarioTotals alone;
   double share_of_image_ms = 0, share_of_misregistration_ms = 0, share_of_misperception_ms = 0;
+  std::vector<DistributionOrigin> origins = {};  // where its distributions came from (OriginsOf)
 };
 
 struct BudgetEntry {
@@ -46,6 +47,7 @@ struct BudgetEntry {
   double share_of_image_ms = 0;
   double share_of_misregistration_ms = 0;
   double share_of_misperception_ms = 0;
+  std::vector<DistributionOrigin> origins = {};  // of all its terms
 };
 
 // One measure's whole: the whole chain's mean square, the sum of the sources' alone mean squares,

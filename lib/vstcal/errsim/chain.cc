@@ -52,6 +52,8 @@ ChainEvaluator::ChainEvaluator(const ChainModel& model) : model_(model), layout_
                    g.camera_from_hmd[e].R == Eigen::Matrix3d::Identity(), -0.5, camera.image_size.width - 0.5, -0.5,
                    camera.image_size.height - 0.5};
   }
+  mount_mixing_is_identity_ = model_.mount_mixing.isIdentity(0.0);
+  tracker_alignment_mixing_is_identity_ = model_.tracker_alignment_mixing.isIdentity(0.0);
   for (const ChainTestPoint& tp : g.test_points) {
     point_in_object_.push_back(object_from_world * tp.point_in_world);
     point_in_hmd_.push_back(hmd_from_world * tp.point_in_world);

@@ -124,11 +124,10 @@ class ChainEvaluator {
   // The chain at θ whose slots are read as they are (no coupling between the eyes).
   template <typename T>
   void EvaluateUncoupled(const T* theta, ChainSample<T>* out) const;
-  // (ω, ρ) ← M·(ω, ρ) with M = model().extrinsic_mixing[eye]: standard normals to a rig's
-  // correlated camera-pose error. Summed in j order, so every scalar type gives the same bits.
+  // (ω, ρ) ← M·(ω, ρ): standard normals to a measured covariance's correlated pose error (a rig's
+  // right_from_left, a hand-eye X or Z). Summed in j order, so every scalar type gives the same bits.
   template <typename T>
-  void MixExtrinsic(int eye, Vec3<T>* omega, Vec3<T>* rho) const {
-    const ChainModel::Matrix6d& m = model_.extrinsic_mixing[eye];
+  static void MixPose(const ChainModel::Matrix6d& m, Vec3<T>* omega, Vec3<T>* rho) {
     const std::array<T, 6> z = {(*omega)(0), (*omega)(1), (*omega)(2), (*rho)(0), (*rho)(1), (*rho)(2)};
     for (int i = 0; i < 6; ++i) {
       T sum = m(i, 0) * z[0];
@@ -147,6 +146,7 @@ class ChainEvaluator {
   std::array<Eigen::Vector3d, kNumEyes> baseline_step_;  // ρ per unit of baseline error, camera frame
   std::array<Eigen::Vector3d, kNumEyes> design_eyepoint_;
   std::array<bool, kNumEyes> mixing_is_identity_, extrinsic_mixing_is_identity_;
+  bool mount_mixing_is_identity_ = true, tracker_alignment_mixing_is_identity_ = true;
   std::vector<Eigen::Vector3d> point_in_object_, point_in_hmd_;
   std::array<std::vector<Eigen::Vector2d>, kNumEyes> real_pixel_, real_centred_;  // q, and q − principal point
   std::array<std::vector<double>, kNumEyes> real_depth_, surface_disparity_;
@@ -230,8 +230,10 @@ void ChainEvaluator::Evaluate(const T* theta, ChainSample<T>* out) const {
 template <typename T>
 void ChainEvaluator::EvaluateUncoupled(const T* theta, ChainSample<T>* out) const {
   namespace fo = fixed_order;
-  const Rigid3<T> tracker_from_virtual = fo::PerturbLeft(tracker_from_virtual_, Vec(At(theta, Term::kTrackerAlignmentRotation)),
-                                                         Vec(At(theta, Term::kTrackerAlignmentTranslation)));
+  Vec3<T> alignment_omega = Vec(At(theta, Term::kTrackerAlignmentRotation)),
+          alignment_rho = Vec(At(theta, Term::kTrackerAlignmentTranslation));
+  if (!tracker_alignment_mixing_is_identity_) MixPose(model_.tracker_alignment_mixing, &alignment_omega, &alignment_rho);
+  const Rigid3<T> tracker_from_virtual = fo::PerturbLeft(tracker_from_virtual_, alignment_omega, alignment_rho);
   const Rigid3<T> virtual_from_object = VirtualFromObject(theta);
 
   // The renderer's pose is older than the video frame by the tracking and render latencies: the
@@ -243,14 +245,15 @@ void ChainEvaluator::EvaluateUncoupled(const T* theta, ChainSample<T>* out) cons
   const Rigid3<T> hmd_from_tracker =
       fo::PerturbLeft(lagged, Vec(At(theta, Term::kTrackingRotation)), Vec(At(theta, Term::kTrackingTranslation)));
   // The stereo rig's mount error is common to both eyes: camera_from_hmd_e · (Exp(ω), ρ) · hmd_from_object.
+  Vec3<T> mount_omega = Vec(At(theta, Term::kRigRotation)), mount_rho = Vec(At(theta, Term::kRigTranslation));
+  if (!mount_mixing_is_identity_) MixPose(model_.mount_mixing, &mount_omega, &mount_rho);
   const Rigid3<T> hmd_from_object =
-      fo::PerturbLeft(fo::Compose(hmd_from_tracker, fo::Compose(tracker_from_virtual, virtual_from_object)),
-                      Vec(At(theta, Term::kRigRotation)), Vec(At(theta, Term::kRigTranslation)));
+      fo::PerturbLeft(fo::Compose(hmd_from_tracker, fo::Compose(tracker_from_virtual, virtual_from_object)), mount_omega, mount_rho);
 
   const T baseline = At(theta, Term::kBaseline)[0];
   auto camera_from_object_of = [&](int e) {
     Vec3<T> omega = Vec(At(theta, Term::kCameraRotation, e)), rho = Vec(At(theta, Term::kCameraTranslation, e));
-    if (!extrinsic_mixing_is_identity_[e]) MixExtrinsic(e, &omega, &rho);
+    if (!extrinsic_mixing_is_identity_[e]) MixPose(model_.extrinsic_mixing[e], &omega, &rho);
     rho += baseline_step_[e].cast<T>() * baseline;
     return fo::Compose(fo::PerturbLeft(camera_from_hmd_[e], omega, rho), hmd_from_object);
   };

@@ -74,12 +74,23 @@ struct ChainGeometry {
 // The distribution of s·θ, for θ ~ d (halving a source is Scaled(d, 0.5)); s ≥ 0.
 Distribution Scaled(const Distribution& d, double s);
 
+// Where a parameter's distribution came from (issue 21 item 4; docs/formats.md#err-sim-report):
+// typed into the chain ("assumed"), or a measurement's file — a camera@1 or stereo@1 covariance, a
+// handeye@1 or tracker-noise@1 file ("measured").
+struct DistributionOrigin {
+  std::string file;    // as the chain names it; empty: assumed
+  std::string format;  // "vstcal/camera@1", "vstcal/stereo@1", "vstcal/handeye@1", "vstcal/tracker-noise@1"
+  bool measured() const { return !file.empty(); }
+  bool operator==(const DistributionOrigin&) const = default;
+};
+
 // One slot of θ with its distribution (internal units; file units in `slot`).
 struct ChainParameter {
   SlotInfo slot;
   Source source = Source::kTrackerAlignment;
   Distribution distribution = Distribution::MakeFixed(0);
   const std::string& name() const { return slot.name; }
+  DistributionOrigin origin = {};  // assumed unless the chain reader says otherwise
 };
 
 struct ChainModel {
@@ -116,6 +127,13 @@ struct ChainModel {
   std::vector<ChainParameter> parameters;  // size layout.size(), in θ order
   uint64_t samples = 0;
   uint64_t seed = 0;
+
+  // Pose errors of the whole camera head (θ's kRigRotation, kRigTranslation: the mount, hmd frame)
+  // and of the tracker's alignment (kTrackerAlignmentRotation, kTrackerAlignmentTranslation) as
+  // mixed from six standard normals: (ω, ρ) = M·z, M = V Λ^½ of a measured 6×6 covariance (a
+  // handeye@1 file's X or Z block; docs/math/vst-chain.md#measured-chain). Identity: σ's per component.
+  Matrix6d mount_mixing = Matrix6d::Identity();
+  Matrix6d tracker_alignment_mixing = Matrix6d::Identity();
 
   // A model with every parameter at fixed 0. The renderer's lens of eye e is `renderer_lens[e]`
   // when given (it must hold the camera's parameters), else the camera's own model.

@@ -23,17 +23,36 @@ std::string TermName(const TermDecl& d) {
 std::vector<TermGroup> ActiveTerms(const ChainModel& model, Source source) {
   std::vector<TermGroup> out;
   const bool rig_covariance = !model.extrinsic_mixing[1].isIdentity(0.0);
+  const bool mount_covariance = !model.mount_mixing.isIdentity(0.0);
+  const bool alignment_covariance = !model.tracker_alignment_mixing.isIdentity(0.0);
   for (const TermDecl& d : kTerms) {
     if (d.source != source) continue;
     const bool active = std::any_of(model.parameters.begin(), model.parameters.end(),
                                     [&](const ChainParameter& p) { return p.slot.term == d.term && ParameterActive(p); });
     if (!active) continue;
-    if (rig_covariance && (d.term == Term::kCameraRotation || d.term == Term::kCameraTranslation)) {
-      if (out.empty() || out.back().name != "camera_extrinsic.pose") out.push_back({"camera_extrinsic.pose", {}});
+    // A measured pose covariance mixes a rotation and a translation term into one correlated draw:
+    // they are one term of the budget (their slots hold the covariance's principal modes).
+    const char* pose = nullptr;
+    if (rig_covariance && (d.term == Term::kCameraRotation || d.term == Term::kCameraTranslation)) pose = "camera_extrinsic.pose";
+    if (mount_covariance && (d.term == Term::kRigRotation || d.term == Term::kRigTranslation)) pose = "camera_extrinsic.rig.pose";
+    if (alignment_covariance && (d.term == Term::kTrackerAlignmentRotation || d.term == Term::kTrackerAlignmentTranslation)) {
+      pose = "tracker_alignment.pose";
+    }
+    if (pose) {
+      if (out.empty() || out.back().name != pose) out.push_back({pose, {}});
       out.back().terms.push_back(d.term);
       continue;
     }
     out.push_back({TermName(d), {d.term}});
+  }
+  return out;
+}
+
+std::vector<DistributionOrigin> OriginsOf(const ChainModel& model, const std::vector<Term>& terms) {
+  std::vector<DistributionOrigin> out;
+  for (const ChainParameter& p : model.parameters) {
+    if (!ParameterActive(p) || std::find(terms.begin(), terms.end(), p.slot.term) == terms.end()) continue;
+    if (std::find(out.begin(), out.end(), p.origin) == out.end()) out.push_back(p.origin);
   }
   return out;
 }
@@ -141,6 +160,9 @@ std::string ChainDigest(const ChainModel& model) {
   // Only when used: a chain without a rig covariance keeps the digest it always had.
   for (const auto& m : model.extrinsic_mixing) {
     if (!m.isIdentity(0.0)) h.Add(m);
+  }
+  for (const auto* m : {&model.mount_mixing, &model.tracker_alignment_mixing}) {
+    if (!m->isIdentity(0.0)) h.Add(*m);
   }
   // Likewise only when used: the eyes' shared and correlated terms.
   for (const ChainModel::EyeCoupling& c : model.couplings) {

@@ -31,6 +31,9 @@ struct TermGroup {
 };
 // The terms of `source` with some random or non-zero parameter, in kTerms order.
 std::vector<TermGroup> ActiveTerms(const ChainModel& model, Source source);
+// Where the distributions of `terms` came from: the distinct origins of their active parameters, in
+// θ order of first appearance (issue 21 item 4).
+std::vector<DistributionOrigin> OriginsOf(const ChainModel& model, const std::vector<Term>& terms);
 // The chain with only the parameters of `group`'s terms.
 ChainModel WithTermsOnly(const ChainModel& model, const TermGroup& group);
 

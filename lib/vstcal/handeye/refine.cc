@@ -250,9 +250,7 @@ HandEyeSolution SolveHandEye(const Camera& camera, std::span<const TrackedPose> 
     z_start = out.tracker_from_board;
     delta_start = out.time_offset;
   }
-  out.names = {"hmd_from_camera.rx", "hmd_from_camera.ry", "hmd_from_camera.rz", "hmd_from_camera.tx", "hmd_from_camera.ty",
-               "hmd_from_camera.tz", "tracker_from_board.rx", "tracker_from_board.ry", "tracker_from_board.rz",
-               "tracker_from_board.tx", "tracker_from_board.ty", "tracker_from_board.tz", "time_offset"};
+  out.names = HandEyeCovarianceNames();
   return out;
 }
 

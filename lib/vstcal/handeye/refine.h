@@ -106,8 +106,13 @@ struct HandEyeSolution {
   std::vector<std::string> warnings;  // e.g. an inconsistent view kept because too few remain
 };
 
+// The names of HandEyeSolution::covariance's rows, in order: X's left-perturbation tangent (ω rad,
+// ρ length unit; hmd frame), Z's (tracker frame), δ (s). handeye@1 writes them; err-sim reads them.
+const std::vector<std::string>& HandEyeCovarianceNames();
+
 // `iterations` counts every solve's (one per rejection round). Throws InputError for a log that is
-// not strictly increasing in time or has fewer than 2 reports, a view outside the log's span, and DegenerateError (closed_form.h) for too few views or motion
+// not strictly increasing in time or has fewer than 2 reports, a view outside the log's span, and
+// DegenerateError (closed_form.h) for too few views or motion
 // about one axis.
 HandEyeSolution SolveHandEye(const Camera& camera, std::span<const TrackedPose> log, std::span<const TimedView> views,
                              const HandEyeOptions& options = {});

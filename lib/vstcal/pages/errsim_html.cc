@@ -81,6 +81,22 @@ std::string Distributions(const OrderedJson& r) {
   return s + "</section>\n";
 }
 
+// Where a budget row's distributions came from: "measured (rig.json)", "assumed" (a report written
+// before the field existed shows nothing).
+std::string OriginCell(const OrderedJson& row) {
+  std::string text;
+  if (row.contains("origin")) {
+    for (const auto& o : row.at("origin")) {
+      if (!text.empty()) text += " + ";
+      text += o.at("kind").get<std::string>() == "measured"
+                  ? "measured (<span title=\"" + Escape(o.at("format").get<std::string>()) + "\">" + Escape(o.at("file").get<std::string>()) +
+                        "</span>)"
+                  : std::string("assumed");
+    }
+  }
+  return "<td class=\"origin\" style=\"text-align:left\">" + text + "</td>";
+}
+
 std::string Budget(const OrderedJson& r) {
   const OrderedJson& budget = r.at("budget");
   if (budget.is_null()) return "<section><h2>Error budget</h2>\n<p>Not computed (--no-budget).</p></section>\n";
@@ -104,7 +120,7 @@ std::string Budget(const OrderedJson& r) {
                 ValueCell(r, key + "/share_of_" + measure + "_ms") + ValueCell(r, key + "/alone/" + measure + "_rms") +
                 ValueCell(r, key + "/halved/" + measure + "_rms") + ValueCell(r, key + "/share_of_image_ms") +
                 ValueCell(r, key + "/halved/image_rms_px") + "<td style=\"text-align:left\">" +
-                Escape(entries[i].at("correction").get<std::string>()) + "</td></tr>\n";
+                Escape(entries[i].at("correction").get<std::string>()) + "</td>" + OriginCell(entries[i]) + "</tr>\n";
         // The source's terms alone, largest share first (the tree source → term).
         const OrderedJson& terms = entries[i].at("terms");
         if (terms.size() < 2) continue;
@@ -117,7 +133,7 @@ std::string Budget(const OrderedJson& r) {
           const std::string term_key = key + "/terms/" + std::to_string(t);
           rows += "<tr><th style=\"padding-left:2em\">" + Name(terms[t].at("term").get<std::string>()) + "</th>" +
                   ValueCell(r, term_key + "/" + share) + ValueCell(r, term_key + "/alone/" + measure + "_rms") + EmptyCells(1) +
-                  ValueCell(r, term_key + "/share_of_image_ms") + EmptyCells(1) + "<td></td></tr>\n";
+                  ValueCell(r, term_key + "/share_of_image_ms") + EmptyCells(1) + "<td></td>" + OriginCell(terms[t]) + "</tr>\n";
         }
       }
     }
@@ -127,12 +143,13 @@ std::string Budget(const OrderedJson& r) {
     rows += "<tr><th>interactions and means in common</th>" + ValueCell(r, whole + "/remainder_share") + EmptyCells(2) +
             ValueCell(r, "/budget/whole/image/remainder_share") + EmptyCells(1) +
             "<td style=\"text-align:left\">" + std::string(none ? "none: the whole chain's mean square is 0 to rounding" : "") +
-            "</td></tr>\n";
+            "</td><td></td></tr>\n";
     rows += "<tr><th>whole chain (RMS)</th>" + EmptyCells(1) + ValueCell(r, "/totals/" + measure + "_rms") + EmptyCells(2) +
-            ValueCell(r, "/totals/image_rms_px") + EmptyCells(1) + "</tr>\n";
+            ValueCell(r, "/totals/image_rms_px") + EmptyCells(2) + "</tr>\n";
     s += Table("ranked by " + measure,
                "<th>source</th><th>share of mean square</th><th>alone RMS (" + unit + ")</th><th>whole chain, halved (" +
-                   unit + ")</th><th>share of image mean square</th><th>image RMS halved (px)</th><th>correction</th>",
+                   unit + ")</th><th>share of image mean square</th><th>image RMS halved (px)</th><th>correction</th>"
+                   "<th title=\"measured: from a calibration's file; assumed: typed into the chain\">distributions</th>",
                rows);
   }
   return s + "</section>\n";

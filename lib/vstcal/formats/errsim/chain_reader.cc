@@ -10,6 +10,7 @@
 #include "vstcal/core/suggest.h"
 #include "vstcal/geometry/point_registration.h"
 #include "vstcal/formats/camera/camera_io.h"
+#include "vstcal/formats/handeye/handeye_io.h"
 #include "vstcal/formats/stereo/stereo_io.h"
 #include "vstcal/json/fields.h"
 #include "vstcal/json/format_check.h"
@@ -102,6 +103,33 @@ RigSpec ReadRigSpec(const JsonNode& node, const std::filesystem::path& directory
   (*cameras)[0] = {"", std::move(rig.left.camera), std::move(rig.left.covariance)};
   (*cameras)[1] = {"", std::move(rig.right.camera), std::move(rig.right.covariance)};
   return {std::move(file), rig.right_from_left, std::move(rig.covariance)};
+}
+
+// The length unit of a referenced measurement must be the chain's: its translations and σ's are
+// numbers in it.
+void CheckUnit(const JsonNode& node, LengthUnit file_unit, LengthUnit chain_unit, std::string_view what) {
+  if (file_unit == chain_unit) return;
+  node.at("file").Fail("names " + std::string(what) + " in \"" + std::string(LengthUnitName(file_unit)) + "\", but the chain is in \"" +
+                           std::string(LengthUnitName(chain_unit)) + "\"",
+                       "write the chain in the measurement's length unit (or measure in the chain's)");
+}
+
+// {"file": "<handeye@1 path>"} (docs/formats.md#vst-chain-measured).
+HandEyeReference ReadHandEyeReference(const JsonNode& node, const std::filesystem::path& directory, LengthUnit chain_unit) {
+  node.ExpectObject();
+  auto [file, document] = ReadReference(node, directory, "handeye@1");
+  HandEyeMeasurement m = HandEyeFromJson(document);
+  CheckUnit(node, m.length_unit, chain_unit, "a hand-eye calibration");
+  return {std::move(file), std::move(m.solution)};
+}
+
+// {"file": "<tracker-noise@1 path>"}.
+TrackerNoiseReference ReadTrackerNoiseReference(const JsonNode& node, const std::filesystem::path& directory, LengthUnit chain_unit) {
+  node.ExpectObject();
+  auto [file, document] = ReadReference(node, directory, "tracker-noise@1");
+  TrackerNoiseMeasurement m = TrackerNoiseFromJson(document);
+  CheckUnit(node, m.length_unit, chain_unit, "a tracker noise");
+  return {std::move(file), std::move(m.noise)};
 }
 
 // A number, or one number per component.
@@ -228,9 +256,99 @@ class SourcesReader {
   void ReadTerms(const JsonNode& node, const std::vector<const TermDecl*>& terms, const std::string& eye_key) {
     for (const TermDecl* d : terms) {
       if (const auto term = node.find(d->file_key)) {
-        spec_->terms.push_back({d->term, eye_key, std::string(d->file_key), ReadDistribution(*term, d->components)});
+        if (term->json().is_string()) {
+          spec_->terms.push_back(MeasuredTerm(*term, *d, eye_key));
+          continue;
+        }
+        spec_->terms.push_back({d->term, eye_key, std::string(d->file_key), ReadDistribution(*term, d->components), ""});
       }
     }
+  }
+
+  // A term given by the word of the measurement it comes from (docs/math/vst-chain.md#measured-chain):
+  //  - tracking.rotation_deg, .translation: "tracker_noise", N(0, σ²) per axis with the
+  //    tracker-noise file's σ (the same in every frame: its three axes' RMS);
+  //  - tracking.latency_s: "handeye", the residual N(0, σ_δ²) of a system that applies the measured
+  //    offset δ̂; "handeye-uncorrected", N(δ̂, σ_δ²) for one that does not.
+  TermSpec MeasuredTerm(const JsonNode& node, const TermDecl& d, const std::string& eye_key) {
+    const std::string word = node.String();
+    TermSpec t{d.term, eye_key, std::string(d.file_key), {}, word};
+    t.distribution.kind = DistributionSpec::Kind::kNormal;
+    t.distribution.first.assign(static_cast<size_t>(d.components), 0.0);
+    if (d.term == Term::kTrackingRotation || d.term == Term::kTrackingTranslation) {
+      if (word != "tracker_noise") {
+        node.Fail("unknown value " + Quoted(word), "write \"tracker_noise\" (the tracker_noise file's σ) or a distribution object");
+      }
+      if (!spec_->tracker_noise) node.Fail("the chain references no tracker noise", "add \"tracker_noise\": {\"file\": \"<tracker-noise@1 file>\"}, or give a distribution");
+      const TrackerNoise& n = spec_->tracker_noise->measured;
+      const double sigma = d.term == Term::kTrackingRotation ? RadToDeg(n.rotation.sigma) : n.translation.sigma;
+      t.distribution.second.assign(static_cast<size_t>(d.components), sigma);
+      return t;
+    }
+    if (d.term == Term::kTrackingLatency) {
+      if (word != "handeye" && word != "handeye-uncorrected") {
+        node.Fail("unknown value " + Quoted(word),
+                  "write \"handeye\" (the residual after applying the measured time offset), \"handeye-uncorrected\" or a distribution object");
+      }
+      const ParameterCovariance& c = HandEyeCovariance(node);
+      const double sigma = std::sqrt(c.matrix(12, 12));
+      t.distribution.first.assign(1, word == "handeye" ? 0.0 : spec_->handeye->measured.time_offset);
+      t.distribution.second.assign(1, sigma);
+      return t;
+    }
+    node.Fail("is a word, not a distribution", "give a distribution object {\"distribution\": \"normal\", …}");
+  }
+
+  // The referenced handeye file's covariance, which a field needs.
+  const ParameterCovariance& HandEyeCovariance(const JsonNode& node) {
+    if (!spec_->handeye) node.Fail("the chain references no hand-eye calibration", "add \"handeye\": {\"file\": \"<handeye@1 file>\"}, or give the distribution inline");
+    if (spec_->handeye->measured.covariance.size() == 0) {
+      node.Fail("the handeye file " + spec_->handeye->file + " has no covariance",
+                "reference a file written by calib-handeye solve (a calib-synth truth has none), or give the distribution inline");
+    }
+    if (handeye_covariance_.parameters.empty()) {
+      handeye_covariance_.parameters = spec_->handeye->measured.names;
+      handeye_covariance_.matrix = spec_->handeye->measured.covariance;
+    }
+    return handeye_covariance_;
+  }
+
+  // "covariance" of a measured pose (docs/formats.md#vst-chain-measured): "handeye" (the file's
+  // block of `pose`) or inline over <pose>.rx … .tz, stored in that order.
+  PoseCovarianceSpec ReadPoseCovariance(const JsonNode& cov, const std::string& pose) {
+    static const std::array<std::string_view, 6> kAxes = {"rx", "ry", "rz", "tx", "ty", "tz"};
+    std::vector<std::string> names;
+    for (const std::string_view a : kAxes) names.push_back(pose + "." + std::string(a));
+    PoseCovarianceSpec out;
+    out.covariance.parameters = names;
+    out.covariance.matrix.resize(6, 6);
+    if (cov.json().is_string()) {
+      if (cov.String() != "handeye") {
+        cov.Fail("unknown value " + Quoted(cov.String()), "write \"handeye\" (the handeye file's " + pose + " block) or an object {\"parameters\", \"matrix\"} over " + pose + ".rx … .tz");
+      }
+      const ParameterCovariance& c = HandEyeCovariance(cov);
+      out.from_handeye = true;
+      for (int a = 0; a < 6; ++a)
+        for (int b = 0; b < 6; ++b) out.covariance.matrix(a, b) = c.matrix(*c.Find(names[a]), *c.Find(names[b]));
+      return out;
+    }
+    cov.ExpectObject();
+    ExpectKeys(cov, {"parameters", "matrix"}, "field of a covariance");
+    const JsonNode list = cov.at("parameters");
+    list.ArraySize(6);
+    std::vector<std::string> read;
+    for (size_t i = 0; i < 6; ++i) {
+      std::string name = list.at(i).String();
+      if (std::find(names.begin(), names.end(), name) == names.end()) {
+        list.at(i).Fail("unknown parameter " + Quoted(name), "this covariance is over " + pose + ".rx, .ry, .rz, .tx, .ty, .tz");
+      }
+      if (std::find(read.begin(), read.end(), name) != read.end()) list.at(i).Fail("duplicate parameter " + Quoted(name), "list each parameter once");
+      read.push_back(std::move(name));
+    }
+    const ParameterCovariance c = ReadCovarianceMatrix(cov, read);
+    for (int a = 0; a < 6; ++a)
+      for (int b = 0; b < 6; ++b) out.covariance.matrix(a, b) = c.matrix(*c.Find(names[a]), *c.Find(names[b]));
+    return out;
   }
 
   // "left" / "right" / "both" / "shared" sub-objects: read(node, key) for each one given.
@@ -326,13 +444,25 @@ class SourcesReader {
     }
     allowed.insert(allowed.end(), groups.begin(), groups.end());
     if (!per_eye.empty()) allowed.insert(allowed.end(), {"left", "right", "both", "shared", "correlation"});
+    if (source == Source::kTrackerAlignment) allowed.push_back("covariance");
     ExpectKeys(node, allowed, what);
+    if (source == Source::kTrackerAlignment && node.find("covariance")) {
+      ExpectKeys(node, {"covariance"}, "term of tracker_alignment with a covariance (rotation_deg and translation do not mix with it)");
+      spec_->alignment_covariance = ReadPoseCovariance(node.at("covariance"), "tracker_from_board");
+    }
     ReadTerms(node, once, "");
     for (const std::string_view group : groups) {
       if (const auto g = node.find(group)) {
         const auto terms = TermsOf(source, TermScope::kOnce, group);
         std::vector<std::string_view> keys;
         for (const TermDecl* d : terms) keys.push_back(d->file_key);
+        // The camera head's mount may take a hand-eye X's covariance: the error of the whole head.
+        if (source == Source::kCameraExtrinsic && g->find("covariance")) {
+          ExpectKeys(*g, {"covariance"}, "term of camera_extrinsic." + std::string(group) +
+                                             " with a covariance (rotation_deg and translation do not mix with it)");
+          spec_->mount_covariance = ReadPoseCovariance(g->at("covariance"), "hmd_from_camera");
+          continue;
+        }
         ExpectKeys(*g, keys, what + "." + std::string(group));
         ReadTerms(*g, terms, "");
       }
@@ -398,7 +528,7 @@ class SourcesReader {
       if (!cov) {
         ExpectKeys(eye, names, "lens parameter of camera_intrinsic");
         for (const std::string_view name : names) {
-          if (const auto term = eye.find(name)) spec_->terms.push_back({Term::kLens, key, std::string(name), ReadDistribution(*term, 1)});
+          if (const auto term = eye.find(name)) spec_->terms.push_back({Term::kLens, key, std::string(name), ReadDistribution(*term, 1), ""});
         }
         return;
       }
@@ -456,6 +586,7 @@ class SourcesReader {
   }
 
   ChainSpec* spec_;
+  ParameterCovariance handeye_covariance_;  // the handeye file's, named
 };
 
 }  // namespace
@@ -464,8 +595,8 @@ ChainSpec ChainSpecFromJson(const JsonDocument& doc, const std::filesystem::path
   const JsonNode root = doc.root();
   root.ExpectObject();
   CheckFormat(root, kChainFormat);
-  ExpectKeys(root, {"format", "name", "length_unit", "samples", "seed", "frames", "rig", "cameras", "display", "head_motion",
-                    "test_points", "sources", "provenance"},
+  ExpectKeys(root, {"format", "name", "length_unit", "samples", "seed", "frames", "rig", "handeye", "tracker_noise", "cameras",
+                    "display", "head_motion", "test_points", "sources", "provenance"},
              "field of a chain");
   ChainSpec spec;
   spec.file = doc.name();
@@ -474,13 +605,44 @@ ChainSpec ChainSpecFromJson(const JsonDocument& doc, const std::filesystem::path
   spec.samples = ReadCount(root.at("samples"), 1, 1e12, "10^12");
   spec.seed = ReadCount(root.at("seed"), 0, 9007199254740992.0, "2^53");
 
+  if (const auto handeye = root.find("handeye")) spec.handeye = ReadHandEyeReference(*handeye, directory, spec.length_unit);
+  if (const auto noise = root.find("tracker_noise")) spec.tracker_noise = ReadTrackerNoiseReference(*noise, directory, spec.length_unit);
+
   const JsonNode frames = root.at("frames");
   ExpectKeys(frames, {"tracker_from_world", "hmd_from_tracker", "camera_from_hmd", "world_from_virtual", "world_from_object"},
              "frame");
-  spec.tracker_from_world = ReadTransform(frames.at("tracker_from_world"));
+  if (spec.handeye) {
+    // The hand-eye calibration measured both: the chain giving them too would be two answers.
+    if (const auto t = frames.find("tracker_from_world")) {
+      t->Fail("given with \"handeye\", which sets it to tracker_from_board (the chain's world is the board's frame)",
+              "delete frames.tracker_from_world (or \"handeye\")");
+    }
+    spec.tracker_from_world.R = spec.handeye->measured.tracker_from_board.R;
+    spec.tracker_from_world.t = spec.handeye->measured.tracker_from_board.t;
+    spec.tracker_from_world.value = spec.handeye->measured.tracker_from_board;
+  } else {
+    spec.tracker_from_world = ReadTransform(frames.at("tracker_from_world"));
+  }
   spec.hmd_from_tracker = ReadTransform(frames.at("hmd_from_tracker"));
-  const JsonNode camera_from_hmd = frames.at("camera_from_hmd");
+  // With a rig and a hand-eye calibration there is nothing left to write under camera_from_hmd.
+  const JsonDocument no_eyes = JsonDocument::Parse("{}", doc.name());
+  const bool eyes_optional = spec.handeye && root.find("rig");
+  const JsonNode camera_from_hmd =
+      eyes_optional && !frames.find("camera_from_hmd") ? no_eyes.root() : frames.at("camera_from_hmd");
   ExpectKeys(camera_from_hmd, {"left", "right"}, "eye");
+  auto left_camera_from_hmd = [&]() {
+    if (!spec.handeye) return ReadTransform(camera_from_hmd.at("left"));
+    if (const auto left = camera_from_hmd.find("left")) {
+      left->Fail("given with \"handeye\", which sets it to the inverse of hmd_from_camera",
+                 "delete frames.camera_from_hmd.left (or \"handeye\")");
+    }
+    const Rigid3d x = spec.handeye->measured.hmd_from_camera.inverse();
+    TransformSpec t;
+    t.R = x.R;
+    t.t = x.t;
+    t.value = x;
+    return t;
+  };
   if (const auto rig = root.find("rig")) {
     // The rig holds the cameras and their relative pose: the chain giving them too would be two
     // answers to one question.
@@ -492,13 +654,14 @@ ChainSpec ChainSpecFromJson(const JsonDocument& doc, const std::filesystem::path
                   "delete frames.camera_from_hmd.right (or \"rig\")");
     }
     spec.rig = ReadRigSpec(*rig, directory, spec.length_unit, &spec.cameras);
-    spec.camera_from_hmd[0] = ReadTransform(camera_from_hmd.at("left"));
+    spec.camera_from_hmd[0] = left_camera_from_hmd();
     const Rigid3d right = spec.rig->right_from_left * spec.camera_from_hmd[0].value;
     spec.camera_from_hmd[1].R = right.R;
     spec.camera_from_hmd[1].t = right.t;
     spec.camera_from_hmd[1].value = right;
   } else {
-    for (int e = 0; e < kNumEyes; ++e) spec.camera_from_hmd[e] = ReadTransform(camera_from_hmd.at(kEyeNames[e]));
+    spec.camera_from_hmd[0] = left_camera_from_hmd();
+    spec.camera_from_hmd[1] = ReadTransform(camera_from_hmd.at("right"));
   }
   if (const auto v = frames.find("world_from_virtual")) spec.world_from_virtual = ReadTransform(*v);
   spec.world_from_object = ReadTransform(frames.at("world_from_object"));

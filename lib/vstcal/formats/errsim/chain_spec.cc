@@ -159,6 +159,50 @@ void ApplyExtrinsicCovariance(const ChainSpec& spec, const ParameterCovariance& 
   }
 }
 
+// A measured pose covariance (a hand-eye X or Z block) as the mixing of a rotation and a
+// translation term that exist once: θ's six slots hold standard normals z, the pose error is
+// (ω, ρ) = V Λ^½ z (docs/math/vst-chain.md#measured-chain derives why the handeye tangent needs
+// no conversion for either).
+void ApplyPoseCovariance(const ChainSpec& spec, const ParameterCovariance& cov, Term rotation, Term translation,
+                         const std::string& field, ChainModel::Matrix6d* mixing, ChainModel* model) {
+  *mixing = PrincipalRoots(cov.matrix, spec, field, "the covariance");
+  const TermDecl& d = Declaration(rotation);
+  std::string prefix(SourceKey(d.source));
+  if (!d.group.empty()) prefix.append(".").append(d.group);
+  int j = 0;
+  for (const Term term : {rotation, translation}) {
+    const int offset = model->layout.Offset(term);
+    for (int i = 0; i < model->layout.Size(term); ++i, ++j) {
+      ChainParameter& p = model->parameters[offset + i];
+      p.slot.name = prefix + ".mode[" + std::to_string(j) + "]";
+      p.slot.file_unit = FileUnit(TermUnit::kRelative, LengthUnit::kMillimetre, 0);  // "1"
+      p.slot.file_per_internal = 1;
+      p.distribution = Distribution::MakeNormal(0, 1);
+    }
+  }
+}
+
+// Where each measurement's distributions come from, as the report names them.
+DistributionOrigin HandEyeOrigin(const ChainSpec& spec) { return {spec.handeye->file, "vstcal/handeye@1"}; }
+
+DistributionOrigin TermOrigin(const ChainSpec& spec, const TermSpec& t) {
+  if (t.from.empty()) return {};
+  if (t.from == "tracker_noise") return {spec.tracker_noise->file, "vstcal/tracker-noise@1"};
+  return HandEyeOrigin(spec);
+}
+
+// A camera's covariance: the rig's (stereo@1), the camera file's (camera@1), or typed inline.
+DistributionOrigin CameraOrigin(const ChainSpec& spec, int eye) {
+  if (spec.rig) return {spec.rig->file, "vstcal/stereo@1"};
+  if (!spec.cameras[eye].file.empty()) return {spec.cameras[eye].file, "vstcal/camera@1"};
+  return {};
+}
+
+void SetOrigin(ChainModel* model, Term term, int eye, const DistributionOrigin& origin) {
+  const int offset = model->layout.Offset(term, eye);
+  for (int i = 0; i < model->layout.Size(term, eye); ++i) model->parameters[offset + i].origin = origin;
+}
+
 // The covariance's lens block as a mixing matrix over standard normals: δ = V Λ^½ z with
 // Σ = V Λ Vᵀ over the lens parameters it names, placed in the renderer's rows.
 void ApplyCovariance(const ChainSpec& spec, const ParameterCovariance& cov, int eye, ChainModel* model) {
@@ -245,10 +289,12 @@ ChainModel BuildChainModel(const ChainSpec& spec) {
         const auto names = LensModelParamNames(model.renderer[e].model);
         const int i = static_cast<int>(std::find(names.begin(), names.end(), t.key) - names.begin());
         model.parameters[offset + i].distribution = ToInternal(t.distribution, 0, scale);
+        model.parameters[offset + i].origin = TermOrigin(spec, t);
         continue;
       }
       const int components = d.components;
       for (int j = 0; j < size; ++j) model.parameters[offset + j].distribution = ToInternal(t.distribution, j % components, scale);
+      SetOrigin(&model, t.term, e, TermOrigin(spec, t));
     }
   }
   if (!spec.fiducials.empty()) {
@@ -259,9 +305,33 @@ ChainModel BuildChainModel(const ChainSpec& spec) {
   for (const IntrinsicCovarianceSpec& c : spec.intrinsic_covariances) {
     for (const int e : EyesOf(c.eye_key)) {
       ApplyCovariance(spec, c.from_camera ? *spec.cameras[e].covariance : c.covariance, e, &model);
+      if (c.from_camera) SetOrigin(&model, Term::kLens, e, CameraOrigin(spec, e));
     }
   }
-  if (spec.extrinsic_covariance) ApplyExtrinsicCovariance(spec, spec.extrinsic_covariance->covariance, &model);
+  if (spec.extrinsic_covariance) {
+    ApplyExtrinsicCovariance(spec, spec.extrinsic_covariance->covariance, &model);
+    if (spec.extrinsic_covariance->from_rig) {
+      for (const Term term : {Term::kCameraRotation, Term::kCameraTranslation}) SetOrigin(&model, term, 1, {spec.rig->file, "vstcal/stereo@1"});
+    }
+  }
+  // A hand-eye X moves the whole camera head (both eyes: with a rig the right camera is
+  // right_from_left · camera_from_hmd.left); Z is the tracker's alignment.
+  if (const auto& c = spec.mount_covariance) {
+    ApplyPoseCovariance(spec, c->covariance, Term::kRigRotation, Term::kRigTranslation, "sources.camera_extrinsic.rig.covariance",
+                        &model.mount_mixing, &model);
+    if (c->from_handeye) {
+      for (const Term term : {Term::kRigRotation, Term::kRigTranslation}) SetOrigin(&model, term, 0, HandEyeOrigin(spec));
+    }
+  }
+  if (const auto& c = spec.alignment_covariance) {
+    ApplyPoseCovariance(spec, c->covariance, Term::kTrackerAlignmentRotation, Term::kTrackerAlignmentTranslation,
+                        "sources.tracker_alignment.covariance", &model.tracker_alignment_mixing, &model);
+    if (c->from_handeye) {
+      for (const Term term : {Term::kTrackerAlignmentRotation, Term::kTrackerAlignmentTranslation}) {
+        SetOrigin(&model, term, 0, HandEyeOrigin(spec));
+      }
+    }
+  }
   for (const TermSpec& t : spec.terms) {
     if (t.eye_key == "shared") Share(t, &model);
   }

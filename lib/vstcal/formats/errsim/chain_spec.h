@@ -19,6 +19,8 @@
 #include "vstcal/core/units.h"
 #include "vstcal/errsim/chain_model.h"
 #include "vstcal/errsim/schema.h"
+#include "vstcal/handeye/refine.h"
+#include "vstcal/handeye/tracker_noise.h"
 #include "vstcal/json/json_writer.h"
 
 namespace vstcal {
@@ -56,6 +58,10 @@ struct TermSpec {
   std::string eye_key;  // "", "left", "right", "both" or "shared"
   std::string key;      // the file key ("rotation_deg"; a lens parameter name for kLens)
   DistributionSpec distribution;
+  // Empty: typed into the chain. Else the word written in its place, naming the measurement the
+  // distribution was made from (docs/formats.md#vst-chain-measured): "tracker_noise" (tracking's
+  // rotation_deg and translation), "handeye" or "handeye-uncorrected" (tracking's latency_s).
+  std::string from;
 };
 
 // sources.<source>.correlation.<key>: the correlation ρ between the left and the right eye's
@@ -91,6 +97,31 @@ struct IntrinsicCovarianceSpec {
   ParameterCovariance covariance;  // the inline one (from_camera: each eye's camera file's)
 };
 
+// "handeye": {"file": "<handeye@1 path>"}: calib-handeye solve's X = hmd_from_camera, Z =
+// tracker_from_board and δ with their covariance. It gives frames.camera_from_hmd.left = X⁻¹ and
+// frames.tracker_from_world = Z (the chain's world is the calibration board's frame), and the
+// sources that name "handeye" take their distributions from it (docs/math/vst-chain.md#measured-chain).
+struct HandEyeReference {
+  std::string file;  // as written, relative to the chain's folder
+  HandEyeSolution measured;  // covariance empty for a file without one (a calib-synth truth)
+};
+
+// "tracker_noise": {"file": "<tracker-noise@1 path>"}: calib-handeye noise's σ's, which
+// tracking's rotation_deg and translation take when they say "tracker_noise".
+struct TrackerNoiseReference {
+  std::string file;
+  TrackerNoise measured;
+};
+
+// sources.camera_extrinsic.rig.covariance (the camera head's mount) and
+// sources.tracker_alignment.covariance: "handeye" (the handeye file's X or Z block) or inline over
+// hmd_from_camera.rx … .tz or tracker_from_board.rx … .tz — the handeye file's names and tangent
+// (left perturbation of X, hmd frame; of Z, tracker frame; ω rad, ρ length unit).
+struct PoseCovarianceSpec {
+  bool from_handeye = false;
+  ParameterCovariance covariance;  // 6×6 in the names' order (from_handeye: the file's block)
+};
+
 struct ChainSpec {
   std::string file;  // the chain file's name as given, for messages
   std::string name;  // free text
@@ -116,6 +147,10 @@ struct ChainSpec {
   double fle_rms = 0;
   // The file's own provenance, kept as written: a normalised chain says the same as its input.
   std::optional<OrderedJson> provenance;
+  std::optional<HandEyeReference> handeye;
+  std::optional<TrackerNoiseReference> tracker_noise;
+  std::optional<PoseCovarianceSpec> mount_covariance;      // sources.camera_extrinsic.rig.covariance
+  std::optional<PoseCovarianceSpec> alignment_covariance;  // sources.tracker_alignment.covariance
 
   // The renderer's lens model of each eye: the camera's, or the smallest model of the variant
   // that also holds every lens parameter the chain names for that eye.

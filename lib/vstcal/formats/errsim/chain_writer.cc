@@ -60,7 +60,7 @@ OrderedJson SourcesToJson(const ChainSpec& spec) {
     OrderedJson* at = &sources[std::string(SourceKey(d.source))];
     if (!t.eye_key.empty()) at = &(*at)[t.eye_key];
     if (!d.group.empty()) at = &(*at)[std::string(d.group)];
-    (*at)[t.key] = DistributionToJson(t.distribution);
+    (*at)[t.key] = t.from.empty() ? DistributionToJson(t.distribution) : OrderedJson(t.from);
   }
   for (const CorrelationSpec& c : spec.correlations) {
     sources[std::string(SourceKey(Declaration(c.term).source))]["correlation"][c.key] = Components(c.rho);
@@ -71,6 +71,9 @@ OrderedJson SourcesToJson(const ChainSpec& spec) {
   if (const auto& c = spec.extrinsic_covariance) {
     sources["camera_extrinsic"]["right"]["covariance"] = c->from_rig ? OrderedJson("rig") : CovarianceToJson(c->covariance);
   }
+  auto pose_covariance = [](const PoseCovarianceSpec& c) { return c.from_handeye ? OrderedJson("handeye") : CovarianceToJson(c.covariance); };
+  if (const auto& c = spec.mount_covariance) sources["camera_extrinsic"]["rig"]["covariance"] = pose_covariance(*c);
+  if (const auto& c = spec.alignment_covariance) sources["tracker_alignment"]["covariance"] = pose_covariance(*c);
   if (!spec.fiducials.empty()) {
     OrderedJson layout = OrderedJson::array();
     for (const auto& f : spec.fiducials) layout.push_back(MatrixToJson(f));
@@ -107,13 +110,15 @@ OrderedJson ChainSpecToJson(const ChainSpec& spec, const Provenance& provenance)
   j["samples"] = spec.samples;
   j["seed"] = spec.seed;
   OrderedJson frames;
-  frames["tracker_from_world"] = TransformToJson(spec.tracker_from_world);
+  if (!spec.handeye) frames["tracker_from_world"] = TransformToJson(spec.tracker_from_world);  // else the hand-eye Z
   frames["hmd_from_tracker"] = TransformToJson(spec.hmd_from_tracker);
-  frames["camera_from_hmd"]["left"] = TransformToJson(spec.camera_from_hmd[0]);
+  if (!spec.handeye) frames["camera_from_hmd"]["left"] = TransformToJson(spec.camera_from_hmd[0]);  // else X⁻¹
   if (!spec.rig) frames["camera_from_hmd"]["right"] = TransformToJson(spec.camera_from_hmd[1]);  // else the rig's
   frames["world_from_virtual"] = TransformToJson(spec.world_from_virtual);
   frames["world_from_object"] = TransformToJson(spec.world_from_object);
   j["frames"] = std::move(frames);
+  if (spec.handeye) j["handeye"] = {{"file", spec.handeye->file}};
+  if (spec.tracker_noise) j["tracker_noise"] = {{"file", spec.tracker_noise->file}};
   if (spec.rig) {
     j["rig"] = {{"file", spec.rig->file}};
   } else {

@@ -104,6 +104,29 @@ OrderedJson WholeToJson(const WholeOfMeasure& w) {
           {"none", w.none}};
 }
 
+// [{"kind": "measured", "file", "format"} | {"kind": "assumed"}, …] (docs/formats.md#err-sim-report).
+OrderedJson OriginsToJson(const std::vector<DistributionOrigin>& origins) {
+  OrderedJson list = OrderedJson::array();
+  for (const DistributionOrigin& o : origins) {
+    if (o.measured()) {
+      list.push_back({{"kind", "measured"}, {"file", o.file}, {"format", o.format}});
+    } else {
+      list.push_back({{"kind", "assumed"}});
+    }
+  }
+  return list;
+}
+
+// "measured (rig.json)", "assumed", or both joined by " + ".
+std::string OriginsText(const std::vector<DistributionOrigin>& origins) {
+  std::string out;
+  for (const DistributionOrigin& o : origins) {
+    if (!out.empty()) out.append(" + ");
+    out.append(o.measured() ? std::string("measured (").append(o.file).append(")") : std::string("assumed"));
+  }
+  return out;
+}
+
 }  // namespace
 
 OrderedJson ReportToJson(const ChainEvaluator& chain, const SimulationResult& result, const RunDescription& run,
@@ -179,11 +202,13 @@ OrderedJson ReportToJson(const ChainEvaluator& chain, const SimulationResult& re
                          {"share_of_misregistration_ms", NumberOrNull(t.share_of_misregistration_ms)},
                          {"share_of_image_ms", NumberOrNull(t.share_of_image_ms)},
                          {"share_of_misperception_ms", NumberOrNull(t.share_of_misperception_ms)},
-                         {"alone", TotalsToJson(t.alone)}});
+                         {"alone", TotalsToJson(t.alone)},
+                         {"origin", OriginsToJson(t.origins)}});
       }
       b["terms"] = std::move(terms);
       b["dominant_term"] = {{"misregistration", e.terms[DominantTerm(e, &TermPart::share_of_misregistration_ms)].name},
                             {"misperception", e.terms[DominantTerm(e, &TermPart::share_of_misperception_ms)].name}};
+      b["origin"] = OriginsToJson(e.origins);
       entries.push_back(std::move(b));
     }
     auto ranking = [&](const std::vector<size_t>& order) {
@@ -361,6 +386,25 @@ std::string ReportText(const ChainEvaluator& chain, const SimulationResult& resu
     table("misperception (from the errors, beside the systematic part)", budget.by_misperception,
           &BudgetEntry::share_of_misperception_ms, &TermPart::share_of_misperception_ms, &ScenarioTotals::misperception_rms,
           budget.misperception, unit, false);
+    // Where each source's σ's come from, beside what it does alone (misregistration): a budget built
+    // from measurements reads differently from one built from guesses.
+    out << "  where the distributions come from (measured: a calibration's file; assumed: typed into the chain), "
+           "each source alone:\n";
+    for (const size_t i : budget.by_misregistration) {
+      const BudgetEntry& e = budget.entries[i];
+      const std::string key(SourceKey(e.source));
+      out << "    " << key << ": ";
+      const bool uniform = std::all_of(e.terms.begin(), e.terms.end(), [&](const TermPart& p) { return p.origins == e.origins; });
+      if (uniform) {
+        out << OriginsText(e.origins) << ", " << Fixed(e.alone.misregistration_rms, 2) << " " << unit << "\n";
+        continue;
+      }
+      out << Fixed(e.alone.misregistration_rms, 2) << " " << unit;
+      for (const TermPart& p : e.terms) {
+        out << "; " << p.name.substr(key.size() + 1) << ": " << OriginsText(p.origins);
+      }
+      out << "\n";
+    }
   }
   return out.str();
 }

@@ -2,9 +2,14 @@
 
 #include <opencv2/core.hpp>
 
+#include <algorithm>
+
 #include "vstcal/camera/opencv_mat.h"
+#include "vstcal/formats/camera/camera_io.h"
 #include "vstcal/formats/camera/peer_formats.h"
 #include "vstcal/geometry/rotation.h"
+#include "vstcal/json/fields.h"
+#include "vstcal/json/format_check.h"
 
 namespace vstcal {
 namespace {
@@ -19,7 +24,70 @@ OrderedJson NoiseJson(const NoiseEstimate& e) {
   return {{"sigma", e.sigma}, {"ci95", {e.lower, e.upper}}, {"per_axis", {e.per_axis.x(), e.per_axis.y(), e.per_axis.z()}}};
 }
 
+NoiseEstimate ReadNoise(const JsonNode& node) {
+  ExpectKeys(node, {"sigma", "ci95", "per_axis"}, "field of a noise estimate");
+  NoiseEstimate e;
+  e.sigma = node.at("sigma").NonNegativeNumber();
+  const JsonNode ci = node.at("ci95");
+  ci.ArraySize(2);
+  e.lower = ci.at(0).NonNegativeNumber();
+  e.upper = ci.at(1).NonNegativeNumber();
+  e.per_axis = node.at("per_axis").Vector<3>();
+  return e;
+}
+
 }  // namespace
+
+HandEyeMeasurement HandEyeFromJson(const JsonDocument& doc) {
+  const JsonNode root = doc.root();
+  root.ExpectObject();
+  CheckFormat(root, "vstcal/handeye@1");
+  HandEyeMeasurement out;
+  out.length_unit = ReadLengthUnit(root.at("length_unit"));
+  out.solution.hmd_from_camera = ReadRigid(root.at("hmd_from_camera"));
+  out.solution.tracker_from_board = ReadRigid(root.at("tracker_from_board"));
+  out.solution.time_offset = root.at("time_offset_s").Number();
+  if (const auto cov = root.find("covariance")) {
+    cov->ExpectObject();
+    const JsonNode names = cov->at("parameters");
+    const auto& expected = HandEyeCovarianceNames();
+    names.ArraySize(expected.size());
+    std::vector<std::string> read;
+    for (size_t i = 0; i < expected.size(); ++i) {
+      std::string name = names.at(i).String();
+      if (std::find(expected.begin(), expected.end(), name) == expected.end()) {
+        names.at(i).Fail("unknown parameter \"" + name + "\"", "a handeye covariance is over hmd_from_camera.rx … .tz, tracker_from_board.rx … .tz and time_offset");
+      }
+      if (std::find(read.begin(), read.end(), name) != read.end()) names.at(i).Fail("duplicate parameter \"" + name + "\"", "list each parameter once");
+      read.push_back(std::move(name));
+    }
+    ParameterCovariance c = ReadCovarianceMatrix(*cov, read);
+    // In HandEyeCovarianceNames' order, whatever order the file lists them in.
+    const auto n = static_cast<Eigen::Index>(expected.size());
+    out.solution.covariance.resize(n, n);
+    for (Eigen::Index a = 0; a < n; ++a)
+      for (Eigen::Index b = 0; b < n; ++b) out.solution.covariance(a, b) = c.matrix(*c.Find(expected[a]), *c.Find(expected[b]));
+    out.solution.names = expected;
+  }
+  return out;
+}
+
+TrackerNoiseMeasurement TrackerNoiseFromJson(const JsonDocument& doc) {
+  const JsonNode root = doc.root();
+  root.ExpectObject();
+  CheckFormat(root, "vstcal/tracker-noise@1");
+  TrackerNoiseMeasurement out;
+  out.length_unit = ReadLengthUnit(root.at("length_unit"));
+  out.noise.mean = ReadRigid(root.at("tracker_from_hmd"));
+  out.noise.rotation = ReadNoise(root.at("rotation_rad"));
+  out.noise.translation = ReadNoise(root.at("translation"));
+  if (const auto segment = root.find("segment")) {
+    out.noise.from = segment->at("from").Number();
+    out.noise.to = segment->at("to").Number();
+    out.noise.reports = static_cast<size_t>(segment->at("reports").NonNegativeNumber());
+  }
+  return out;
+}
 
 std::string HandEyeOpenCvYaml(const HandEyeSolution& s, LengthUnit length_unit, const Provenance& provenance) {
   cv::FileStorage fs(".yaml", cv::FileStorage::WRITE | cv::FileStorage::MEMORY | cv::FileStorage::FORMAT_YAML);

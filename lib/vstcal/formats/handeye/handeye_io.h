@@ -6,6 +6,7 @@
 #include "vstcal/core/units.h"
 #include "vstcal/handeye/refine.h"
 #include "vstcal/handeye/tracker_noise.h"
+#include "vstcal/json/json_reader.h"
 #include "vstcal/json/json_writer.h"
 #include "vstcal/json/provenance.h"
 
@@ -20,5 +21,21 @@ std::string HandEyeOpenCvYaml(const HandEyeSolution& solution, LengthUnit length
 
 // vstcal/tracker-noise@1 (docs/formats.md#tracker-noise): calib-handeye noise's estimate.
 OrderedJson TrackerNoiseToJson(const TrackerNoise& noise, LengthUnit length_unit, const Provenance& provenance);
+
+// A handeye@1 file as err-sim's chain reads it: length unit, X, Z, δ and, when the file has one,
+// the covariance (`covariance` empty and `names` empty for a truth written by calib-synth).
+// InputError naming the file and field for a malformed file.
+struct HandEyeMeasurement {
+  LengthUnit length_unit = LengthUnit::kMillimetre;
+  HandEyeSolution solution;  // hmd_from_camera, tracker_from_board, time_offset, covariance, names
+};
+HandEyeMeasurement HandEyeFromJson(const JsonDocument& doc);
+
+// A tracker-noise@1 file: the length unit and the estimate (mean pose, σ's and their intervals).
+struct TrackerNoiseMeasurement {
+  LengthUnit length_unit = LengthUnit::kMillimetre;
+  TrackerNoise noise;
+};
+TrackerNoiseMeasurement TrackerNoiseFromJson(const JsonDocument& doc);
 
 }  // namespace vstcal
