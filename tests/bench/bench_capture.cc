@@ -18,7 +18,8 @@
 //   BM_OpenCvHardClassicThenSB  the peer on the same views: cv::findChessboardCorners (adaptive
 //                             threshold), then findChessboardCornersSB where it fails — what
 //                             DetectTarget ran before the bound, and what OpenCV users run —
-//                             with vstcal's steps after it (untimed) for the former accuracy
+//                             with vstcal's steps after it (untimed) for the former accuracy;
+//                             at 1280×720 it takes minutes (views of 20–50 s each)
 //   BM_CaptureBoardless       DetectTarget on images without a board: uniform noise 640×480,
 //                             blurred noise 12 MP, one grey 12 MP, one grey 100 MP
 //   BM_OpenCvBoardless        cv::findChessboardCorners on the board-less images it finishes in
