@@ -51,6 +51,9 @@ CalibrationOptions TsaiFlags::Options(const CLI::App& app) {
     options.tsai.principal_point = Eigen::Vector2d(principal_point[0], principal_point[1]);
   }
   options.plane_principal_point = *FromName(CalibrationOptions::kPlanePrincipalPointNames, free_pp);
+  if (app.count("--principal-point-sigma") > 0 && options.plane_principal_point != CalibrationOptions::PlanePrincipalPoint::kPrior) {
+    throw InputError("--principal-point-sigma: applies to --free-principal-point prior only; drop it or choose prior");
+  }
   return options;
 }
 
@@ -66,9 +69,6 @@ void TsaiFlags::CheckRig(const CLI::App& app, const Correspondences& corners) co
 }
 
 void TsaiFlags::CheckUsed(const CLI::App& app, const CalibrationResult& result) const {
-  if (app.count("--principal-point-sigma") > 0 && options.plane_principal_point != CalibrationOptions::PlanePrincipalPoint::kPrior) {
-    throw InputError("--principal-point-sigma: applies to --free-principal-point prior only; drop it or choose prior");
-  }
   if (app.count("--principal-point-sigma") > 0 && result.tsai && result.tsai->variant == TsaiOptions::Variant::kNonCoplanar) {
     throw InputError("--principal-point-sigma: the points are not coplanar, so the principal point is estimated without a "
                      "prior; drop it");
