@@ -112,9 +112,6 @@ OrderedJson CalibrationBlocksToJson(const CalibrationResult& r, const Calibratio
   return j;
 }
 
-  return j;
-}
-
 OrderedJson UncertaintyToJson(const CalibratedCamera& c, const UncertaintyRequest& request) {
   if (!c.covariance) return nullptr;
   using Kind = ProjectionUncertaintyKind;
