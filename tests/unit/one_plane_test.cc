@@ -198,7 +198,7 @@ TEST(OnePlane, PriorHoldsWhatTheDataCannotAndYieldsWhereTheyCan) {
 
 // A 1280×720 camera of focal length f (px) with its principal point `offset` from the image
 // centre and barrel distortion of 5 % at the image corner whatever f (k1 = −0.05 / r², r the
-// corner's normalized radius); one 9×7 board tilted 40° filling about 70 % of the image width.
+// corner's normalized radius); one 9×7 board tilted 40° spanning about half the image width.
 struct OnePlaneCase {
   Camera camera;
   VolumeSpec spec;
@@ -214,7 +214,7 @@ OnePlaneCase LongOrWide(double f, const Eigen::Vector2d& offset) {
   c.spec.grid_rows = 7;
   c.spec.spacing = 50;
   c.spec.near = c.spec.far = 0;
-  c.spec.camera_distance = f * 400 / (0.7 * 1280);
+  c.spec.camera_distance = f * 400 / (0.5 * 1280);
   c.spec.tilt_deg = 40;
   c.spec.tilt_direction_deg = 20;
   return c;
@@ -223,7 +223,7 @@ OnePlaneCase LongOrWide(double f, const Eigen::Vector2d& offset) {
 // Upper quantile of χ²_k at the normal quantile z (Wilson–Hilferty; within 0.1 % for k ≥ 100).
 double ChiSquareUpper(double k, double z) { return k * std::pow(1 - 2 / (9 * k) + z * std::sqrt(2 / (9 * k)), 3); }
 
-// Focal lengths from wide (f = 400 px, 116° across) to very long (6400 px, 11°), the principal
+// Focal lengths from wide (f = 600 px, 94° across) to very long (9600 px, 7.6°), the principal
 // point 5 % of the image diagonal off centre (73 px, in a different direction for each), 10 noise
 // draws each: d = θ̂ − θ over (f, cx, cy, k1) has χ² = dᵀΣ⁻¹d with the reported Σ; their sum over
 // the 50 fits must stay below χ²₂₀₀'s 0.999 quantile (a prior whose σ covers the offset makes the
@@ -232,7 +232,7 @@ double ChiSquareUpper(double k, double z) { return k * std::pow(1 - 2 / (9 * k) 
 // draws may exceed 3 of its reported σ.
 TEST(OnePlane, PriorCoversTheTruthFromWideToVeryLong) {
   const double diagonal = std::hypot(1280, 720);
-  const std::vector<double> focal = {400, 800, 1600, 3200, 6400};
+  const std::vector<double> focal = {600, 1200, 2400, 4800, 9600};
   const int draws = 10;
   const char* names[] = {"fy", "cx", "cy", "k1"};
   double chi2 = 0;
@@ -288,7 +288,7 @@ TEST(OnePlane, HoldAgainstPriorFromWideToVeryLong) {
   CalibrationOptions hold = prior;
   hold.plane_principal_point = CalibrationOptions::PlanePrincipalPoint::kHold;
   double worst_held = 0;
-  for (const double f : {400.0, 800.0, 1600.0, 3200.0, 6400.0}) {
+  for (const double f : {600.0, 1200.0, 2400.0, 4800.0, 9600.0}) {
     const OnePlaneCase c = LongOrWide(f, 0.05 * diagonal * Eigen::Vector2d(std::cos(0.7), std::sin(0.7)));
     const Correspondences noisy = testing::WithNoise(SynthesizeVolume(c.camera, c.spec, {}).correspondences, 0.2, 77);
     std::string row;
@@ -318,7 +318,7 @@ TEST(OnePlane, HoldAgainstPriorFromWideToVeryLong) {
 
 // Strong data (15 views of a board tilted up to 40° about varied axes): a prior on the principal
 // point at the image centre ± 5 % of the diagonal, while the truth is 20 px and 12 px off, moves
-// every intrinsic by less than 5 % of its σ and shrinks no σ by more than 1 %.
+// every intrinsic by less than 5 % of its σ and changes no σ by more than 1 %.
 TEST(OnePlane, PriorBarelyMovesAWellDeterminedCalibration) {
   Eigen::Matrix3d K;
   K << 900, 0, 659.5, 0, 905, 347.5, 0, 0, 1;
@@ -345,7 +345,8 @@ TEST(OnePlane, PriorBarelyMovesAWellDeterminedCalibration) {
     const double sa = std::sqrt(ca.matrix(i, i));
     const double sb = std::sqrt(cb.matrix(i, i));
     EXPECT_LT(std::abs(a.camera.camera.params[k] - b.camera.camera.params[k]), 0.05 * sa) << name;
-    EXPECT_LE(sb, sa * (1 + 1e-9)) << name;  // information only adds
+    // The prior adds information, but σ̂ is re-estimated from a fit it moved: equal to 0.1 %.
+    EXPECT_LE(sb, sa * 1.001) << name;
     EXPECT_GT(sb, 0.99 * sa) << name;
   }
 }
