@@ -119,18 +119,17 @@ py::object Calibrate(const py::object& source, const std::string& method, std::o
                                                      : TsaiOptions::Variant::kAuto;
   if (principal_point) options.tsai.principal_point = Eigen::Vector2d(principal_point->first, principal_point->second);
   if (sx) options.tsai.sx = *sx;
-  if (free_principal_point != "no" && free_principal_point != "yes" && free_principal_point != "auto") {
-    throw InputError("free_principal_point: \"" + free_principal_point + "\"; use no, yes or auto");
+  const auto plane_principal_point = FromName(CalibrationOptions::kPlanePrincipalPointNames, free_principal_point);
+  if (!plane_principal_point) {
+    throw InputError("free_principal_point: \"" + free_principal_point + "\"; use no, yes or prior");
   }
-  options.plane_principal_point = free_principal_point == "yes"    ? CalibrationOptions::PlanePrincipalPoint::kFree
-                                  : free_principal_point == "auto" ? CalibrationOptions::PlanePrincipalPoint::kAuto
-                                                                   : CalibrationOptions::PlanePrincipalPoint::kHold;
+  options.plane_principal_point = *plane_principal_point;
   Correspondences corners = CorrespondencesFromJson(DocumentOf(source, "correspondences"));
   if (method == "dlt" && corners.rig != Rig::kVolume) {
     throw InputError(input + ": rig: DLT needs one world frame (rig \"volume\"), got \"planar-views\"; "
                      "calibrate planar views with method \"tsai\"");
   }
-  if (method == "tsai" && corners.rig == Rig::kPlanarViews && (variant != "auto" || principal_point || sx || free_principal_point != "no")) {
+  if (method == "tsai" && corners.rig == Rig::kPlanarViews && (variant != "auto" || principal_point || sx || free_principal_point != "prior")) {
     throw InputError("variant, principal_point, sx, free_principal_point: apply to rig \"volume\" only (planar views start "
                      "from Zhang's method); remove them");
   }
@@ -221,7 +220,7 @@ void RegisterSolvers(py::module_& m) {
         py::arg("distortion") = "k1,k2,p1,p2", py::arg("skew") = false, py::arg("loss") = "none",
         py::arg("loss_scale") = py::none(), py::arg("max_iterations") = 100, py::arg("solver") = "normal-equations",
         py::arg("variant") = "auto", py::arg("principal_point") = py::none(), py::arg("sx") = py::none(),
-        py::arg("free_principal_point") = "no",
+        py::arg("free_principal_point") = "prior",
         "A camera from a vstcal/correspondences@1 file (path) or document (dict), as calib-dlt (method \"dlt\", refine "
         "False by default) or calib-tsai (method \"tsai\": Tsai for a volume, Zhang for planar views; refined by "
         "default) write it: the vstcal/camera@1 document as a dict, with the covariance when refined; the tool's warnings "

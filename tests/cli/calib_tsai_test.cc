@@ -185,12 +185,13 @@ TEST_F(CliCalibTsai, SinglePlaneIsCoplanarWithoutRefinement) {
   EXPECT_EQ(Calibrate("in/plane.json", {"--no-refine", "--variant", "coplanar"}).at("K"), camera.at("K"));
 }
 
-// One plane is refined with Tsai's sx and principal point held (the truth's principal point is
-// the image centre, where Tsai assumes it): fx/fy stays 1, the file says what was held and why,
-// fx and fy are one parameter (correlation 1) and the estimate lies within 5σ of the truth.
+// One plane, --free-principal-point no: refined with Tsai's sx and principal point held (the
+// truth's principal point is the image centre, where Tsai assumes it): fx/fy stays 1, the file
+// says what was held and why and that every σ is conditional on it, fx and fy are one parameter
+// (correlation 1) and the estimate lies within 5σ of the truth.
 TEST_F(CliCalibTsai, SinglePlaneIsRefinedHoldingSxAndThePrincipalPoint) {
   Synth("in/plane.json", PlaneArgs());
-  const Json camera = Calibrate("in/plane.json");
+  const Json camera = Calibrate("in/plane.json", {"--free-principal-point", "no"});
   const Json truth = ReadJson("in/plane.truth.json");
   EXPECT_EQ(camera.at("method"), "tsai+refine");
   EXPECT_EQ(camera.at("tsai").at("variant"), "coplanar");
@@ -205,20 +206,57 @@ TEST_F(CliCalibTsai, SinglePlaneIsRefinedHoldingSxAndThePrincipalPoint) {
   EXPECT_EQ(held["fx/fy"].at("value"), 1.0);
   EXPECT_NE(held["fx/fy"].at("because").get<std::string>().find("one plane: Tsai's coplanar sx"), std::string::npos);
   EXPECT_EQ(held["cx"].at("value"), 319.5);
-  EXPECT_NE(held["cy"].at("because").get<std::string>().find("--free-principal-point yes or auto frees it"), std::string::npos);
+  EXPECT_NE(held["cy"].at("because").get<std::string>().find("--free-principal-point no; the sigmas are conditional on it"),
+            std::string::npos);
   EXPECT_EQ(refinement.at("one_plane").at("principal_point"), "held");
+  EXPECT_EQ(refinement.at("covariance_conditional_on"), Json({"fx/fy", "cx", "cy", "s", "k3"}));
+  EXPECT_EQ(refinement.at("priors"), Json::array());
+  EXPECT_NE(last_.err.find("  sigmas are conditional on the held fx/fy = 1, cx = 319.5, cy = 239.5, s = 0, k3 = 0\n"),
+            std::string::npos)
+      << last_.err;
   EXPECT_TRUE(CovarianceIsWellFormed(camera));
   EXPECT_FALSE(CovarianceIndex(camera, "cx").has_value());
   const Json& m = camera.at("covariance").at("matrix");
   EXPECT_NEAR(m[0][1].get<double>() / std::sqrt(m[0][0].get<double>() * m[1][1].get<double>()), 1.0, 1e-12);
   EXPECT_TRUE(WithinSigmas(camera, truth, {"fx", "fy", "k1", "k2"}, 5));
-  // auto keeps it held here (k1 −0.15 over a 640×480 image leaves its σ above the limit) and says so.
-  const Json automatic = Calibrate("in/plane.json", {"--free-principal-point", "auto"});
-  const Json& decision = automatic.at("refinement").at("one_plane");
-  EXPECT_EQ(decision.at("mode"), "auto");
-  EXPECT_EQ(decision.at("limit_px"), 0.005 * 800);  // 0.5 % of the 640×480 diagonal
-  EXPECT_EQ(decision.at("principal_point") == "free", decision.at("sigma_if_free_px")[0].get<double>() <= 4.0)
-      << decision.dump();
+}
+
+// One plane by default: the principal point under a prior at the image centre, σ 5 % of the
+// 640×480 diagonal (40 px). It is estimated, in the covariance, within 5σ of the truth (the image
+// centre here), and the file and the summary state the prior; the σ's are conditional only on
+// what stays held (the aspect, s and k3).
+TEST_F(CliCalibTsai, SinglePlaneEstimatesThePrincipalPointUnderAPrior) {
+  Synth("in/plane.json", PlaneArgs());
+  const Json camera = Calibrate("in/plane.json");
+  const Json& refinement = camera.at("refinement");
+  EXPECT_EQ(refinement.at("free_intrinsics"), Json({"fx", "fy", "cx", "cy", "k1", "k2", "p1", "p2"}));
+  const Json& one_plane = refinement.at("one_plane");
+  EXPECT_EQ(one_plane.at("principal_point"), "prior");
+  EXPECT_EQ(one_plane.at("mode"), "prior");
+  EXPECT_EQ(one_plane.at("prior_px"), Json({319.5, 239.5}));
+  EXPECT_EQ(one_plane.at("prior_sigma_px"), 0.05 * 800);
+  const double posterior = one_plane.at("posterior_sigma_px")[0].get<double>();
+  EXPECT_GT(posterior, 0);
+  EXPECT_LE(posterior, 40.0);
+  ASSERT_EQ(refinement.at("priors").size(), 2u);
+  EXPECT_EQ(refinement.at("priors")[0].at("parameter"), "cx");
+  EXPECT_EQ(refinement.at("priors")[0].at("value"), 319.5);
+  EXPECT_EQ(refinement.at("priors")[1].at("sigma"), 40.0);
+  EXPECT_EQ(refinement.at("covariance_conditional_on"), Json({"fx/fy", "s", "k3"}));
+  EXPECT_TRUE(CovarianceIsWellFormed(camera));
+  const auto cx = CovarianceIndex(camera, "cx");
+  ASSERT_TRUE(cx.has_value());
+  EXPECT_NEAR(std::sqrt(camera.at("covariance").at("matrix")[*cx][*cx].get<double>()), posterior, 1e-9 * posterior);
+  EXPECT_TRUE(WithinSigmas(camera, ReadJson("in/plane.truth.json"), {"fx", "fy", "cx", "cy", "k1", "k2"}, 5));
+  EXPECT_NE(last_.err.find("  priors (their uncertainty is in every sigma): cx = 319.5 +- 40, cy = 239.5 +- 40\n"),
+            std::string::npos)
+      << last_.err;
+  // A wider prior: the file records it.
+  const Json wide = Calibrate("in/plane.json", {"--principal-point-sigma", "0.1"});
+  EXPECT_EQ(wide.at("refinement").at("one_plane").at("prior_sigma_px"), 0.1 * 800);
+  EXPECT_TRUE(FailsWith(Run(kTool, {"in/plane.json", "-o", "out/camera.json", "--free-principal-point", "no",
+                                    "--principal-point-sigma", "0.1"}),
+                        kTool, kBadInput, "--principal-point-sigma: ", {"applies to --free-principal-point prior only"}));
 }
 
 TEST_F(CliCalibTsai, FreePrincipalPointAppliesToOnePlaneOnly) {
@@ -227,9 +265,11 @@ TEST_F(CliCalibTsai, FreePrincipalPointAppliesToOnePlaneOnly) {
                         kBadInput, "--free-principal-point: ",
                         {"applies to one plane (Tsai's coplanar variant) only", "remove it"}));
   EXPECT_TRUE(FailsWith(Run(kTool, {"in/volume.json", "-o", "out/camera.json", "--free-principal-point", "maybe"}), kTool,
-                        kBadInput, "--free-principal-point: ", {"maybe not in {no,yes,auto}"}));
+                        kBadInput, "--free-principal-point: ", {"maybe not in {no,yes,prior}"}));
   EXPECT_TRUE(FailsWith(Run(kTool, {"in/volume.json", "-o", "out/camera.json", "--free-principal-point", "yes", "--no-refine"}),
                         kTool, kBadInput, "", {"--no-refine excludes --free-principal-point"}));
+  EXPECT_TRUE(FailsWith(Run(kTool, {"in/volume.json", "-o", "out/camera.json", "--principal-point-sigma", "0.1"}), kTool,
+                        kBadInput, "--principal-point-sigma: ", {"the points are not coplanar", "drop it"}));
   EXPECT_TRUE(OutDirEmpty());
 }
 
@@ -294,7 +334,8 @@ TEST_F(CliCalibTsai, ShortPlanarViewIsSkippedWithAWarningNamingIt) {
 TEST_F(CliCalibTsai, VolumeFlagsAreRefusedForPlanarViews) {
   Synth("in/views.json", PlanarArgs());
   for (const std::vector<std::string>& flag : std::vector<std::vector<std::string>>{
-           {"--variant", "coplanar"}, {"--principal-point", "320,240"}, {"--sx", "1.1"}, {"--free-principal-point", "auto"}}) {
+           {"--variant", "coplanar"}, {"--principal-point", "320,240"}, {"--sx", "1.1"}, {"--free-principal-point", "no"},
+           {"--principal-point-sigma", "0.1"}}) {
     std::vector<std::string> args = {"in/views.json", "-o", "out/camera.json"};
     args.insert(args.end(), flag.begin(), flag.end());
     EXPECT_TRUE(FailsWith(Run(kTool, args), kTool, kBadInput, flag[0] + ": ", {"applies to rig \"volume\" only"}));

@@ -52,7 +52,7 @@ TEST(EnumNames, TablesAreCompleteAndSpelledAsDocumented) {
   ExpectBijective(kDerivativeMethodNames, "\"autodiff\" or \"central-difference\"");
   ExpectBijective(DltOptions::kSolverNames, "\"normal-equations\" or \"svd\"");
   ExpectBijective(TsaiOptions::kVariantNames, "\"auto\", \"coplanar\" or \"non-coplanar\"");
-  ExpectBijective(CalibrationOptions::kPlanePrincipalPointNames, "\"no\", \"yes\" or \"auto\"");
+  ExpectBijective(CalibrationOptions::kPlanePrincipalPointNames, "\"no\", \"yes\" or \"prior\"");
   ExpectBijective(RefineOptions::kLossNames, "\"none\", \"huber\" or \"cauchy\"");
 }
 

@@ -20,9 +20,16 @@ void TsaiFlags::Add(CLI::App& app) {
       ->capture_default_str();
   CLI::Option* raw = app.add_flag("--no-refine", no_refine, "write the closed-form camera without refinement");
   app.add_option("--free-principal-point", free_pp,
-                 "one plane, refined: no (hold it where Tsai assumed it), yes, or auto (free it when the scaled "
-                 "information determines it to 0.5% of the image diagonal)")
+                 "one plane, refined: prior (estimate it under a Gaussian prior at Tsai's principal point, "
+                 "sigma --principal-point-sigma of the image diagonal; its uncertainty reaches every sigma), no "
+                 "(hold it there: sigmas conditional on it) or yes (estimate it without a prior)")
       ->check(CLI::IsMember(NamesOf(CalibrationOptions::kPlanePrincipalPointNames)))
+      ->capture_default_str()
+      ->excludes(raw);
+  app.add_option("--principal-point-sigma", options.plane_principal_point_prior_sigma,
+                 "one plane, --free-principal-point prior: the prior's sigma per coordinate, as a fraction of the image "
+                 "diagonal")
+      ->check(kPositiveFinite)
       ->capture_default_str()
       ->excludes(raw);
   app.add_flag("--split-halves", split_halves,
@@ -44,12 +51,15 @@ CalibrationOptions TsaiFlags::Options(const CLI::App& app) {
     options.tsai.principal_point = Eigen::Vector2d(principal_point[0], principal_point[1]);
   }
   options.plane_principal_point = *FromName(CalibrationOptions::kPlanePrincipalPointNames, free_pp);
+  if (app.count("--principal-point-sigma") > 0 && options.plane_principal_point != CalibrationOptions::PlanePrincipalPoint::kPrior) {
+    throw InputError("--principal-point-sigma: applies to --free-principal-point prior only; drop it or choose prior");
+  }
   return options;
 }
 
 void TsaiFlags::CheckRig(const CLI::App& app, const Correspondences& corners) const {
   if (corners.rig == Rig::kPlanarViews) {
-    for (const char* flag : {"--variant", "--principal-point", "--sx", "--free-principal-point"}) {
+    for (const char* flag : {"--variant", "--principal-point", "--sx", "--free-principal-point", "--principal-point-sigma"}) {
       if (app.count(flag) > 0) {
         throw InputError(std::string(flag) + ": applies to rig \"volume\" only (planar views start from Zhang's "
                          "method); remove it");
@@ -59,6 +69,10 @@ void TsaiFlags::CheckRig(const CLI::App& app, const Correspondences& corners) co
 }
 
 void TsaiFlags::CheckUsed(const CLI::App& app, const CalibrationResult& result) const {
+  if (app.count("--principal-point-sigma") > 0 && result.tsai && result.tsai->variant == TsaiOptions::Variant::kNonCoplanar) {
+    throw InputError("--principal-point-sigma: the points are not coplanar, so the principal point is estimated without a "
+                     "prior; drop it");
+  }
   if (app.count("--sx") > 0 && result.tsai && result.tsai->variant == TsaiOptions::Variant::kNonCoplanar) {
     throw InputError("--sx: the points are not coplanar, so Tsai's non-coplanar variant estimates sx and --sx would "
                      "not be used; drop it, or force --variant coplanar");

@@ -12,7 +12,7 @@ namespace vstcal::tools {
 
 struct TsaiFlags {
   CornerInput input;
-  std::string output, variant = "auto", free_pp = "no";
+  std::string output, variant = "auto", free_pp = "prior";
   std::array<double, 2> principal_point{};
   bool no_refine = false, split_halves = false;
   CalibrationOptions options;

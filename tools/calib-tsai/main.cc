@@ -20,8 +20,8 @@ int main(int argc, char** argv) {
       "vstcal/camera@1.\n"
       "Exit codes: 0 ok, 1 internal error, 2 bad usage or input (too few points or views), 3 degenerate data "
       "(coplanar data forced into the non-coplanar variant, a plane parallel to the image, parallel boards) or "
-      "no convergence. One plane is refined with Tsai's sx held, and the principal point held unless "
-      "--free-principal-point frees it.",
+      "no convergence. One plane is refined with Tsai's sx held, and the principal point under a prior at Tsai's "
+      "(--free-principal-point).",
       name};
   vstcal::tools::TsaiFlags f;
   f.Add(app);

@@ -45,6 +45,32 @@ std::string UncertaintySummary(const CalibrationResult& result, const Uncertaint
 
 namespace {
 
+// What every σ above includes and what it is conditional on: the priors (in the covariance) and
+// the held values (not in it: were they wrong, the error would be a bias no σ contains).
+std::string PriorsAndConditioningText(const Refinement& r) {
+  std::string text;
+  if (!r.priors.empty()) {
+    text += "  priors (their uncertainty is in every sigma):";
+    for (size_t i = 0; i < r.priors.size(); ++i) {
+      char buf[120];
+      std::snprintf(buf, sizeof buf, "%s %s = %.6g +- %.4g", i == 0 ? "" : ",", r.priors[i].parameter.c_str(), r.priors[i].value,
+                    r.priors[i].sigma);
+      text += buf;
+    }
+    text += "\n";
+  }
+  if (!r.held.empty()) {
+    text += "  sigmas are conditional on the held";
+    for (size_t i = 0; i < r.held.size(); ++i) {
+      char buf[120];
+      std::snprintf(buf, sizeof buf, "%s %s = %.6g", i == 0 ? "" : ",", r.held[i].parameter.c_str(), r.held[i].value);
+      text += buf;
+    }
+    text += "\n";
+  }
+  return text;
+}
+
 // FOLDER/<view>.undistorted.png for every view that names its image; the count of those that do not.
 size_t AddUndistortedImages(const CalibrationResult& result, const CalibrationFiles& files, Outcome* outcome) {
   namespace fs = std::filesystem;
@@ -116,6 +142,7 @@ Outcome CalibrationOutcome(const CalibrationResult& result, const CalibrationOpt
     std::snprintf(buf, sizeof buf, "  refinement: %d iterations, sigma %.4f px (%d dof), %zu outliers\n", r.iterations,
                   r.sigma_px, r.dof, r.outliers.size());
     text += buf;
+    text += PriorsAndConditioningText(r);
   }
   if (options.reject_views.enabled && result.rejection_sigma_px) {
     const auto views = std::count_if(result.rejections.begin(), result.rejections.end(),

@@ -145,66 +145,40 @@ void StartPlanar(CalibrationResult* r) {
 
 
 // One plane (Tsai's coplanar variant): its homography fixes 8 numbers, the pose takes 6, and a
-// pinhole's f, cx, cy would need 3 more (Zhang 2000, §3.1), so the refinement keeps Tsai's own
-// assumptions: fx/fy = sx, and the principal point where Tsai assumed it, unless freed
-// (docs/math/uncertainty.md#one-plane).
-void HoldWhatOnePlaneCannotDetermine(const TsaiResult& tsai, const CalibrationOptions& options, RefineOptions* refinement) {
+// pinhole's f, cx, cy would need 3 more (Zhang 2000, §3.1), so the refinement keeps Tsai's aspect
+// fx/fy = sx, and places the principal point under a prior centred where Tsai assumed it (or holds
+// it there, or frees it): docs/math/uncertainty.md#one-plane. Returns the decision to record.
+PlanePrincipalPointDecision OnePlaneRefinement(const TsaiResult& tsai, const ImageSize& size,
+                                               const CalibrationOptions& options, RefineOptions* refinement) {
   refinement->focal_aspect = tsai.sx;
   refinement->focal_aspect_held_because =
       "one plane: Tsai's coplanar sx (--sx), as one plane cannot tell the aspect from f and the principal point";
-  if (options.plane_principal_point != CalibrationOptions::PlanePrincipalPoint::kFree) {
-    refinement->free_principal_point = false;
-    refinement->principal_point_held_because =
-        options.plane_principal_point == CalibrationOptions::PlanePrincipalPoint::kHold
-            ? "one plane: held where Tsai's stages assumed it (the image centre or --principal-point); "
-              "--free-principal-point yes or auto frees it"
-            : "one plane: held where Tsai's stages assumed it; --free-principal-point auto left it held (see "
-              "refinement.one_plane)";
-  }
-}
-
-// kAuto: at the held optimum, would the principal point be determined, and how well? Frees it
-// (refining again from the held optimum) when the scaled information is regular with cx, cy free
-// and both σ's are within the limit. Leaves `refined` as it is otherwise.
-PlanePrincipalPointDecision DecidePlanePrincipalPoint(const Correspondences& c, const CalibrationOptions& options,
-                                                      RefineOptions* refinement, Refinement* refined) {
   PlanePrincipalPointDecision d;
   d.mode = options.plane_principal_point;
-  d.freed = d.mode == CalibrationOptions::PlanePrincipalPoint::kFree;
-  const ImageSize& size = c.image_size;
-  d.limit_px = options.plane_principal_point_max_sigma * std::hypot(size.width, size.height);
-  if (d.mode == CalibrationOptions::PlanePrincipalPoint::kHold) {
-    d.because = "held (--free-principal-point no)";
-    return d;
+  d.prior_px = tsai.principal_point;
+  switch (d.mode) {
+    case CalibrationOptions::PlanePrincipalPoint::kHold:
+      refinement->free_principal_point = false;
+      refinement->principal_point_held_because =
+          "one plane: held where Tsai's stages assumed it (the image centre or --principal-point), by "
+          "--free-principal-point no; the sigmas are conditional on it";
+      d.because = "held (--free-principal-point no): the sigmas are conditional on it";
+      break;
+    case CalibrationOptions::PlanePrincipalPoint::kFree:
+      d.because = "estimated without a prior (--free-principal-point yes)";
+      break;
+    case CalibrationOptions::PlanePrincipalPoint::kPrior: {
+      d.prior_sigma_px = options.plane_principal_point_prior_sigma * std::hypot(size.width, size.height);
+      char because[200];
+      std::snprintf(because, sizeof because,
+                    "one plane: a prior at Tsai's principal point, sigma %.4g of the image diagonal (%.4g px)",
+                    options.plane_principal_point_prior_sigma, d.prior_sigma_px);
+      refinement->priors.push_back({"cx", d.prior_px.x(), d.prior_sigma_px, because});
+      refinement->priors.push_back({"cy", d.prior_px.y(), d.prior_sigma_px, because});
+      d.because = "estimated under the prior (--free-principal-point prior)";
+      break;
+    }
   }
-  if (d.mode == CalibrationOptions::PlanePrincipalPoint::kFree) {
-    d.because = "freed (--free-principal-point yes)";
-    return d;
-  }
-  if (refined->status != RefineStatus::kConverged) {
-    d.because = "held: the refinement with it held did not converge";
-    return d;
-  }
-  RefineOptions freed = *refinement;
-  freed.free_principal_point = true;
-  const CalibrationCovariance cov = CovarianceAt(c, refined->camera, refined->poses, freed, refined->sigma_px);
-  if (!cov.observable) {
-    d.because = "held: with it free, " + cov.weakest;
-    return d;
-  }
-  d.sigma_if_free_px = Eigen::Vector2d(std::sqrt(cov.covariance.matrix(*cov.covariance.Find("cx"), *cov.covariance.Find("cx"))),
-                                       std::sqrt(cov.covariance.matrix(*cov.covariance.Find("cy"), *cov.covariance.Find("cy"))));
-  char buf[200];
-  std::snprintf(buf, sizeof buf, "its sigma with it free would be (%.3g, %.3g) px, limit %.3g px", d.sigma_if_free_px->x(),
-                d.sigma_if_free_px->y(), d.limit_px);
-  if (d.sigma_if_free_px->maxCoeff() > d.limit_px) {
-    d.because = std::string("held: ") + buf;
-    return d;
-  }
-  d.freed = true;
-  d.because = std::string("freed: ") + buf;
-  *refinement = freed;
-  *refined = Refine(c, refined->camera, refined->poses, freed);
   return d;
 }
 
@@ -374,11 +348,11 @@ CalibrationResult CalibrateOnce(Correspondences correspondences, const Calibrati
   if (r.exit_code != ExitCode::kOk || !options.refine) return r;
   RefineOptions refinement = options.refinement;
   const bool one_plane = r.tsai && r.tsai->variant == TsaiOptions::Variant::kCoplanar;
-  if (!one_plane && options.plane_principal_point != CalibrationOptions::PlanePrincipalPoint::kHold) {
+  if (!one_plane && options.plane_principal_point != CalibrationOptions::PlanePrincipalPoint::kPrior) {
     throw InputError("--free-principal-point: applies to one plane (Tsai's coplanar variant) only; a volume's or planar "
                      "views' principal point is always estimated; remove it");
   }
-  if (one_plane) HoldWhatOnePlaneCannotDetermine(*r.tsai, options, &refinement);
+  if (one_plane) r.plane_principal_point = OnePlaneRefinement(*r.tsai, r.used.image_size, options, &refinement);
 
   // A parameter not estimated is zero, not frozen at its start: a DLT start's small skew and a
   // Tsai start's k1, k2, k3 (converted from κ₁) would otherwise stay in the refined model
@@ -398,8 +372,10 @@ CalibrationResult CalibrateOnce(Correspondences correspondences, const Calibrati
     for (const ViewPose& v : r.camera.views) poses.push_back(v.camera_from_board);
   }
   Refinement refined = Refine(r.used, start, poses, refinement);
-  if (one_plane) {
-    r.plane_principal_point = DecidePlanePrincipalPoint(r.used, options, &refinement, &refined);
+  if (one_plane && !refined.covariance.empty() && refined.covariance.Find("cx") && refined.covariance.Find("cy")) {
+    const ParameterCovariance& cov = refined.covariance;
+    r.plane_principal_point->posterior_sigma_px =
+        Eigen::Vector2d(std::sqrt(cov.matrix(*cov.Find("cx"), *cov.Find("cx"))), std::sqrt(cov.matrix(*cov.Find("cy"), *cov.Find("cy"))));
   }
   ApplyRefinement(&r, std::move(refined));
   return r;

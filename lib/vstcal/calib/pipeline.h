@@ -29,14 +29,15 @@ struct CalibrationOptions {
   RefineOptions refinement;
 
   // One plane (Tsai's coplanar variant) refined: fx/fy stays at Tsai's sx, and the principal point
-  // at the start's (the image centre or TsaiOptions::principal_point) unless freed: always
-  // (kFree), or (kAuto) when, at the held optimum, the scaled information determines it and its
-  // predicted σ with it free is at most plane_principal_point_max_sigma × the image diagonal in
-  // both coordinates (docs/math/uncertainty.md#one-plane).
-  enum class PlanePrincipalPoint { kHold, kFree, kAuto };
-  static constexpr EnumNames<PlanePrincipalPoint, 3> kPlanePrincipalPointNames = {{{PlanePrincipalPoint::kHold, "no"}, {PlanePrincipalPoint::kFree, "yes"}, {PlanePrincipalPoint::kAuto, "auto"}}};
-  PlanePrincipalPoint plane_principal_point = PlanePrincipalPoint::kHold;
-  double plane_principal_point_max_sigma = 0.005;
+  // is estimated under a Gaussian prior centred where Tsai's stages assumed it (the image centre or
+  // TsaiOptions::principal_point), σ = plane_principal_point_prior_sigma × the image diagonal per
+  // coordinate (kPrior: weak data leave it near the prior, strong data move it, and its σ reaches
+  // every reported σ); or held there exactly (kHold: σ's conditional on it); or estimated without
+  // a prior (kFree). docs/math/uncertainty.md#one-plane.
+  enum class PlanePrincipalPoint { kHold, kFree, kPrior };
+  static constexpr EnumNames<PlanePrincipalPoint, 3> kPlanePrincipalPointNames = {{{PlanePrincipalPoint::kHold, "no"}, {PlanePrincipalPoint::kFree, "yes"}, {PlanePrincipalPoint::kPrior, "prior"}}};
+  PlanePrincipalPoint plane_principal_point = PlanePrincipalPoint::kPrior;
+  double plane_principal_point_prior_sigma = 0.05;
 
   // Reject views (then corners) inconsistent with the others and re-solve, until none is
   // (docs/math/uncertainty.md#view-rejection). Off by default for every rig.
@@ -45,12 +46,12 @@ struct CalibrationOptions {
 
 // How a refined one-plane calibration treated the principal point (CalibrationOptions).
 struct PlanePrincipalPointDecision {
-  CalibrationOptions::PlanePrincipalPoint mode = CalibrationOptions::PlanePrincipalPoint::kHold;
-  bool freed = false;
-  // kAuto: the predicted σ of (cx, cy) with it free at the held optimum, when observable, and the
-  // limit it was compared with.
-  std::optional<Eigen::Vector2d> sigma_if_free_px;
-  double limit_px = 0;
+  CalibrationOptions::PlanePrincipalPoint mode = CalibrationOptions::PlanePrincipalPoint::kPrior;
+  // kPrior: the prior's centre and σ per coordinate (px), and the posterior σ of (cx, cy) from the
+  // covariance (its ratio to the prior's says who decided: near 1 the prior, near 0 the data).
+  Eigen::Vector2d prior_px = Eigen::Vector2d::Zero();
+  double prior_sigma_px = 0;
+  std::optional<Eigen::Vector2d> posterior_sigma_px;
   std::string because;
 };
 
@@ -82,8 +83,7 @@ struct CalibrationResult {
 // Never throws on bad geometry: exit_code and message say what went wrong; with reject_views, a
 // rejection that would leave fewer views than the rig needs (kMinPlanarViewsKept,
 // kMinVolumeViewsKept) or a set the solver refuses is kBadInput, naming the view. Throws InputError for
-// options that cannot apply (an unknown distortion term; a plane_principal_point other than kHold
-// for points that are not one plane).
+// options that cannot apply (an unknown distortion term, a prior on a parameter not estimated).
 CalibrationResult Calibrate(Correspondences correspondences, const CalibrationOptions& options);
 
 }  // namespace vstcal

@@ -57,8 +57,12 @@ struct Refinement {
   double robust_sigma_px = 0;
   std::vector<Outlier> outliers;
 
-  int iterations = 0;
+  int iterations = 0;          // over every round when there are priors (refine.cc)
   double initial_rms_px = 0;  // RMS of the weighted residuals √w r at the start
+
+  // The priors the estimate and its covariance include (RefineOptions::priors): the covariance is
+  // the posterior's, conditional only on `held`.
+  std::vector<IntrinsicPrior> priors;
 };
 
 // `initial_poses` holds camera_from_world (volume rig: one) or camera_from_board (planar views:

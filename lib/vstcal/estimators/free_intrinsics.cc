@@ -1,6 +1,7 @@
 #include "vstcal/estimators/free_intrinsics.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "vstcal/core/error.h"
 #include "vstcal/core/suggest.h"
@@ -102,6 +103,35 @@ FreeIntrinsics MakeFreeIntrinsics(const AnyLensModel& model, const RefineOptions
     free.basis.col(static_cast<Eigen::Index>(k)) = columns[k].second;
   }
   return free;
+}
+
+std::vector<ResolvedPrior> ResolvePriors(const AnyLensModel& model, const FreeIntrinsics& free,
+                                         const RefineOptions& options) {
+  const auto all = LensModelParamNames(model);
+  std::vector<ResolvedPrior> resolved;
+  for (size_t k = 0; k < options.priors.size(); ++k) {
+    const IntrinsicPrior& prior = options.priors[k];
+    const std::string field = "refinement prior on \"" + prior.parameter + "\"";
+    const auto it = std::find(all.begin(), all.end(), prior.parameter);
+    if (it == all.end()) {
+      throw InputError(field + ": the " + std::string(LensModelName(model)) + " model has no such parameter; " +
+                       SuggestKey(prior.parameter, all));
+    }
+    const int index = static_cast<int>(it - all.begin());
+    if (free.basis.cols() == 0 || free.basis.row(index).isZero(0)) {
+      throw InputError(field + ": the refinement does not estimate " + prior.parameter +
+                       " (a prior applies to an estimated parameter); estimate it or drop the prior");
+    }
+    if (!std::isfinite(prior.value) || !std::isfinite(prior.sigma) || !(prior.sigma > 0)) {
+      throw InputError(field + ": needs a finite value and a sigma > 0, got value " + std::to_string(prior.value) +
+                       ", sigma " + std::to_string(prior.sigma) + "; give a positive sigma (a hold is a separate choice)");
+    }
+    for (const ResolvedPrior& r : resolved) {
+      if (r.index == index) throw InputError(field + ": given twice; keep one");
+    }
+    resolved.push_back({index, prior.value, prior.sigma});
+  }
+  return resolved;
 }
 
 std::vector<HeldIntrinsic> HeldIntrinsics(const AnyLensModel& model, const std::vector<double>& params,

@@ -44,6 +44,18 @@ struct FreeIntrinsics {
 // s, then the named distortion terms in the model's order.
 FreeIntrinsics MakeFreeIntrinsics(const AnyLensModel& model, const RefineOptions& options);
 
+// options.priors checked against `model` and `free`, each with its index in the model's layout:
+// the prior's residual is (θ[index] − value)/sigma, its row over β is B.row(index)/sigma. Throws
+// InputError for an unknown parameter (with the closest name), a parameter the refinement does not
+// estimate, a second prior on one parameter, or a value or sigma that is not finite (sigma ≤ 0).
+struct ResolvedPrior {
+  int index = 0;
+  double value = 0;
+  double sigma = 0;
+};
+std::vector<ResolvedPrior> ResolvePriors(const AnyLensModel& model, const FreeIntrinsics& free,
+                                         const RefineOptions& options);
+
 // A lens parameter (or a ratio) the refinement does not move, with its value and the reason.
 struct HeldIntrinsic {
   std::string parameter;  // "cx", "s", "k3", or "fx/fy" for a held aspect

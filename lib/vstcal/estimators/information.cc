@@ -145,6 +145,19 @@ CalibrationCovariance CovarianceAt(const Correspondences& c, const Camera& camer
         AddObservations<decltype(model)>(c, params, out.free, poses, loss.get(), &information, &out.n_behind);
       },
       out.model);
+  // Each prior's information 1/σ_i² along its row of B, in the information's pixel scale (σ̂² M⁻¹
+  // with M = JᵀWJ + Σ (σ̂/σ_i)² b_i b_iᵀ is (JᵀWJ/σ̂² + Σ b_i b_iᵀ/σ_i²)⁻¹): rows with no pose
+  // column, so they fold into the globals (docs/math/uncertainty.md#priors).
+  const std::vector<ResolvedPrior> priors = ResolvePriors(out.model, out.free, options);
+  if (!priors.empty()) {
+    std::vector<int> columns(static_cast<size_t>(m));
+    std::iota(columns.begin(), columns.end(), 0);
+    Eigen::MatrixXd rows = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(priors.size()), m + 6);
+    for (size_t k = 0; k < priors.size(); ++k) {
+      rows.row(static_cast<Eigen::Index>(k)).head(m) = (sigma_px / priors[k].sigma) * out.free.basis.row(priors[k].index);
+    }
+    information.AddRows(columns, 0, rows);
+  }
   const ArrowInverse inverse = InvertArrow(information, sigma_px * sigma_px);
   out.smallest_scaled_eigenvalue = inverse.observability.smallest_eigenvalue;
   if (!inverse.observability.observable) {

@@ -11,6 +11,17 @@
 
 namespace vstcal {
 
+// A Gaussian prior on one lens parameter (docs/math/uncertainty.md#priors): θ_i ~ N(value, sigma²),
+// in the parameter's own unit (px for fx … s). The parameter stays estimated; the prior adds the
+// whitened residual (θ_i − value)/sigma to the problem, so the estimate is the posterior mode and
+// the covariance the posterior's: the prior's information reaches every σ, unlike a hold.
+struct IntrinsicPrior {
+  std::string parameter;  // a lens parameter name: "cx", "s", "k3", …
+  double value = 0;
+  double sigma = 0;       // > 0
+  std::string because;    // written beside it in the camera file
+};
+
 struct RefineOptions {
   // Distortion terms to estimate, by name ("k1", "p2", "k5", …). The camera's model is promoted to
   // the smallest model that has every named term: "radial-tangential" for k1, k2, p1, p2, k3,
@@ -41,6 +52,10 @@ struct RefineOptions {
   double outlier_false_alarm = 0.01;
 
   int max_iterations = 100;
+
+  // Priors on free lens parameters (IntrinsicPrior). Each must name a parameter the refinement
+  // estimates, once, with a finite value and sigma > 0 (ResolvePriors, free_intrinsics.h).
+  std::vector<IntrinsicPrior> priors;
 };
 
 }  // namespace vstcal

@@ -72,12 +72,22 @@ OrderedJson CalibrationBlocksToJson(const CalibrationResult& r, const Calibratio
                           {"residual_px", MatrixToJson(o.residual_px)}, {"sigmas", o.normalized}});
     }
     OrderedJson held = OrderedJson::array();
-    for (const HeldIntrinsic& h : f.held) held.push_back({{"parameter", h.parameter}, {"value", h.value}, {"because", h.because}});
+    OrderedJson conditional_on = OrderedJson::array();
+    for (const HeldIntrinsic& h : f.held) {
+      held.push_back({{"parameter", h.parameter}, {"value", h.value}, {"because", h.because}});
+      conditional_on.push_back(h.parameter);
+    }
+    OrderedJson priors = OrderedJson::array();
+    for (const IntrinsicPrior& p : f.priors) {
+      priors.push_back({{"parameter", p.parameter}, {"value", p.value}, {"sigma", p.sigma}, {"because", p.because}});
+    }
     j["refinement"] = {{"status", f.status == RefineStatus::kConverged ? "converged" : "not converged"},
                        {"iterations", f.iterations},
                        {"initial_rms_px", f.initial_rms_px},
                        {"free_intrinsics", f.free.MovedParams(f.camera.model)},
                        {"held", std::move(held)},
+                       {"priors", std::move(priors)},
+                       {"covariance_conditional_on", std::move(conditional_on)},
                        {"smallest_scaled_eigenvalue", f.smallest_scaled_eigenvalue},
                        {"loss", LossName(options.refinement.loss)},
                        {"loss_scale_px", options.refinement.loss_scale_px},
@@ -89,11 +99,14 @@ OrderedJson CalibrationBlocksToJson(const CalibrationResult& r, const Calibratio
                        {"outliers", std::move(outliers)}};
     if (r.plane_principal_point) {
       const PlanePrincipalPointDecision& d = *r.plane_principal_point;
-      j["refinement"]["one_plane"] = {{"principal_point", d.freed ? "free" : "held"},
-                                      {"mode", PlanePrincipalPointModeName(d.mode)},
-                                      {"sigma_if_free_px", d.sigma_if_free_px ? MatrixToJson(*d.sigma_if_free_px) : OrderedJson(nullptr)},
-                                      {"limit_px", d.limit_px},
-                                      {"because", d.because}};
+      const bool prior = d.mode == CalibrationOptions::PlanePrincipalPoint::kPrior;
+      j["refinement"]["one_plane"] = {
+          {"principal_point", d.mode == CalibrationOptions::PlanePrincipalPoint::kHold ? "held" : prior ? "prior" : "free"},
+          {"mode", PlanePrincipalPointModeName(d.mode)},
+          {"prior_px", prior ? MatrixToJson(d.prior_px) : OrderedJson(nullptr)},
+          {"prior_sigma_px", prior ? OrderedJson(d.prior_sigma_px) : OrderedJson(nullptr)},
+          {"posterior_sigma_px", d.posterior_sigma_px ? MatrixToJson(*d.posterior_sigma_px) : OrderedJson(nullptr)},
+          {"because", d.because}};
     }
   }
   return j;
