@@ -8,7 +8,9 @@
 
 #include <cmath>
 #include <cstdio>
+#include <iterator>
 #include <map>
+#include <numbers>
 #include <random>
 
 #include <opencv2/aruco.hpp>
@@ -163,9 +165,9 @@ View Warp(const Canvas& canvas, const Target& t, const cv::Matx33d& H, uint32_t 
 }
 
 // Homographies from the canvas into the image: the board's centre to the image's centre, scaled
-// to about 560 px across, turned by `roll_deg` and seen at a tilt (a perspective row).
+// to 320 px across (whole at any turn), turned by `roll_deg` and seen at a tilt (a perspective row).
 cv::Matx33d ViewOf(const Canvas& c, double roll_deg, double tilt_x, double tilt_y) {
-  const double s = 420.0 / std::max(c.image.cols, c.image.rows), a = roll_deg * M_PI / 180;
+  const double s = 320.0 / std::max(c.image.cols, c.image.rows), a = roll_deg * std::numbers::pi / 180;
   const cv::Matx33d centre(1, 0, -0.5 * c.image.cols, 0, 1, -0.5 * c.image.rows, 0, 0, 1);
   const cv::Matx33d turn(s * std::cos(a), -s * std::sin(a), 0, s * std::sin(a), s * std::cos(a), 0, 0, 0, 1);
   const cv::Matx33d tilt(1, 0, 0, 0, 1, 0, tilt_x, tilt_y, 1);
@@ -237,7 +239,7 @@ TEST(KalibrAprilGrid, EveryTagFoundAndCornersAtLeastAsAccurateAsOpenCvs) {
     for (const auto& [id, px] : OpenCvCorners(v.image, t, cv::aruco::CORNER_REFINE_SUBPIX, false)) subpix.Add(px, v.truth.at(id));
     for (const auto& [id, px] : OpenCvCorners(v.image, t, cv::aruco::CORNER_REFINE_NONE, true)) kalibr.Add(px, v.truth.at(id));
   }
-  std::printf("aprilgrid 6x6, 4 warped views (tags 36-60 px, blur 0.8 px, noise 2): corners found / wrong / RMS px\n"
+  std::printf("aprilgrid 6x6, 4 warped views (tags about 34 px, blur 0.8 px, noise 2): corners found / wrong / RMS px\n"
               "  vstcal (aruco + symmetry)       %3d / %d / %.3f\n"
               "  OpenCV aruco, no refinement     %3d / %d / %.3f\n"
               "  OpenCV aruco, CORNER_REFINE_SUBPIX %3d / %d / %.3f\n"
@@ -270,6 +272,12 @@ TEST(KalibrAprilGrid, AnAprilTagGridReadAsAnAprilgridSaysSo) {
   const Detection d = DetectTarget(view.image, KalibrBoard(4, 6, 30), DetectorOptions{});
   EXPECT_EQ(d.status, DetectionStatus::kRejected);
   EXPECT_NE(d.reason.find("type to apriltag-grid"), std::string::npos) << d.reason;
+}
+
+TEST(KalibrAprilGrid, NothingInABlankImage) {
+  const Detection d = DetectTarget(GrayImage(320, 240, 128), KalibrBoard(), DetectorOptions{});
+  EXPECT_EQ(d.status, DetectionStatus::kNotFound);
+  EXPECT_NE(d.reason.find("two-cell black border of Kalibr's aprilgrid"), std::string::npos) << d.reason;
 }
 
 }  // namespace

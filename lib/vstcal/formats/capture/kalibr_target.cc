@@ -11,6 +11,12 @@ namespace {
 
 constexpr std::string_view kWhat = "a Kalibr target YAML";
 
+// A count, required: `fix` says what to write.
+int Count(const YamlField& f, std::string_view fix) {
+  f.Require(fix);
+  return f.Integer(fix);
+}
+
 // Kalibr's key of each target field CheckTarget may name.
 std::string KalibrKey(TargetType type, const std::string& field) {
   const bool grid = type == TargetType::kAprilGrid;
@@ -35,8 +41,8 @@ Target KalibrTargetFromText(const std::string& text, const std::string& name) {
   if (kind == "aprilgrid") {
     t.type = TargetType::kAprilGrid;
     t.family = "tag36h11";
-    t.cols = top.Member("tagCols").Integer("write the number of tags across the board (x)");
-    t.rows = top.Member("tagRows").Integer("write the number of tags up the board (y)");
+    t.cols = Count(top.Member("tagCols"), "add tagCols: the number of tags across the board (x)");
+    t.rows = Count(top.Member("tagRows"), "add tagRows: the number of tags up the board (y)");
     const YamlField size = top.Member("tagSize"), spacing = top.Member("tagSpacing");
     size.Require("add tagSize: the side of a tag's black square in metres");
     spacing.Require("add tagSpacing: the gap between tags as a fraction of tagSize (e.g. 0.3)");
@@ -45,8 +51,8 @@ Target KalibrTargetFromText(const std::string& text, const std::string& name) {
     t.margin = std::isfinite(t.tag_size * t.tag_spacing) ? t.tag_size * t.tag_spacing : 0;
   } else if (kind == "checkerboard") {
     t.type = TargetType::kChessboard;
-    t.cols = top.Member("targetCols").Integer("write the number of inner corners across the board");
-    t.rows = top.Member("targetRows").Integer("write the number of inner corners down the board");
+    t.cols = Count(top.Member("targetCols"), "add targetCols: the number of inner corners across the board");
+    t.rows = Count(top.Member("targetRows"), "add targetRows: the number of inner corners down the board");
     const YamlField row = top.Member("rowSpacingMeters"), col = top.Member("colSpacingMeters");
     row.Require("add rowSpacingMeters: the side of a square in metres");
     col.Require("add colSpacingMeters: the side of a square in metres");
