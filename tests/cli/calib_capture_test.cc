@@ -11,6 +11,7 @@
 #include <opencv2/videoio.hpp>
 
 #include <fstream>
+#include <map>
 
 #include "calibration_checks.h"
 #include "cli_fixture.h"
@@ -75,6 +76,53 @@ TEST_F(CliCalibCapture, TargetWritesTheDescriptionAndThePrintableFiles) {
   Ok({"target", "--type", "apriltag-grid", "--rows", "4", "--cols", "6", "--tag-size", "30", "--dpi", "0", "-o", "out/ag"});
   EXPECT_EQ(ReadJson("out/ag.target.json").at("tag_gap"), 7.5);
   EXPECT_FALSE(fs::exists(Path("out/ch.png")));
+}
+
+// Kalibr's target YAML (its wiki's april_6x6.yaml, scaled down) becomes an aprilgrid target in
+// metres with Kalibr's layout; the board drawn, rendered through a camera and detected: every tag
+// of every view with its Kalibr corner id, within 0.1 px of the rendered truth.
+TEST_F(CliCalibCapture, KalibrsAprilgridIsReadDrawnAndDetected) {
+  WriteText("in/april.yaml",
+            "target_type: 'aprilgrid' #gridtype\ntagCols: 6\ntagRows: 4\ntagSize: 0.03\ntagSpacing: 0.3 #ratio of space between tags to tagSize\n");
+  Ok({"target", "--kalibr", "in/april.yaml", "--dpi", "100", "-o", "in/kalibr"});
+  const Json t = ReadJson("in/kalibr.target.json");
+  EXPECT_EQ(t.at("type"), "aprilgrid");
+  EXPECT_EQ(t.at("length_unit"), "m");
+  EXPECT_EQ(t.at("rows"), 4);
+  EXPECT_EQ(t.at("cols"), 6);
+  EXPECT_EQ(t.at("tag_size"), 0.03);
+  EXPECT_EQ(t.at("tag_spacing"), 0.3);
+  EXPECT_FALSE(t.contains("family"));
+  EXPECT_NEAR(t.at("margin").get<double>(), 0.009, 1e-15);  // the gap
+  // The same board from flags.
+  Ok({"target", "--type", "aprilgrid", "--rows", "4", "--cols", "6", "--tag-size", "0.03", "--length-unit", "m", "--dpi", "0",
+      "-o", "out/flags"});
+  Json a = ReadJson("out/flags.target.json"), b = t;
+  a.erase("provenance");
+  b.erase("provenance");
+  EXPECT_EQ(a, b);
+  Camera();
+  Ok({"render", "in/kalibr.target.json", "--camera", "in/camera.truth.json", "-o", "in/views", "--rig", "planar-views", "--views", "4",
+      "--distance", "0.45", "--blur-px", "0.8", "--noise", "2"});
+  Ok({"detect", "in/kalibr.target.json", "in/views", "-o", "out/corners.json"});
+  const Json corners = ReadJson("out/corners.json"), truth = ReadJson("in/views/truth.json");
+  EXPECT_EQ(corners.at("capture").at("counts").at("found"), 4);
+  ASSERT_EQ(corners.at("views").size(), 4u);
+  for (size_t v = 0; v < 4; ++v) {
+    std::map<std::vector<double>, std::pair<double, double>> by_point;
+    for (const Json& p : truth["views"][v]["points"]) by_point[{p[0].get<double>(), p[1].get<double>()}] = {p[3], p[4]};
+    EXPECT_EQ(corners["views"][v]["points"].size(), truth["views"][v]["points"].size()) << v;
+    for (const Json& p : corners["views"][v]["points"]) {
+      const auto it = by_point.find({p[0].get<double>(), p[1].get<double>()});
+      ASSERT_NE(it, by_point.end());
+      EXPECT_LT(std::hypot(p[3].get<double>() - it->second.first, p[4].get<double>() - it->second.second), 0.1);
+    }
+  }
+  // Read as vstcal's apriltag-grid, the images say what the board is.
+  Ok({"target", "--type", "apriltag-grid", "--rows", "4", "--cols", "6", "--tag-size", "0.03", "--length-unit", "m", "--dpi", "0",
+      "-o", "in/grid"});
+  const CommandResult r = Run(kTool, {"detect", "in/grid.target.json", "in/views", "-o", "out/wrong.json"});
+  EXPECT_TRUE(FailsWith(r, kTool, kBadInput, "in/grid.target.json: ", {"Kalibr's aprilgrid", "set the target's type to aprilgrid"}));
 }
 
 // The main job end to end: a volume rendered through a distorted camera, detected, and solved by
@@ -471,6 +519,19 @@ std::vector<BadCase> BadCases() {
       {"TargetTagsDoNotFitTheLetter", [](CliCalibCapture*) {},
        {"target", "--type", "apriltag-grid", "--rows", "6", "--cols", "6", "--tag-size", "30", "--paper", "letter", "-o", "out/b"},
        kBadInput, "--tag-size: ", {"give --tag-size 27.8"}},
+      {"KalibrCircleGrid", [](CliCalibCapture* t) { static_cast<T*>(t)->WriteText("in/c.yaml", "target_type: 'circlegrid'\ntargetCols: 6\n"); },
+       {"target", "--kalibr", "in/c.yaml", "-o", "out/b"}, kBadInput, "in/c.yaml: target_type: ", {"vstcal has no circle grid"}},
+      {"KalibrMissingSpacing",
+       [](CliCalibCapture* t) { static_cast<T*>(t)->WriteText("in/a.yaml", "target_type: aprilgrid\ntagCols: 6\ntagRows: 6\ntagSize: 0.088\n"); },
+       {"target", "--kalibr", "in/a.yaml", "-o", "out/b"}, kBadInput, "in/a.yaml: tagSpacing: ", {"add tagSpacing"}},
+      {"KalibrWithRows",
+       [](CliCalibCapture* t) {
+         static_cast<T*>(t)->WriteText("in/a.yaml", "target_type: aprilgrid\ntagCols: 6\ntagRows: 6\ntagSize: 0.088\ntagSpacing: 0.3\n");
+       },
+       {"target", "--kalibr", "in/a.yaml", "--rows", "5", "-o", "out/b"}, kBadInput, "--rows: ", {"the board comes from --kalibr"}},
+      {"AprilgridSpacingTooSmall", [](CliCalibCapture*) {},
+       {"target", "--type", "aprilgrid", "--rows", "6", "--cols", "6", "--tag-size", "30", "--tag-spacing", "0.02", "-o", "out/b"},
+       kBadInput, "--tag-spacing: ", {"from 0.1 to 1 (Kalibr's tagSpacing)"}},
       {"TargetUnknownPaper", [](CliCalibCapture*) {}, {"target", "--rows", "6", "--cols", "9", "--paper", "a5", "-o", "out/b"}, kBadInput,
        "--paper: ", {"\"a5\" is not a paper size; give a4, letter, a3 or WxH in mm"}},
       {"TargetMarginFillsThePaper", [](CliCalibCapture*) {},

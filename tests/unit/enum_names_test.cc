@@ -41,7 +41,7 @@ void ExpectBijective(const EnumNames<E, N>& table, const std::string& documented
 TEST(EnumNames, TablesAreCompleteAndSpelledAsDocumented) {
   ExpectBijective(kRegistrationModeNames, "\"left\", \"per-eye\" or \"joint\"");
   ExpectBijective(kViewerNames, "\"none\", \"hmd\" or \"screen\"");
-  ExpectBijective(kTargetTypeNames, "\"chessboard\", \"charuco\" or \"apriltag-grid\"");
+  ExpectBijective(kTargetTypeNames, "\"chessboard\", \"charuco\", \"apriltag-grid\" or \"aprilgrid\"");
   ExpectBijective(kDetectionStatusNames, "\"found\", \"not-found\" or \"rejected\"");
   ExpectBijective(kChessboardFinderNames, "\"classic\", \"sector-based\" or \"classic+sector-based\"");
   ExpectBijective(kCornerRefinerNames, "\"symmetry\", \"cornersubpix\" or \"none\"");

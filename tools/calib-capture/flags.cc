@@ -42,11 +42,15 @@ void TargetFlags::Add(CLI::App* app) {
   Target& t = request.target;
   t.dictionary = "DICT_5X5_1000";
   t.family = "tag36h11";
-  app->add_option("--type", type, "chessboard, charuco or apriltag-grid")
+  app->add_option("--type", type, "chessboard, charuco, apriltag-grid or aprilgrid (Kalibr's)")
       ->check(CLI::IsMember(NamesOf(kTargetTypeNames)))
       ->capture_default_str();
-  app->add_option("--rows", t.rows, "inner corners (tags for apriltag-grid) along Y, down the sheet")->required();
-  app->add_option("--cols", t.cols, "inner corners (tags) along X, across the sheet")->required();
+  app->add_option("--kalibr", request.kalibr_file,
+                  "Kalibr's target YAML (target_type aprilgrid or checkerboard): the board's type, counts and sizes (m) "
+                  "instead of --type, --rows, --cols and the sizes")
+      ->check(kNonEmpty);
+  app->add_option("--rows", t.rows, "inner corners (tags for apriltag-grid and aprilgrid) along Y, down the sheet (required without --kalibr)");
+  app->add_option("--cols", t.cols, "inner corners (tags) along X, across the sheet (required without --kalibr)");
   app->add_option("--square-size", t.square_size, "chessboard, charuco: side of a square (with --paper: default the largest that fits)")
       ->check(kPositiveFinite);
   app->add_option("--marker-size", marker_size, "charuco: side of a marker (default 0.75 × square size)")->check(kFinite);
@@ -56,6 +60,9 @@ void TargetFlags::Add(CLI::App* app) {
   app->add_option("--tag-gap", tag_gap, "apriltag-grid: white between tags (default tag size / 4)")->check(kFinite);
   app->add_option("--family", t.family, "apriltag-grid: libapriltag family")->capture_default_str();
   app->add_option("--first-id", t.first_id, "apriltag-grid: id of the top-left tag; charuco: id of the first marker (OpenCV's boards: 0)")->capture_default_str();
+  app->add_option("--tag-spacing", tag_spacing, "aprilgrid: gap between tags (and side of the black junction squares) / tag size")
+      ->check(kFinite)
+      ->capture_default_str();
   app->add_option("--margin", margin, "white border around the pattern (default a square, or the tag gap)")->check(kFinite);
   app->add_option("--paper", paper,
                   "a4, letter, a3 or WxH (mm): the sheet to print on; the board gets the largest square (tag) size that fits, "
@@ -69,9 +76,24 @@ app::TargetRequest TargetFlags::Finish() {
   Target& t = request.target;
   t.type = *TargetTypeFromName(type);
   t.length_unit = *LengthUnitFromName(unit);
-  const bool tags = t.type == TargetType::kAprilTagGrid;
-  if (tags && t.square_size != 0) throw InputError("--square-size: an apriltag-grid has tags, not squares; give --tag-size");
-  if (!tags && t.tag_size != 0) throw InputError("--tag-size: applies to --type apriltag-grid; give --square-size");
+  if (!request.kalibr_file.empty()) {
+    for (const auto& [flag, given] : {std::pair<const char*, bool>{"--type", type != "chessboard"}, {"--rows", t.rows != 0},
+                                      {"--cols", t.cols != 0}, {"--square-size", t.square_size != 0}, {"--tag-size", t.tag_size != 0},
+                                      {"--tag-spacing", tag_spacing != kKalibrDefaultSpacing}, {"--length-unit", unit != "mm"}}) {
+      if (given) throw InputError(std::string(flag) + ": the board comes from --kalibr " + request.kalibr_file + "; remove " + flag);
+    }
+    request.given.margin = margin;
+    if (!paper.empty()) request.paper = PaperFromName(paper);
+    if (!paper.empty() && !request.paper) throw InputError("--paper: \"" + paper + "\" is not a paper size; give a4, letter, a3 or WxH in mm (e.g. 250x350)");
+    return request;
+  }
+  for (const auto& [flag, n] : {std::pair<const char*, int>{"--rows", t.rows}, {"--cols", t.cols}}) {
+    if (n == 0) throw InputError(std::string(flag) + ": required (or give --kalibr with Kalibr's target YAML)");
+  }
+  const bool tags = t.type == TargetType::kAprilTagGrid || t.type == TargetType::kAprilGrid;
+  if (tags && t.square_size != 0) throw InputError("--square-size: an " + type + " has tags, not squares; give --tag-size");
+  if (!tags && t.tag_size != 0) throw InputError("--tag-size: applies to --type apriltag-grid or aprilgrid; give --square-size");
+  if (t.type == TargetType::kAprilGrid) t.tag_spacing = tag_spacing;
   if (t.type == TargetType::kChessboard && t.first_id != 0) throw InputError("--first-id: a chessboard has no ids; remove it");
   if (!paper.empty()) {
     request.paper = PaperFromName(paper);
@@ -79,7 +101,7 @@ app::TargetRequest TargetFlags::Finish() {
   }
   const double size = tags ? t.tag_size : t.square_size;
   if (!(size > 0) && !request.paper) {
-    throw InputError(tags ? "--tag-size: required for --type apriltag-grid (side of a tag's black square), or give --paper to fit the largest"
+    throw InputError(tags ? "--tag-size: required for --type " + type + " (side of a tag's black square), or give --paper to fit the largest"
                           : "--square-size: required for --type " + type + " (side of a square), or give --paper to fit the largest");
   }
   request.given = {margin, tag_gap, marker_size};

@@ -13,6 +13,8 @@ struct TargetFlags {
   app::TargetRequest request;
   std::string type = "chessboard", unit = "mm";
   std::optional<double> marker_size, tag_gap, margin;
+  static constexpr double kKalibrDefaultSpacing = 0.3;  // kalibr_create_target_pdf's default
+  double tag_spacing = kKalibrDefaultSpacing;
   std::string paper;
   void Add(CLI::App* app);
   app::TargetRequest Finish();  // defaults that depend on other flags

@@ -13,6 +13,7 @@
 #include "vstcal/image/image_io.h"
 #include "vstcal/capture/overlay.h"
 #include "vstcal/capture/target_drawing.h"
+#include "vstcal/formats/capture/kalibr_target.h"
 #include "vstcal/formats/capture/target_io.h"
 #include "vstcal/formats/capture/volume_manifest.h"
 #include "vstcal/core/error.h"
@@ -91,7 +92,7 @@ Target FitTarget(const TargetRequest& request) {
   Target t = request.target;
   if (!request.paper) return t;
   const Paper& paper = *request.paper;
-  const bool tags = t.type == TargetType::kAprilTagGrid;
+  const bool tags = t.type == TargetType::kAprilTagGrid || t.type == TargetType::kAprilGrid;
   const double size = tags ? t.tag_size : t.square_size;
   const std::string field = tags ? "--tag-size" : "--square-size";
   const std::string unit(LengthUnitName(t.length_unit));
@@ -118,7 +119,11 @@ Target FitTarget(const TargetRequest& request) {
 
 Outcome MakeTarget(const TargetRequest& request_in, const Provenance& provenance) {
   TargetRequest request = request_in;
-  request.target = FitTarget(request_in);
+  if (!request.kalibr_file.empty()) {
+    const Target kalibr = ReadKalibrTarget(request.kalibr_file);
+    request.target = WithSize(kalibr, kalibr.type == TargetType::kAprilGrid ? kalibr.tag_size : kalibr.square_size, request.given);
+  }
+  request.target = FitTarget(request);
   if (const auto problem = CheckTarget(request.target)) throw InputError(Flag(problem->field) + ": " + problem->reason + "; " + problem->fix);
   if (request.output.empty()) throw InputError("-o/--output: give the output's name (e.g. board)");
   if (!(request.dpi >= 0)) throw InputError("--dpi: must be ≥ 0 (0: no PNG)");

@@ -30,6 +30,9 @@ struct TargetRequest {
   double dpi = 300;    // 0: no PNG
   std::optional<Paper> paper;
   TargetLengths given;  // with a paper: the lengths given outright
+  // Kalibr's target YAML (formats/capture/kalibr_target.h): when set, the target's type, counts and
+  // sizes (metres) come from it, `target` only lends its margin (given.margin) and the paper fit.
+  std::string kalibr_file;
 };
 Outcome MakeTarget(const TargetRequest& request, const Provenance& provenance);
 

@@ -16,6 +16,7 @@ Detection DetectTarget(const GrayImage& image, const Target& target, const Detec
     case TargetType::kChessboard: return DetectChessboard(image, target, options);
     case TargetType::kCharuco: return DetectCharuco(image, target, options);
     case TargetType::kAprilTagGrid: return DetectAprilTagGrid(image, target, options);
+    case TargetType::kAprilGrid: return DetectAprilGrid(image, target, options);
   }
   VSTCAL_CHECK(false, "unknown target type");
 }

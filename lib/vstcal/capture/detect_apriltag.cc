@@ -5,6 +5,7 @@
 #include <string>
 
 #include "vstcal/capture/apriltag_family.h"
+#include "vstcal/capture/aruco_tags.h"
 #include "vstcal/capture/corner_refinement.h"
 #include "vstcal/capture/detect_steps.h"
 #include "vstcal/capture/detectors.h"
@@ -75,6 +76,17 @@ Detection DetectAprilTagGrid(const GrayImage& image, const Target& target, const
   for (const int index : repeated) by_index.erase(index);  // a tag seen twice: neither can be trusted
   Detection d;
   if (by_index.empty()) {
+    // Kalibr's aprilgrid has tag36h11 tags with a two-cell black border, which libapriltag does not
+    // read: say so when OpenCV finds such tags where libapriltag found none of this board's.
+    const int dictionary = ArucoDictionaryOfAprilTagFamily(target.family);
+    const size_t two_cell = dictionary >= 0 ? FindArucoTags(image, dictionary, 2).size() : 0;
+    if (two_cell > 0) {
+      d.status = DetectionStatus::kRejected;
+      d.reason = "another target type: " + std::to_string(two_cell) + " " + target.family +
+                 " tags with a two-cell black border (Kalibr's aprilgrid), not the one-cell border of an apriltag-grid; "
+                 "set the target's type to aprilgrid (calib-capture target reads Kalibr's target YAML)";
+      return d;
+    }
     d.reason = foreign > 0 ? std::to_string(foreign) + " " + target.family + " tags, none of this board's ids " +
                                  std::to_string(target.first_id) + " … " + std::to_string(target.first_id + num_tags - 1)
                            : "no " + target.family + " tag";

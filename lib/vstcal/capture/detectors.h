@@ -8,5 +8,6 @@ namespace vstcal {
 Detection DetectChessboard(const GrayImage& image, const Target& target, const DetectorOptions& options);
 Detection DetectCharuco(const GrayImage& image, const Target& target, const DetectorOptions& options);
 Detection DetectAprilTagGrid(const GrayImage& image, const Target& target, const DetectorOptions& options);
+Detection DetectAprilGrid(const GrayImage& image, const Target& target, const DetectorOptions& options);
 
 }  // namespace vstcal

@@ -22,8 +22,11 @@ std::string OverlayPng(const GrayImage& image, const Target& target, const Detec
   // The axes from the lowest id: along its row (+X) and down its column (+Y).
   if (!by_id.empty()) {
     const int origin = by_id.begin()->first;
-    // Tag corners 0 → 1 and 0 → 3; grid corners one column and one row on.
-    const int step_x = 1, step_y = target.type == TargetType::kAprilTagGrid ? 3 : target.cols;
+    // Tag corners 0 → 1 and 0 → 3; grid corners one column and one row on (Kalibr's aprilgrid
+    // numbers its rows up the sheet: its arrow is Kalibr's y, −Y).
+    const int step_x = 1, step_y = target.type == TargetType::kAprilTagGrid ? 3
+                                   : target.type == TargetType::kAprilGrid  ? 2 * target.cols
+                                                                            : target.cols;
     if (by_id.count(origin + step_x)) cv::arrowedLine(bgr, point(by_id[origin]), point(by_id[origin + step_x]), {0, 0, 255}, 2 * thickness, cv::LINE_AA);
     if (by_id.count(origin + step_y)) cv::arrowedLine(bgr, point(by_id[origin]), point(by_id[origin + step_y]), {0, 200, 0}, 2 * thickness, cv::LINE_AA);
   }

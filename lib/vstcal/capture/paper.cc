@@ -77,7 +77,10 @@ std::optional<Paper> SmallestStandardPaper(double w_mm, double h_mm) {
 }
 
 Target WithSize(Target t, double size, const TargetLengths& given) {
-  if (t.type == TargetType::kAprilTagGrid) {
+  if (t.type == TargetType::kAprilGrid) {
+    t.tag_size = size;  // tag_spacing is a fraction of it: the gaps and junction squares follow
+    t.margin = given.margin.value_or(t.tag_spacing * size);
+  } else if (t.type == TargetType::kAprilTagGrid) {
     t.tag_size = size;
     t.tag_gap = given.tag_gap.value_or(0.25 * size);
     t.margin = given.margin.value_or(t.tag_gap);

@@ -38,13 +38,13 @@ bool SheetFitsPaper(double w_mm, double h_mm, const Paper& paper);
 std::optional<Paper> SmallestStandardPaper(double w_mm, double h_mm);
 
 // Lengths of a target given outright; an unset one follows the size as calib-capture's defaults
-// do: margin = one square (chessboard, charuco) or the tag gap; tag gap = tag size / 4; marker =
-// 0.75 × square size.
+// do: margin = one square (chessboard, charuco) or the tag gap (aprilgrid: tag_spacing × tag
+// size); tag gap = tag size / 4; marker = 0.75 × square size.
 struct TargetLengths {
   std::optional<double> margin, tag_gap, marker_size;
 };
 
-// `target` with its size (square_size, or tag_size for an apriltag-grid) set to `size` and the
+// `target` with its size (square_size, or tag_size for an apriltag-grid or aprilgrid) set to `size` and the
 // unset lengths derived from it.
 Target WithSize(Target target, double size, const TargetLengths& given);
 

@@ -73,9 +73,20 @@ Polygon ProjectedOutline(const Camera& camera, const Target& target, const Rigid
 }
 
 // Neighbouring corners of a target: chessboard and ChArUco corners one square apart along rows
-// and columns; the four sides of every AprilTag.
+// and columns; the four sides of every AprilTag (Kalibr's aprilgrid: its corner grid's rows and
+// columns, tag sides and gaps).
 std::vector<std::pair<int, int>> Neighbours(const Target& target) {
   std::vector<std::pair<int, int>> pairs;
+  if (target.type == TargetType::kAprilGrid) {
+    const int rows = 2 * target.rows, cols = 2 * target.cols;
+    for (int r = 0; r < rows; ++r) {
+      for (int c = 0; c < cols; ++c) {
+        if (c + 1 < cols) pairs.emplace_back(r * cols + c, r * cols + c + 1);
+        if (r + 1 < rows) pairs.emplace_back(r * cols + c, (r + 1) * cols + c);
+      }
+    }
+    return pairs;
+  }
   if (target.type == TargetType::kAprilTagGrid) {
     for (int tag = 0; tag < target.rows * target.cols; ++tag) {
       for (int k = 0; k < 4; ++k) pairs.emplace_back(4 * tag + k, 4 * tag + (k + 1) % 4);

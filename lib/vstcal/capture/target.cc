@@ -79,8 +79,29 @@ const MarkerFamily* FindMarkerFamily(std::span<const MarkerFamily> families, std
   return nullptr;
 }
 
+namespace {
+
+// Kalibr's aprilgrid: tag36h11 only (Kalibr's detector reads no other family), ids 0 … N − 1.
+std::optional<TargetProblem> CheckAprilGrid(const Target& t) {
+  if (auto p = Positive("tag_size", t.tag_size)) return p;
+  // Kalibr's generator takes a spacing in (0, 1]; below a tenth (one tag cell) the gaps blur shut.
+  if (!(std::isfinite(t.tag_spacing) && t.tag_spacing >= 0.1 && t.tag_spacing <= 1)) {
+    return TargetProblem{"tag_spacing", "must be a fraction of the tag size from 0.1 to 1 (Kalibr's tagSpacing), got " + Num(t.tag_spacing),
+                         "measure the gap between two tags and divide by the tag's side (Kalibr's default is 0.3)"};
+  }
+  const MarkerFamily* f = FindMarkerFamily(kAprilTag, "tag36h11");
+  if (t.rows * t.cols > f->num_codes) {
+    return TargetProblem{"rows", "an aprilgrid of " + std::to_string(t.rows * t.cols) + " tags needs more than the " +
+                                     std::to_string(f->num_codes) + " codes of tag36h11",
+                         "use fewer tags"};
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
 std::optional<TargetProblem> CheckTarget(const Target& t) {
-  const bool tags = t.type == TargetType::kAprilTagGrid;
+  const bool tags = t.type == TargetType::kAprilTagGrid || t.type == TargetType::kAprilGrid;
   const int min_count = tags ? 1 : 2;
   const std::string what = tags ? "tags" : "inner corners";
   for (const auto& [field, n] : {std::pair<const char*, int>{"rows", t.rows}, {"cols", t.cols}}) {
@@ -142,6 +163,7 @@ std::optional<TargetProblem> CheckTarget(const Target& t) {
                            "use a larger dictionary (e.g. DICT_5X5_1000) or a smaller board"};
     }
   }
+  if (t.type == TargetType::kAprilGrid) return CheckAprilGrid(t);
   if (tags) {
     const MarkerFamily* f = FindMarkerFamily(kAprilTag, t.family);
     if (!f) return TargetProblem{"family", "unknown AprilTag family \"" + t.family + "\"", "use one of " + Names(kAprilTag)};
@@ -183,17 +205,26 @@ std::string DescribeTarget(const Target& t) {
     case TargetType::kAprilTagGrid:
       return "AprilTag grid of " + grid + " " + t.family + " tags (ids from " + std::to_string(t.first_id) + "), " +
              Num(t.tag_size) + " " + unit + " tags";
+    case TargetType::kAprilGrid:
+      return "Kalibr aprilgrid of " + grid + " tag36h11 tags, " + Num(t.tag_size) + " " + unit + " tags, spacing " + Num(t.tag_spacing);
   }
   return "?";
 }
 
 int NumCorners(const Target& t) {
-  const long n = static_cast<long>(std::max(t.rows, 0)) * std::max(t.cols, 0) * (t.type == TargetType::kAprilTagGrid ? 4 : 1);
+  const bool tags = t.type == TargetType::kAprilTagGrid || t.type == TargetType::kAprilGrid;
+  const long n = static_cast<long>(std::max(t.rows, 0)) * std::max(t.cols, 0) * (tags ? 4 : 1);
   return static_cast<int>(std::min<long>(n, 1L << 30));
 }
 
 Eigen::Vector2d CornerPosition(const Target& t, int id) {
   VSTCAL_CHECK(id >= 0 && id < NumCorners(t), "corner id out of range");
+  if (t.type == TargetType::kAprilGrid) {
+    // Kalibr's grid of 2·rows × 2·cols corners, counted from the bottom-left with y up (target.h).
+    const int r = id / (2 * t.cols), c = id % (2 * t.cols);
+    const double pitch = (1 + t.tag_spacing) * t.tag_size;
+    return Eigen::Vector2d((c / 2) * pitch + (c % 2) * t.tag_size, -((r / 2) * pitch + (r % 2) * t.tag_size));
+  }
   if (t.type != TargetType::kAprilTagGrid) return Eigen::Vector2d((id % t.cols) * t.square_size, (id / t.cols) * t.square_size);
   const int tag = id / 4, k = id % 4;
   const double pitch = t.tag_size + t.tag_gap, s = t.tag_size;
@@ -227,11 +258,31 @@ std::vector<Quad> MarkerQuads(const Target& t) {
     for (int r = 0; r < t.rows; ++r) {
       for (int c = 0; c < t.cols; ++c) square(c * pitch, r * pitch, t.tag_size);
     }
+  } else if (t.type == TargetType::kAprilGrid) {
+    // Tag id = tr·cols + tc from the bottom-left; its top edge is at Y = −(tr·pitch + s).
+    const double pitch = (1 + t.tag_spacing) * t.tag_size;
+    for (int id = 0; id < t.rows * t.cols; ++id) square((id % t.cols) * pitch, -((id / t.cols) * pitch + t.tag_size), t.tag_size);
   }
   return quads;
 }
 
+std::vector<Rect> AprilGridJunctionSquares(const Target& t) {
+  std::vector<Rect> squares;
+  if (t.type != TargetType::kAprilGrid) return squares;
+  // Between tags i − 1 and i along X the gap is [i·pitch − g, i·pitch]; likewise along Kalibr's y.
+  const double pitch = (1 + t.tag_spacing) * t.tag_size, g = t.tag_spacing * t.tag_size;
+  for (int j = 0; j <= t.rows; ++j) {
+    for (int i = 0; i <= t.cols; ++i) squares.push_back(Rect{i * pitch - g, -(j * pitch), i * pitch, -(j * pitch - g)});
+  }
+  return squares;
+}
+
 Rect PatternExtent(const Target& t) {
+  if (t.type == TargetType::kAprilGrid) {
+    // The tags and the junction squares around them, which reach a gap beyond the outer tags.
+    const double pitch = (1 + t.tag_spacing) * t.tag_size, g = t.tag_spacing * t.tag_size;
+    return Rect{-g, -(t.rows * pitch), t.cols * pitch, g};
+  }
   if (t.type != TargetType::kAprilTagGrid) {
     return Rect{-t.square_size, -t.square_size, t.cols * t.square_size, t.rows * t.square_size};
   }

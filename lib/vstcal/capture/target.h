@@ -15,6 +15,19 @@
 //    black square; tag (r, c)'s corners are ids 4·(r·cols + c) + k, k = 0 top-left, 1 top-right,
 //    2 bottom-right, 3 bottom-left, at (c·pitch, r·pitch) + {(0,0), (s,0), (s,s), (0,s)},
 //    pitch = tag_size + tag_gap.
+//  - aprilgrid: Kalibr's aprilgrid (ethz-asl/kalibr, GridCalibrationTargetAprilgrid and
+//    kalibr_create_target_pdf): `rows` × `cols` tag36h11 tags of side tag_size with a two-cell
+//    black border (10 × 10 cells), tag_spacing · tag_size apart, and a black square of that side
+//    at every junction between four tag corners (the outer ones included), so that every tag
+//    corner is an X-junction. Kalibr numbers from the bottom-left as the sheet is read, y up: tag
+//    id = tr·cols + tc (tr the tag row from the bottom), and the 2·rows × 2·cols tag corners as a
+//    grid, id = r·(2·cols) + c (r from the bottom), at Kalibr's (x, y) = ((c/2)·p + (c%2)·s,
+//    (r/2)·p + (r%2)·s), p = (1 + tag_spacing)·s, integer division. vstcal keeps these ids and
+//    Kalibr's origin (the bottom-left corner of tag 0) and turns Kalibr's frame half a turn about
+//    its x axis, so that Y points down the sheet as for every other target:
+//    (X, Y, Z) = (x, −y, −z); the board lies at Y ≤ 0. Each tag is printed as OpenCV's
+//    DICT_APRILTAG_36h11 marker of that id (drawn with a 2-cell border) turned half a turn, as
+//    Kalibr's generator prints its tag36h11 codes.
 // `margin` is white paper around the pattern, part of the printed sheet.
 #pragma once
 
@@ -33,26 +46,34 @@
 
 namespace vstcal {
 
-enum class TargetType { kChessboard, kCharuco, kAprilTagGrid };
-inline constexpr EnumNames<TargetType, 3> kTargetTypeNames = {{{TargetType::kChessboard, "chessboard"}, {TargetType::kCharuco, "charuco"}, {TargetType::kAprilTagGrid, "apriltag-grid"}}};
+enum class TargetType { kChessboard, kCharuco, kAprilTagGrid, kAprilGrid };
+inline constexpr EnumNames<TargetType, 4> kTargetTypeNames = {{{TargetType::kChessboard, "chessboard"},
+                                                               {TargetType::kCharuco, "charuco"},
+                                                               {TargetType::kAprilTagGrid, "apriltag-grid"},
+                                                               {TargetType::kAprilGrid, "aprilgrid"}}};
 
-std::string_view TargetTypeName(TargetType type);  // "chessboard", "charuco", "apriltag-grid"
+std::string_view TargetTypeName(TargetType type);  // "chessboard", "charuco", "apriltag-grid", "aprilgrid"
 std::optional<TargetType> TargetTypeFromName(std::string_view name);
 
 struct Target {
   TargetType type = TargetType::kChessboard;
   LengthUnit length_unit = LengthUnit::kMillimetre;
-  int rows = 0;               // inner corners (chessboard, charuco) or tags (apriltag-grid) along Y
+  int rows = 0;               // inner corners (chessboard, charuco) or tags (apriltag-grid, aprilgrid) along Y
   int cols = 0;               // … along X
   double square_size = 0;     // chessboard, charuco: side of a square
   double marker_size = 0;     // charuco: side of an ArUco marker (its black border included)
   std::string dictionary;     // charuco: OpenCV's predefined dictionary, e.g. "DICT_5X5_100"
-  double tag_size = 0;        // apriltag-grid: side of a tag's black square
+  double tag_size = 0;        // apriltag-grid, aprilgrid: side of a tag's black square
   double tag_gap = 0;         // apriltag-grid: white between neighbouring tags' black squares
-  std::string family;         // apriltag-grid: "tag36h11"
+  std::string family;         // apriltag-grid: "tag36h11" (aprilgrid: always tag36h11)
   int first_id = 0;           // apriltag-grid: id of tag (0, 0)
   double margin = 0;          // white border of the sheet around the pattern
+  double tag_spacing = 0;     // aprilgrid: gap between tags (and side of the junction squares) / tag_size
 };
+
+// Kalibr's aprilgrid tag: its cells across, border included, and its black border's cells.
+inline constexpr int kAprilGridCells = 10;    // 6 data cells and a 2-cell black border each side
+inline constexpr int kAprilGridBorderCells = 2;
 
 // A dictionary or tag family vstcal can print and detect.
 struct MarkerFamily {
@@ -91,7 +112,7 @@ int NumCorners(const Target& target);
 Eigen::Vector2d CornerPosition(const Target& target, int id);
 
 // The squares of the markers (ChArUco, index = marker id) or tags (AprilTag grid, index =
-// r·cols + c) in the board frame: corners top-left, top-right, bottom-right, bottom-left (the
+// r·cols + c; aprilgrid, index = Kalibr's tag id) in the board frame: corners top-left, top-right, bottom-right, bottom-left (the
 // marker's black border included). Empty for a chessboard.
 using Quad = std::array<Eigen::Vector2d, 4>;
 std::vector<Quad> MarkerQuads(const Target& target);
@@ -102,6 +123,10 @@ Rect SheetExtent(const Target& target);
 
 // One line for messages and summaries: "chessboard of 9×6 inner corners, 25 mm squares".
 std::string DescribeTarget(const Target& target);
+
+// Kalibr's aprilgrid: the black squares at the junctions between tag corners ((rows + 1) ×
+// (cols + 1) of them, side tag_spacing · tag_size). Empty for the other types.
+std::vector<Rect> AprilGridJunctionSquares(const Target& target);
 
 // True for a chessboard that looks the same after a half turn (rows + cols even): its corners can
 // be numbered from either end, and only the view's geometry can tell which (docs/tools/calib-capture.md#orientation).

@@ -19,6 +19,9 @@ struct MarkerCells {
 };
 MarkerCells ArucoMarkerCells(std::string_view dictionary, int id);
 MarkerCells AprilTagCells(std::string_view family, int id);
+// Tag `id` of Kalibr's aprilgrid as printed: OpenCV's DICT_APRILTAG_36h11 marker with a 2-cell
+// black border (kAprilGridCells² cells) turned half a turn (target.h).
+MarkerCells AprilGridTagCells(int id);
 
 // The target's pattern. The target must pass CheckTarget.
 Pattern TargetPattern(const Target& target);

@@ -17,10 +17,11 @@ struct TypeFields {
   TargetType type;
   std::array<std::string_view, 4> fields;
 };
-constexpr std::array<TypeFields, 3> kTypeFields = {{
+constexpr std::array<TypeFields, 4> kTypeFields = {{
     {TargetType::kChessboard, {"square_size"}},
     {TargetType::kCharuco, {"square_size", "marker_size", "dictionary", "first_id"}},
     {TargetType::kAprilTagGrid, {"tag_size", "tag_gap", "family", "first_id"}},
+    {TargetType::kAprilGrid, {"tag_size", "tag_spacing"}},
 }};
 
 bool HasField(TargetType type, std::string_view field) {
@@ -40,7 +41,7 @@ Target TargetFromJson(const JsonDocument& doc) {
   root.ExpectObject();
   CheckFormat(root, kFormat);
   Target t;
-  t.type = *TargetTypeFromName(root.at("type").OneOf({"chessboard", "charuco", "apriltag-grid"}));
+  t.type = *TargetTypeFromName(root.at("type").OneOf({"chessboard", "charuco", "apriltag-grid", "aprilgrid"}));
   // A field of another type means the file describes another board than it says: refuse it
   // rather than print or detect the wrong thing.
   for (const TypeFields& other : kTypeFields) {
@@ -60,6 +61,10 @@ Target TargetFromJson(const JsonDocument& doc) {
     t.tag_gap = root.at("tag_gap").Number();
     t.family = root.at("family").String();
     t.first_id = root.at("first_id").Integer();
+  } else if (t.type == TargetType::kAprilGrid) {
+    t.tag_size = root.at("tag_size").Number();
+    t.tag_spacing = root.at("tag_spacing").Number();
+    t.family = "tag36h11";
   } else {
     t.square_size = root.at("square_size").Number();
   }
@@ -70,7 +75,10 @@ Target TargetFromJson(const JsonDocument& doc) {
     if (const auto first = root.find("first_id")) t.first_id = first->Integer();
   }
   const auto margin = root.find("margin");
-  t.margin = margin ? margin->Number() : (t.type == TargetType::kAprilTagGrid ? t.tag_gap : t.square_size);
+  t.margin = margin ? margin->Number()
+                    : t.type == TargetType::kAprilTagGrid ? t.tag_gap
+                    : t.type == TargetType::kAprilGrid    ? t.tag_spacing * t.tag_size
+                                                          : t.square_size;
   if (const auto problem = CheckTarget(t)) {
     const std::string field = problem->field == "margin" && !margin ? "" : problem->field;
     (field.empty() ? root : root.at(field)).Fail(problem->reason, problem->fix);
@@ -92,6 +100,9 @@ OrderedJson TargetToJson(const Target& t, const Provenance& provenance) {
     j["tag_gap"] = t.tag_gap;
     j["family"] = t.family;
     j["first_id"] = t.first_id;
+  } else if (t.type == TargetType::kAprilGrid) {
+    j["tag_size"] = t.tag_size;
+    j["tag_spacing"] = t.tag_spacing;
   } else {
     j["square_size"] = t.square_size;
   }
@@ -103,7 +114,13 @@ OrderedJson TargetToJson(const Target& t, const Provenance& provenance) {
   j["margin"] = t.margin;
   const Rect sheet = SheetExtent(t);
   j["sheet"] = {{"width", sheet.width()}, {"height", sheet.height()}};
-  j["board_frame"] = t.type == TargetType::kAprilTagGrid
+  j["board_frame"] = t.type == TargetType::kAprilGrid
+                         ? "Kalibr's aprilgrid frame turned half a turn about its x axis: origin at the bottom-left corner of tag 0 "
+                           "(the bottom-left tag), X right along cols, Y up the sheet negated (the board lies at Y <= 0), Z into the "
+                           "board; tag id tr*cols + tc from the bottom-left; corner r*(2*cols) + c of Kalibr's 2*rows x 2*cols "
+                           "corner grid (r from the bottom) at (c/2*pitch + c%2*tag_size, -(r/2*pitch + r%2*tag_size)), pitch = "
+                           "(1 + tag_spacing)*tag_size"
+                     : t.type == TargetType::kAprilTagGrid
                          ? "origin at the top-left corner of tag (0, 0)'s black square; X right along cols, Y down along "
                            "rows, Z into the board; tag (r, c) has id first_id + r*cols + c and corners 4*(r*cols + c) + "
                            "k, k = 0 top-left, 1 top-right, 2 bottom-right, 3 bottom-left"

@@ -1,0 +1,30 @@
+// Square markers found by OpenCV's ArUco module with a given black border: Kalibr's aprilgrid
+// (tag36h11 with a two-cell border, detect_aprilgrid.cc) and the hint that a board read as one
+// type looks like another (detect_apriltag.cc). Internal to the capture module.
+#pragma once
+
+#include <array>
+#include <string_view>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "vstcal/image/image.h"
+
+namespace vstcal {
+
+struct ArucoTag {
+  int id = 0;
+  // OpenCV's order: the marker's top-left, top-right, bottom-right, bottom-left as drawMarker draws
+  // it, whatever its rotation in the image; px, (0, 0) the centre of the top-left pixel.
+  std::array<Eigen::Vector2d, 4> corners;
+};
+
+// The markers of OpenCV's predefined dictionary `dictionary` (cv::aruco::PREDEFINED_DICTIONARY_NAME)
+// whose black border is `border_cells` cells wide; OpenCV's own corners, not refined.
+std::vector<ArucoTag> FindArucoTags(const GrayImage& image, int dictionary, int border_cells);
+
+// OpenCV's dictionary of a libapriltag family ("tag36h11" → DICT_APRILTAG_36h11); −1 when none.
+int ArucoDictionaryOfAprilTagFamily(std::string_view family);
+
+}  // namespace vstcal

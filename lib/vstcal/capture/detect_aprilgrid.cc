@@ -1,0 +1,137 @@
+// Kalibr's aprilgrid (target.h): OpenCV's ArUco module finds the tag36h11 tags with their two-cell
+// black border (libapriltag reads only one-cell borders); vstcal keeps this board's ids, checks
+// the tags' layout against the target, refines every tag corner by point symmetry — each is an
+// X-junction between the tag and the black square at its junction — and measures the blur along
+// the tags' edges.
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <string>
+
+#include <opencv2/aruco.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "vstcal/capture/aruco_tags.h"
+#include "vstcal/capture/corner_refinement.h"
+#include "vstcal/capture/detect_steps.h"
+#include "vstcal/capture/detectors.h"
+
+namespace vstcal {
+namespace {
+
+// Kalibr prints each tag turned half a turn from OpenCV's drawing (target.h): OpenCV's corner k
+// (drawMarker's top-left, top-right, bottom-right, bottom-left) is the printed tag's bottom-right,
+// bottom-left, top-left, top-right, i.e. MarkerQuads' corner (k + 2) mod 4.
+constexpr int kQuadCorner[4] = {2, 3, 0, 1};
+
+// Point symmetry about a tag corner holds within the tag's two-cell border and the junction
+// square (and the gaps beside them, as wide as it): a disc of radius min(g, 2√2 cells) about
+// the corner. The window keeps a fifth of it clear for the blur. Largest window as RefineXCorners.
+constexpr double kWindowOfSymmetricDisc = 0.8;
+constexpr double kMaxWindowPx = 6;
+constexpr double kMaxAsymmetry = 0.25;  // as DropAsymmetricCorners
+
+// Kalibr's corner id of MarkerQuads' corner q (top-left, top-right, bottom-right, bottom-left as
+// the sheet is read) of tag `tag`: its 2 × 2 block of Kalibr's corner grid, rows counted upwards.
+int CornerId(const Target& t, int tag, int q) {
+  const int tr = tag / t.cols, tc = tag % t.cols, cols = 2 * t.cols;
+  const int base = 2 * tr * cols + 2 * tc;  // bottom-left
+  constexpr int kUp[4] = {1, 1, 0, 0}, kRight[4] = {0, 1, 1, 0};
+  return base + kUp[q] * cols + kRight[q];
+}
+
+double SidePx(const std::array<Eigen::Vector2d, 4>& p) {
+  return 0.25 * ((p[1] - p[0]).norm() + (p[2] - p[1]).norm() + (p[3] - p[2]).norm() + (p[0] - p[3]).norm());
+}
+
+}  // namespace
+
+Detection DetectAprilGrid(const GrayImage& image, const Target& target, const DetectorOptions& options) {
+  const int num_tags = target.rows * target.cols;
+  std::map<int, DetectedMarker> by_index;
+  std::vector<int> repeated;
+  int foreign = 0;
+  for (const ArucoTag& tag : FindArucoTags(image, cv::aruco::DICT_APRILTAG_36h11, kAprilGridBorderCells)) {
+    if (tag.id >= num_tags) {
+      ++foreign;
+      continue;
+    }
+    DetectedMarker m{tag.id, {}};
+    for (int k = 0; k < 4; ++k) m.pixels[kQuadCorner[k]] = tag.corners[k];
+    if (!by_index.emplace(tag.id, m).second) repeated.push_back(tag.id);
+  }
+  for (const int index : repeated) by_index.erase(index);  // a tag seen twice: neither can be trusted
+  Detection d;
+  if (by_index.empty()) {
+    if (foreign > 0) {
+      d.reason = std::to_string(foreign) + " tag36h11 tags, none of this aprilgrid's ids 0 … " + std::to_string(num_tags - 1);
+      return d;
+    }
+    // A vstcal apriltag-grid (libapriltag's one-cell border) is not read with a two-cell border.
+    const size_t one_cell = FindArucoTags(image, cv::aruco::DICT_APRILTAG_36h11, 1).size();
+    if (one_cell > 0) {
+      d.status = DetectionStatus::kRejected;
+      d.reason = "another target type: " + std::to_string(one_cell) +
+                 " tag36h11 tags with a one-cell black border, none with the two-cell border of Kalibr's aprilgrid; "
+                 "the board looks like an apriltag-grid: set the target's type to apriltag-grid";
+    } else {
+      d.reason = "no tag36h11 tag with the two-cell black border of Kalibr's aprilgrid";
+    }
+    return d;
+  }
+  std::vector<DetectedMarker> markers;
+  for (const auto& [index, m] : by_index) markers.push_back(m);
+  const auto [inconsistent, checkable] = InconsistentMarkers(MarkerQuads(target), markers);
+  if (checkable > 0 && 2 * inconsistent > checkable) {
+    d.status = DetectionStatus::kRejected;
+    d.reason = "layout mismatch: tags not where the target file puts them (" + std::to_string(inconsistent) + " of " +
+               std::to_string(checkable) + " disagree with their neighbours); the target's rows and cols do not match the board";
+    return d;
+  }
+  // The symmetric disc in tag sides (see kWindowOfSymmetricDisc).
+  const double symmetric = std::min(target.tag_spacing, std::sqrt(2.0) * kAprilGridBorderCells / kAprilGridCells);
+  std::vector<double> blur;
+  double smallest_radius = kMaxWindowPx;
+  for (const DetectedMarker& m : markers) {
+    const double side_px = SidePx(m.pixels);
+    const double radius = std::min(kMaxWindowPx, kWindowOfSymmetricDisc * symmetric * side_px);
+    smallest_radius = std::min(smallest_radius, radius);
+    for (int q = 0; q < 4; ++q) {
+      Eigen::Vector2d corner = m.pixels[q];
+      if (options.refiner == CornerRefiner::kSymmetry && radius >= 2) {
+        const auto refined = RefineCornerBySymmetry(image, corner, radius);
+        if (!refined) continue;
+        corner = refined->corner;
+        // Not an X-junction (occluded, in shadow, or a misdecoded tag's corner): dropped.
+        const auto asymmetry = Asymmetry(image, corner, radius);
+        if (!asymmetry || *asymmetry > kMaxAsymmetry) continue;
+      }
+      d.corners.push_back({CornerId(target, m.index, q), corner});
+    }
+    // Across the tag's edges: the black border is two cells wide and the white gap g.
+    const double reach = 0.4 * std::min(target.tag_spacing, double(kAprilGridBorderCells) / kAprilGridCells) * side_px;
+    for (int q = 0; q < 4; ++q) {
+      if (const auto s = EdgeBlur(image, m.pixels[q], m.pixels[(q + 1) % 4], reach)) blur.push_back(*s);
+    }
+  }
+  if (options.refiner == CornerRefiner::kCornerSubPix && !d.corners.empty()) {
+    // One window for all corners, as RefineXCorners: the smallest.
+    const int half = std::clamp(static_cast<int>(std::lround(smallest_radius)), 2, 10);
+    std::vector<cv::Point2f> points;
+    for (const DetectedCorner& c : d.corners) points.emplace_back(static_cast<float>(c.pixel.x()), static_cast<float>(c.pixel.y()));
+    const cv::Mat gray(image.height, image.width, CV_8U, const_cast<uint8_t*>(image.pixels.data()));
+    cv::cornerSubPix(gray, points, cv::Size(half, half), cv::Size(-1, -1),
+                     cv::TermCriteria(cv::TermCriteria::EPS + cv::TermCriteria::COUNT, 40, 0.001));
+    for (size_t k = 0; k < points.size(); ++k) d.corners[k].pixel = Eigen::Vector2d(points[k].x, points[k].y);
+  }
+  std::sort(d.corners.begin(), d.corners.end(), [](const DetectedCorner& a, const DetectedCorner& b) { return a.id < b.id; });
+  if (!blur.empty()) {
+    std::nth_element(blur.begin(), blur.begin() + blur.size() / 2, blur.end());
+    d.blur_px = blur[blur.size() / 2];
+  }
+  d.status = DetectionStatus::kFound;
+  Conclude(options, &d);
+  return d;
+}
+
+}  // namespace vstcal
