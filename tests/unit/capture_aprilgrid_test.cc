@@ -134,18 +134,18 @@ Canvas DrawKalibrBoard(const Target& t, double px_per_mm) {
   return c;
 }
 
-struct View {
+struct WarpedView {
   cv::Mat image;
   std::map<int, Eigen::Vector2d> truth;  // Kalibr's point id → pixel
 };
 
 // The canvas through the homography `H` (canvas pixel → image pixel, centres at integers) into a
 // 640 × 480 image, anti-aliased, blurred by σ = 0.8 px and given noise of σ = 2 grey levels.
-View Warp(const Canvas& canvas, const Target& t, const cv::Matx33d& H, uint32_t seed) {
+WarpedView Warp(const Canvas& canvas, const Target& t, const cv::Matx33d& H, uint32_t seed) {
   cv::Mat smooth;
   const double shrink = std::sqrt(std::abs(cv::determinant(cv::Mat(H))));  // image px per canvas px, roughly
   cv::GaussianBlur(canvas.image, smooth, cv::Size(), 0.5 / shrink);
-  View v;
+  WarpedView v;
   cv::warpPerspective(smooth, v.image, cv::Mat(H), cv::Size(640, 480), cv::INTER_LINEAR, cv::BORDER_CONSTANT, cv::Scalar(255));
   cv::GaussianBlur(v.image, v.image, cv::Size(), 0.8);
   std::mt19937 rng(seed);
@@ -228,7 +228,7 @@ TEST(KalibrAprilGrid, EveryTagOpenCvDecodesAndCornersMoreAccurateThanOpenCvs) {
   Accuracy ours, raw, subpix, kalibr;
   int found_tags = 0;
   for (uint32_t k = 0; k < std::size(views); ++k) {
-    const View v = Warp(canvas, t, views[k], k + 1);
+    const WarpedView v = Warp(canvas, t, views[k], k + 1);
     const GrayImage gray = ToGray(v.image);
     const Detection d = DetectTarget(gray, t, DetectorOptions{});
     ASSERT_EQ(d.status, DetectionStatus::kFound) << "view " << k << ": " << d.reason;
@@ -258,7 +258,7 @@ TEST(KalibrAprilGrid, EveryTagOpenCvDecodesAndCornersMoreAccurateThanOpenCvs) {
 TEST(KalibrAprilGrid, ReadAsAnAprilTagGridItSaysKalibr) {
   const Target kalibr = KalibrBoard(6, 6, 80);
   const Canvas canvas = DrawKalibrBoard(kalibr, 1.0);
-  const View v = Warp(canvas, kalibr, ViewOf(canvas, 20, 2e-4, 1e-4), 9);
+  const WarpedView v = Warp(canvas, kalibr, ViewOf(canvas, 20, 2e-4, 1e-4), 9);
   const GrayImage gray = ToGray(v.image);
   Target vstcal_grid = testing::AprilGrid6x4();
   vstcal_grid.rows = 6;
