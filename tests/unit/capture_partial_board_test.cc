@@ -18,11 +18,8 @@ namespace {
 TEST(DetectChessboard, AGridThatTookTheBoardsEdgeForARowIsRefused) {
   const Camera camera = Camera::FromK((Eigen::Matrix3d() << 600, 0, 319.5, 0, 600, 239.5, 0, 0, 1).finished(), ImageSize{640, 480});
   const HandEyeRecording recording = SynthesizeHandEye(camera, HandEyeSpec{});  // calib-synth --rig handeye's defaults
-  Target target;
-  target.rows = 6;
-  target.cols = 9;
-  target.square_size = 30;
-  target.margin = 30;
+  Target target = testing::Chessboard9x6();
+  target.square_size = target.margin = 30;  // calib-synth's grid: 30 mm
   RenderOptions options;
   options.blur_px = 0.7;
   options.noise = 2;

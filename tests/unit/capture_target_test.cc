@@ -210,7 +210,7 @@ TEST(TargetIo, RefusesFieldsOfAnotherTypeAndBadValues) {
   EXPECT_EQ(ErrorOf([&] { TargetFromJson(JsonDocument::Parse(head + R"("type": "chessboard", "square_size": 25, "marker_size": 18})", "t.json")); }),
             "t.json: marker_size: is not a field of a chessboard target; remove it, or set \"type\" to the board's type (charuco has it)");
   EXPECT_EQ(ErrorOf([&] { TargetFromJson(JsonDocument::Parse(head + R"("type": "chessbord", "square_size": 25})", "t.json")); }),
-            "t.json: type: unknown value \"chessbord\"; use one of \"chessboard\", \"charuco\", \"apriltag-grid\"");
+            "t.json: type: unknown value \"chessbord\"; use one of \"chessboard\", \"charuco\", \"apriltag-grid\", \"aprilgrid\"");
   EXPECT_EQ(ErrorOf([&] { TargetFromJson(JsonDocument::Parse(head + R"("type": "charuco", "square_size": 25})", "t.json")); }),
             "t.json: marker_size: missing field; add \"marker_size\"");
   EXPECT_EQ(ErrorOf([&] { TargetFromJson(JsonDocument::Parse(head + R"("type": "chessboard", "square_size": 0})", "t.json")); }),

@@ -8,6 +8,7 @@
 #include <map>
 #include <string>
 
+#include <Eigen/Geometry>
 #include <opencv2/aruco.hpp>
 #include <opencv2/imgproc.hpp>
 
@@ -15,6 +16,7 @@
 #include "vstcal/capture/corner_refinement.h"
 #include "vstcal/capture/detect_steps.h"
 #include "vstcal/capture/detectors.h"
+#include "vstcal/estimators/homography.h"
 
 namespace vstcal {
 namespace {
@@ -42,6 +44,42 @@ int CornerId(const Target& t, int tag, int q) {
 
 double SidePx(const std::array<Eigen::Vector2d, 4>& p) {
   return 0.25 * ((p[1] - p[0]).norm() + (p[2] - p[1]).norm() + (p[3] - p[2]).norm() + (p[0] - p[3]).norm());
+}
+
+// A tag's black border touches the junction squares at its corners, so OpenCV's contour of a tag
+// can run on into a junction square and put the tag's corner at the square's far corner — the
+// neighbouring tag's, one gap away — where the point-symmetry refinement, finding an X-junction,
+// keeps it. Each corner is therefore predicted from the corners around it (a homography fitted to
+// those within 1.6 pitches on the board, the corner left out) and dropped when it lies more than
+// 0.3 of a gap from its prediction, measured on the board.
+void DropCornersOffTheirPlace(const Target& t, std::vector<DetectedCorner>* corners) {
+  const double pitch = (1 + t.tag_spacing) * t.tag_size, gap = t.tag_spacing * t.tag_size;
+  std::vector<DetectedCorner> kept;
+  for (size_t i = 0; i < corners->size(); ++i) {
+    const Eigen::Vector2d here = CornerPosition(t, (*corners)[i].id);
+    std::vector<Observation> around;
+    for (size_t j = 0; j < corners->size(); ++j) {
+      const Eigen::Vector2d there = CornerPosition(t, (*corners)[j].id);
+      if (j != i && (there - here).norm() <= 1.6 * pitch) around.push_back({Eigen::Vector3d(there.x(), there.y(), 0), (*corners)[j].pixel, 1.0});
+    }
+    Eigen::Vector2d back;
+    if (const auto H = EstimateHomography(around)) {
+      back = (H->inverse() * (*corners)[i].pixel.homogeneous()).hnormalized();
+    } else if (around.size() == 3) {
+      // A tag alone: its other three corners fix an affine map (a small tag's perspective is slight).
+      Eigen::Matrix3d pixels, board;
+      for (int k = 0; k < 3; ++k) {
+        pixels.col(k) = around[static_cast<size_t>(k)].pixel.homogeneous();
+        board.col(k) = around[static_cast<size_t>(k)].point.head<2>().homogeneous();
+      }
+      if (std::abs(pixels.determinant()) < 1e-9) continue;
+      back = (board * pixels.inverse() * (*corners)[i].pixel.homogeneous()).head<2>();
+    } else {
+      continue;  // nothing to check it against
+    }
+    if ((back - here).norm() <= 0.3 * gap) kept.push_back((*corners)[i]);
+  }
+  *corners = std::move(kept);
 }
 
 }  // namespace
@@ -81,11 +119,10 @@ Detection DetectAprilGrid(const GrayImage& image, const Target& target, const De
   }
   std::vector<DetectedMarker> markers;
   for (const auto& [index, m] : by_index) markers.push_back(m);
-  const auto [inconsistent, checkable] = InconsistentMarkers(MarkerQuads(target), markers);
-  if (checkable > 0 && 2 * inconsistent > checkable) {
+  if (std::string mismatch = LayoutMismatch(CheckMarkerLayout(MarkerQuads(target), markers), markers, "tags", "rows and cols");
+      !mismatch.empty()) {
     d.status = DetectionStatus::kRejected;
-    d.reason = "layout mismatch: tags not where the target file puts them (" + std::to_string(inconsistent) + " of " +
-               std::to_string(checkable) + " disagree with their neighbours); the target's rows and cols do not match the board";
+    d.reason = std::move(mismatch);
     return d;
   }
   // The symmetric disc in tag sides (see kWindowOfSymmetricDisc).
@@ -101,6 +138,9 @@ Detection DetectAprilGrid(const GrayImage& image, const Target& target, const De
       if (options.refiner == CornerRefiner::kSymmetry && radius >= 2) {
         const auto refined = RefineCornerBySymmetry(image, corner, radius);
         if (!refined) continue;
+        // Farther than half the gap from where OpenCV put it, it has reached the junction square's
+        // other corner — the neighbouring tag's — and would be numbered as this one: dropped.
+        if ((refined->corner - corner).norm() > 0.5 * target.tag_spacing * side_px) continue;
         corner = refined->corner;
         // Not an X-junction (occluded, in shadow, or a misdecoded tag's corner): dropped.
         const auto asymmetry = Asymmetry(image, corner, radius);
@@ -124,6 +164,7 @@ Detection DetectAprilGrid(const GrayImage& image, const Target& target, const De
                      cv::TermCriteria(cv::TermCriteria::EPS + cv::TermCriteria::COUNT, 40, 0.001));
     for (size_t k = 0; k < points.size(); ++k) d.corners[k].pixel = Eigen::Vector2d(points[k].x, points[k].y);
   }
+  DropCornersOffTheirPlace(target, &d.corners);
   std::sort(d.corners.begin(), d.corners.end(), [](const DetectedCorner& a, const DetectedCorner& b) { return a.id < b.id; });
   if (!blur.empty()) {
     std::nth_element(blur.begin(), blur.begin() + blur.size() / 2, blur.end());

@@ -94,11 +94,10 @@ Detection DetectAprilTagGrid(const GrayImage& image, const Target& target, const
   }
   std::vector<DetectedMarker> markers;
   for (const auto& [index, m] : by_index) markers.push_back(m);
-  const auto [inconsistent, checkable] = InconsistentMarkers(MarkerQuads(target), markers);
-  if (checkable > 0 && 2 * inconsistent > checkable) {
+  if (std::string mismatch = LayoutMismatch(CheckMarkerLayout(MarkerQuads(target), markers), markers, "tags", "rows, cols or first_id");
+      !mismatch.empty()) {
     d.status = DetectionStatus::kRejected;
-    d.reason = "layout mismatch: tags not where the target file puts them (" + std::to_string(inconsistent) + " of " +
-               std::to_string(checkable) + " disagree with their neighbours); the target's rows, cols or first_id do not match the board";
+    d.reason = std::move(mismatch);
     return d;
   }
   std::vector<double> blur;

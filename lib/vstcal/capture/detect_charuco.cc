@@ -50,11 +50,9 @@ Detection DetectCharuco(const GrayImage& image, const Target& target, const Dete
     return d;
   }
   const MarkerLayoutCheck layout = CheckMarkerLayout(quads, markers);
-  if (layout.checkable > 0 && 2 * layout.inconsistent.size() > static_cast<size_t>(layout.checkable)) {
+  if (std::string mismatch = LayoutMismatch(layout, markers, "markers", "rows, cols, marker_size, first_id or dictionary"); !mismatch.empty()) {
     d.status = DetectionStatus::kRejected;
-    d.reason = "layout mismatch: markers not where the target file puts them (" + std::to_string(layout.inconsistent.size()) + " of " +
-               std::to_string(layout.checkable) + " disagree with their neighbours: " + DescribeDisagreements(layout, markers) +
-               "); the target's rows, cols, marker_size or dictionary do not match the board";
+    d.reason = std::move(mismatch);
     return d;
   }
   // A few markers out of place (an id misread, a marker of another board in view): without them.

@@ -12,6 +12,7 @@
 //  - where OpenCV's board-presence check (checkChessboard, what CALIB_CB_FAST_CHECK uses) sees no
 //    board in a reduced search image, the sector-based finder searches it at half the size again.
 #include <algorithm>
+#include <climits>
 #include <cstdio>
 
 #include <opencv2/calib3d.hpp>
@@ -110,8 +111,15 @@ Search Find(const cv::Mat& gray, const cv::Size& size, ChessboardFinder finder) 
 Detection DetectChessboard(const GrayImage& image, const Target& target, const DetectorOptions& options) {
   const cv::Mat gray(image.height, image.width, CV_8U, const_cast<uint8_t*>(image.pixels.data()));
   const cv::Size size(target.cols, target.rows);
-  const Search s = Find(gray, size, options.finder);
   Detection d;
+  // OpenCV's finders remap with 16-bit coordinates: a side of 32767 px or more throws inside them.
+  // Only a strip too thin to reduce keeps such a side in the search image, and it holds no board.
+  if (const int longest = std::max(image.width, image.height) / SearchFactor(image.width, image.height); longest >= SHRT_MAX) {
+    d.reason = "no chessboard of " + std::to_string(target.cols) + "×" + std::to_string(target.rows) + " inner corners (a " +
+               std::to_string(image.width) + "×" + std::to_string(image.height) + " image is searched only below 32767 px a side)";
+    return d;
+  }
+  const Search s = Find(gray, size, options.finder);
   if (!s.found || static_cast<int>(s.points.size()) != target.rows * target.cols) {
     d.reason = "no chessboard of " + std::to_string(target.cols) + "×" + std::to_string(target.rows) + " inner corners";
     if (s.board_like) {

@@ -197,10 +197,12 @@ std::string DescribeDisagreements(const MarkerLayoutCheck& check, const std::vec
   return text;
 }
 
-std::pair<int, int> InconsistentMarkers(const std::vector<std::array<Eigen::Vector2d, 4>>& board_quads,
-                                        const std::vector<DetectedMarker>& markers) {
-  const MarkerLayoutCheck check = CheckMarkerLayout(board_quads, markers);
-  return {static_cast<int>(check.inconsistent.size()), check.checkable};
+std::string LayoutMismatch(const MarkerLayoutCheck& check, const std::vector<DetectedMarker>& markers, const std::string& kind,
+                           const std::string& fields) {
+  if (check.checkable == 0 || 2 * check.inconsistent.size() <= static_cast<size_t>(check.checkable)) return {};
+  return "layout mismatch: " + kind + " not where the target file puts them (" + std::to_string(check.inconsistent.size()) + " of " +
+         std::to_string(check.checkable) + " disagree with their neighbours: " + DescribeDisagreements(check, markers) + "); the target's " +
+         fields + " do not match the board";
 }
 
 void Conclude(const DetectorOptions& options, Detection* d) {

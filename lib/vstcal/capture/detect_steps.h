@@ -75,9 +75,11 @@ MarkerLayoutCheck CheckMarkerLayout(const std::vector<std::array<Eigen::Vector2d
 // "ids 7 (12.3 px off, tolerance 4.1 px), 12 (…) and 3 more", for a rejection's message: the
 // worst `shown` of the disagreeing markers by their ids on the board (DetectedMarker::index).
 std::string DescribeDisagreements(const MarkerLayoutCheck& check, const std::vector<DetectedMarker>& markers, size_t shown = 3);
-// How many of the checkable markers disagree, and how many are checkable.
-std::pair<int, int> InconsistentMarkers(const std::vector<std::array<Eigen::Vector2d, 4>>& board_quads,
-                                        const std::vector<DetectedMarker>& markers);
+// The view's rejection when most of the checkable markers disagree — "layout mismatch: <kind> not
+// where the target file puts them (…, naming the worst); the target's <fields> do not match the
+// board" — else empty. `kind`: "markers" or "tags".
+std::string LayoutMismatch(const MarkerLayoutCheck& check, const std::vector<DetectedMarker>& markers, const std::string& kind,
+                           const std::string& fields);
 
 // Status from the corners found: rejected with too few corners or too much blur; found otherwise.
 void Conclude(const DetectorOptions& options, Detection* detection);
