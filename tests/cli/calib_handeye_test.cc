@@ -187,6 +187,33 @@ TEST_F(CliCalibHandEye, SynthesizedRecordingSolvedToItsTruth) {
   EXPECT_TRUE(OutDirEmpty() || List("out") == std::vector<std::string>{"he.json"});
 }
 
+// A bad frame (one view's corners 3 px off) is dropped by default, named in the summary and in
+// rejected_views; --keep-all-views keeps it, and the fit then shows it.
+TEST_F(CliCalibHandEye, DropsABadFrameUnlessToldToKeepAll) {
+  testing::HandEyeRecording r = testing::RecordHandEye(0.03, 0.2, 5);
+  for (Observation& o : r.views[7].observations) o.pixel.x() += 3;
+  WriteRecording(r);
+  const std::vector<std::string> args = {"solve", "in/corners.json", "--poses", "in/poses.txt", "--camera", "in/camera.json"};
+  std::vector<std::string> dropping = args, keeping = args;
+  dropping.insert(dropping.end(), {"-o", "out/dropped.json"});
+  keeping.insert(keeping.end(), {"--keep-all-views", "-o", "out/kept.json"});
+  const CommandResult d = Run(kTool, dropping);
+  ASSERT_EQ(d.exit_code, kOk) << d.err;
+  EXPECT_NE(d.err.find("calib-handeye: 29 views (of 30; bad frames dropped below)"), std::string::npos) << d.err;
+  EXPECT_NE(d.err.find("dropped view \"" + r.views[7].name + "\""), std::string::npos) << d.err;
+  const Json dropped = ReadJson("out/dropped.json");
+  ASSERT_EQ(dropped.at("rejected_views").size(), 1u);
+  EXPECT_EQ(dropped["rejected_views"][0]["name"], r.views[7].name);
+  EXPECT_EQ(dropped["rejected_views"][0]["view"], 7);
+  EXPECT_EQ(dropped.at("fit").at("views"), 29);
+  const CommandResult k = Run(kTool, keeping);
+  ASSERT_EQ(k.exit_code, kOk) << k.err;
+  const Json kept = ReadJson("out/kept.json");
+  EXPECT_TRUE(kept.at("rejected_views").empty());
+  EXPECT_EQ(kept.at("fit").at("views"), 30);
+  EXPECT_GT(kept["fit"]["sigma_px"].get<double>(), 2 * dropped["fit"]["sigma_px"].get<double>());
+}
+
 // Issue 22 item 5, from photographs: calib-synth renders the recording's views (the chessboard its
 // grid is), calib-capture detect finds the corners and gives each image its time from times.txt,
 // calib-handeye solves — X, Z and the offset to the truth within their own covariance.
