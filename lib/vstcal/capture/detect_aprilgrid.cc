@@ -166,12 +166,7 @@ Detection DetectAprilGrid(const GrayImage& image, const Target& target, const De
   }
   DropCornersOffTheirPlace(target, &d.corners);
   std::sort(d.corners.begin(), d.corners.end(), [](const DetectedCorner& a, const DetectedCorner& b) { return a.id < b.id; });
-  if (!blur.empty()) {
-    std::nth_element(blur.begin(), blur.begin() + blur.size() / 2, blur.end());
-    d.blur_px = blur[blur.size() / 2];
-  }
-  d.status = DetectionStatus::kFound;
-  Conclude(options, &d);
+  ConcludeFound(options, std::move(blur), &d);
   return d;
 }
 

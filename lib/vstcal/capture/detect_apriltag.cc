@@ -111,12 +111,7 @@ Detection DetectAprilTagGrid(const GrayImage& image, const Target& target, const
       if (const auto s = EdgeBlur(image, a, b, 0.4 * (b - a).norm() / (family->bits + 2))) blur.push_back(*s);
     }
   }
-  if (!blur.empty()) {
-    std::nth_element(blur.begin(), blur.begin() + blur.size() / 2, blur.end());
-    d.blur_px = blur[blur.size() / 2];
-  }
-  d.status = DetectionStatus::kFound;
-  Conclude(options, &d);
+  ConcludeFound(options, std::move(blur), &d);
   return d;
 }
 

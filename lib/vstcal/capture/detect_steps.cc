@@ -205,6 +205,15 @@ std::string LayoutMismatch(const MarkerLayoutCheck& check, const std::vector<Det
          fields + " do not match the board";
 }
 
+void ConcludeFound(const DetectorOptions& options, std::vector<double> edge_blurs, Detection* d) {
+  if (!edge_blurs.empty()) {
+    std::nth_element(edge_blurs.begin(), edge_blurs.begin() + static_cast<long>(edge_blurs.size() / 2), edge_blurs.end());
+    d->blur_px = edge_blurs[edge_blurs.size() / 2];
+  }
+  d->status = DetectionStatus::kFound;
+  Conclude(options, d);
+}
+
 void Conclude(const DetectorOptions& options, Detection* d) {
   if (d->status != DetectionStatus::kFound) return;
   char buf[200];

@@ -81,6 +81,10 @@ std::string DescribeDisagreements(const MarkerLayoutCheck& check, const std::vec
 std::string LayoutMismatch(const MarkerLayoutCheck& check, const std::vector<DetectedMarker>& markers, const std::string& kind,
                            const std::string& fields);
 
+// A tag grid's view once its corners are in: the blur is the median of its tags' edge blurs (NaN
+// when none could be measured), then Conclude.
+void ConcludeFound(const DetectorOptions& options, std::vector<double> edge_blurs, Detection* detection);
+
 // Status from the corners found: rejected with too few corners or too much blur; found otherwise.
 void Conclude(const DetectorOptions& options, Detection* detection);
 
