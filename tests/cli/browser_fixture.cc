@@ -82,56 +82,60 @@ size_t BrowserTest::ExpectNumbersOf(const Json& report, const std::string& dom) 
 }
 
 // The page's policy allows no script; the copy allows inline ones and still no fetch.
-std::string BrowserTest::EvaluateOnLoad(const std::string& page, const std::string& expression,
-                                        const std::vector<std::string>& flags) const {
+BrowserTest::PageView BrowserTest::View(const std::string& page, const std::string& shot, int width, int height,
+                                        const std::string& expression) const {
+  PageView view;
   std::string text = ReadText(page);
+  EXPECT_EQ(text.find("<script"), std::string::npos) << page << " holds a script";
   const std::string policy = "default-src 'none';";
   const size_t at = text.find(policy);
-  if (at == std::string::npos) return "no Content-Security-Policy";
+  if (at == std::string::npos) {
+    ADD_FAILURE() << page << " has no Content-Security-Policy";
+    return view;
+  }
   text.replace(at, policy.size(), "default-src 'none'; script-src 'unsafe-inline';");
-  text.replace(text.rfind("</body>"), 7,
-               "<script>window.addEventListener('load', () => { document.body.setAttribute('data-result', (" +
-                   expression + ")); });</script></body>");
-  WriteText("check.html", text);
-  std::vector<std::string> extra = flags;
-  extra.push_back("--dump-dom");
-  const CommandResult checked = Render("check.html", extra);
-  const std::vector<std::string> console = ConsoleLines(checked.err);
-  EXPECT_TRUE(console.empty()) << console.front();
-  const std::vector<std::string> result = Attributes(checked.out, "data-result");
-  return result.size() == 1 ? result[0] : "no result: " + checked.out.substr(0, 400);
-}
-
-std::string BrowserTest::ImagesLoaded(const std::string& page) const {
-  return EvaluateOnLoad(page,
-                        "document.images.length + ' loaded, ' + [...document.images].filter(i => !i.complete || "
-                        "i.naturalWidth === 0).length + ' broken'");
-}
-
-std::string BrowserTest::TablesWiderThanThePage(const std::string& page, int width) const {
   // The body's content box: its border box less its padding (the page's margins lie outside it).
-  const std::string expression =
+  const std::string images =
+      "document.images.length + ' loaded, ' + [...document.images].filter(i => !i.complete || i.naturalWidth === 0)"
+      ".length + ' broken'";
+  const std::string wide =
       "(() => { const b = document.body.getBoundingClientRect(), st = getComputedStyle(document.body); "
       "const limit = Math.min(b.right - parseFloat(st.paddingRight), document.documentElement.clientWidth); "
       "const wide = [...document.querySelectorAll('table')].map(t => [t, t.getBoundingClientRect().left + "
       "t.scrollWidth]).filter(([t, right]) => right > limit + 0.5).map(([t, right]) => (t.caption ? "
       "t.caption.textContent : 'a table') + ': right edge ' + Math.round(right) + ' px, page ' + Math.round(limit) + ' px'); "
       "return wide.length ? wide.join('; ') : 'none'; })()";
-  return EvaluateOnLoad(page, expression, {"--window-size=" + std::to_string(width) + ",1000"});
-}
+  text.replace(text.rfind("</body>"), 7,
+               "<script>window.addEventListener('load', () => { const b = document.body; b.setAttribute('data-images', (" +
+                   images + ")); b.setAttribute('data-wide', (" + wide + ")); b.setAttribute('data-result', (" +
+                   (expression.empty() ? std::string("''") : expression) + ")); });</script></body>");
+  WriteText("view.html", text);
 
-void BrowserTest::ExpectScreenshot(const std::string& page, const std::string& name, int width, int height) const {
-  const fs::path shot = fs::path(VSTCAL_TOOLS_DIR).parent_path() / "test-artifacts" / name;
-  fs::create_directories(shot.parent_path());
-  const CommandResult screenshot =
-      Render(page, {"--window-size=" + std::to_string(width) + "," + std::to_string(height), "--screenshot=" + shot.string()});
-  ASSERT_EQ(screenshot.exit_code, 0) << screenshot.err;
-  const cv::Mat png = cv::imread(shot.string(), cv::IMREAD_GRAYSCALE);
-  ASSERT_FALSE(png.empty());
-  EXPECT_EQ(png.cols, width);
-  double lo = 0, hi = 0;
-  cv::minMaxLoc(png, &lo, &hi);
-  EXPECT_LT(lo, 60);  // text and charts drawn, not a blank page
+  const fs::path artifact = fs::path(VSTCAL_TOOLS_DIR).parent_path() / "test-artifacts" / shot;
+  fs::create_directories(artifact.parent_path());
+  const CommandResult run = Render("view.html", {"--window-size=" + std::to_string(width) + "," + std::to_string(height),
+                                                 "--screenshot=" + artifact.string(), "--dump-dom"});
+  EXPECT_EQ(run.exit_code, 0) << run.err;
+  const std::vector<std::string> console = ConsoleLines(run.err);
+  EXPECT_TRUE(console.empty()) << console.front();
+  view.dom = run.out;
+  const auto only = [&](const char* name) {
+    const std::vector<std::string> values = Attributes(run.out, name);
+    return values.size() == 1 ? values[0] : std::string("no ") + name + ": " + run.out.substr(0, 400);
+  };
+  view.images = only("data-images");
+  view.wide_tables = only("data-wide");
+  view.result = only("data-result");
+
+  const cv::Mat png = cv::imread(artifact.string(), cv::IMREAD_GRAYSCALE);
+  EXPECT_FALSE(png.empty()) << artifact;
+  if (!png.empty()) {
+    EXPECT_EQ(png.cols, width);
+    double lo = 0, hi = 0;
+    cv::minMaxLoc(png, &lo, &hi);
+    EXPECT_LT(lo, 60);  // text and charts drawn, not a blank page
+  }
+  return view;
 }
 
 }  // namespace vstcal::cli_test

@@ -15,7 +15,7 @@ inline constexpr const char* kChromium = "/usr/bin/chromium";
 class BrowserTest : public CliTest {
  protected:
   // Chromium's run on a page until its load event (a 3 s virtual-time budget), its log on stderr;
-  // `extra` flags, e.g. --dump-dom (the DOM on stdout) or --screenshot=FILE.
+  // `extra` flags, e.g. --dump-dom (the DOM on stdout) and --screenshot=FILE (both in one run).
   CommandResult Render(const std::string& page, const std::vector<std::string>& extra = {}) const;
 
   // The value of attribute `name` of every element that has one, in document order.
@@ -31,26 +31,26 @@ class BrowserTest : public CliTest {
   // POINTER in `report` and SHOWN rounds it to 4 decimals. Returns how many cells it checked.
   static size_t ExpectNumbersOf(const Json& report, const std::string& dom);
 
-  // "N loaded, B broken": the images of `page` (relative to dir()) once the browser has loaded it,
-  // from a copy with one inline script appended (its policy allows that script and still no fetch).
-  // Expects no console message while that copy loads.
-  std::string ImagesLoaded(const std::string& page) const;
+  // A page as a person sees it, from one Chromium run (each run costs seconds: one per page, not
+  // one per question).
+  struct PageView {
+    std::string dom;          // the DOM once the page has loaded
+    std::string images;       // "N loaded, B broken": the images the browser decoded, or could not
+    std::string wide_tables;  // the tables that do not fit the page's column, or "none" (below)
+    std::string result;       // the value of the caller's JavaScript expression, if one was given
+  };
 
-  // The tables of `page` that do not fit the page, rendered in a `width`-pixel window: each whose
-  // right edge passes the right edge of the body's content box (the page's column), as
-  // "CAPTION: right edge R px, page P px" joined by "; ", or "none". A table in a scrolling box counts by its
-  // own edge, so a table that fits only by scrolling is reported too. Expects no console message.
-  std::string TablesWiderThanThePage(const std::string& page, int width) const;
-
-  // Saves a `width`×`height` screenshot of `page` as build/test-artifacts/<name> and expects a page
-  // with something drawn on it (not blank).
-  void ExpectScreenshot(const std::string& page, const std::string& name, int width, int height) const;
-
-  // The value of the JavaScript `expression` once `page` has loaded (its load event), read back from
-  // a copy of the page that runs it; `flags` go to Chromium (e.g. a window size). Expects no console
-  // message.
-  std::string EvaluateOnLoad(const std::string& page, const std::string& expression,
-                             const std::vector<std::string>& flags = {}) const;
+  // Loads `page` (relative to dir()) in a `width`×`height` window and saves a screenshot as
+  // build/test-artifacts/<shot>, expected to have something drawn on it (not blank). The page must
+  // hold no script of its own (its policy allows none); what is loaded is a copy with one inline
+  // script appended (its policy then allows that script and still no fetch), which reports on the
+  // load event. Expects no console message (a blocked fetch, a script error) while it loads.
+  //
+  // wide_tables: each table whose right edge passes the right edge of the body's content box (the
+  // page's column), as "CAPTION: right edge R px, page P px" joined by "; ". A table in a scrolling
+  // box counts by its own edge, so a table that fits only by scrolling is reported too.
+  PageView View(const std::string& page, const std::string& shot, int width, int height,
+                const std::string& expression = "") const;
 };
 
 }  // namespace vstcal::cli_test

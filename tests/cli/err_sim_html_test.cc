@@ -26,11 +26,10 @@ TEST_F(CliErrSimHtml, RendersOfflineWithEveryImageAndTheJsonsNumbers) {
   const size_t points = report["test_points"].size();
   ASSERT_EQ(points, 5u);
 
-  const CommandResult dom = Render("out/run.html", {"--dump-dom"});
-  ASSERT_EQ(dom.exit_code, 0) << dom.err;
-  EXPECT_TRUE(ConsoleLines(dom.err).empty()) << ConsoleLines(dom.err).front();
+  const PageView view = View("out/run.html", "err-sim.png", 1000, 2400);
+  const std::string& dom = view.dom;
   // Image, misregistration and misperception distributions; the budget of each ranked measure.
-  EXPECT_EQ(ExpectInlinePictures(dom.out), 3u + 2);
+  EXPECT_EQ(ExpectInlinePictures(dom), 3u + 2);
 
   // Whole chain (6), per point and eye (6 statistics), per point misregistration (7) and
   // misperception (7), per source and ranked measure (5), and per ranked measure the row of
@@ -42,9 +41,9 @@ TEST_F(CliErrSimHtml, RendersOfflineWithEveryImageAndTheJsonsNumbers) {
   size_t terms = 0;
   for (const Json& e : report["budget"]["entries"]) terms += e["terms"].size() > 1 ? e["terms"].size() : 0;
   EXPECT_GT(terms, 10u);
-  EXPECT_EQ(ExpectNumbersOf(report, dom.out), 6 + points * (2 * 6 + 7 + 7) + 2 * sources * 5 + 2 * 4 + 2 * 3 * terms);
+  EXPECT_EQ(ExpectNumbersOf(report, dom), 6 + points * (2 * 6 + 7 + 7) + 2 * sources * 5 + 2 * 4 + 2 * 3 * terms);
   // The budget rows follow the report's ranking, and each shows its source's halved column.
-  const std::vector<std::string> keys = Attributes(dom.out, "data-key");
+  const std::vector<std::string> keys = Attributes(dom, "data-key");
   std::vector<std::string> halved;
   for (const std::string& key : keys) {
     if (key.find("/halved/misregistration_rms") != std::string::npos) halved.push_back(key);
@@ -58,13 +57,12 @@ TEST_F(CliErrSimHtml, RendersOfflineWithEveryImageAndTheJsonsNumbers) {
   // Where each row's distributions came from (issue 21 item 4): seed 001 types every σ, so every
   // source and term row of both ranked tables says "assumed".
   size_t assumed = 0;
-  for (size_t at = 0; (at = dom.out.find("<td class=\"origin\" style=\"text-align:left\">assumed</td>", at)) != std::string::npos; ++at) ++assumed;
+  for (size_t at = 0; (at = dom.find("<td class=\"origin\" style=\"text-align:left\">assumed</td>", at)) != std::string::npos; ++at) ++assumed;
   EXPECT_EQ(assumed, 2 * (sources + terms));
   for (const Json& e : report["budget"]["entries"]) EXPECT_EQ(e["origin"], Json::parse(R"([{"kind": "assumed"}])")) << e["source"];
 
-  EXPECT_EQ(ImagesLoaded("out/run.html"), "5 loaded, 0 broken");
-  EXPECT_EQ(TablesWiderThanThePage("out/run.html", 1000), "none");
-  ExpectScreenshot("out/run.html", "err-sim.png", 1000, 2400);
+  EXPECT_EQ(view.images, "5 loaded, 0 broken");
+  EXPECT_EQ(view.wide_tables, "none");
 }
 
 TEST_F(CliErrSimHtml, SweepPageShowsTheCurvesAndTheSteepestSlopes) {
@@ -74,14 +72,13 @@ TEST_F(CliErrSimHtml, SweepPageShowsTheCurvesAndTheSteepestSlopes) {
   ASSERT_EQ(r.exit_code, kOk) << r.err;
   const Json sweep = ReadJson("out/sweep.json");
   ASSERT_EQ(sweep["parameters"].size(), 3u);
-  const CommandResult dom = Render("out/sweep.html", {"--dump-dom"});
-  ASSERT_EQ(dom.exit_code, 0) << dom.err;
-  EXPECT_TRUE(ConsoleLines(dom.err).empty()) << ConsoleLines(dom.err).front();
-  EXPECT_EQ(ExpectInlinePictures(dom.out), 2u * 2);  // two sources, image and 3-D curves each
+  const PageView view = View("out/sweep.html", "err-sim-sweep.png", 1000, 1600);
+  const std::string& dom = view.dom;
+  EXPECT_EQ(ExpectInlinePictures(dom), 2u * 2);  // two sources, image and 3-D curves each
   // Range, both measures at both ends and the steepest slope of each parameter: the JSON's.
-  EXPECT_EQ(ExpectNumbersOf(sweep, dom.out), 3u * 7);
+  EXPECT_EQ(ExpectNumbersOf(sweep, dom), 3u * 7);
   size_t slopes = 0;
-  for (const std::string& key : Attributes(dom.out, "data-key")) {
+  for (const std::string& key : Attributes(dom, "data-key")) {
     if (key.find("/slope_per_unit/") == std::string::npos) continue;
     ++slopes;
     const Json& all = sweep.at(Json::json_pointer(key.substr(0, key.rfind('/'))));
@@ -90,10 +87,9 @@ TEST_F(CliErrSimHtml, SweepPageShowsTheCurvesAndTheSteepestSlopes) {
     EXPECT_EQ(std::abs(sweep.at(Json::json_pointer(key)).get<double>()), steepest) << key;
   }
   EXPECT_EQ(slopes, 3u);
-  EXPECT_EQ(ImagesLoaded("out/sweep.html"), "4 loaded, 0 broken");
+  EXPECT_EQ(view.images, "4 loaded, 0 broken");
   // The table of the longest parameter names fits the 1000 px window without scrolling.
-  EXPECT_EQ(TablesWiderThanThePage("out/sweep.html", 1000), "none");
-  ExpectScreenshot("out/sweep.html", "err-sim-sweep.png", 1000, 1600);
+  EXPECT_EQ(view.wide_tables, "none");
 }
 
 TEST_F(CliErrSimHtml, SameSeedGivesTheSameBytes) {
@@ -146,27 +142,25 @@ TEST_F(CliErrSimHtml, SobolPageShowsEachSourcesIndicesWithTheirIntervals) {
   const size_t groups = sobol["groups"].size(), outputs = sobol["outputs"].size();
   ASSERT_EQ(groups, 7u);
   ASSERT_EQ(outputs, 5u * 14);
-  const CommandResult dom = Render("out/sobol.html", {"--dump-dom"});
-  ASSERT_EQ(dom.exit_code, 0) << dom.err;
-  EXPECT_TRUE(ConsoleLines(dom.err).empty()) << ConsoleLines(dom.err).front();
+  const PageView view = View("out/sobol.html", "err-sim-sobol.png", 1000, 1600);
+  const std::string& dom = view.dom;
   // A chart per test point for the image error of each eye and the linear misregistration and misperception.
   const size_t charted = 5 * 4;
-  EXPECT_EQ(ExpectInlinePictures(dom.out), charted);
+  EXPECT_EQ(ExpectInlinePictures(dom), charted);
   // The run (3); each charted output's first and total index of every source with both interval
   // ends (6); every output's mean, variance and both indices of every source: all the JSON's.
-  EXPECT_EQ(ExpectNumbersOf(sobol, dom.out), 3 + charted * groups * 6 + outputs * (2 + 2 * groups));
+  EXPECT_EQ(ExpectNumbersOf(sobol, dom), 3 + charted * groups * 6 + outputs * (2 + 2 * groups));
   // The interval cells are those of the charted outputs, and each source's of every one of them.
   size_t lower_ends = 0;
-  for (const std::string& key : Attributes(dom.out, "data-key")) {
+  for (const std::string& key : Attributes(dom, "data-key")) {
     if (!key.ends_with("/first/interval/0")) continue;
     ++lower_ends;
     const std::string name = sobol.at(Json::json_pointer(key.substr(0, key.find("/indices")) + "/name")).get<std::string>();
     EXPECT_TRUE(name.ends_with(".pixel_px") || name.ends_with(".linear")) << name;
   }
   EXPECT_EQ(lower_ends, charted * groups);
-  EXPECT_EQ(ImagesLoaded("out/sobol.html"), std::to_string(charted) + " loaded, 0 broken");
-  EXPECT_EQ(TablesWiderThanThePage("out/sobol.html", 1000), "none");
-  ExpectScreenshot("out/sobol.html", "err-sim-sobol.png", 1000, 1600);
+  EXPECT_EQ(view.images, std::to_string(charted) + " loaded, 0 broken");
+  EXPECT_EQ(view.wide_tables, "none");
 }
 
 TEST_F(CliErrSimHtml, LinearPageShowsFirstOrderAgainstMonteCarlo) {
@@ -178,19 +172,17 @@ TEST_F(CliErrSimHtml, LinearPageShowsFirstOrderAgainstMonteCarlo) {
   const size_t outputs = linear["outputs"].size(), sources = linear["outputs"][0]["linear_sigma_by_source"].size();
   ASSERT_EQ(outputs, 5u * 10);
   ASSERT_EQ(sources, 7u);
-  const CommandResult dom = Render("out/linear.html", {"--dump-dom"});
-  ASSERT_EQ(dom.exit_code, 0) << dom.err;
-  EXPECT_TRUE(ConsoleLines(dom.err).empty()) << ConsoleLines(dom.err).front();
+  const PageView view = View("out/linear.html", "err-sim-linear.png", 1000, 1600);
+  const std::string& dom = view.dom;
   // σ linear against Monte Carlo for the pixel and for the length outputs; the relative differences.
-  EXPECT_EQ(ExpectInlinePictures(dom.out), 3u);
+  EXPECT_EQ(ExpectInlinePictures(dom), 3u);
   // The run (4); per output both means, the mean's standard error, both σ, the σ's standard error,
   // the relative difference and the σ from each source.
-  EXPECT_EQ(ExpectNumbersOf(linear, dom.out), 4 + outputs * (7 + sources));
+  EXPECT_EQ(ExpectNumbersOf(linear, dom), 4 + outputs * (7 + sources));
   // As many rows say "differs" as the file counts disagreements.
-  EXPECT_EQ(DifferingRows(dom.out), linear["disagreements"].get<size_t>());
-  EXPECT_EQ(ImagesLoaded("out/linear.html"), "3 loaded, 0 broken");
-  EXPECT_EQ(TablesWiderThanThePage("out/linear.html", 1000), "none");
-  ExpectScreenshot("out/linear.html", "err-sim-linear.png", 1000, 1600);
+  EXPECT_EQ(DifferingRows(dom), linear["disagreements"].get<size_t>());
+  EXPECT_EQ(view.images, "3 loaded, 0 broken");
+  EXPECT_EQ(view.wide_tables, "none");
 }
 
 TEST_F(CliErrSimHtml, SensitivityPagesAreAllOrNothingAndNormalizeHasNone) {

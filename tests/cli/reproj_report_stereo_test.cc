@@ -154,11 +154,10 @@ TEST_F(CliReprojReportStereo, PageRendersOfflineWithTheJsonsNumbers) {
   const std::vector<std::string> args = {"in/rig.json", "in/l.json", "in/r.json", "-o", "out/report.json", "--html", "out/report.html",
                                          "--grid", "4x3"};
   ASSERT_EQ(Run("reproj-report", args).exit_code, kOk);
-  const CommandResult dom = Render("out/report.html", {"--dump-dom"});
-  ASSERT_EQ(dom.exit_code, 0) << dom.err;
-  EXPECT_TRUE(ConsoleLines(dom.err).empty()) << ConsoleLines(dom.err).front();
+  const PageView view = View("out/report.html", "reproj-report-stereo.png", 1000, 1400);
+  const std::string& dom = view.dom;
   // Error against depth; each camera's heat map and residual overlay.
-  EXPECT_EQ(ExpectInlinePictures(dom.out), 5u);
+  EXPECT_EQ(ExpectInlinePictures(dom), 5u);
   const Json report = ReadJson("out/report.json");
   const Json& tests = report["stereo"]["test_points"];
   ASSERT_EQ(tests["points"].size(), 5u);
@@ -166,10 +165,10 @@ TEST_F(CliReprojReportStereo, PageRendersOfflineWithTheJsonsNumbers) {
   // triangulated, the linear RMS and max; 7 rows inside and 7 outside the volume (those of a side
   // without a point are dashes); each test point's dx, dy, dz and linear.
   const size_t sides = !tests["inside"]["linear"].is_null() + !tests["outside"]["linear"].is_null();
-  EXPECT_EQ(ExpectNumbersOf(report, dom.out), 7u * 6u + 5u * 5u + sides * 7u * 6u + 5u * 4u);
-  EXPECT_EQ(Attributes(dom.out, "data-key").size(), 7u * 6u + 5u * 5u + sides * 7u * 6u + 5u * 4u);
+  EXPECT_EQ(ExpectNumbersOf(report, dom), 7u * 6u + 5u * 5u + sides * 7u * 6u + 5u * 4u);
+  EXPECT_EQ(Attributes(dom, "data-key").size(), 7u * 6u + 5u * 5u + sides * 7u * 6u + 5u * 4u);
   size_t inside_cells = 0, reprojection_cells = 0;
-  for (const std::string& key : Attributes(dom.out, "data-key")) {
+  for (const std::string& key : Attributes(dom, "data-key")) {
     inside_cells += key.starts_with("/stereo/test_points/inside/");
     reprojection_cells += key.starts_with("/stereo/views/") && key.ends_with("/error_px/rms");
   }
@@ -191,10 +190,9 @@ TEST_F(CliReprojReportStereo, PageRendersOfflineWithTheJsonsNumbers) {
   const std::string blank = "all views on a blank canvas (the correspondences name no image); 315 residuals drawn";
   EXPECT_EQ(count(page, "The left camera's residual vectors against its own PnP pose: " + blank), 1u);
   EXPECT_EQ(count(page, "The right camera's residual vectors through the rig's relative pose: " + blank), 1u);
-  EXPECT_EQ(ImagesLoaded("out/report.html"), "5 loaded, 0 broken");
+  EXPECT_EQ(view.images, "5 loaded, 0 broken");
   EXPECT_EQ(report["stereo"]["reprojection"]["right"]["grid"].size(), 12u);
-  EXPECT_EQ(TablesWiderThanThePage("out/report.html", 1000), "none");
-  ExpectScreenshot("out/report.html", "reproj-report-stereo.png", 1000, 1400);
+  EXPECT_EQ(view.wide_tables, "none");
   EXPECT_TRUE(SameBytesTwice("reproj-report", args, {"out/report.json", "out/report.html"}));
 
   // The right file names view 2's image: the right overlay is drawn on it (through the rig), the
