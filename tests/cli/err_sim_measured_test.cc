@@ -101,7 +101,9 @@ TEST_F(CliErrSimMeasured, BudgetSaysWhatWasMeasured) {
   for (const Json& e : report.at("budget").at("entries")) {
     const std::string source = e.at("source");
     const Json& origin = e.at("origin");
-    if (source == "camera_extrinsic") EXPECT_EQ(e.at("terms")[0].at("term"), "camera_extrinsic.rig.pose");  // the mount's six modes, one term
+    if (source == "camera_extrinsic") {
+      EXPECT_EQ(e.at("terms")[0].at("term"), "camera_extrinsic.rig.pose");  // the mount's six modes, one term
+    }
     if (source == "camera_intrinsic") {
       EXPECT_EQ(origin, Json::parse(R"([{"kind": "assumed"}])"));
     } else {

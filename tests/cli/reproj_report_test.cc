@@ -82,7 +82,9 @@ TEST_F(CliReprojReport, DltCameraHasProjectionUncertainty) {
   EXPECT_NEAR(c["normalized"]["chi2_per_dof"].get<double>(), 1.0, 0.15);
   ASSERT_EQ(c["projection_uncertainty"]["sigma_major_px"].size(), 12u);
   for (const Json& s : c["projection_uncertainty"]["sigma_major_px"]) {
-    if (s.is_number()) EXPECT_GT(s.get<double>(), 0);
+    if (s.is_number()) {
+      EXPECT_GT(s.get<double>(), 0);
+    }
   }
 }
 
