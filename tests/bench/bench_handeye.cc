@@ -22,6 +22,19 @@ void BM_HandEyeSolve(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations() * state.range(0));
 }
 
+// The same with the tracker's poses taken as exact (no joint noise estimate): the solve before the
+// tracker's noise model, to show what the model costs.
+void BM_HandEyeSolveTrackerExact(benchmark::State& state) {
+  const auto r = vstcal::testing::RecordHandEye(0.03, 0.2, 1, false, static_cast<int>(state.range(0)));
+  vstcal::HandEyeOptions options;
+  options.estimate_tracker_noise = false;
+  for (auto _ : state) {
+    auto s = vstcal::SolveHandEye(r.camera, r.log, r.views, options);
+    benchmark::DoNotOptimize(s);
+  }
+  state.SetItemsProcessed(state.iterations() * state.range(0));
+}
+
 void BM_OpenCvCalibrateHandEyePark(benchmark::State& state) {
   const auto r = vstcal::testing::RecordHandEye(0.0, 0.2, 1, false, static_cast<int>(state.range(0)));
   std::vector<cv::Mat> Rg, tg, Rt, tt;
@@ -54,6 +67,7 @@ void BM_OpenCvCalibrateHandEyePark(benchmark::State& state) {
 }
 
 BENCHMARK(BM_HandEyeSolve)->Arg(30)->Arg(100)->Arg(300)->Arg(1000)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_HandEyeSolveTrackerExact)->Arg(30)->Arg(1000)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_OpenCvCalibrateHandEyePark)->Arg(30)->Arg(100)->Arg(300)->Arg(1000)->Unit(benchmark::kMillisecond);
 
 }  // namespace

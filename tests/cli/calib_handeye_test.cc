@@ -13,6 +13,7 @@
 #include "vstcal/formats/camera/camera_io.h"
 #include "vstcal/formats/camera/correspondences_io.h"
 #include "vstcal/formats/handeye/pose_log_io.h"
+#include "vstcal/formats/stereo/stereo_io.h"
 #include "vstcal/geometry/rotation.h"
 
 namespace vstcal::cli_test {
@@ -62,8 +63,14 @@ TEST_F(CliCalibHandEye, RecoversTheCameraOnTheHeadsetAndTheClockOffset) {
   const Json he = ReadJson("out/he.json");
   EXPECT_EQ(he.at("format"), "vstcal/handeye@1");
   EXPECT_EQ(he.at("length_unit"), "mm");
-  ASSERT_EQ(he.at("covariance").at("parameters").size(), 13u);
+  ASSERT_EQ(he.at("covariance").at("parameters").size(), 15u);
   EXPECT_EQ(he.at("covariance").at("parameters")[12], "time_offset");
+  EXPECT_EQ(he.at("covariance").at("parameters")[13], "tracker_noise.rotation");
+  EXPECT_EQ(he.at("covariance").at("parameters")[14], "tracker_noise.translation");
+  // The tracker is exact here: its noise σ's are bounded far below a real tracker's 0.02° and 0.1 mm.
+  EXPECT_LT(he.at("tracker_noise").at("translation").at("ci95")[1].get<double>(), 0.05);
+  EXPECT_NEAR(he.at("tracker_noise").at("corner_px").at("sigma").get<double>(), 0.2, 0.01);
+  EXPECT_NE(r.err.find("  tracker noise (estimated jointly, 30 instants): rotation "), std::string::npos) << r.err;
   const double offset = he.at("time_offset_s"), sigma = std::sqrt(he.at("covariance").at("matrix")[12][12].get<double>());
   EXPECT_LT(std::abs(offset - 0.03), 4 * sigma);
   EXPECT_LT(sigma, 0.002);
@@ -84,6 +91,66 @@ TEST_F(CliCalibHandEye, RecoversTheCameraOnTheHeadsetAndTheClockOffset) {
   ASSERT_EQ(Run(kTool, {"solve", "in/corners.json", "--poses", "in/poses.json", "--camera", "in/camera.json", "-o", "out/he2.json"}).exit_code, kOk);
   EXPECT_NEAR(ReadJson("out/he2.json").at("time_offset_s").get<double>(), offset, 1e-9);
   EXPECT_NEAR(ReadJson("out/he2.json").at("hmd_from_camera").at("t")[0].get<double>(), he.at("hmd_from_camera").at("t")[0].get<double>(), 1e-6);
+}
+
+// A stereo rig: the left camera's views as CORNERS, the right's with --right, the rig (stereo@1)
+// with --rig; both cameras' corners in one solve, the rig named in the file. A right view that pairs
+// with no left view, and views of another size than the rig's camera, are refused.
+TEST_F(CliCalibHandEye, SolvesAStereoRigAndRefusesUnpairableViews) {
+  const testing::HandEyeRigRecording r = testing::RecordHandEyeRig(0.03, 0.2, 9);
+  WriteRecording(r.left);
+  const auto write_views = [&](const std::string& path, const std::vector<TimedView>& views) {
+    Correspondences c;
+    c.image_size = r.left.camera.image_size;
+    c.rig = Rig::kPlanarViews;
+    for (const TimedView& v : views) c.views.push_back({v.name, "", std::nullopt, v.observations, v.time});
+    WriteText(path, DumpJson(CorrespondencesToJson(c, Provenance{})));
+  };
+  write_views("in/right.json", r.rig.views);
+  StereoRig rig;
+  rig.method = "assembled";
+  rig.left.camera = r.left.camera;
+  rig.right.camera = r.rig.right;
+  rig.left.method = rig.right.method = "synthetic";
+  rig.right_from_left = r.rig.right_from_left;
+  WriteText("in/rig.json", DumpJson(StereoRigToJson(rig, Provenance{})));
+  const CommandResult ok = Run(kTool, {"solve", "in/corners.json", "--right", "in/right.json", "--rig", "in/rig.json", "--poses", "in/poses.txt",
+                                       "-o", "out/he.json"});
+  ASSERT_EQ(ok.exit_code, kOk) << ok.err;
+  EXPECT_NE(ok.err.find("calib-handeye: 30 left + 30 right views, 3067 corners"), std::string::npos) << ok.err;
+  EXPECT_NE(ok.err.find("rig: in/rig.json (right_from_left held; baseline 64.0062 mm), the right camera's views paired by name"), std::string::npos)
+      << ok.err;
+  const Json he = ReadJson("out/he.json");
+  EXPECT_EQ(he.at("rig").at("file"), "in/rig.json");
+  EXPECT_EQ(he.at("rig").at("right_views"), 30);
+  EXPECT_EQ(he.at("fit").at("views"), 60);
+  EXPECT_NEAR(he.at("rig").at("right_from_left").at("t")[0].get<double>(), -64, 1e-12);
+  for (int i = 0; i < 3; ++i) EXPECT_NEAR(he.at("hmd_from_camera").at("t")[i].get<double>(), testing::kHmdFromCamera.t(i), 1.0) << i;
+
+  // Names that pair with nothing, at times 5 ms off the left views'.
+  std::vector<TimedView> unpaired = r.rig.views;
+  for (size_t k = 0; k < unpaired.size(); ++k) {
+    unpaired[k].name = "shot" + std::to_string(100 + k);
+    unpaired[k].time += 0.005;
+  }
+  write_views("in/unpaired.json", unpaired);
+  EXPECT_TRUE(FailsWith(Run(kTool, {"solve", "in/corners.json", "--right", "in/unpaired.json", "--rig", "in/rig.json", "--poses", "in/poses.txt",
+                                    "-o", "out/bad.json"}),
+                        std::string(kTool), kBadInput, "in/unpaired.json: views[0]: the right camera's view \"shot100\" pairs with no view of in/corners.json",
+                        {"by name or by time", "left01, right01"}));
+  // The right camera's views of another size than the rig's right camera.
+  Json big = ReadJson("in/right.json");
+  big["image_size"] = {800, 600};
+  WriteJson("in/big.json", big);
+  EXPECT_TRUE(FailsWith(Run(kTool, {"solve", "in/corners.json", "--right", "in/big.json", "--rig", "in/rig.json", "--poses", "in/poses.txt",
+                                    "-o", "out/bad.json"}),
+                        std::string(kTool), kBadInput, "in/big.json: image_size: the views are 800x600 but in/rig.json's right camera is a camera of 640x480",
+                        {}));
+  // A rig and a camera at once, and a rig without the right camera's views.
+  EXPECT_EQ(Run(kTool, {"solve", "in/corners.json", "--right", "in/right.json", "--rig", "in/rig.json", "--camera", "in/camera.json", "--poses",
+                        "in/poses.txt", "-o", "out/bad.json"}).exit_code, kBadInput);
+  EXPECT_EQ(Run(kTool, {"solve", "in/corners.json", "--rig", "in/rig.json", "--poses", "in/poses.txt", "-o", "out/bad.json"}).exit_code, kBadInput);
+  EXPECT_FALSE(fs::exists(Path("out/bad.json")));
 }
 
 TEST_F(CliCalibHandEye, RefusesBadLogsAndViews) {

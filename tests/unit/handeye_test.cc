@@ -187,7 +187,7 @@ TEST(HandEyeRefinement, PredictedSigmasMatchTheSpread) {
   for (int run = 0; run < kRuns; ++run) {
     const HandEyeRecording r = Record(0.03, 0.2, 10 + static_cast<uint64_t>(run));
     const HandEyeSolution s = SolveHandEye(r.camera, r.log, r.views);
-    ASSERT_EQ(s.covariance.rows(), 13);
+    ASSERT_EQ(s.covariance.rows(), 15);  // X, Z, δ and the tracker noise σ's
     // X's translation moves with the left perturbation as dt = −[t]× ω + ρ.
     Eigen::Matrix<double, 3, 6> dt_d_tangent;
     dt_d_tangent << -Hat(s.hmd_from_camera.t), Eigen::Matrix3d::Identity();

@@ -17,15 +17,29 @@ void HandEyeFlags::Add(CLI::App& app) {
   solve_app->add_option("--poses", solve.poses, "the tracker's log: tracker_from_hmd (vstcal/poses@1 .json, or TUM text)")
       ->required()
       ->check(kNonEmpty);
-  solve_app->add_option("--camera", solve.camera, "the camera that took the views (vstcal/camera@1; its intrinsics are held)")
-      ->required()
-      ->check(kNonEmpty);
+  auto* camera = solve_app->add_option("--camera", solve.camera, "the camera that took the views (vstcal/camera@1; its intrinsics are held)")
+                     ->check(kNonEmpty);
+  auto* rig = solve_app->add_option("--rig", solve.rig,
+                                    "a stereo rig instead (vstcal/stereo@1, from calib-stereo): CORNERS are its left camera's views, "
+                                    "--right its right camera's; right_from_left and both cameras' intrinsics are held")
+                  ->check(kNonEmpty);
+  auto* right = solve_app->add_option("--right", solve.right_corners,
+                                      "with --rig: the right camera's timed views (correspondences@1), paired with the left's by name or time")
+                    ->check(kNonEmpty);
+  camera->excludes(rig);
+  rig->needs(right);
+  right->needs(rig);
+  solve_app->parse_complete_callback([camera, rig] {
+    if (camera->count() == 0 && rig->count() == 0) throw CLI::RequiredError("--camera (or --rig with --right)");
+  });
   solve_app->add_option("--tum-unit", solve.tum_unit, "length unit of a TUM log's translations")->capture_default_str();
   solve_app->add_option("--max-time-offset", solve.max_time_offset, "search the clocks' offset within ±this many seconds")
       ->capture_default_str();
   solve_app->add_option("-o,--output", solve.output, "the vstcal/handeye@1 file to write")->required()->check(kNonEmpty);
   solve_app->add_flag("--keep-all-views", solve.keep_all_views,
                       "do not drop views inconsistent with the others' noise (bad frames; dropped by default)");
+  solve_app->add_flag("--tracker-exact", solve.tracker_exact,
+                      "take the tracker's poses as exact instead of estimating their noise jointly and weighing the views by it");
   solve_app->add_option("--opencv", solve.opencv, "also write X, Z and the offset as OpenCV YAML (calibrateHandEye's names)")->check(kNonEmpty);
   solve_app->add_flag("-q,--quiet", quiet, "print only errors");
 

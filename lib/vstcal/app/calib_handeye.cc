@@ -1,6 +1,8 @@
 #include "vstcal/app/calib_handeye.h"
 
+#include <algorithm>
 #include <cmath>
+#include <optional>
 #include <cstdio>
 
 #include "vstcal/core/error.h"
@@ -8,8 +10,10 @@
 #include "vstcal/formats/camera/correspondences_io.h"
 #include "vstcal/formats/handeye/handeye_io.h"
 #include "vstcal/formats/handeye/pose_log_io.h"
+#include "vstcal/formats/stereo/stereo_io.h"
 #include "vstcal/geometry/rotation.h"
 #include "vstcal/handeye/refine.h"
+#include "vstcal/scene/view_keys.h"
 
 namespace vstcal::app {
 namespace {
@@ -18,6 +22,65 @@ std::string Line(const char* format, double a, double b, const char* unit) {
   char buf[120];
   std::snprintf(buf, sizeof buf, format, a, b, unit);
   return buf;
+}
+
+std::string SizeText(const ImageSize& size) { return std::to_string(size.width) + "x" + std::to_string(size.height); }
+
+// The views must be the camera's: the same image size.
+void CheckSize(const Correspondences& views, const std::string& file, const Camera& camera, const std::string& camera_source) {
+  if (views.image_size.width != camera.image_size.width || views.image_size.height != camera.image_size.height) {
+    throw InputError(file + ": image_size: the views are " + SizeText(views.image_size) + " but " + camera_source + " is a camera of " +
+                     SizeText(camera.image_size) + "; give the camera that took the images");
+  }
+}
+
+std::vector<TimedView> TimedViews(const Correspondences& corners, const std::string& file) {
+  if (corners.rig != Rig::kPlanarViews) {
+    throw InputError(file + ": rig: hand-eye calibration takes a board seen from a moving headset (rig \"planar-views\")");
+  }
+  std::vector<TimedView> views;
+  for (size_t i = 0; i < corners.views.size(); ++i) {
+    const View& v = corners.views[i];
+    if (!v.time) {
+      throw InputError(file + ": views[" + std::to_string(i) + "].time: missing (view \"" + v.name +
+                       "\"); every view needs the time its image was taken (calib-capture detect writes it for video frames)");
+    }
+    views.push_back({v.name, *v.time, v.observations});
+  }
+  return views;
+}
+
+// Two views of one instant by a rig's cameras are paired by time within this (s).
+constexpr double kPairingTolerance = 1e-3;
+
+// Every right view must be the right camera's view of an instant the left camera saw too: paired
+// by name (the same name, or names differing by a left/right token: DeriveViewPairing), else by
+// time. Returns how they were paired; InputError naming the first view that pairs with none.
+std::string PairRightViews(const Correspondences& left, const std::string& left_file, const Correspondences& right, const std::string& right_file) {
+  const std::vector<std::string> left_names = ViewNames(left), right_names = ViewNames(right);
+  const auto all_paired = [&](const std::vector<std::string>& left_keys, const std::vector<std::string>& right_keys) {
+    return std::all_of(right_keys.begin(), right_keys.end(),
+                       [&](const std::string& k) { return std::find(left_keys.begin(), left_keys.end(), k) != left_keys.end(); });
+  };
+  if (ShareAName(left_names, right_names)) {
+    if (all_paired(left_names, right_names)) return "by name";
+  } else if (const DerivedPairing derived = DeriveViewPairing(left_names, right_names); derived.pairing) {
+    Correspondences l = left, r = right;
+    KeyViews(derived.pairing->match_views, left_file, &l);
+    KeyViews(derived.pairing->match_views, right_file, &r);
+    if (all_paired(ViewNames(l), ViewNames(r))) return "by name (" + derived.pairing->rule + ")";
+  }
+  for (size_t i = 0; i < right.views.size(); ++i) {
+    const std::optional<double> t = right.views[i].time;
+    const bool paired = t && std::any_of(left.views.begin(), left.views.end(),
+                                         [&](const View& v) { return v.time && std::abs(*v.time - *t) <= kPairingTolerance; });
+    if (!paired) {
+      throw InputError(right_file + ": views[" + std::to_string(i) + "]: the right camera's view \"" + right.views[i].name +
+                       "\" pairs with no view of " + left_file + ", by name or by time (within 1 ms); give each instant's two views " +
+                       "names differing only by left/right (left01, right01) or the same time");
+    }
+  }
+  return "by time";
 }
 
 }  // namespace
@@ -61,33 +124,41 @@ Outcome SolveHandEyeFiles(const HandEyeRequest& request, const Provenance& prove
   if (!(request.max_time_offset > 0 && request.max_time_offset <= 10)) {
     throw InputError("--max-time-offset: " + MessageNumber(request.max_time_offset) + " s; give the largest offset to search, > 0 and ≤ 10 s");
   }
-  const CalibratedCamera camera = ReadCamera(request.camera);
+  if (request.rig.empty() != request.right_corners.empty()) {
+    throw InputError(request.rig.empty() ? "rig: the right camera's views are given without the rig; give the stereo@1 file whose right_from_left joins them"
+                                         : "right_corners: a rig is given without the right camera's views; give their corners (correspondences@1)");
+  }
+  if (!request.rig.empty() && !request.camera.empty()) {
+    throw InputError("camera: a rig is given, whose left camera took the views; give either the rig or a camera, not both");
+  }
+  if (request.rig.empty() && request.camera.empty()) throw InputError("camera: give the camera that took the views (camera@1), or a rig");
+  const std::optional<StereoRig> stereo = request.rig.empty() ? std::nullopt : std::optional<StereoRig>(ReadStereoRig(request.rig));
+  const Camera camera = stereo ? stereo->left.camera : ReadCamera(request.camera).camera;
   const Correspondences corners = ReadCorrespondences(request.corners);
-  if (corners.rig != Rig::kPlanarViews) {
-    throw InputError(request.corners + ": rig: hand-eye calibration takes a board seen from a moving headset (rig \"planar-views\")");
-  }
-  if (corners.image_size.width != camera.camera.image_size.width || corners.image_size.height != camera.camera.image_size.height) {
-    throw InputError(request.corners + ": image_size: the views are " + std::to_string(corners.image_size.width) + "x" +
-                     std::to_string(corners.image_size.height) + " but " + request.camera + " is a camera of " +
-                     std::to_string(camera.camera.image_size.width) + "x" + std::to_string(camera.camera.image_size.height) +
-                     "; give the camera that took the images");
-  }
-  std::vector<TimedView> views;
-  for (size_t i = 0; i < corners.views.size(); ++i) {
-    const View& v = corners.views[i];
-    if (!v.time) {
-      throw InputError(request.corners + ": views[" + std::to_string(i) + "].time: missing (view \"" + v.name +
-                       "\"); every view needs the time its image was taken (calib-capture detect writes it for video frames)");
+  CheckSize(corners, request.corners, camera, stereo ? request.rig + "'s left camera" : request.camera);
+  const std::vector<TimedView> views = TimedViews(corners, request.corners);
+  std::optional<HandEyeRig> rig;
+  HandEyeRigFile rig_file;
+  if (stereo) {
+    const Correspondences right = ReadCorrespondences(request.right_corners);
+    CheckSize(right, request.right_corners, stereo->right.camera, request.rig + "'s right camera");
+    if (right.length_unit != corners.length_unit) {
+      throw InputError(request.right_corners + ": length_unit: " + std::string(LengthUnitName(right.length_unit)) + ", but " + request.corners +
+                       " is in " + std::string(LengthUnitName(corners.length_unit)) + "; give both cameras' boards in one unit");
     }
-    views.push_back({v.name, *v.time, v.observations});
+    rig = HandEyeRig{stereo->right.camera, stereo->right_from_left, TimedViews(right, request.right_corners)};
+    // right_from_left's translation in the corners' unit.
+    rig->right_from_left.t *= MetresPer(stereo->length_unit) / MetresPer(corners.length_unit);
+    rig_file = {request.rig, request.right_corners, PairRightViews(corners, request.corners, right, request.right_corners)};
   }
   const PoseLog log = InUnit(ReadPoseLog(request.poses, *tum_unit), corners.length_unit);
   HandEyeOptions options;
   options.max_time_offset = request.max_time_offset;
   options.rejection.enabled = !request.keep_all_views;
+  options.estimate_tracker_noise = !request.tracker_exact;
   const HandEyeSolution s = [&] {
     try {
-      return SolveHandEye(camera.camera, log.poses, views, options);
+      return SolveHandEye(camera, log.poses, views, options, rig ? &*rig : nullptr);
     } catch (const DegenerateError& e) {
       throw DegenerateError(request.corners + " with " + request.poses + ": " + e.what());
     } catch (const InputError& e) {
@@ -95,7 +166,7 @@ Outcome SolveHandEyeFiles(const HandEyeRequest& request, const Provenance& prove
     }
   }();
   Outcome out;
-  out.files.emplace_back(request.output, DumpJson(HandEyeToJson(s, corners.length_unit, provenance)));
+  out.files.emplace_back(request.output, DumpJson(HandEyeToJson(s, corners.length_unit, provenance, rig ? &rig_file : nullptr)));
   if (!request.opencv.empty()) out.files.emplace_back(request.opencv, HandEyeOpenCvYaml(s, corners.length_unit, provenance));
   const std::string unit(LengthUnitName(corners.length_unit));
   const auto sigma = [&](int i) { return std::sqrt(s.covariance(i, i)); };
@@ -110,13 +181,14 @@ Outcome SolveHandEyeFiles(const HandEyeRequest& request, const Provenance& prove
   const Eigen::Vector3d sx = translation_sigma(s.hmd_from_camera, 0), sz = translation_sigma(s.tracker_from_board, 6);
   const double deg = 180 / M_PI;
   std::string& t = out.summary;
-  t = "calib-handeye: " + std::to_string(s.views) + " views" +
+  const std::string counted = rig ? std::to_string(s.views - s.right_views) + " left + " + std::to_string(s.right_views) + " right" : std::to_string(s.views);
+  t = "calib-handeye: " + counted + " views" +
       (s.rejected.empty() ? std::string() : " (of " + std::to_string(s.views + s.rejected.size()) + "; bad frames dropped below)") + ", " + std::to_string(s.corners) + " corners, " +
       std::to_string(log.poses.size()) + " tracker reports\n";
   t += Line("  time offset: %.4f ms ± %.4f ms%s (the tracker's clock reads t + offset at the camera's t)\n", s.time_offset * 1000,
             sigma(12) * 1000, "");
   const Eigen::Vector3d rx = RotvecFromRotation(s.hmd_from_camera.R) * deg;
-  char buf[200];
+  char buf[400];
   std::snprintf(buf, sizeof buf, "  hmd_from_camera: t (%.3f, %.3f, %.3f) %s ± (%.3f, %.3f, %.3f); rotation %.3f° ± (%.3f, %.3f, %.3f)°\n",
                 s.hmd_from_camera.t.x(), s.hmd_from_camera.t.y(), s.hmd_from_camera.t.z(), unit.c_str(), sx.x(), sx.y(), sx.z(),
                 rx.norm(), sigma(0) * deg, sigma(1) * deg, sigma(2) * deg);
@@ -125,6 +197,21 @@ Outcome SolveHandEyeFiles(const HandEyeRequest& request, const Provenance& prove
                 s.tracker_from_board.t.y(), s.tracker_from_board.t.z(), unit.c_str(), sz.x(), sz.y(), sz.z());
   t += buf;
   t += Line("  fit: RMS %.4f px, sigma %.4f px%s\n", s.rms_px, s.sigma_px, "");
+  if (s.tracker_noise) {
+    const JointTrackerNoise& n = *s.tracker_noise;
+    std::snprintf(buf, sizeof buf,
+                  "  tracker noise (estimated jointly, %zu instants): rotation %.4f° ± %.4f° (95%% %.4f … %.4f°), translation %.4f %s ± %.4f "
+                  "(95%% %.4f … %.4f)\n",
+                  n.frames, n.rotation.sigma * deg, n.rotation.sigma_sigma * deg, n.rotation.lower * deg, n.rotation.upper * deg,
+                  n.translation.sigma, unit.c_str(), n.translation.sigma_sigma, n.translation.lower, n.translation.upper);
+    t += buf;
+  } else {
+    t += "  tracker noise: not estimated, the poses taken as exact\n";
+  }
+  if (rig) {
+    t += "  rig: " + request.rig + " (right_from_left held; baseline " + MessageNumber(rig->right_from_left.t.norm()) + " " + unit +
+         "), the right camera's views paired " + rig_file.pairing + "\n";
+  }
   for (const Rejection& r : s.rejected) {
     t += "  dropped view \"" + r.view_name + "\" (RMS " + MessageNumber(r.rms_px) + " px, threshold " + MessageNumber(r.threshold_px) +
          " px): " + r.because + "\n";

@@ -19,6 +19,14 @@ struct HandEyeRequest {
   std::string output;    // handeye@1
   std::string opencv;    // the same as OpenCV YAML (HandEyeOpenCvYaml); empty: none
   bool keep_all_views = false;  // no bad-frame test (HandEyeOptions::rejection)
+  // A stereo rig (docs/math/handeye.md#rig): stereo@1 whose right_from_left is held and whose
+  // cameras are the two that took `corners` (left) and `right_corners`; `camera` is then empty.
+  // Each right view must pair with a left view, by name (left01 ↔ right01) or by time.
+  std::string rig;
+  std::string right_corners;
+  // The tracker's poses taken as exact instead of weighed by their noise, estimated jointly
+  // (HandEyeOptions::estimate_tracker_noise).
+  bool tracker_exact = false;
 };
 
 // calib-handeye noise: the tracker's jitter from a static segment of its log.
@@ -32,7 +40,8 @@ struct TrackerNoiseRequest {
 Outcome MeasureTrackerNoise(const TrackerNoiseRequest& request, const Provenance& provenance);
 
 // InputError naming the file and field for every bad input (views without a time, a log in
-// another unit than declared, a view outside the log's span, a camera of another image size);
+// another unit than declared, a view outside the log's span, a camera of another image size, a
+// rig without the right camera's views or whose views cannot be paired);
 // DegenerateError for motion about one axis or too few views.
 Outcome SolveHandEyeFiles(const HandEyeRequest& request, const Provenance& provenance);
 

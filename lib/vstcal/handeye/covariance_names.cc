@@ -11,4 +11,9 @@ const std::vector<std::string>& HandEyeCovarianceNames() {
   return names;
 }
 
+const std::vector<std::string>& HandEyeNoiseCovarianceNames() {
+  static const std::vector<std::string> names = {"tracker_noise.rotation", "tracker_noise.translation"};
+  return names;
+}
+
 }  // namespace vstcal

@@ -1,5 +1,7 @@
 #include "vstcal/handeye/refine.h"
 
+#include "vstcal/handeye/noise_components.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -15,39 +17,108 @@
 namespace vstcal {
 namespace {
 
-// One view's residuals, all its corners: the pose chain X⁻¹ · H(t + δ)⁻¹ · Z is differentiated
-// once a view, not once a corner (4× faster at 54 corners a view). X and Z are left perturbations
-// (ω, ρ) of fixed reference poses, so that the covariance at the solution, computed with the
-// references moved there, is the convention's left-perturbation tangent
-// (docs/conventions.md#poses-in-optimisation).
-struct ViewCost {
+// Views whose times differ by no more than this (s) are one instant: the same tracker pose.
+constexpr double kSameInstant = 1e-6;
+
+// A view in the solve: its camera and, for a rig's right camera, right_from_left (else null).
+struct SolveView {
+  const TimedView* view;
   const Camera* camera;
+  const Rigid3d* right_from_left;
+  size_t index;  // in the left views, then the right (Rejection::view)
+};
+
+// The views of one instant: they share the tracker's pose H(t + δ) and, with it, its error (a
+// rig's two views of one time; otherwise each view is a frame of its own).
+struct Frame {
+  double time = 0;
+  std::vector<SolveView> views;
+  size_t Residuals() const {
+    size_t n = 0;
+    for (const SolveView& v : views) n += 2 * v.view->observations.size();
+    return n;
+  }
+};
+
+// What every cost shares: the tracker's log and the reference poses of X and Z.
+struct Chain {
   std::span<const TrackedPose> log;
   std::span<const Eigen::Vector3d> steps;
-  const Rigid3d* x0;
-  const Rigid3d* z0;
-  const TimedView* view;
+  Rigid3d x0, z0;
+};
+
+// A frame's corner residuals (px) at the left perturbations x, z of the references, δ, and the
+// tracker pose's error e = (ω, ρ): H → (Exp(ω) R_H, t_H + ρ) (null: none). The pose chain
+// X⁻¹ · H(t + δ)⁻¹ · Z is differentiated once a frame, not once a corner (4× faster at 54 corners a
+// view). X and Z are left perturbations (ω, ρ) of fixed reference poses, so that the covariance at
+// the solution, computed with the references moved there, is the convention's left-perturbation
+// tangent (docs/conventions.md#poses-in-optimisation).
+template <typename T>
+bool FrameResiduals(const Chain& chain, const Frame& frame, const T* x, const T* z, const T& delta, const T* e, T* r) {
+  const Rigid3<T> X = PerturbLeft(chain.x0.cast<T>(), Vec3<T>(x[0], x[1], x[2]), Vec3<T>(x[3], x[4], x[5]));
+  const Rigid3<T> Z = PerturbLeft(chain.z0.cast<T>(), Vec3<T>(z[0], z[1], z[2]), Vec3<T>(z[3], z[4], z[5]));
+  std::optional<Rigid3<T>> H = InterpolatePose(chain.log, chain.steps, T(frame.time) + delta);
+  if (!H) return false;
+  if (e) *H = Rigid3<T>{RotationFromSmallRotvec(Vec3<T>(e[0], e[1], e[2])) * H->R, H->t + Vec3<T>(e[3], e[4], e[5])};
+  const Rigid3<T> left_from_board = X.inverse() * H->inverse() * Z;
+  for (const SolveView& v : frame.views) {
+    const Rigid3<T> camera_from_board = v.right_from_left ? v.right_from_left->cast<T>() * left_from_board : left_from_board;
+    T params[kMaxLensParams];
+    for (size_t i = 0; i < v.camera->params.size(); ++i) params[i] = T(v.camera->params[i]);
+    for (const Observation& o : v.view->observations) {
+      const Vec3<T> p = camera_from_board * o.point.cast<T>();
+      T q[2];
+      if (!ProjectWith(v.camera->model, params, p.data(), q)) return false;
+      *r++ = q[0] - T(o.pixel.x());
+      *r++ = q[1] - T(o.pixel.y());
+    }
+  }
+  return true;
+}
+
+// The whitening of a frame's residuals r by the tracker's noise (docs/math/handeye.md#tracker-noise):
+// with S = diag(√(w σ_r²) I₃, √(w σ_t²) I₃), B = c I + S Jₑᵀ Jₑ S and q = B⁻¹ S Jₑᵀ r, the residuals
+// [(r − Jₑ S q)/√c ; q] have the squared norm rᵀ(c I + Jₑ S² Jₑᵀ)⁻¹ r: the corners' likelihood with
+// the tracker's error at that instant integrated out. Jₑ is held from the last linearisation.
+struct Whitening {
+  Eigen::MatrixXd Q;   // B⁻¹ S Jₑᵀ, 6 × 2n
+  Eigen::MatrixXd JS;  // Jₑ S, 2n × 6
+  double inv_sqrt_c = 1;
+};
+
+struct FrameCost {
+  const Chain* chain;
+  const Frame* frame;
+  const Whitening* whitening;  // null: the tracker's poses exact, residuals in px
 
   template <typename T>
   bool operator()(T const* const* blocks, T* r) const {
-    const T* x = blocks[0];
-    const T* z = blocks[1];
-    const Rigid3<T> X = PerturbLeft(x0->cast<T>(), Vec3<T>(x[0], x[1], x[2]), Vec3<T>(x[3], x[4], x[5]));
-    const Rigid3<T> Z = PerturbLeft(z0->cast<T>(), Vec3<T>(z[0], z[1], z[2]), Vec3<T>(z[3], z[4], z[5]));
-    const std::optional<Rigid3<T>> H = InterpolatePose(log, steps, T(view->time) + blocks[2][0]);
-    if (!H) return false;
-    const Rigid3<T> camera_from_board = X.inverse() * H->inverse() * Z;
-    T params[kMaxLensParams];
-    for (size_t i = 0; i < camera->params.size(); ++i) params[i] = T(camera->params[i]);
-    for (size_t k = 0; k < view->observations.size(); ++k) {
-      const Observation& o = view->observations[k];
-      const Vec3<T> p = camera_from_board * o.point.cast<T>();
-      T q[2];
-      if (!ProjectWith(camera->model, params, p.data(), q)) return false;
-      r[2 * k] = q[0] - T(o.pixel.x());
-      r[2 * k + 1] = q[1] - T(o.pixel.y());
+    if (!FrameResiduals<T>(*chain, *frame, blocks[0], blocks[1], blocks[2][0], nullptr, r)) return false;
+    if (!whitening) return true;
+    const Eigen::Index n = whitening->Q.cols();
+    T q[6];
+    for (int j = 0; j < 6; ++j) {
+      q[j] = T(0);
+      for (Eigen::Index k = 0; k < n; ++k) q[j] += whitening->Q(j, k) * r[k];
     }
+    for (Eigen::Index k = 0; k < n; ++k) {
+      T v = r[k];
+      for (int j = 0; j < 6; ++j) v -= whitening->JS(k, j) * q[j];
+      r[k] = v * whitening->inv_sqrt_c;
+    }
+    for (int j = 0; j < 6; ++j) r[n + j] = q[j];
     return true;
+  }
+};
+
+// The frame's residuals with the tracker pose's error as a fourth block: its Jacobians Jₑ (and J_g).
+struct PoseErrorCost {
+  const Chain* chain;
+  const Frame* frame;
+
+  template <typename T>
+  bool operator()(T const* const* blocks, T* r) const {
+    return FrameResiduals<T>(*chain, *frame, blocks[0], blocks[1], blocks[2][0], blocks[3], r);
   }
 };
 
@@ -83,28 +154,49 @@ double Inconsistency(const HandEyeStart& s, std::span<const HandEyeSample> sampl
 }
 
 
-// One maximum-likelihood solve over `views` from the given start: fills X, Z, δ, the fit and the
-// covariance of `out`, and returns each view's residuals at the solution.
-std::vector<std::vector<Eigen::Vector2d>> Refine(const Camera& camera, std::span<const TrackedPose> log, std::span<const Eigen::Vector3d> steps,
-                                                 const std::vector<const TimedView*>& views, const Rigid3d& x_start, const Rigid3d& z_start,
-                                                 double delta_start, const HandEyeOptions& options, HandEyeSolution* out) {
+// A dense copy of a Ceres Jacobian (rows: residuals, columns: x, z, δ).
+Eigen::MatrixXd DenseJacobian(const ceres::CRSMatrix& crs) {
+  Eigen::MatrixXd J = Eigen::MatrixXd::Zero(crs.num_rows, crs.num_cols);
+  for (int r = 0; r < crs.num_rows; ++r) {
+    for (int i = crs.rows[static_cast<size_t>(r)]; i < crs.rows[static_cast<size_t>(r) + 1]; ++i) {
+      J(r, crs.cols[static_cast<size_t>(i)]) = crs.values[static_cast<size_t>(i)];
+    }
+  }
+  return J;
+}
+
+// One maximum-likelihood solve over `frames` from the given start: fills X, Z, δ, the fit and the
+// covariance of `out`, and returns each view's residuals (px) at the solution. With `whitening`
+// (one per frame) the frames are weighed by the tracker's noise and the covariance is (J̃ᵀJ̃)⁻¹ of
+// the whitened residuals; without, the tracker is exact and it is σ̂²(JᵀJ)⁻¹.
+std::vector<std::vector<Eigen::Vector2d>> Refine(Chain* chain, const std::vector<Frame>& frames, const std::vector<Whitening>* whitening,
+                                                 const Rigid3d& x_start, const Rigid3d& z_start, double delta_start,
+                                                 const HandEyeOptions& options, HandEyeSolution* out) {
   // X, Z as left perturbations of their starts, δ absolute.
-  Rigid3d x0 = x_start, z0 = z_start;
+  chain->x0 = x_start;
+  chain->z0 = z_start;
   double x[6] = {0, 0, 0, 0, 0, 0}, z[6] = {0, 0, 0, 0, 0, 0}, delta = delta_start;
   ceres::Problem problem;
-  std::vector<ceres::CostFunction*> costs;
-  out->corners = 0;
-  for (const TimedView* v : views) {
-    auto* cost = new ceres::DynamicAutoDiffCostFunction<ViewCost, 13>(new ViewCost{&camera, log, steps, &x0, &z0, v});
+  out->corners = out->views = out->right_views = out->right_corners = 0;
+  for (size_t f = 0; f < frames.size(); ++f) {
+    const Frame& frame = frames[f];
+    const Whitening* w = whitening ? &(*whitening)[f] : nullptr;
+    auto* functor = new FrameCost{chain, &frame, w};
+    auto* cost = new ceres::DynamicAutoDiffCostFunction<FrameCost, 13>(functor);
     cost->AddParameterBlock(6);
     cost->AddParameterBlock(6);
     cost->AddParameterBlock(1);
-    cost->SetNumResiduals(static_cast<int>(2 * v->observations.size()));
+    cost->SetNumResiduals(static_cast<int>(frame.Residuals() + (w ? 6 : 0)));
     problem.AddResidualBlock(cost, nullptr, {x, z, &delta});
-    costs.push_back(cost);
-    out->corners += v->observations.size();
+    for (const SolveView& v : frame.views) {
+      ++out->views;
+      out->corners += v.view->observations.size();
+      if (v.right_from_left) {
+        ++out->right_views;
+        out->right_corners += v.view->observations.size();
+      }
+    }
   }
-  out->views = views.size();
   ceres::Solver::Options solver;
   solver.max_num_iterations = options.max_iterations;
   solver.linear_solver_type = ceres::DENSE_QR;
@@ -114,40 +206,159 @@ std::vector<std::vector<Eigen::Vector2d>> Refine(const Camera& camera, std::span
   ceres::Solver::Summary summary;
   ceres::Solve(solver, &problem, &summary);
   out->iterations += static_cast<int>(summary.iterations.size());
-  out->hmd_from_camera = PerturbLeft(x0, Eigen::Vector3d(x[0], x[1], x[2]), Eigen::Vector3d(x[3], x[4], x[5]));
-  out->tracker_from_board = PerturbLeft(z0, Eigen::Vector3d(z[0], z[1], z[2]), Eigen::Vector3d(z[3], z[4], z[5]));
+  out->hmd_from_camera = PerturbLeft(chain->x0, Eigen::Vector3d(x[0], x[1], x[2]), Eigen::Vector3d(x[3], x[4], x[5]));
+  out->tracker_from_board = PerturbLeft(chain->z0, Eigen::Vector3d(z[0], z[1], z[2]), Eigen::Vector3d(z[3], z[4], z[5]));
   out->time_offset = delta;
 
   // The covariance at the solution: references moved there, tangents zero, J of all residuals.
-  x0 = out->hmd_from_camera;
-  z0 = out->tracker_from_board;
+  chain->x0 = out->hmd_from_camera;
+  chain->z0 = out->tracker_from_board;
   std::fill(std::begin(x), std::end(x), 0.0);
   std::fill(std::begin(z), std::end(z), 0.0);
   double cost = 0;
   ceres::CRSMatrix crs;
   problem.Evaluate(ceres::Problem::EvaluateOptions{}, &cost, nullptr, nullptr, &crs);
-  Eigen::MatrixXd J = Eigen::MatrixXd::Zero(crs.num_rows, crs.num_cols);
-  for (int r = 0; r < crs.num_rows; ++r) {
-    for (int i = crs.rows[static_cast<size_t>(r)]; i < crs.rows[static_cast<size_t>(r) + 1]; ++i) {
-      J(r, crs.cols[static_cast<size_t>(i)]) = crs.values[static_cast<size_t>(i)];
+  const Eigen::MatrixXd J = DenseJacobian(crs);
+  const Eigen::MatrixXd information = J.transpose() * J;
+
+  // Each view's residuals in px (unwhitened), and the fit from them.
+  std::vector<std::vector<Eigen::Vector2d>> per_view;
+  double sum = 0;
+  for (const Frame& frame : frames) {
+    std::vector<double> r(frame.Residuals());
+    const bool ok = FrameResiduals<double>(*chain, frame, x, z, delta, nullptr, r.data());
+    VSTCAL_CHECK(ok, "a frame's residuals at the solution cannot be evaluated");
+    size_t at = 0;
+    for (const SolveView& v : frame.views) {
+      std::vector<Eigen::Vector2d> pixels;
+      for (size_t i = 0; i < v.view->observations.size(); ++i, at += 2) {
+        pixels.emplace_back(r[at], r[at + 1]);
+        sum += r[at] * r[at] + r[at + 1] * r[at + 1];
+      }
+      per_view.push_back(std::move(pixels));
     }
   }
-  const double residuals = static_cast<double>(crs.num_rows);
-  out->rms_px = std::sqrt(2 * cost / residuals);
-  out->sigma_px = residuals > kHandEyeParameters ? std::sqrt(2 * cost / (residuals - kHandEyeParameters)) : 0.0;
-  out->covariance = out->sigma_px * out->sigma_px * (J.transpose() * J).inverse();
-
-  std::vector<std::vector<Eigen::Vector2d>> per_view;
-  const double* parameters[] = {x, z, &delta};
-  for (size_t k = 0; k < views.size(); ++k) {
-    std::vector<double> r(2 * views[k]->observations.size());
-    costs[k]->Evaluate(parameters, r.data(), nullptr);
-    std::vector<Eigen::Vector2d> pixels;
-    for (size_t i = 0; i < views[k]->observations.size(); ++i) pixels.emplace_back(r[2 * i], r[2 * i + 1]);
-    per_view.push_back(std::move(pixels));
-  }
+  const double residuals = 2.0 * static_cast<double>(out->corners);
+  out->rms_px = std::sqrt(sum / residuals);
+  out->sigma_px = residuals > kHandEyeParameters ? std::sqrt(sum / (residuals - kHandEyeParameters)) : 0.0;
+  // Whitened, the residuals are in units of their σ's (estimated): no σ̂² factor.
+  out->covariance = whitening ? information.inverse() : Eigen::MatrixXd(out->sigma_px * out->sigma_px * information.inverse());
   return per_view;
 }
+
+// The interpolation's s ∈ [0, 1] at tracker time τ between the reports around it (InterpolatePose).
+double InterpolationFraction(std::span<const TrackedPose> log, double tau) {
+  size_t k = static_cast<size_t>(std::upper_bound(log.begin(), log.end(), tau, [](double t, const TrackedPose& p) { return t < p.time; }) -
+                                 log.begin());
+  k = std::min(std::max<size_t>(k, 1), log.size() - 1) - 1;
+  return std::clamp((tau - log[k].time) / (log[k + 1].time - log[k].time), 0.0, 1.0);
+}
+
+// A σ from its variance's estimate v and standard error: σ = √v, σ(σ) = se/(2√v) (first order),
+// the 95 % interval that of v (Wald) taken through the square root, clamped at 0.
+EstimatedSigma SigmaOf(double v, double se) {
+  EstimatedSigma s;
+  s.sigma = std::sqrt(std::max(v, 0.0));
+  s.sigma_sigma = s.sigma > 0 ? se / (2 * s.sigma) : std::sqrt(se);
+  s.lower = std::sqrt(std::max(v - 1.96 * se, 0.0));
+  s.upper = std::sqrt(std::max(v + 1.96 * se, 0.0));
+  return s;
+}
+
+// The tracker's noise estimated with X, Z and δ (docs/math/handeye.md#tracker-noise): at the
+// current solution each frame's Jacobians give the variance components' REML estimate; the frames
+// are then weighed by it (Whitening) and solved again, until the σ's settle (1 %).
+void EstimateTrackerNoiseJointly(Chain* chain, const std::vector<Frame>& frames, const HandEyeOptions& options, HandEyeSolution* out) {
+  Eigen::Vector3d theta(out->sigma_px * out->sigma_px, 0, 0);
+  bool have_theta = false;
+  VarianceComponents components;
+  JointTrackerNoise noise;
+  noise.frames = frames.size();
+  for (int round = 1; round <= 4; ++round) {
+    // Every frame's residuals and Jacobians at the solution (references there, tangents zero).
+    chain->x0 = out->hmd_from_camera;
+    chain->z0 = out->tracker_from_board;
+    const double zero6[6] = {0, 0, 0, 0, 0, 0};
+    const double delta = out->time_offset;
+    std::vector<NoiseFrame> reduced;
+    std::vector<Eigen::MatrixXd> pose_jacobians;
+    for (const Frame& frame : frames) {
+      ceres::DynamicAutoDiffCostFunction<PoseErrorCost, 19> cost(new PoseErrorCost{chain, &frame});
+      for (int size : {6, 6, 1, 6}) cost.AddParameterBlock(size);
+      const auto n = static_cast<Eigen::Index>(frame.Residuals());
+      cost.SetNumResiduals(static_cast<int>(n));
+      Eigen::VectorXd r(n);
+      Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> jx(n, 6), jz(n, 6), jd(n, 1), je(n, 6);
+      const double* parameters[] = {zero6, zero6, &delta, zero6};
+      double* jacobians[] = {jx.data(), jz.data(), jd.data(), je.data()};
+      VSTCAL_CHECK(cost.Evaluate(parameters, r.data(), jacobians), "a frame's residuals at the solution cannot be evaluated");
+      Eigen::MatrixXd J_g(n, 13);
+      J_g << jx, jz, jd;
+      const double s = InterpolationFraction(chain->log, frame.time + delta);
+      reduced.push_back(ReduceNoiseFrame(je, J_g, r, (1 - s) * (1 - s) + s * s));
+      pose_jacobians.emplace_back(je);
+    }
+    if (!have_theta) {
+      // Start: c from the part of the residuals no pose error explains; a, b by moments.
+      double s_perp = 0, n_perp = 0, a = 0, b = 0, w = 0;
+      for (const NoiseFrame& f : reduced) {
+        s_perp += f.s_perp;
+        n_perp += f.n_perp;
+      }
+      theta[0] = std::max(s_perp / n_perp, 1e-12);
+      for (const NoiseFrame& f : reduced) {
+        a += f.d.head<3>().squaredNorm() - theta[0] * f.M_inv.topLeftCorner<3, 3>().trace();
+        b += f.d.tail<3>().squaredNorm() - theta[0] * f.M_inv.bottomRightCorner<3, 3>().trace();
+        w += 3 * f.w;
+      }
+      theta[1] = std::max(a / w, 0.0);
+      theta[2] = std::max(b / w, 0.0);
+    }
+    const Eigen::Vector3d previous = theta;
+    components = EstimateVarianceComponents(reduced, theta);
+    if (!components.converged) {
+      out->warnings.push_back("the tracker's noise could not be estimated jointly (the likelihood has no maximum in reach); its poses were taken as exact");
+      return;
+    }
+    theta = components.theta;
+    // Settled when no variance moved by a tenth of its standard error since the last weighing: the
+    // solution and covariance of that weighing stand.
+    const Eigen::Vector3d se_v = components.covariance.diagonal().cwiseMax(0).cwiseSqrt();
+    if (have_theta && ((theta - previous).cwiseAbs().array() <= 0.1 * se_v.array()).all()) break;
+    have_theta = true;
+    noise.rounds = round;
+    // The frames weighed by the noise, solved again from where they are.
+    std::vector<Whitening> whitening;
+    for (size_t f = 0; f < frames.size(); ++f) {
+      const NoiseFrame& nf = reduced[f];
+      Eigen::Matrix<double, 6, 1> S;
+      S << Eigen::Vector3d::Constant(std::sqrt(nf.w * theta[1])), Eigen::Vector3d::Constant(std::sqrt(nf.w * theta[2]));
+      Whitening w;
+      w.JS = pose_jacobians[f] * S.asDiagonal();
+      Eigen::Matrix<double, 6, 6> B = w.JS.transpose() * w.JS;
+      B.diagonal().array() += theta[0];
+      w.Q = B.ldlt().solve(w.JS.transpose());
+      w.inv_sqrt_c = 1 / std::sqrt(theta[0]);
+      whitening.push_back(std::move(w));
+    }
+    Refine(chain, frames, &whitening, out->hmd_from_camera, out->tracker_from_board, out->time_offset, options, out);
+  }
+  const Eigen::Vector3d se = components.covariance.diagonal().cwiseMax(0).cwiseSqrt();
+  noise.corner_px = SigmaOf(theta[0], se[0]);
+  noise.rotation = SigmaOf(theta[1], se[1]);
+  noise.translation = SigmaOf(theta[2], se[2]);
+  // The σ's join the covariance, uncorrelated with X, Z and δ (the struct's comment says why).
+  Eigen::MatrixXd covariance = Eigen::MatrixXd::Zero(kHandEyeParameters + 2, kHandEyeParameters + 2);
+  covariance.topLeftCorner<kHandEyeParameters, kHandEyeParameters>() = out->covariance;
+  // Var σ = Var v / (4 v), with the covariance of the two variances' estimates likewise.
+  const double ja = noise.rotation.sigma > 0 ? 1 / (2 * noise.rotation.sigma) : 0, jb = noise.translation.sigma > 0 ? 1 / (2 * noise.translation.sigma) : 0;
+  covariance(13, 13) = noise.rotation.sigma_sigma * noise.rotation.sigma_sigma;
+  covariance(14, 14) = noise.translation.sigma_sigma * noise.translation.sigma_sigma;
+  covariance(13, 14) = covariance(14, 13) = ja * jb * components.covariance(1, 2);
+  out->covariance = std::move(covariance);
+  out->tracker_noise = noise;
+}
+
 }  // namespace
 
 std::vector<Eigen::Vector3d> LogSteps(std::span<const TrackedPose> log) {
@@ -159,14 +370,18 @@ std::vector<Eigen::Vector3d> LogSteps(std::span<const TrackedPose> log) {
 }
 
 HandEyeSolution SolveHandEye(const Camera& camera, std::span<const TrackedPose> log, std::span<const TimedView> views,
-                             const HandEyeOptions& options) {
+                             const HandEyeOptions& options, const HandEyeRig* rig) {
   CheckLog(log);
   const std::vector<Eigen::Vector3d> steps = LogSteps(log);
-  for (const TimedView& v : views) {
+  const auto check_span = [&](const TimedView& v, const char* camera_name) {
     if (!(v.time >= log.front().time && v.time <= log.back().time)) {
-      throw InputError("view \"" + v.name + "\": time " + std::to_string(v.time) + " s is outside the tracker's log (" +
+      throw InputError(std::string(camera_name) + "view \"" + v.name + "\": time " + std::to_string(v.time) + " s is outside the tracker's log (" +
                        std::to_string(log.front().time) + " … " + std::to_string(log.back().time) + " s); drop the view or record longer");
     }
+  };
+  for (const TimedView& v : views) check_span(v, "");
+  if (rig) {
+    for (const TimedView& v : rig->views) check_span(v, "right camera's ");
   }
   // Each view's board pose from its corners alone.
   std::vector<Rigid3d> camera_from_board;
@@ -206,20 +421,29 @@ HandEyeSolution SolveHandEye(const Camera& camera, std::span<const TrackedPose> 
   // The refinement, then the test of every view against the others' noise: a view that the
   // solution cannot explain as well as the rest (a tracker glitch, a smeared or mislabelled board)
   // is dropped and the rest solved again from where they were, until every view is consistent.
-  std::vector<const TimedView*> active;
-  for (const TimedView& v : views) active.push_back(&v);
-  std::vector<size_t> index(views.size());  // active[k] is views[index[k]]
-  for (size_t k = 0; k < views.size(); ++k) index[k] = k;
+  std::vector<SolveView> active;
+  for (size_t k = 0; k < views.size(); ++k) active.push_back({&views[k], &camera, nullptr, k});
+  if (rig) {
+    for (size_t k = 0; k < rig->views.size(); ++k) active.push_back({&rig->views[k], &rig->right, &rig->right_from_left, views.size() + k});
+  }
   Rigid3d x_start = out.start.hmd_from_camera, z_start = out.start.tracker_from_board;
   double delta_start = out.start_time_offset;
+  Chain chain{log, steps, x_start, z_start};
+  // The bad-frame test weighs every view alone, the tracker exact: one frame a view.
+  const auto one_frame_a_view = [&] {
+    std::vector<Frame> frames;
+    for (const SolveView& v : active) frames.push_back({v.view->time, {v}});
+    return frames;
+  };
   for (int round = 1;; ++round) {
-    const std::vector<std::vector<Eigen::Vector2d>> residuals = Refine(camera, log, steps, active, x_start, z_start, delta_start, options, &out);
+    const std::vector<std::vector<Eigen::Vector2d>> residuals =
+        Refine(&chain, one_frame_a_view(), nullptr, x_start, z_start, delta_start, options, &out);
     if (!options.rejection.enabled || round > options.rejection.max_rounds) break;
     Correspondences c;
     Fit fit;
     for (size_t k = 0; k < active.size(); ++k) {
-      c.views.push_back(View{active[k]->name, "", std::nullopt, active[k]->observations});
-      fit.views.push_back(ViewFit{active[k]->name, {}, residuals[k]});
+      c.views.push_back(View{active[k].view->name, "", std::nullopt, active[k].view->observations, std::nullopt});
+      fit.views.push_back(ViewFit{active[k].view->name, {}, residuals[k]});
     }
     const RejectionTest test = TestResiduals(c, fit, kHandEyeParameters, 0, options.rejection);
     if (!test.worst_view) break;
@@ -227,7 +451,7 @@ HandEyeSolution SolveHandEye(const Camera& camera, std::span<const TrackedPose> 
     std::nth_element(rms.begin(), rms.begin() + static_cast<long>(rms.size() / 2), rms.end());
     if (test.view_rms_px[*test.worst_view] < options.min_rms_ratio * rms[rms.size() / 2]) break;
     if (active.size() <= kMinHandEyeSamples) {
-      out.warnings.push_back("view \"" + active[*test.worst_view]->name + "\" is inconsistent with the others (RMS " +
+      out.warnings.push_back("view \"" + active[*test.worst_view].view->name + "\" is inconsistent with the others (RMS " +
                              MessageNumber(test.view_rms_px[*test.worst_view]) + " px, threshold " +
                              MessageNumber(test.view_threshold_px[*test.worst_view]) + " px) but only " + std::to_string(active.size()) +
                              " views remain; kept. Record more views");
@@ -237,20 +461,37 @@ HandEyeSolution SolveHandEye(const Camera& camera, std::span<const TrackedPose> 
     Rejection r;
     r.kind = Rejection::Kind::kView;
     r.round = round;
-    r.view = index[worst];
-    r.view_name = active[worst]->name;
+    r.view = active[worst].index;
+    r.view_name = active[worst].view->name;
     r.rms_px = test.view_rms_px[worst];
     r.threshold_px = test.view_threshold_px[worst];
     r.because = "its corners are inconsistent with the other views' noise (σ̂ " + MessageNumber(test.sigma_px) +
                 " px): a tracker glitch, a smeared or mislabelled board, or a pose log out of step at that time";
     out.rejected.push_back(std::move(r));
     active.erase(active.begin() + static_cast<long>(worst));
-    index.erase(index.begin() + static_cast<long>(worst));
     x_start = out.hmd_from_camera;
     z_start = out.tracker_from_board;
     delta_start = out.time_offset;
   }
   out.names = HandEyeCovarianceNames();
+  if (rig) out.right_from_left = rig->right_from_left;
+  if (options.estimate_tracker_noise) {
+    // The frames: views of one instant share the tracker's error there (a rig's pairs).
+    std::vector<SolveView> by_time = active;
+    std::stable_sort(by_time.begin(), by_time.end(), [](const SolveView& a, const SolveView& b) { return a.view->time < b.view->time; });
+    std::vector<Frame> frames;
+    for (const SolveView& v : by_time) {
+      if (!frames.empty() && std::abs(v.view->time - frames.back().time) <= kSameInstant) {
+        frames.back().views.push_back(v);
+      } else {
+        frames.push_back({v.view->time, {v}});
+      }
+    }
+    EstimateTrackerNoiseJointly(&chain, frames, options, &out);
+    if (out.tracker_noise) {
+      out.names.insert(out.names.end(), HandEyeNoiseCovarianceNames().begin(), HandEyeNoiseCovarianceNames().end());
+    }
+  }
   return out;
 }
 

@@ -71,6 +71,16 @@ std::optional<Rigid3<T>> InterpolatePose(std::span<const TrackedPose> log, std::
   return out;
 }
 
+// A second camera rigidly beside the first, as a stereo rig holds it (stereo@1's right_from_left,
+// held: docs/math/handeye.md#rig): its own views of the board, each at its own time. A corner it
+// sees is projected through right_from_left · X⁻¹ · H(t + δ)⁻¹ · Z, so its views constrain the
+// same X, Z and δ as the first camera's; X stays the first (left) camera's hmd_from_camera.
+struct HandEyeRig {
+  Camera right;
+  Rigid3d right_from_left;
+  std::vector<TimedView> views;
+};
+
 struct HandEyeOptions {
   double max_time_offset = 0.2;  // s: the coarse search for δ's start spans ±this
   double search_step = 0.005;    // s
@@ -84,6 +94,26 @@ struct HandEyeOptions {
   // tracker's reports, larger where the headset moved faster, and every view would in turn look
   // inconsistent. A bad frame is off by pixels, not by a few hundredths.
   double min_rms_ratio = 2;
+  // The tracker's noise (docs/math/handeye.md#tracker-noise): each report is the true pose with
+  // R = Exp(ω) R_true, t = t_true + ρ, ω ~ N(0, σ_r² I₃), ρ ~ N(0, σ_t² I₃), independent from
+  // report to report. true: σ_r, σ_t (and the corners' σ) are estimated jointly by restricted
+  // maximum likelihood and every frame weighed by them, after the bad-frame test; false: the
+  // tracker's poses are taken as exact (their noise then only inflates σ̂).
+  bool estimate_tracker_noise = true;
+};
+
+// A σ estimated from the data, with its standard error and 95 % interval (same unit).
+struct EstimatedSigma {
+  double sigma = 0, sigma_sigma = 0, lower = 0, upper = 0;
+};
+
+// The tracker's noise as the joint solve estimated it (HandEyeOptions::estimate_tracker_noise).
+struct JointTrackerNoise {
+  EstimatedSigma rotation;     // rad, per axis (the left perturbation ω of each report)
+  EstimatedSigma translation;  // length unit, per axis
+  EstimatedSigma corner_px;    // the corners' σ, px per coordinate
+  size_t frames = 0;           // instants (a rig's two views of one instant are one frame)
+  int rounds = 0;              // re-weighted solves
 };
 
 // X's 6, Z's 6 and δ.
@@ -104,17 +134,30 @@ struct HandEyeSolution {
   double start_time_offset = 0;
   std::vector<Rejection> rejected;    // views dropped as bad frames, in the order dropped
   std::vector<std::string> warnings;  // e.g. an inconsistent view kept because too few remain
+  // With a rig: right_from_left as held, and how many of `views` and `corners` are the right
+  // camera's (those two counts are both cameras'). Rejections index the left views, then the right.
+  std::optional<Rigid3d> right_from_left;
+  size_t right_views = 0, right_corners = 0;
+  // With estimate_tracker_noise: the noise's σ's; `covariance` and `names` then end with
+  // tracker_noise.rotation (rad) and tracker_noise.translation (length unit), the σ's themselves,
+  // uncorrelated with X, Z and δ to first order (a Gaussian's mean and variance parameters are
+  // orthogonal in its information). sigma_px stays the residuals' σ̂ (the fit); the corners' σ
+  // estimated beside the tracker's is tracker_noise->corner_px.
+  std::optional<JointTrackerNoise> tracker_noise;
 };
 
 // The names of HandEyeSolution::covariance's rows, in order: X's left-perturbation tangent (ω rad,
 // ρ length unit; hmd frame), Z's (tracker frame), δ (s). handeye@1 writes them; err-sim reads them.
 const std::vector<std::string>& HandEyeCovarianceNames();
+// The two rows that follow them when the tracker's noise was estimated jointly.
+const std::vector<std::string>& HandEyeNoiseCovarianceNames();
 
 // `iterations` counts every solve's (one per rejection round). Throws InputError for a log that is
 // not strictly increasing in time or has fewer than 2 reports, a view outside the log's span, and
-// DegenerateError (closed_form.h) for too few views or motion
-// about one axis.
+// DegenerateError (closed_form.h) for too few views or motion about one axis. `views` are the
+// (left) camera's; with `rig` its right camera's views join the solve (the start is the left
+// camera's alone: its PnP poses and the closed form).
 HandEyeSolution SolveHandEye(const Camera& camera, std::span<const TrackedPose> log, std::span<const TimedView> views,
-                             const HandEyeOptions& options = {});
+                             const HandEyeOptions& options = {}, const HandEyeRig* rig = nullptr);
 
 }  // namespace vstcal

@@ -43,23 +43,38 @@ HandEyeRecording SynthesizeHandEye(const Camera& camera, const HandEyeSpec& s) {
     r.log.push_back({tau, H});
   }
   const ImageSize size = camera.image_size;
-  for (int i = 0; i < s.views; ++i) {
-    TimedView v;
-    v.name = "frame-" + std::to_string(i);
-    v.time = s.duration * (0.05 + 0.9 * i / (s.views - 1));
-    const Rigid3d camera_from_board = BoardFromCamera(s, v.time + s.time_offset).inverse();
+  // One camera's view at its true pose: the corners inside the image, with noise from `rng`.
+  const auto view_of = [&](const Rigid3d& camera_from_board, const CounterRng& rng, int i, TimedView* v) {
     for (int row = 0; row < s.grid_rows; ++row) {
       for (int col = 0; col < s.grid_cols; ++col) {
         const Eigen::Vector3d P(s.spacing * col, s.spacing * row, 0);
         const uint64_t index = (static_cast<uint64_t>(i) * static_cast<uint64_t>(s.grid_rows) + static_cast<uint64_t>(row)) *
                                    static_cast<uint64_t>(s.grid_cols) + static_cast<uint64_t>(col);
-        const auto draw = corner_rng.Normal2(index, 0);
+        const auto draw = rng.Normal2(index, 0);
         const Eigen::Vector2d noise(draw[0], draw[1]);
         const auto q = camera.Project(camera_from_board * P);
         if (!q || q->x() < 1 || q->y() < 1 || q->x() > size.width - 2 || q->y() > size.height - 2) continue;
-        v.observations.push_back({P, *q + s.noise_px * noise, 1.0});
+        v->observations.push_back({P, *q + s.noise_px * noise, 1.0});
       }
     }
+  };
+  const CounterRng right_rng(s.seed, 3);
+  const std::string prefix = s.right_from_left ? "left-frame-" : "frame-";
+  for (int i = 0; i < s.views; ++i) {
+    TimedView v;
+    v.name = prefix + std::to_string(i);
+    v.time = s.duration * (0.05 + 0.9 * i / (s.views - 1));
+    const Rigid3d camera_from_board = BoardFromCamera(s, v.time + s.time_offset).inverse();
+    if (s.right_from_left) {
+      TimedView right{"right-frame-" + std::to_string(i), v.time, {}};
+      const Rigid3d right_from_board = *s.right_from_left * camera_from_board;
+      view_of(right_from_board, right_rng, i, &right);
+      if (right.observations.size() >= 4) {
+        r.right_views.push_back(std::move(right));
+        r.right_camera_from_board.push_back(right_from_board);
+      }
+    }
+    view_of(camera_from_board, corner_rng, i, &v);
     if (v.observations.size() >= 4) {
       r.views.push_back(std::move(v));
       r.camera_from_board.push_back(camera_from_board);

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "vstcal/camera/camera.h"
@@ -27,12 +28,18 @@ struct HandEyeSpec {
   double tracker_noise_deg = 0, tracker_noise = 0;  // per axis, on each report (rotation, length unit)
   bool one_axis = false;
   uint64_t seed = 1;
+  // A stereo rig: a second camera (the same lens) at right_from_left, taking its views at the same
+  // times as the left one; the views are then named left-frame-N and right-frame-N.
+  std::optional<Rigid3d> right_from_left;
 };
 
 struct HandEyeRecording {
   std::vector<TrackedPose> log;
   std::vector<TimedView> views;  // corners inside the image only
   std::vector<Rigid3d> camera_from_board;  // each view's true pose (for rendering its image)
+  // With a rig: the right camera's views (its corners' noise drawn apart from the left's).
+  std::vector<TimedView> right_views;
+  std::vector<Rigid3d> right_camera_from_board;
 };
 
 // Throws InputError for a spec that cannot be recorded (non-positive sizes, rates or duration,

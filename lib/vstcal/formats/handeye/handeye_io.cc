@@ -50,13 +50,17 @@ HandEyeMeasurement HandEyeFromJson(const JsonDocument& doc) {
   if (const auto cov = root.find("covariance")) {
     cov->ExpectObject();
     const JsonNode names = cov->at("parameters");
-    const auto& expected = HandEyeCovarianceNames();
+    // X, Z and δ; and the tracker's noise σ's when they were estimated jointly.
+    std::vector<std::string> expected = HandEyeCovarianceNames();
+    if (names.json().is_array() && names.json().size() == expected.size() + HandEyeNoiseCovarianceNames().size()) {
+      expected.insert(expected.end(), HandEyeNoiseCovarianceNames().begin(), HandEyeNoiseCovarianceNames().end());
+    }
     names.ArraySize(expected.size());
     std::vector<std::string> read;
     for (size_t i = 0; i < expected.size(); ++i) {
       std::string name = names.at(i).String();
       if (std::find(expected.begin(), expected.end(), name) == expected.end()) {
-        names.at(i).Fail("unknown parameter \"" + name + "\"", "a handeye covariance is over hmd_from_camera.rx … .tz, tracker_from_board.rx … .tz and time_offset");
+        names.at(i).Fail("unknown parameter \"" + name + "\"", "a handeye covariance is over hmd_from_camera.rx … .tz, tracker_from_board.rx … .tz and time_offset (then, optionally, tracker_noise.rotation and .translation)");
       }
       if (std::find(read.begin(), read.end(), name) != read.end()) names.at(i).Fail("duplicate parameter \"" + name + "\"", "list each parameter once");
       read.push_back(std::move(name));
@@ -113,7 +117,7 @@ OrderedJson TrackerNoiseToJson(const TrackerNoise& n, LengthUnit length_unit, co
   return j;
 }
 
-OrderedJson HandEyeToJson(const HandEyeSolution& s, LengthUnit length_unit, const Provenance& provenance) {
+OrderedJson HandEyeToJson(const HandEyeSolution& s, LengthUnit length_unit, const Provenance& provenance, const HandEyeRigFile* rig) {
   OrderedJson j;
   j["format"] = "vstcal/handeye@1";
   j["length_unit"] = LengthUnitName(length_unit);
@@ -146,6 +150,29 @@ OrderedJson HandEyeToJson(const HandEyeSolution& s, LengthUnit length_unit, cons
   }
   j["rejected_views"] = std::move(rejected);
   j["warnings"] = s.warnings;
+  if (s.tracker_noise) {
+    const auto sigma = [](const EstimatedSigma& e) {
+      return OrderedJson{{"sigma", e.sigma}, {"sigma_sigma", e.sigma_sigma}, {"ci95", {e.lower, e.upper}}};
+    };
+    j["tracker_noise"] = {{"model", "R = Exp(ω) R_true, t = t_true + ρ, ω ~ N(0, σ_r² I), ρ ~ N(0, σ_t² I), independent reports"},
+                          {"estimated", "jointly (restricted maximum likelihood)"},
+                          {"rotation_rad", sigma(s.tracker_noise->rotation)},
+                          {"translation", sigma(s.tracker_noise->translation)},
+                          {"corner_px", sigma(s.tracker_noise->corner_px)},
+                          {"frames", s.tracker_noise->frames},
+                          {"rounds", s.tracker_noise->rounds}};
+  } else {
+    j["tracker_noise"] = {{"estimated", "no: the tracker's poses were taken as exact"}};
+  }
+  if (rig && s.right_from_left) {
+    j["rig"] = {{"file", rig->file},
+                {"right_views_file", rig->right_corners},
+                {"right_from_left", PoseJson(*s.right_from_left)},
+                {"right_from_left_held", true},
+                {"pairing", rig->pairing},
+                {"right_views", s.right_views},
+                {"right_corners", s.right_corners}};
+  }
   j["provenance"] = ProvenanceToJson(provenance);
   return j;
 }

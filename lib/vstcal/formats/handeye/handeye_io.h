@@ -12,7 +12,15 @@
 
 namespace vstcal {
 
-OrderedJson HandEyeToJson(const HandEyeSolution& solution, LengthUnit length_unit, const Provenance& provenance);
+// A rig's solve (docs/math/handeye.md#rig): the stereo@1 file whose right_from_left was held, the
+// right camera's corners file and how its views were paired with the left camera's.
+struct HandEyeRigFile {
+  std::string file, right_corners, pairing;
+};
+
+// `rig`: written as the file's "rig" (with right_from_left and the right camera's counts).
+OrderedJson HandEyeToJson(const HandEyeSolution& solution, LengthUnit length_unit, const Provenance& provenance,
+                          const HandEyeRigFile* rig = nullptr);
 
 // The same as OpenCV FileStorage YAML, for a user's OpenCV code: R_cam2gripper / t_cam2gripper
 // (hmd_from_camera, OpenCV's calibrateHandEye names), R_target2base / t_target2base
