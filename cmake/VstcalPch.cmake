@@ -31,6 +31,8 @@ function(vstcal_pch target owner)
   if(NOT VSTCAL_PCH)
     return()
   endif()
+  # A header that no longer matches its user's flags says so instead of silently slowing down.
+  target_compile_options(${target} PRIVATE -Winvalid-pch)
   if(owner STREQUAL target)
     target_precompile_headers(${target} PRIVATE ${ARGN})
   else()
@@ -38,6 +40,3 @@ function(vstcal_pch target owner)
   endif()
 endfunction()
 
-if(VSTCAL_PCH)
-  add_compile_options(-Winvalid-pch)  # a header that no longer matches its flags says so instead of slowing down
-endif()
