@@ -63,7 +63,7 @@ std::string MissHint(const GrayImage& image, const DetectorOptions& options, std
                      std::string_view what) {
   char buf[320];
   // The profile reaches far enough to see a σ somewhat above the limit (2.563 σ is the 10–90 % rise).
-  if (const auto sharp = SharpestEdgeBlur(image, std::clamp(3 * options.max_blur_px, 8.0, 24.0)); sharp && sharp->sigma_px > options.max_blur_px) {
+  if (const auto sharp = SharpestEdgeBlur(image, std::clamp(4 * options.max_blur_px, 8.0, 24.0)); sharp && sharp->sigma_px > options.max_blur_px) {
     std::snprintf(buf, sizeof buf,
                   "the image looks blurred: its sharpest edges are blurred over σ = %.2f px (the sharpest tenth of %d strong edges), "
                   "more than max_blur_px %.2f px; refocus the camera on the board, or steady it",
