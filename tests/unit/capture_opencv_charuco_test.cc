@@ -214,7 +214,7 @@ Target LegacyTestTarget(bool legacy) {
   return t;
 }
 
-GrayImage WarpedView(const cv::Mat& drawn, const cv::Matx33d& H, std::mt19937_64& rng) {
+GrayImage WarpLegacyTestView(const cv::Mat& drawn, const cv::Matx33d& H, std::mt19937_64& rng) {
   cv::Mat view;
   cv::warpPerspective(drawn, view, cv::Mat(H), cv::Size(640, 480), cv::INTER_LINEAR, cv::BORDER_CONSTANT, cv::Scalar(110));
   cv::GaussianBlur(view, view, cv::Size(0, 0), 0.7);
@@ -237,7 +237,7 @@ TEST(DetectCharuco, LegacyBoardsAreReadAndTheWrongPatternNamed) {
   double sum2 = 0;
   for (int k = 0; k < 12; ++k) {
     const cv::Matx33d H = ViewHomography(rng, 50);
-    const GrayImage image = WarpedView(drawn, H, rng);
+    const GrayImage image = WarpLegacyTestView(drawn, H, rng);
     DetectorOptions options;
     options.min_corners = 4;
     const Detection d = DetectTarget(image, legacy, options);
@@ -270,7 +270,7 @@ TEST(DetectCharuco, LegacyBoardsAreReadAndTheWrongPatternNamed) {
   const cv::Ptr<cv::aruco::CharucoBoard> board = cv::aruco::CharucoBoard::create(kCols + 1, kRows + 1, 1.0f, 0.7f, dictionary);
   cv::Mat drawn_current;
   board->draw(cv::Size((kCols + 1) * kPxPerSquare + 2 * kMargin, (kRows + 1) * kPxPerSquare + 2 * kMargin), drawn_current, kMargin, 1);
-  const Detection as_legacy = DetectTarget(WarpedView(drawn_current, ViewHomography(rng, 30), rng), legacy, DetectorOptions{});
+  const Detection as_legacy = DetectTarget(WarpLegacyTestView(drawn_current, ViewHomography(rng, 30), rng), legacy, DetectorOptions{});
   EXPECT_EQ(as_legacy.status, DetectionStatus::kRejected);
   EXPECT_NE(as_legacy.reason.find("OpenCV's current ChArUco pattern"), std::string::npos) << as_legacy.reason;
   EXPECT_NE(as_legacy.reason.find("set the target's legacy to false"), std::string::npos) << as_legacy.reason;

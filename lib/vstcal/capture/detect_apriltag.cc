@@ -1,5 +1,6 @@
 // AprilTag grids: libapriltag finds and decodes the tags; vstcal keeps this board's ids, checks
 // the tags' layout against the target and measures the blur along the tags' edges.
+#include <algorithm>
 #include <map>
 #include <memory>
 #include <string>
@@ -60,8 +61,17 @@ Detection DetectAprilTagGrid(const GrayImage& image, const Target& target, const
   // Above 1 MP libapriltag looks for quads in the image decimated as the other finders' search
   // image (search_image.h), then fits their edges and decodes them at full resolution
   // (refine_edges): its time and memory are those of a 1 MP image, its corners as accurate.
+  const int factor = SearchFactor(image.width, image.height);
+  // libapriltag asserts (aborts) on a side of 32768 px or more: only a strip too thin to reduce
+  // keeps such a side, and it holds no grid.
+  if (std::max(image.width, image.height) / factor >= 32768) {
+    Detection d;
+    d.reason = "no " + target.family + " tag (a " + std::to_string(image.width) + "×" + std::to_string(image.height) +
+               " image is searched only below 32768 px a side)";
+    return d;
+  }
   apriltag_detector_t* detector = DetectorFor(target.family).get();
-  detector->quad_decimate = static_cast<float>(SearchFactor(image.width, image.height));
+  detector->quad_decimate = static_cast<float>(factor);
   zarray_t* found = apriltag_detector_detect(detector, &wrapped);
   const int num_tags = target.rows * target.cols;
   std::map<int, DetectedMarker> by_index;

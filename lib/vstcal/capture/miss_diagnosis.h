@@ -20,9 +20,10 @@
 
 namespace vstcal {
 
-// Grey levels a marker cell needs to decode: OpenCV samples each cell's middle after removing the
-// perspective; below about 3 px a cell, blur and the pixel grid mix neighbouring cells.
-inline constexpr double kMinPxPerCell = 3;
+// Pixels a marker cell needs to decode: OpenCV samples each cell's middle after removing the
+// perspective; below about 2 px a cell, blur and the pixel grid mix neighbouring cells. (At 3 px a
+// chessboard's 40 px squares, read as Kalibr's 10-cell tags, were called too small.)
+inline constexpr double kMinPxPerCell = 2;
 
 // The blur σ, px at full resolution, of the sharpest tenth of the image's strongest edges, and how
 // many edges were measured; nullopt when fewer than 20 (a flat image). Edges are chosen in the
