@@ -26,10 +26,17 @@
 //                             minutes (noise 640×480, one grey 12 MP); 12 MP blurred noise took
 //                             it 84 s (issue 25)
 //   BM_CaptureDetect12MP      DetectTarget on a 4000×3000 view of the board (squares ≈ 150 px)
+//   BM_CaptureDetect12MPMarkers  the same for a ChArUco board (0), Kalibr's aprilgrid (1) and an
+//                             AprilTag grid (2): found, corners, RMS against the truth
+//   BM_OpenCvDetectMarkers12MP   OpenCV's detectMarkers on the whole 12 MP view (0, 1): what
+//                             the ChArUco and aprilgrid detectors ran before the bound
+//   BM_CaptureBoardlessMarkers   DetectTarget for marker board 0–2 on board-less image 0–3
+//   BM_OpenCvBoardlessMarkers    detectMarkers on the whole board-less 12 MP images (1, 2)
 // OpenCV runs single-threaded in the per-image benchmarks (cv::setNumThreads(1)), as it does
 // inside DetectInFiles, which parallelises over images instead.
 #include <benchmark/benchmark.h>
 
+#include <opencv2/aruco.hpp>
 #include <opencv2/calib3d.hpp>
 #include <opencv2/core/utility.hpp>
 #include <opencv2/imgproc.hpp>
@@ -360,6 +367,113 @@ void BM_CaptureDetect12MP(benchmark::State& state) {
   ReportTail(state, seconds);
 }
 
+// Marker boards (issue 25: bounded time for ChArUco and tag grids as for the chessboard): 0 the
+// 7×5 ChArUco board (DICT_5X5_100), 1 a 6×4 Kalibr aprilgrid, 2 the 6×4 tag36h11 AprilTag grid.
+Target MarkerBoard(int which) {
+  if (which == 0) return testing::Charuco7x5();
+  if (which == 2) return testing::AprilGrid6x4();
+  Target t;
+  t.type = TargetType::kAprilGrid;
+  t.rows = 4;
+  t.cols = 6;
+  t.tag_size = 30;
+  t.tag_spacing = 0.3;
+  t.family = "tag36h11";
+  t.margin = 9;
+  return t;
+}
+
+// A 4000×3000 view of marker board `which` (squares or tags ≈ 150 px, blur σ 1.5 px, noise σ 2).
+const testing::RenderedView& MarkerView12MP(int which) {
+  static std::map<int, testing::RenderedView> views;
+  auto it = views.find(which);
+  if (it == views.end()) {
+    const Camera camera = testing::DistortedCamera(4000, 3000, 3000);
+    const Target t = MarkerBoard(which);
+    RenderOptions o;
+    o.blur_px = 1.5;
+    o.noise = 2;
+    it = views.emplace(which, testing::RenderTestView(camera, t, testing::TestViewPose(camera, t, 150, 3, 9), o, 3)).first;
+  }
+  return it->second;
+}
+
+void BM_CaptureDetect12MPMarkers(benchmark::State& state) {
+  cv::setNumThreads(1);
+  const int which = static_cast<int>(state.range(0));
+  const Target t = MarkerBoard(which);
+  const testing::RenderedView& view = MarkerView12MP(which);
+  std::vector<double> seconds;
+  testing::CornerErrors e;
+  for (auto _ : state) {
+    Detection d;
+    seconds.push_back(CpuSeconds([&] { d = DetectTarget(view.image, t, DetectorOptions{}); }));
+    if (d.status != DetectionStatus::kFound) state.SkipWithError(("the 12 MP view was not found: " + d.reason).c_str());
+    e = testing::CompareWithTruth(d, view);
+  }
+  state.counters["rms_px"] = e.rms_px;
+  state.counters["corners"] = e.matched;
+  state.counters["of"] = static_cast<double>(view.truth.size());
+  state.counters["wrong_ids"] = e.wrong_id;
+  ReportTail(state, seconds);
+}
+
+// The peer: OpenCV's detectMarkers on the whole 12 MP image (DetectTarget's first step before the
+// bound; 0 ChArUco's dictionary, 1 the aprilgrid's tag36h11 with its two-cell border).
+void BM_OpenCvDetectMarkers12MP(benchmark::State& state) {
+  cv::setNumThreads(1);
+  const int which = static_cast<int>(state.range(0));
+  const cv::Mat gray = AsMat(MarkerView12MP(which).image);
+  const cv::Ptr<cv::aruco::DetectorParameters> params = cv::aruco::DetectorParameters::create();
+  params->markerBorderBits = which == 0 ? 1 : 2;
+  const cv::Ptr<cv::aruco::Dictionary> dictionary =
+      cv::aruco::getPredefinedDictionary(which == 0 ? cv::aruco::DICT_5X5_100 : cv::aruco::DICT_APRILTAG_36h11);
+  std::vector<double> seconds;
+  size_t markers = 0;
+  for (auto _ : state) {
+    std::vector<std::vector<cv::Point2f>> corners;
+    std::vector<int> ids;
+    seconds.push_back(CpuSeconds([&] { cv::aruco::detectMarkers(gray, dictionary, corners, ids, params); }));
+    markers = ids.size();
+  }
+  state.counters["markers"] = static_cast<double>(markers);
+  ReportTail(state, seconds);
+}
+
+// DetectTarget for marker board range(0) on board-less image range(1) (Boardless).
+void BM_CaptureBoardlessMarkers(benchmark::State& state) {
+  cv::setNumThreads(1);
+  const GrayImage image = Boardless(static_cast<int>(state.range(1)));
+  const Target t = MarkerBoard(static_cast<int>(state.range(0)));
+  size_t found = 0;
+  std::vector<double> seconds;
+  for (auto _ : state) {
+    Detection d;
+    seconds.push_back(CpuSeconds([&] { d = DetectTarget(image, t, DetectorOptions{}); }));
+    found += d.status != DetectionStatus::kNotFound;
+  }
+  if (found != 0) state.SkipWithError("a board was found in a board-less image");
+  ReportTail(state, seconds);
+}
+
+// The peer on the 12 MP board-less images: detectMarkers on the whole image (0 ChArUco's, 1 the aprilgrid's).
+void BM_OpenCvBoardlessMarkers(benchmark::State& state) {
+  cv::setNumThreads(1);
+  const GrayImage image = Boardless(static_cast<int>(state.range(1)));
+  const int which = static_cast<int>(state.range(0));
+  const cv::Ptr<cv::aruco::DetectorParameters> params = cv::aruco::DetectorParameters::create();
+  params->markerBorderBits = which == 0 ? 1 : 2;
+  const cv::Ptr<cv::aruco::Dictionary> dictionary =
+      cv::aruco::getPredefinedDictionary(which == 0 ? cv::aruco::DICT_5X5_100 : cv::aruco::DICT_APRILTAG_36h11);
+  std::vector<double> seconds;
+  for (auto _ : state) {
+    std::vector<std::vector<cv::Point2f>> corners;
+    std::vector<int> ids;
+    seconds.push_back(CpuSeconds([&] { cv::aruco::detectMarkers(AsMat(image), dictionary, corners, ids, params); }));
+  }
+  ReportTail(state, seconds);
+}
+
 BENCHMARK(BM_CaptureDetect)->Arg(640)->Arg(1280)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_OpenCvFindChessboard)->Arg(640)->Arg(1280)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_OpenCvFindAndSubPix)->Arg(640)->Arg(1280)->Unit(benchmark::kMillisecond);
@@ -371,6 +485,13 @@ BENCHMARK(BM_OpenCvHardClassicThenSB)->Arg(640)->Arg(1280)->Iterations(60)->Unit
 BENCHMARK(BM_CaptureBoardless)->Arg(0)->Arg(1)->Arg(2)->Arg(3)->Iterations(3)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_OpenCvBoardless)->Arg(0)->Arg(2)->Iterations(1)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_CaptureDetect12MP)->Iterations(3)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_CaptureDetect12MPMarkers)->Arg(0)->Arg(1)->Arg(2)->Iterations(5)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_OpenCvDetectMarkers12MP)->Arg(0)->Arg(1)->Iterations(3)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_CaptureBoardlessMarkers)
+    ->ArgsProduct({{0, 1, 2}, {0, 1, 2, 3}})
+    ->Iterations(5)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_OpenCvBoardlessMarkers)->ArgsProduct({{0, 1}, {1, 2}})->Iterations(1)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 

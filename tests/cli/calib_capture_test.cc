@@ -74,6 +74,11 @@ TEST_F(CliCalibCapture, TargetWritesTheDescriptionAndThePrintableFiles) {
   // ChArUco and AprilTag grids, without the PNG.
   Ok({"target", "--type", "charuco", "--rows", "5", "--cols", "7", "--square-size", "30", "--dpi", "0", "-o", "out/ch"});
   EXPECT_EQ(ReadJson("out/ch.target.json").at("marker_size"), 22.5);
+  EXPECT_FALSE(ReadJson("out/ch.target.json").contains("legacy"));
+  // OpenCV's legacy pattern (boards drawn before 4.6): an even number of square rows, the top-left square white.
+  Ok({"target", "--type", "charuco", "--rows", "5", "--cols", "7", "--square-size", "30", "--legacy", "--dpi", "0", "-o", "out/legacy"});
+  EXPECT_EQ(ReadJson("out/legacy.target.json").at("legacy"), true);
+  EXPECT_NE(ReadJson("out/legacy.target.json").at("board_frame").get<std::string>().find("the top-left square is white"), std::string::npos);
   Ok({"target", "--type", "apriltag-grid", "--rows", "4", "--cols", "6", "--tag-size", "30", "--dpi", "0", "-o", "out/ag"});
   EXPECT_EQ(ReadJson("out/ag.target.json").at("tag_gap"), 7.5);
   EXPECT_FALSE(fs::exists(Path("out/ch.png")));
@@ -504,6 +509,9 @@ std::vector<BadCase> BadCases() {
       {"TargetChessboardWithFirstId", [](CliCalibCapture*) {},
        {"target", "--rows", "6", "--cols", "9", "--square-size", "25", "--first-id", "3", "-o", "out/b"}, kBadInput, "--first-id: ",
        {"a chessboard has no ids; remove it"}},
+      {"TargetChessboardWithLegacy", [](CliCalibCapture*) {},
+       {"target", "--rows", "5", "--cols", "7", "--square-size", "25", "--legacy", "-o", "out/b"}, kBadInput, "--legacy: ",
+       {"only a ChArUco board has OpenCV's legacy pattern, not a chessboard; remove it"}},
       {"TargetGridWithSquareSize", [](CliCalibCapture*) {},
        {"target", "--type", "apriltag-grid", "--rows", "4", "--cols", "6", "--square-size", "30", "-o", "out/b"}, kBadInput,
        "--square-size: ", {"give --tag-size"}},

@@ -58,7 +58,7 @@ Rigid3d ViewPose(const Camera& camera, const Target& target, double square_px, i
                  double min_tilt_deg, double max_tilt_deg) {
   const CounterRng rng(seed, 0x5CE7u);
   const auto a = rng.Uniform2(static_cast<uint64_t>(k), 0), b = rng.Uniform2(static_cast<uint64_t>(k), 1);
-  const double square = target.type == TargetType::kAprilTagGrid ? target.tag_size : target.square_size;
+  const double square = target.type == TargetType::kAprilTagGrid || target.type == TargetType::kAprilGrid ? target.tag_size : target.square_size;
   const double depth = camera.params[0] * square / square_px;
   // Written so that a minimum of 0 gives exactly the former DegToRad(35.0) * a[0].
   const double tilt = DegToRad(min_tilt_deg) + (DegToRad(max_tilt_deg) - DegToRad(min_tilt_deg)) * a[0], axis = 2 * kPi * a[1];

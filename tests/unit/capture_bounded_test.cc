@@ -14,6 +14,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -97,6 +98,43 @@ TEST(BoundedDetection, LargeImageCornersMapBackToFullResolution) {
   EXPECT_LT(e.rms_px, 0.05);
 }
 
+// Marker boards in an image above 1 MP: the markers are found in the reduced search image (half
+// of 1600×1200 here; the 12 MP case is bench_capture's BM_CaptureDetect12MPMarkers), the corners interpolated, fitted or refined at full resolution — as accurate as
+// the same boards' corners at 640×480 (docs/experiments/corners.md: ChArUco and aprilgrid 0.013 px,
+// libapriltag's tag corners 0.06 px). A ChArUco board, Kalibr's aprilgrid and an AprilTag grid, one
+// view each, squares or tags of 90 px (45 px in the search image).
+Target KalibrAprilGrid() {
+  Target t;
+  t.type = TargetType::kAprilGrid;
+  t.rows = 4;
+  t.cols = 6;
+  t.tag_size = 30;
+  t.tag_spacing = 0.3;
+  t.family = "tag36h11";
+  t.margin = 9;
+  return t;
+}
+
+TEST(BoundedDetection, MarkerBoardsInLargeImagesAreFoundAtFullAccuracy) {
+  const Camera camera = testing::DistortedCamera(1600, 1200, 1200);
+  const Target charuco = testing::Charuco7x5(), aprilgrid = KalibrAprilGrid(), tag_grid = testing::AprilGrid6x4();
+  for (const auto& [target, max_rms] : {std::pair{&charuco, 0.03}, {&aprilgrid, 0.03}, {&tag_grid, 0.12}}) {
+    for (int k = 0; k < 1; ++k) {
+      RenderOptions o;
+      o.blur_px = 1.5;
+      o.noise = 2;
+      const RenderedView view = testing::RenderTestView(camera, *target, testing::TestViewPose(camera, *target, 90, k, 21), o, k);
+      const Detection d = DetectTarget(view.image, *target, DetectorOptions{});
+      ASSERT_EQ(d.status, DetectionStatus::kFound) << DescribeTarget(*target) << " view " << k << ": " << d.reason;
+      const CornerErrors e = CompareWithTruth(d, view);
+      EXPECT_EQ(e.wrong_id, 0) << DescribeTarget(*target);
+      EXPECT_GE(e.matched, static_cast<int>(0.9 * static_cast<double>(view.truth.size()))) << DescribeTarget(*target) << " view " << k;
+      EXPECT_LT(e.rms_px, max_rms) << DescribeTarget(*target) << " view " << k;
+      std::printf("%s view %d: %d of %zu corners, RMS %.4f px\n", DescribeTarget(*target).c_str(), k, e.matched, view.truth.size(), e.rms_px);
+    }
+  }
+}
+
 TEST(BoundedDetection, BoardlessImagesAreNotFound) {
   GrayImage noise(640, 480);
   cv::Mat m = AsMat(noise);
@@ -108,6 +146,10 @@ TEST(BoundedDetection, BoardlessImagesAreNotFound) {
     const Detection d = DetectTarget(*image, testing::SpeedTestBoard(), DetectorOptions{});
     EXPECT_EQ(d.status, DetectionStatus::kNotFound);
     EXPECT_EQ(d.reason.rfind("no chessboard of 10×10 inner corners", 0), 0u) << d.reason;
+    // The marker boards' finders search the same reduced images.
+    for (const Target& t : {testing::Charuco7x5(), KalibrAprilGrid(), testing::AprilGrid6x4()}) {
+      EXPECT_EQ(DetectTarget(*image, t, DetectorOptions{}).status, DetectionStatus::kNotFound) << DescribeTarget(t);
+    }
   }
 }
 

@@ -174,5 +174,122 @@ TEST(DetectCharuco, OffsetIdsAreDrawnAsOpenCvReadsThem) {
   EXPECT_NE(d.status, DetectionStatus::kFound);
 }
 
+
+// Boards OpenCV drew before 4.6 ("legacy"): with an even number of square rows the top-left square
+// is white. Bookworm's OpenCV 4.6 cannot draw them (CharucoBoard::setLegacyPattern is OpenCV 4.8's),
+// so the test draws one by the rule of 4.8's createCharucoBoard with legacyPattern and an even row
+// count — square (x, y) black where (y + 1) % 2 == x % 2, every other square holding the next marker
+// in row-major order — with OpenCV's own drawMarker, independently of vstcal's IsBlackSquare and
+// MarkerQuads. 8 × 6 squares (kCols + 1, kRows + 1): an even number of rows.
+cv::Mat DrawLegacyBoard(const cv::Ptr<cv::aruco::Dictionary>& dictionary, int marker_px, std::vector<cv::Point>* marker_squares) {
+  const int squares_x = kCols + 1, squares_y = kRows + 1, inset = (kPxPerSquare - marker_px) / 2;
+  cv::Mat drawn(squares_y * kPxPerSquare + 2 * kMargin, squares_x * kPxPerSquare + 2 * kMargin, CV_8U, cv::Scalar(255));
+  int id = 0;
+  for (int y = 0; y < squares_y; ++y) {
+    for (int x = 0; x < squares_x; ++x) {
+      const cv::Rect square(kMargin + x * kPxPerSquare, kMargin + y * kPxPerSquare, kPxPerSquare, kPxPerSquare);
+      if ((y + 1) % 2 == x % 2) {
+        drawn(square).setTo(0);
+        continue;
+      }
+      cv::Mat marker;
+      cv::aruco::drawMarker(dictionary, id++, marker_px, marker, 1);
+      marker.copyTo(drawn(cv::Rect(square.x + inset, square.y + inset, marker_px, marker_px)));
+      marker_squares->emplace_back(x, y);
+    }
+  }
+  return drawn;
+}
+
+Target LegacyTestTarget(bool legacy) {
+  Target t;
+  t.type = TargetType::kCharuco;
+  t.rows = kRows;
+  t.cols = kCols;
+  t.square_size = 30;
+  t.marker_size = 21;
+  t.dictionary = "DICT_5X5_100";
+  t.margin = 15;
+  t.legacy = legacy;
+  return t;
+}
+
+GrayImage WarpLegacyTestView(const cv::Mat& drawn, const cv::Matx33d& H, std::mt19937_64& rng) {
+  cv::Mat view;
+  cv::warpPerspective(drawn, view, cv::Mat(H), cv::Size(640, 480), cv::INTER_LINEAR, cv::BORDER_CONSTANT, cv::Scalar(110));
+  cv::GaussianBlur(view, view, cv::Size(0, 0), 0.7);
+  std::normal_distribution<double> noise(0, 2);
+  GrayImage image(view.cols, view.rows);
+  for (int y = 0; y < view.rows; ++y) {
+    for (int x = 0; x < view.cols; ++x) image.at(x, y) = cv::saturate_cast<uint8_t>(view.at<uint8_t>(y, x) + noise(rng));
+  }
+  return image;
+}
+
+TEST(DetectCharuco, LegacyBoardsAreReadAndTheWrongPatternNamed) {
+  const cv::Ptr<cv::aruco::Dictionary> dictionary = cv::aruco::getPredefinedDictionary(cv::aruco::DICT_5X5_100);
+  std::vector<cv::Point> marker_squares;
+  const cv::Mat drawn = DrawLegacyBoard(dictionary, 70, &marker_squares);
+  const Target legacy = LegacyTestTarget(true), current = LegacyTestTarget(false);
+  ASSERT_FALSE(CheckTarget(legacy).has_value());
+  std::mt19937_64 rng(11);
+  int found = 0, wrong = 0, corners = 0;
+  double sum2 = 0;
+  for (int k = 0; k < 12; ++k) {
+    const cv::Matx33d H = ViewHomography(rng, 50);
+    const GrayImage image = WarpLegacyTestView(drawn, H, rng);
+    DetectorOptions options;
+    options.min_corners = 4;
+    const Detection d = DetectTarget(image, legacy, options);
+    if (d.status == DetectionStatus::kFound) {
+      ++found;
+      for (const DetectedCorner& c : d.corners) {
+        const cv::Vec3d p = H * cv::Vec3d(kMargin + (c.id % kCols + 1) * kPxPerSquare - 0.5, kMargin + (c.id / kCols + 1) * kPxPerSquare - 0.5, 1);
+        const double e2 = (Eigen::Vector2d(p[0] / p[2], p[1] / p[2]) - c.pixel).squaredNorm();
+        wrong += e2 > 4;
+        sum2 += e2;
+        ++corners;
+      }
+    } else {
+      std::printf("legacy view %d: %s\n", k, d.reason.c_str());
+    }
+    // Read as OpenCV's current pattern, the board is refused, naming the legacy field as the fix.
+    const Detection as_current = DetectTarget(image, current, options);
+    EXPECT_EQ(as_current.status, DetectionStatus::kRejected) << k;
+    EXPECT_EQ(as_current.reason.rfind("pattern mismatch: the markers sit where OpenCV's legacy ChArUco pattern puts them", 0), 0u) << as_current.reason;
+    EXPECT_NE(as_current.reason.find("set the target's legacy to true"), std::string::npos) << as_current.reason;
+    EXPECT_EQ(as_current.reason.find("rows, cols"), std::string::npos) << as_current.reason;
+  }
+  const double rms = std::sqrt(sum2 / std::max(corners, 1));
+  std::printf("legacy DICT_5X5_100 marker 0.7: vstcal %d of 12 views, %d corners, %.3f px RMS, wrong %d\n", found, corners, rms, wrong);
+  EXPECT_GE(found, 11);
+  EXPECT_EQ(wrong, 0);
+  EXPECT_LT(rms, 0.15);  // as the current pattern's boards above (≈ 0.07 px, mostly the warp's aliasing)
+
+  // And the reverse: a board OpenCV 4.6 drew (its current pattern) read as legacy.
+  const cv::Ptr<cv::aruco::CharucoBoard> board = cv::aruco::CharucoBoard::create(kCols + 1, kRows + 1, 1.0f, 0.7f, dictionary);
+  cv::Mat drawn_current;
+  board->draw(cv::Size((kCols + 1) * kPxPerSquare + 2 * kMargin, (kRows + 1) * kPxPerSquare + 2 * kMargin), drawn_current, kMargin, 1);
+  const Detection as_legacy = DetectTarget(WarpLegacyTestView(drawn_current, ViewHomography(rng, 30), rng), legacy, DetectorOptions{});
+  EXPECT_EQ(as_legacy.status, DetectionStatus::kRejected);
+  EXPECT_NE(as_legacy.reason.find("OpenCV's current ChArUco pattern"), std::string::npos) << as_legacy.reason;
+  EXPECT_NE(as_legacy.reason.find("set the target's legacy to false"), std::string::npos) << as_legacy.reason;
+
+  // vstcal prints the legacy board as the rule above: every marker OpenCV decodes on vstcal's
+  // drawing sits in the square the rule gives its id.
+  const GrayImage print = RasterizeTarget(legacy, 101.6);  // 4 px a millimetre: squares of 120 px
+  const cv::Mat image(print.height, print.width, CV_8U, const_cast<uint8_t*>(print.pixels.data()));
+  std::vector<std::vector<cv::Point2f>> marker_corners;
+  std::vector<int> ids;
+  cv::aruco::detectMarkers(image, dictionary, marker_corners, ids);
+  ASSERT_EQ(ids.size(), marker_squares.size());
+  for (size_t k = 0; k < ids.size(); ++k) {
+    const cv::Point2f centre = 0.25f * (marker_corners[k][0] + marker_corners[k][1] + marker_corners[k][2] + marker_corners[k][3]);
+    const int x = static_cast<int>(std::floor((centre.x / 4 - legacy.margin) / legacy.square_size));
+    const int y = static_cast<int>(std::floor((centre.y / 4 - legacy.margin) / legacy.square_size));
+    EXPECT_EQ(cv::Point(x, y), marker_squares[static_cast<size_t>(ids[k])]) << ids[k];
+  }
+}
+
 }  // namespace
 }  // namespace vstcal

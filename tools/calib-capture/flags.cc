@@ -60,6 +60,9 @@ void TargetFlags::Add(CLI::App* app) {
   app->add_option("--tag-gap", tag_gap, "apriltag-grid: white between tags (default tag size / 4)")->check(kFinite);
   app->add_option("--family", t.family, "apriltag-grid: libapriltag family")->capture_default_str();
   app->add_option("--first-id", t.first_id, "apriltag-grid: id of the top-left tag; charuco: id of the first marker (OpenCV's boards: 0)")->capture_default_str();
+  app->add_flag("--legacy", t.legacy,
+                "charuco: OpenCV's legacy pattern, for boards drawn before OpenCV 4.6 (with an even number of square rows, i.e. odd "
+                "--rows, their top-left square is white)");
   app->add_option("--tag-spacing", tag_spacing, "aprilgrid: gap between tags (and side of the black junction squares) / tag size")
       ->check(kFinite)
       ->capture_default_str();
@@ -79,7 +82,8 @@ app::TargetRequest TargetFlags::Finish() {
   if (!request.kalibr_file.empty()) {
     for (const auto& [flag, given] : {std::pair<const char*, bool>{"--type", type != "chessboard"}, {"--rows", t.rows != 0},
                                       {"--cols", t.cols != 0}, {"--square-size", t.square_size != 0}, {"--tag-size", t.tag_size != 0},
-                                      {"--tag-spacing", tag_spacing != kKalibrDefaultSpacing}, {"--length-unit", unit != "mm"}}) {
+                                      {"--tag-spacing", tag_spacing != kKalibrDefaultSpacing}, {"--length-unit", unit != "mm"},
+                                      {"--legacy", t.legacy}}) {
       if (given) throw InputError(std::string(flag) + ": the board comes from --kalibr " + request.kalibr_file + "; remove " + flag);
     }
     request.given.margin = margin;

@@ -2,21 +2,30 @@
 
 #include <opencv2/aruco.hpp>
 
+#include "vstcal/capture/search_image.h"
+
 namespace vstcal {
 
-std::vector<ArucoTag> FindArucoTags(const GrayImage& image, int dictionary, int border_cells) {
+ArucoSearch FindArucoTags(const GrayImage& image, int dictionary, int border_cells) {
   const cv::Mat gray(image.height, image.width, CV_8U, const_cast<uint8_t*>(image.pixels.data()));
+  const SearchImage search = ReduceForSearch(gray);
   const cv::Ptr<cv::aruco::DetectorParameters> params = cv::aruco::DetectorParameters::create();
   params->markerBorderBits = border_cells;
-  std::vector<std::vector<cv::Point2f>> corners;
+  std::vector<std::vector<cv::Point2f>> corners, rejected;
   std::vector<int> ids;
-  cv::aruco::detectMarkers(gray, cv::aruco::getPredefinedDictionary(dictionary), corners, ids, params);
-  std::vector<ArucoTag> tags(ids.size());
+  cv::aruco::detectMarkers(search.image, cv::aruco::getPredefinedDictionary(dictionary), corners, ids, params, rejected);
+  ArucoSearch out;
+  out.tags.resize(ids.size());
   for (size_t k = 0; k < ids.size(); ++k) {
-    tags[k].id = ids[k];
-    for (int c = 0; c < 4; ++c) tags[k].corners[c] = Eigen::Vector2d(corners[k][c].x, corners[k][c].y);
+    out.tags[k].id = ids[k];
+    for (int c = 0; c < 4; ++c) out.tags[k].corners[c] = ToFullResolution(search.factor, corners[k][c].x, corners[k][c].y);
   }
-  return tags;
+  for (const std::vector<cv::Point2f>& q : rejected) {
+    double perimeter = 0;
+    for (size_t c = 0; c < q.size(); ++c) perimeter += cv::norm(q[(c + 1) % q.size()] - q[c]);
+    out.undecoded_sides_px.push_back(search.factor * perimeter / 4);
+  }
+  return out;
 }
 
 int ArucoDictionaryOfAprilTagFamily(std::string_view family) {

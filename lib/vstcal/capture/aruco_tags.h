@@ -1,5 +1,5 @@
-// Square markers found by OpenCV's ArUco module with a given black border: Kalibr's aprilgrid
-// (tag36h11 with a two-cell border, detect_aprilgrid.cc) and the hint that a board read as one
+// Square markers found by OpenCV's ArUco module with a given black border: ChArUco boards' markers
+// (detect_charuco.cc), Kalibr's aprilgrid (tag36h11 with a two-cell border, detect_aprilgrid.cc) and the hint that a board read as one
 // type looks like another (detect_apriltag.cc). Internal to the capture module.
 #pragma once
 
@@ -21,8 +21,16 @@ struct ArucoTag {
 };
 
 // The markers of OpenCV's predefined dictionary `dictionary` (cv::aruco::PREDEFINED_DICTIONARY_NAME)
-// whose black border is `border_cells` cells wide; OpenCV's own corners, not refined.
-std::vector<ArucoTag> FindArucoTags(const GrayImage& image, int dictionary, int border_cells);
+// whose black border is `border_cells` cells wide; OpenCV's own corners, not refined. Searched in
+// the image reduced to at most 1 MP (search_image.h): in a larger image the corners are mapped back
+// to full resolution, up to half a reduction factor off, for the caller to refine there.
+struct ArucoSearch {
+  std::vector<ArucoTag> tags;
+  // The mean side, px, of each quadrilateral OpenCV took for a marker and could not decode (its
+  // rejected candidates): what miss_diagnosis.h judges too small.
+  std::vector<double> undecoded_sides_px;
+};
+ArucoSearch FindArucoTags(const GrayImage& image, int dictionary, int border_cells);
 
 // OpenCV's dictionary of a libapriltag family ("tag36h11" → DICT_APRILTAG_36h11); −1 when none.
 int ArucoDictionaryOfAprilTagFamily(std::string_view family);

@@ -16,6 +16,7 @@
 #include "vstcal/capture/corner_refinement.h"
 #include "vstcal/capture/detect_steps.h"
 #include "vstcal/capture/detectors.h"
+#include "vstcal/capture/miss_diagnosis.h"
 #include "vstcal/estimators/homography.h"
 
 namespace vstcal {
@@ -89,7 +90,8 @@ Detection DetectAprilGrid(const GrayImage& image, const Target& target, const De
   std::map<int, DetectedMarker> by_index;
   std::vector<int> repeated;
   int foreign = 0;
-  for (const ArucoTag& tag : FindArucoTags(image, cv::aruco::DICT_APRILTAG_36h11, kAprilGridBorderCells)) {
+  const ArucoSearch search = FindArucoTags(image, cv::aruco::DICT_APRILTAG_36h11, kAprilGridBorderCells);
+  for (const ArucoTag& tag : search.tags) {
     if (tag.id >= num_tags) {
       ++foreign;
       continue;
@@ -106,7 +108,7 @@ Detection DetectAprilGrid(const GrayImage& image, const Target& target, const De
       return d;
     }
     // A vstcal apriltag-grid (libapriltag's one-cell border) is not read with a two-cell border.
-    const size_t one_cell = FindArucoTags(image, cv::aruco::DICT_APRILTAG_36h11, 1).size();
+    const size_t one_cell = FindArucoTags(image, cv::aruco::DICT_APRILTAG_36h11, 1).tags.size();
     if (one_cell > 0) {
       d.status = DetectionStatus::kRejected;
       d.reason = "another target type: " + std::to_string(one_cell) +
@@ -114,6 +116,7 @@ Detection DetectAprilGrid(const GrayImage& image, const Target& target, const De
                  "the board looks like an apriltag-grid: set the target's type to apriltag-grid";
     } else {
       d.reason = "no tag36h11 tag with the two-cell black border of Kalibr's aprilgrid";
+      if (std::string hint = MissHint(image, options, search.undecoded_sides_px, kAprilGridCells, "tag"); !hint.empty()) d.reason += "; " + hint;
     }
     return d;
   }

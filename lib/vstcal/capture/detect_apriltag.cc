@@ -1,5 +1,6 @@
 // AprilTag grids: libapriltag finds and decodes the tags; vstcal keeps this board's ids, checks
 // the tags' layout against the target and measures the blur along the tags' edges.
+#include <algorithm>
 #include <map>
 #include <memory>
 #include <string>
@@ -9,6 +10,8 @@
 #include "vstcal/capture/corner_refinement.h"
 #include "vstcal/capture/detect_steps.h"
 #include "vstcal/capture/detectors.h"
+#include "vstcal/capture/miss_diagnosis.h"
+#include "vstcal/capture/search_image.h"
 #include "vstcal/core/error.h"
 
 namespace vstcal {
@@ -28,7 +31,7 @@ class AprilTagDetector {
   explicit AprilTagDetector(std::string_view family) : family_(CreateAprilTagFamily(family)) {
     detector_ = apriltag_detector_create();
     detector_->nthreads = 1;  // vstcal runs one image per thread
-    detector_->quad_decimate = 1;
+    detector_->quad_decimate = 1;  // set per image (DetectAprilTagGrid)
     detector_->quad_sigma = 0;
     detector_->refine_edges = true;
     apriltag_detector_add_family_bits(detector_, family_.get(), 1);
@@ -55,7 +58,21 @@ AprilTagDetector& DetectorFor(const std::string& family) {
 
 Detection DetectAprilTagGrid(const GrayImage& image, const Target& target, const DetectorOptions& options) {
   image_u8_t wrapped{image.width, image.height, image.width, const_cast<uint8_t*>(image.pixels.data())};
-  zarray_t* found = apriltag_detector_detect(DetectorFor(target.family).get(), &wrapped);
+  // Above 1 MP libapriltag looks for quads in the image decimated as the other finders' search
+  // image (search_image.h), then fits their edges and decodes them at full resolution
+  // (refine_edges): its time and memory are those of a 1 MP image, its corners as accurate.
+  const int factor = SearchFactor(image.width, image.height);
+  // libapriltag asserts (aborts) on a side of 32768 px or more: only a strip too thin to reduce
+  // keeps such a side, and it holds no grid.
+  if (std::max(image.width, image.height) / factor >= 32768) {
+    Detection d;
+    d.reason = "no " + target.family + " tag (a " + std::to_string(image.width) + "×" + std::to_string(image.height) +
+               " image is searched only below 32768 px a side)";
+    return d;
+  }
+  apriltag_detector_t* detector = DetectorFor(target.family).get();
+  detector->quad_decimate = static_cast<float>(factor);
+  zarray_t* found = apriltag_detector_detect(detector, &wrapped);
   const int num_tags = target.rows * target.cols;
   std::map<int, DetectedMarker> by_index;
   std::vector<int> repeated;
@@ -79,7 +96,8 @@ Detection DetectAprilTagGrid(const GrayImage& image, const Target& target, const
     // Kalibr's aprilgrid has tag36h11 tags with a two-cell black border, which libapriltag does not
     // read: say so when OpenCV finds such tags where libapriltag found none of this board's.
     const int dictionary = ArucoDictionaryOfAprilTagFamily(target.family);
-    const size_t two_cell = dictionary >= 0 ? FindArucoTags(image, dictionary, 2).size() : 0;
+    const ArucoSearch two_cell_search = dictionary >= 0 ? FindArucoTags(image, dictionary, 2) : ArucoSearch{};
+    const size_t two_cell = two_cell_search.tags.size();
     if (two_cell > 0) {
       d.status = DetectionStatus::kRejected;
       d.reason = "another target type: " + std::to_string(two_cell) + " " + target.family +
@@ -90,6 +108,12 @@ Detection DetectAprilTagGrid(const GrayImage& image, const Target& target, const
     d.reason = foreign > 0 ? std::to_string(foreign) + " " + target.family + " tags, none of this board's ids " +
                                  std::to_string(target.first_id) + " … " + std::to_string(target.first_id + num_tags - 1)
                            : "no " + target.family + " tag";
+    // OpenCV's candidates are the same quadrilaterals whatever the border it then decodes: the
+    // tags, where they are too small for libapriltag too.
+    const MarkerFamily* family = FindMarkerFamily(AprilTagFamilies(), target.family);
+    if (std::string hint = MissHint(image, options, two_cell_search.undecoded_sides_px, family->bits + 2, "tag"); !hint.empty()) {
+      d.reason += "; " + hint;
+    }
     return d;
   }
   std::vector<DetectedMarker> markers;

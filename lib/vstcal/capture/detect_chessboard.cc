@@ -21,6 +21,8 @@
 #include "vstcal/capture/chessboard_orientation.h"
 #include "vstcal/capture/detect_steps.h"
 #include "vstcal/capture/detectors.h"
+#include "vstcal/capture/miss_diagnosis.h"
+#include "vstcal/capture/search_image.h"
 
 namespace vstcal {
 namespace {
@@ -28,38 +30,6 @@ namespace {
 // Window of the refinement and reach of the blur profile, as fractions of the local square size:
 // the four squares around a corner reach one square away, and the blur (a few px) must fit too.
 constexpr double kChessboardWindow = 0.4;
-// The largest image the finders search (1280×720 and smaller are searched as they are). The
-// sector-based finder takes 0.1–0.7 s of one core on a 1 MP image.
-constexpr double kSearchPixels = 1.0e6;
-
-// An image the finders search: `factor` × `factor` full-resolution pixels averaged into each of
-// its pixels. Its pixel (x, y) is centred on full-resolution pixel factor·(x, y) + (factor − 1)/2.
-struct SearchImage {
-  cv::Mat image;
-  int factor = 1;
-};
-
-SearchImage Shrink(const SearchImage& from, int by) {
-  if (by <= 1) return from;
-  SearchImage out;
-  out.factor = from.factor * by;
-  // Cropped to whole blocks, so that INTER_AREA is the exact box average of each block.
-  const cv::Mat whole = from.image(cv::Rect(0, 0, from.image.cols / by * by, from.image.rows / by * by));
-  cv::resize(whole, out.image, cv::Size(whole.cols / by, whole.rows / by), 0, 0, cv::INTER_AREA);
-  return out;
-}
-
-// Reduced images keep at least this many pixels a side (a strip of an image stays searchable).
-constexpr int kMinSearchSide = 8;
-
-bool CanShrink(int width, int height, int by) { return width / by >= kMinSearchSide && height / by >= kMinSearchSide; }
-
-// The smallest integer factor that brings the image to at most kSearchPixels.
-int SearchFactor(int width, int height) {
-  int f = 1;
-  while (static_cast<double>(width / f) * (height / f) > kSearchPixels && CanShrink(width, height, f + 1)) ++f;
-  return f;
-}
 
 bool Classic(const cv::Mat& image, const cv::Size& size, bool adaptive, std::vector<cv::Point2f>* points) {
   // Without CALIB_CB_FAST_CHECK: on images that hold a board it doubled the time and missed
@@ -80,8 +50,7 @@ struct Search {
 };
 
 Search Find(const cv::Mat& gray, const cv::Size& size, ChessboardFinder finder) {
-  const SearchImage full{gray, 1};
-  const SearchImage search = Shrink(full, SearchFactor(gray.cols, gray.rows));
+  const SearchImage search = ReduceForSearch(gray);
   Search s;
   s.factor = search.factor;
   switch (finder) {
@@ -126,12 +95,12 @@ Detection DetectChessboard(const GrayImage& image, const Target& target, const D
       d.reason += " (a board-like pattern is in view, but not all its corners were found: the board is partly outside the image, "
                   "blurred, or its squares are too small)";
     }
+    if (std::string hint = MissHint(image, options, {}, 0, "square"); !hint.empty()) d.reason += "; " + hint;
     return d;
   }
   std::vector<Eigen::Vector2d> grid;
   grid.reserve(s.points.size());
-  const double offset = 0.5 * (s.factor - 1);
-  for (const cv::Point2f& p : s.points) grid.emplace_back(s.factor * p.x + offset, s.factor * p.y + offset);
+  for (const cv::Point2f& p : s.points) grid.push_back(ToFullResolution(s.factor, p.x, p.y));
   const GridOrientation orientation = OrientChessboard(image, target, grid, options.refuse_ambiguous_orientation);
   if (!orientation.problem.empty()) {
     d.status = DetectionStatus::kRejected;

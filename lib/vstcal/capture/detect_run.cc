@@ -57,7 +57,7 @@ class SharedProgress {
 
 // Memory of a capture at any thread count: an image holds its decoded pixels twice while it is
 // decoded (OpenCV's matrix and the GrayImage), and the finders work on a copy of at most 1 MP
-// (detect_chessboard.cc) with their own buffers, under kFinderBytes. Images start only while the
+// (search_image.h) with their own buffers, under kFinderBytes. Images start only while the
 // bytes reserved stay under kBytesInFlight (one image alone always may: a 100 MP image takes
 // about 300 MB), so a capture stays under 1 GB whatever the thread count.
 constexpr double kBytesInFlight = 768e6;
@@ -158,6 +158,13 @@ CaptureResult Finish(std::vector<ImageRecord> records, std::vector<Detection> de
   }
   const std::string counts = DescribeCounts(records);
   if (c.views.empty()) {
+    // A ChArUco board in the other of OpenCV's two patterns: the fix is the target's legacy field.
+    for (const ImageRecord& r : records) {
+      if (r.status == DetectionStatus::kRejected && r.reason.starts_with("pattern mismatch")) {
+        throw InputError(TargetName(request) + ": no image shows the " + DescribeTarget(request.target) + " (" + counts + "); " + r.image +
+                         ": " + r.reason);
+      }
+    }
     // Found in every image, and rejected for its quality: the target file is right, the images are not.
     const ImageRecord* rejected = nullptr;
     bool missed = false;

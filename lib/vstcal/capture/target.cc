@@ -163,6 +163,10 @@ std::optional<TargetProblem> CheckTarget(const Target& t) {
                            "use a larger dictionary (e.g. DICT_5X5_1000) or a smaller board"};
     }
   }
+  if (t.legacy && t.type != TargetType::kCharuco) {
+    return TargetProblem{"legacy", "only a ChArUco board has OpenCV's legacy pattern, not a " + std::string(TargetTypeName(t.type)),
+                         "remove it"};
+  }
   if (t.type == TargetType::kAprilGrid) return CheckAprilGrid(t);
   if (tags) {
     const MarkerFamily* f = FindMarkerFamily(kAprilTag, t.family);
@@ -201,7 +205,7 @@ std::string DescribeTarget(const Target& t) {
     case TargetType::kChessboard: return "chessboard of " + grid + " inner corners, " + Num(t.square_size) + " " + unit + " squares";
     case TargetType::kCharuco:
       return "ChArUco board of " + grid + " inner corners, " + Num(t.square_size) + " " + unit + " squares, " + Num(t.marker_size) +
-             " " + unit + " " + t.dictionary + " markers";
+             " " + unit + " " + t.dictionary + " markers" + (t.legacy ? " (OpenCV's legacy pattern)" : "");
     case TargetType::kAprilTagGrid:
       return "AprilTag grid of " + grid + " " + t.family + " tags (ids from " + std::to_string(t.first_id) + "), " +
              Num(t.tag_size) + " " + unit + " tags";
@@ -246,11 +250,11 @@ std::vector<Quad> MarkerQuads(const Target& t) {
                      Eigen::Vector2d(x0, y0 + side)});
   };
   if (t.type == TargetType::kCharuco) {
-    // The white squares (i + j odd) row by row, as OpenCV numbers its markers.
+    // The white squares row by row, as OpenCV numbers its markers.
     const double S = t.square_size, inset = 0.5 * (t.square_size - t.marker_size);
     for (int j = 0; j <= t.rows; ++j) {
       for (int i = 0; i <= t.cols; ++i) {
-        if ((i + j) % 2 == 1) square((i - 1) * S + inset, (j - 1) * S + inset, t.marker_size);
+        if (!IsBlackSquare(t, i, j)) square((i - 1) * S + inset, (j - 1) * S + inset, t.marker_size);
       }
     }
   } else if (t.type == TargetType::kAprilTagGrid) {
@@ -293,6 +297,11 @@ Rect PatternExtent(const Target& t) {
 Rect SheetExtent(const Target& t) {
   const Rect p = PatternExtent(t);
   return Rect{p.x0 - t.margin, p.y0 - t.margin, p.x1 + t.margin, p.y1 + t.margin};
+}
+
+bool IsBlackSquare(const Target& t, int i, int j) {
+  const bool swapped = t.type == TargetType::kCharuco && t.legacy && (t.rows + 1) % 2 == 0;
+  return ((i + j) % 2 == 0) != swapped;
 }
 
 bool IsHalfTurnSymmetric(const Target& t) { return t.type == TargetType::kChessboard && (t.rows + t.cols) % 2 == 0; }

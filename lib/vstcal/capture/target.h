@@ -7,8 +7,11 @@
 //  - chessboard, charuco: `rows` × `cols` inner corners; the origin is the top-left inner corner,
 //    corner id = r·cols + c at (c·square_size, r·square_size). The (rows + 1) × (cols + 1)
 //    squares alternate, the top-left one black (OpenCV's pattern and ChArUco board). A ChArUco
-//    board has an ArUco marker (1-bit black border) centred in every white square, ids 0, 1, …
-//    row by row, exactly OpenCV's cv::aruco::CharucoBoard (origin shifted to the first corner).
+//    board has an ArUco marker (1-bit black border) centred in every white square, ids first_id,
+//    first_id + 1, … row by row, exactly OpenCV's cv::aruco::CharucoBoard (origin shifted to the
+//    first corner). `legacy`: OpenCV's pattern before 4.6 (CharucoBoard::setLegacyPattern(true)
+//    from 4.8 on): with an even number of square rows (rows odd) the colours swap, the top-left
+//    square white and holding marker first_id; otherwise the same board (IsBlackSquare).
 //  - apriltag-grid: `rows` × `cols` AprilTags (libapriltag's families), tag id first_id +
 //    r·cols + c, each a black square of side tag_size (its 1-bit black border included) with
 //    tag_gap of white between neighbours. The origin is the top-left corner of the first tag's
@@ -69,6 +72,7 @@ struct Target {
   int first_id = 0;           // apriltag-grid: id of tag (0, 0)
   double margin = 0;          // white border of the sheet around the pattern
   double tag_spacing = 0;     // aprilgrid: gap between tags (and side of the junction squares) / tag_size
+  bool legacy = false;        // charuco: OpenCV's legacy pattern (boards made before OpenCV 4.6)
 };
 
 // Kalibr's aprilgrid tag: its cells across, border included, and its black border's cells.
@@ -127,6 +131,13 @@ std::string DescribeTarget(const Target& target);
 // Kalibr's aprilgrid: the black squares at the junctions between tag corners ((rows + 1) ×
 // (cols + 1) of them, side tag_spacing · tag_size). Empty for the other types.
 std::vector<Rect> AprilGridJunctionSquares(const Target& target);
+
+// Whether square (i, j) of a chessboard or ChArUco board is black: i = 0 … cols along X, j = 0 …
+// rows along Y, square (i, j) spanning [(i − 1)·S, i·S] × [(j − 1)·S, j·S]. Black where i + j is
+// even, except on a legacy ChArUco board with an even number of square rows (rows odd), where the
+// colours swap: OpenCV ≥ 4.8's createCharucoBoard with legacyPattern, which reproduces the boards
+// OpenCV drew before 4.6 (opencv/opencv#23152). The ChArUco markers sit in the white squares.
+bool IsBlackSquare(const Target& target, int i, int j);
 
 // True for a chessboard that looks the same after a half turn (rows + cols even): its corners can
 // be numbered from either end, and only the view's geometry can tell which (docs/tools/calib-capture.md#orientation).

@@ -68,11 +68,11 @@ Pattern TargetPattern(const Target& t) {
   std::vector<Rect> black;
   if (t.type == TargetType::kChessboard || t.type == TargetType::kCharuco) {
     // Squares (i, j), i = 0 … cols along X, j = 0 … rows along Y: square (i, j) spans
-    // [(i − 1)·S, i·S] × [(j − 1)·S, j·S] and is black when i + j is even.
+    // [(i − 1)·S, i·S] × [(j − 1)·S, j·S] (IsBlackSquare).
     const double S = t.square_size;
     for (int j = 0; j <= t.rows; ++j) {
       for (int i = 0; i <= t.cols; ++i) {
-        if ((i + j) % 2 == 0) black.push_back(Rect{(i - 1) * S, (j - 1) * S, i * S, j * S});
+        if (IsBlackSquare(t, i, j)) black.push_back(Rect{(i - 1) * S, (j - 1) * S, i * S, j * S});
       }
     }
   }

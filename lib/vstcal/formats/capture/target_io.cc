@@ -15,11 +15,11 @@ constexpr std::string_view kFormat = "vstcal/target@1";
 // The fields of each type beyond format, type, length_unit, rows, cols, margin.
 struct TypeFields {
   TargetType type;
-  std::array<std::string_view, 4> fields;
+  std::array<std::string_view, 5> fields;
 };
 constexpr std::array<TypeFields, 4> kTypeFields = {{
     {TargetType::kChessboard, {"square_size"}},
-    {TargetType::kCharuco, {"square_size", "marker_size", "dictionary", "first_id"}},
+    {TargetType::kCharuco, {"square_size", "marker_size", "dictionary", "first_id", "legacy"}},
     {TargetType::kAprilTagGrid, {"tag_size", "tag_gap", "family", "first_id"}},
     {TargetType::kAprilGrid, {"tag_size", "tag_spacing"}},
 }};
@@ -73,6 +73,8 @@ Target TargetFromJson(const JsonDocument& doc) {
     t.dictionary = root.at("dictionary").String();
     // Optional: boards OpenCV made carry ids 0, 1, … unless their maker offset them.
     if (const auto first = root.find("first_id")) t.first_id = first->Integer();
+    // Optional: boards OpenCV drew before 4.6 (target.h).
+    if (const auto legacy = root.find("legacy")) t.legacy = legacy->Boolean();
   }
   const auto margin = root.find("margin");
   t.margin = margin ? margin->Number()
@@ -110,6 +112,7 @@ OrderedJson TargetToJson(const Target& t, const Provenance& provenance) {
     j["marker_size"] = t.marker_size;
     j["dictionary"] = t.dictionary;
     if (t.first_id != 0) j["first_id"] = t.first_id;
+    if (t.legacy) j["legacy"] = true;
   }
   j["margin"] = t.margin;
   const Rect sheet = SheetExtent(t);
@@ -124,8 +127,9 @@ OrderedJson TargetToJson(const Target& t, const Provenance& provenance) {
                          ? "origin at the top-left corner of tag (0, 0)'s black square; X right along cols, Y down along "
                            "rows, Z into the board; tag (r, c) has id first_id + r*cols + c and corners 4*(r*cols + c) + "
                            "k, k = 0 top-left, 1 top-right, 2 bottom-right, 3 bottom-left"
-                         : "origin at the top-left inner corner; X right along cols, Y down along rows, Z into the board; "
-                           "corner (r, c) has id r*cols + c at (c, r) * square_size; the top-left square is black";
+                     : std::string("origin at the top-left inner corner; X right along cols, Y down along rows, Z into the board; "
+                                   "corner (r, c) has id r*cols + c at (c, r) * square_size; the top-left square is ") +
+                           (IsBlackSquare(t, 0, 0) ? "black" : "white (OpenCV's legacy ChArUco pattern)");
   j["provenance"] = ProvenanceToJson(provenance);
   return j;
 }
