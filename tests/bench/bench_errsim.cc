@@ -91,11 +91,21 @@ const ChainModel& Seed001WithAJointCovariance() {
       }
     }
     for (const std::string& t : RelativePoseTangentNames()) joint.covariance.parameters.push_back(t);
+    // A dense correlation, scaled to seed 001's σ's: 1 px for fx … s, 10⁻³ for a distortion
+    // term, 10⁻³ rad and 0.3 mm for right_from_left (no sample leaves the image).
     const int n = static_cast<int>(joint.covariance.parameters.size());
     Eigen::MatrixXd a(n, n);
     for (int i = 0; i < n; ++i)
       for (int j = 0; j < n; ++j) a(i, j) = (i == j ? 1.0 : 0.2) * std::cos(0.9 * i + 0.4 * j);
-    joint.covariance.matrix = 1e-2 * a * a.transpose() + 1e-3 * Eigen::MatrixXd::Identity(n, n);
+    Eigen::MatrixXd c = a * a.transpose() + 0.1 * Eigen::MatrixXd::Identity(n, n);
+    Eigen::VectorXd scale(n);
+    for (int i = 0; i < n; ++i) {
+      const std::string& name = joint.covariance.parameters[i];
+      const std::string p = name.substr(name.find('.') + 1);
+      const bool pixel = p == "fx" || p == "fy" || p == "cx" || p == "cy" || p == "s";
+      scale(i) = (pixel ? 1.0 : p[0] == 'r' ? 1e-3 : p[0] == 't' ? 0.3 : 1e-3) / std::sqrt(c(i, i));
+    }
+    joint.covariance.matrix = scale.asDiagonal() * c * scale.asDiagonal();
     spec.joint_covariance = std::move(joint);
     return BuildChainModel(spec);
   }();

@@ -292,6 +292,17 @@ std::string ReportText(const ChainEvaluator& chain, const SimulationResult& resu
       << Fixed(SystematicMisperceptionRms(chain), 2) << " " << unit << ")";
   if (std::isfinite(t.wrong_occlusion_rate)) out << ", wrong occlusion " << Fixed(100 * t.wrong_occlusion_rate, 2) << " %";
   out << "\n";
+  // A display with its own field of view magnifies the video: nominal, so in the systematic part
+  // (docs/math/vst-chain.md#display-fov).
+  if (model.geometry.display.focal_px[0] || model.geometry.display.focal_px[1]) {
+    out << "  display: its own field of view magnifies the video";
+    for (int e = 0; e < kNumEyes; ++e) {
+      const std::vector<double>& p = model.geometry.cameras[e].params;
+      const Eigen::Vector2d focal = model.geometry.display.focal_px[e].value_or(Eigen::Vector2d(p[intrinsic::kFx], p[intrinsic::kFy]));
+      out << (e ? ", " : " ") << kEyeNames[e] << " ×" << Fixed(p[intrinsic::kFx] / focal.x(), 3) << " × " << Fixed(p[intrinsic::kFy] / focal.y(), 3);
+    }
+    out << " (horizontal × vertical, against the camera's); part of the systematic misperception\n";
+  }
   if (run.options.budget) {
     const ErrorBudget budget = Budget(model, result);
     // Each source's share of the whole chain's mean square, then what the parts leave out and the
