@@ -123,7 +123,8 @@ TEST(DisplayFieldOfView, BadFieldsNameTheFieldAndTheFix) {
             "chain.json: display.field_of_view_deg[1]: must lie strictly between 0 and 180 degrees, got -5; " + fix);
   EXPECT_EQ(FovError(FovChain({{"left", 90.0}, {"right", 200.0}}, 0, 1500.0)),
             "chain.json: display.field_of_view_deg.right: must lie strictly between 0 and 180 degrees, got 200; " + fix);
-  EXPECT_EQ(FovError(FovChain({{"centre", 90.0}}, 0, 1500.0)).substr(0, 50), "chain.json: display.field_of_view_deg.centre: unkn");
+  const std::string eye = FovError(FovChain({{"centre", 90.0}}, 0, 1500.0));
+  EXPECT_TRUE(eye.starts_with("chain.json: display.field_of_view_deg.centre: ")) << eye;
 }
 
 }  // namespace

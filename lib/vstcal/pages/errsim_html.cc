@@ -115,6 +115,7 @@ std::string Budget(const OrderedJson& r) {
   auto rms_of = [](const std::string& m) { return m == "image" ? std::string("image_rms_px") : m + "_rms"; };
   auto unit_of = [&](const std::string& m) { return m == "image" ? std::string("px") : unit; };
   auto title_of = [](const std::string& m) { return m == "image" ? std::string("image misregistration") : m; };
+  auto short_of = [](const std::string& m) { return m == "misregistration" ? std::string("3-D") : m; };  // narrow column heads
   for (const Ranked& ranked : {Ranked{"image", "misregistration"}, Ranked{"misregistration", "image"}, Ranked{"misperception", "image"}}) {
     const std::string& measure = ranked.measure;
     if (!budget.at("ranking").contains(measure)) continue;  // a report written before the image ranking
@@ -161,8 +162,8 @@ std::string Budget(const OrderedJson& r) {
             ValueCell(r, "/totals/" + beside_rms) + EmptyCells(2) + "</tr>\n";
     s += Table("ranked by " + title_of(measure) + (measure == "image" ? " (what the user sees: the default ranking)" : ""),
                "<th>source</th><th>share of mean square</th><th>alone RMS (" + unit_of(measure) + ")</th><th>whole chain, halved (" +
-                   unit_of(measure) + ")</th><th>share of " + title_of(ranked.beside) + " mean square</th><th>" +
-                   title_of(ranked.beside) + " RMS halved (" + unit_of(ranked.beside) + ")</th><th>correction</th>"
+                   unit_of(measure) + ")</th><th>share of " + short_of(ranked.beside) + " mean square</th><th>" +
+                   short_of(ranked.beside) + " RMS halved (" + unit_of(ranked.beside) + ")</th><th>correction</th>"
                    "<th title=\"measured: from a calibration's file; assumed: typed into the chain\">distributions</th>",
                rows);
   }
