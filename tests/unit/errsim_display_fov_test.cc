@@ -116,13 +116,13 @@ TEST(DisplayFieldOfView, WrittenChainReadsBackTheSame) {
 TEST(DisplayFieldOfView, BadFieldsNameTheFieldAndTheFix) {
   const std::string fix = "give the angle the camera's image spans on the display, 0 < φ < 180 (e.g. 90), or delete the field to show the camera's own";
   EXPECT_EQ(FovError(FovChain(0.0, 0, 1500.0)),
-            "chain.json: display.field_of_view_deg: must lie strictly between 0 and 180 degrees, got 0; " + fix);
+            "chain.json: display.field_of_view_deg: must lie strictly between 0 and 180 degrees, got 0.0; " + fix);
   EXPECT_EQ(FovError(FovChain(180.0, 0, 1500.0)),
-            "chain.json: display.field_of_view_deg: must lie strictly between 0 and 180 degrees, got 180; " + fix);
+            "chain.json: display.field_of_view_deg: must lie strictly between 0 and 180 degrees, got 180.0; " + fix);
   EXPECT_EQ(FovError(FovChain({90.0, -5.0}, 0, 1500.0)),
-            "chain.json: display.field_of_view_deg[1]: must lie strictly between 0 and 180 degrees, got -5; " + fix);
+            "chain.json: display.field_of_view_deg[1]: must lie strictly between 0 and 180 degrees, got -5.0; " + fix);
   EXPECT_EQ(FovError(FovChain({{"left", 90.0}, {"right", 200.0}}, 0, 1500.0)),
-            "chain.json: display.field_of_view_deg.right: must lie strictly between 0 and 180 degrees, got 200; " + fix);
+            "chain.json: display.field_of_view_deg.right: must lie strictly between 0 and 180 degrees, got 200.0; " + fix);
   const std::string eye = FovError(FovChain({{"centre", 90.0}}, 0, 1500.0));
   EXPECT_TRUE(eye.starts_with("chain.json: display.field_of_view_deg.centre: ")) << eye;
 }
