@@ -74,7 +74,7 @@ TEST_F(CliErrSimHtml, RendersOfflineWithEveryImageAndTheJsonsNumbers) {
   EXPECT_EQ(assumed, 3 * (sources + terms));
   for (const Json& e : report["budget"]["entries"]) EXPECT_EQ(e["origin"], Json::parse(R"([{"kind": "assumed"}])")) << e["source"];
 
-  EXPECT_EQ(ImagesLoaded("out/run.html"), "5 loaded, 0 broken");
+  EXPECT_EQ(ImagesLoaded("out/run.html"), "6 loaded, 0 broken");  // three distributions, three budgets
   EXPECT_EQ(TablesWiderThanThePage("out/run.html", 1000), "none");
   ExpectScreenshot("out/run.html", "err-sim.png", 1000, 2400);
 }
