@@ -7,6 +7,8 @@
 //                         sample, four at a time as err-sim run evaluates them (SampleMeasurer)
 //   BM_ChainSample/rig_covariance  the same with the right camera's pose error mixed from a rig's
 //                         6 × 6 covariance (camera_extrinsic.right.covariance): the mixing's cost
+//   BM_ChainSample/joint_covariance  the same with both lenses and the right camera's pose drawn
+//                         from one joint covariance (joint_covariance): the couplings' cost
 //   BM_ChainSampleScalar  the same one sample at a time throughout (θ by Fill, the chain with
 //                         double): what drawing and evaluating four together gains
 //   BM_EngineSample       the whole Monte Carlo loop of `err-sim run` per sample, with the mergeable
@@ -24,6 +26,8 @@
 #include "vstcal/errsim/chain.h"
 #include "vstcal/errsim/engine.h"
 #include "vstcal/formats/errsim/chain_reader.h"
+#include "vstcal/formats/errsim/chain_spec.h"
+#include "vstcal/scene/stereo_rig.h"
 #include "vstcal/errsim/measures.h"
 #include "vstcal/errsim/sample_measurer.h"
 #include "vstcal/errsim/sampler.h"
@@ -69,6 +73,41 @@ const ChainModel& Seed001OnARig() {
       for (int c = 0; c <= r; ++c) m.extrinsic_mixing[1](r, c) = (r < 3 ? 9e-4 : 0.2) * (r == c ? 1.0 : 0.3);
     }
     return m;
+  }();
+  return model;
+}
+
+// Seed 001 with both cameras' lens errors and the right camera's pose error drawn as one from a
+// rig's joint covariance (docs/math/vst-chain.md#joint-draw): every lens parameter of both eyes
+// and right_from_left's six tangents, a dense positive definite Σ, so L D Lᵀ couples each slot
+// to every one before it (n(n − 1)/2 couplings a sample).
+const ChainModel& Seed001WithAJointCovariance() {
+  static const ChainModel model = [] {
+    ChainSpec spec = ReadChainSpec(std::string(VSTCAL_SOURCE_DIR) + "/datasets/vst/seed001.json");
+    JointCovarianceSpec joint;
+    for (int e = 0; e < kNumEyes; ++e) {
+      for (const std::string_view p : LensModelParamNames(spec.cameras[e].camera.model)) {
+        joint.covariance.parameters.push_back(JointCovarianceName(e, p));
+      }
+    }
+    for (const std::string& t : RelativePoseTangentNames()) joint.covariance.parameters.push_back(t);
+    // A dense correlation, scaled to seed 001's σ's: 1 px for fx … s, 10⁻³ for a distortion
+    // term, 10⁻³ rad and 0.3 mm for right_from_left (no sample leaves the image).
+    const int n = static_cast<int>(joint.covariance.parameters.size());
+    Eigen::MatrixXd a(n, n);
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < n; ++j) a(i, j) = (i == j ? 1.0 : 0.2) * std::cos(0.9 * i + 0.4 * j);
+    Eigen::MatrixXd c = a * a.transpose() + 0.1 * Eigen::MatrixXd::Identity(n, n);
+    Eigen::VectorXd scale(n);
+    for (int i = 0; i < n; ++i) {
+      const std::string& name = joint.covariance.parameters[i];
+      const std::string p = name.substr(name.find('.') + 1);
+      const bool pixel = p == "fx" || p == "fy" || p == "cx" || p == "cy" || p == "s";
+      scale(i) = (pixel ? 1.0 : p[0] == 'r' ? 1e-3 : p[0] == 't' ? 0.3 : 1e-3) / std::sqrt(c(i, i));
+    }
+    joint.covariance.matrix = scale.asDiagonal() * c * scale.asDiagonal();
+    spec.joint_covariance = std::move(joint);
+    return BuildChainModel(spec);
   }();
   return model;
 }
@@ -122,6 +161,7 @@ void BM_ChainSampleScalar(benchmark::State& state) {
 }
 BENCHMARK_CAPTURE(BM_ChainSample, seed001, &Seed001)->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(BM_ChainSample, rig_covariance, &Seed001OnARig)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_ChainSample, joint_covariance, &Seed001WithAJointCovariance)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_ChainSampleScalar)->Unit(benchmark::kMicrosecond);
 
 void EngineSample(benchmark::State& state, OutputSet outputs) {

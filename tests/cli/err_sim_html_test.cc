@@ -28,40 +28,52 @@ TEST_F(CliErrSimHtml, RendersOfflineWithEveryImageAndTheJsonsNumbers) {
 
   const PageView view = View("out/run.html", "err-sim.png", 1000, 2400);
   const std::string& dom = view.dom;
-  // Image, misregistration and misperception distributions; the budget of each ranked measure.
-  EXPECT_EQ(ExpectInlinePictures(dom), 3u + 2);
+  // Image, misregistration and misperception distributions; the budget of each ranked measure
+  // (the image misregistration first: the default ranking).
+  EXPECT_EQ(ExpectInlinePictures(dom), 3u + 3);
 
   // Whole chain (6), per point and eye (6 statistics), per point misregistration (7) and
   // misperception (7), per source and ranked measure (5), and per ranked measure the row of
-  // interactions and means in common (its share and the image's) and the whole chain's (its RMS
-  // and the image's, 4): every one the JSON's.
+  // interactions and means in common (its share and the one beside it) and the whole chain's (its
+  // RMS and the one beside it, 4): every one the JSON's. Three ranked measures: the image's, the
+  // 3-D misregistration's and the misperception's.
   // Each term of a source with several, under it in each ranked measure: its share, alone RMS and
-  // image share (3).
+  // the share beside it (3).
   const size_t sources = report["budget"]["entries"].size();
   size_t terms = 0;
   for (const Json& e : report["budget"]["entries"]) terms += e["terms"].size() > 1 ? e["terms"].size() : 0;
   EXPECT_GT(terms, 10u);
-  EXPECT_EQ(ExpectNumbersOf(report, dom), 6 + points * (2 * 6 + 7 + 7) + 2 * sources * 5 + 2 * 4 + 2 * 3 * terms);
-  // The budget rows follow the report's ranking, and each shows its source's halved column.
+  EXPECT_EQ(ExpectNumbersOf(report, dom), 6 + points * (2 * 6 + 7 + 7) + 3 * sources * 5 + 3 * 4 + 3 * 3 * terms);
+  // The budget rows follow the report's rankings — the image's (the default), then the 3-D
+  // misregistration's, then the misperception's — and each shows its source's halved columns: the
+  // image's in every table (its own, then beside the others), the 3-D one in the first two.
   const std::vector<std::string> keys = Attributes(dom, "data-key");
-  std::vector<std::string> halved;
-  for (const std::string& key : keys) {
-    if (key.find("/halved/misregistration_rms") != std::string::npos) halved.push_back(key);
-  }
-  ASSERT_EQ(halved.size(), sources);
+  auto halved = [&](const std::string& rms) {
+    std::vector<std::string> rows;
+    for (const std::string& key : keys) {
+      if (key.find("/halved/" + rms) != std::string::npos) rows.push_back(key.substr(0, key.find("/halved")));
+    }
+    return rows;
+  };
+  const std::vector<std::string> image = halved("image_rms_px"), misregistration = halved("misregistration_rms");
+  ASSERT_EQ(image.size(), 3 * sources);
+  ASSERT_EQ(misregistration.size(), 2 * sources);
+  EXPECT_EQ(report["budget"]["ranked_by"], "image");
   for (size_t i = 0; i < sources; ++i) {
-    const std::string entry = halved[i].substr(0, halved[i].find("/halved"));
-    EXPECT_EQ(report.at(Json::json_pointer(entry + "/source")), report["budget"]["ranking"]["misregistration"][i]) << i;
+    EXPECT_EQ(report.at(Json::json_pointer(image[i] + "/source")), report["budget"]["ranking"]["image"][i]) << i;
+    EXPECT_EQ(report.at(Json::json_pointer(misregistration[i] + "/source")), report["budget"]["ranking"]["image"][i]) << i;
+    EXPECT_EQ(report.at(Json::json_pointer(misregistration[sources + i] + "/source")), report["budget"]["ranking"]["misregistration"][i]) << i;
+    EXPECT_EQ(report.at(Json::json_pointer(image[2 * sources + i] + "/source")), report["budget"]["ranking"]["misperception"][i]) << i;
   }
 
   // Where each row's distributions came from (issue 21 item 4): seed 001 types every σ, so every
-  // source and term row of both ranked tables says "assumed".
+  // source and term row of the three ranked tables says "assumed".
   size_t assumed = 0;
   for (size_t at = 0; (at = dom.find("<td class=\"origin\" style=\"text-align:left\">assumed</td>", at)) != std::string::npos; ++at) ++assumed;
-  EXPECT_EQ(assumed, 2 * (sources + terms));
+  EXPECT_EQ(assumed, 3 * (sources + terms));
   for (const Json& e : report["budget"]["entries"]) EXPECT_EQ(e["origin"], Json::parse(R"([{"kind": "assumed"}])")) << e["source"];
 
-  EXPECT_EQ(view.images, "5 loaded, 0 broken");
+  EXPECT_EQ(view.images, "6 loaded, 0 broken");  // three distributions, three budgets
   EXPECT_EQ(view.wide_tables, "none");
 }
 

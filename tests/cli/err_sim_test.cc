@@ -95,6 +95,28 @@ TEST_F(CliErrSim, RunWritesTheReport) {
   EXPECT_EQ(report["budget"]["ranking"]["misregistration"].size(), 7u);
   EXPECT_EQ(report["budget"]["ranking"]["misperception"].size(), 7u);
   EXPECT_EQ(report["budget"]["ranking"]["misperception"][0], "display");
+  // The default ranking is by what the user sees (issue 21 item 3): the image misregistration's
+  // share, largest first, in the file and in the text, which says so; the 3-D rank beside it.
+  EXPECT_EQ(report["budget"]["ranked_by"], "image");
+  ASSERT_EQ(report["budget"]["ranking"]["image"].size(), 7u);
+  double previous = 2;
+  for (const Json& source : report["budget"]["ranking"]["image"]) {
+    for (const Json& e : report["budget"]["entries"]) {
+      if (e["source"] != source) continue;
+      EXPECT_LE(e["share_of_image_ms"].get<double>(), previous) << source;
+      previous = e["share_of_image_ms"].get<double>();
+      EXPECT_TRUE(e["dominant_term"]["image"].is_string()) << source;
+    }
+  }
+  const size_t first = r.err.find("error budget of what the user sees");
+  ASSERT_NE(first, std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("ranked by each source's share of the whole chain's mean square of the image misregistration; the 3-D "
+                       "misregistration's share and rank beside it:", first),
+            std::string::npos)
+      << r.err;
+  const std::string top = report["budget"]["ranking"]["image"][0].get<std::string>();
+  EXPECT_NE(r.err.find("    1  " + top, first), std::string::npos) << r.err;
+  EXPECT_LT(first, r.err.find("error budget of the misperception")) << r.err;
   EXPECT_TRUE(report["test_points"][0]["occlusion"].is_object());
   EXPECT_TRUE(report["test_points"][1]["occlusion"].is_null());
   EXPECT_EQ(report["test_points"][1]["undefined"]["samples"], 0);
@@ -168,6 +190,39 @@ TEST_F(CliErrSim, UnknownTermAndDistribution) {
   EXPECT_TRUE(FailsWith(Run("err-sim", {"run", "in/dist.json", "-o", "out/r.json"}), "err-sim", kBadInput,
                         "in/dist.json: sources.tracking.translation.distribution: ", {"unknown distribution \"gaussian\"", "normal"}));
   EXPECT_TRUE(OutDirEmpty());
+}
+
+// A display that is not the camera (issue 21 item 5): a field of view 1.25 × the camera's tangent
+// magnifies the shown video, and the report's systematic misperception is the closed form's — the
+// eyes (on the cameras here) see each point at depth Z/1.25, its lateral position kept
+// (docs/math/vst-chain.md#display-fov). A field of 0° or 180° or more is no field: exit 2, one line
+// naming it, nothing written.
+TEST_F(CliErrSim, ADisplayFieldOfViewIsPartOfTheSystematicMisperception) {
+  Json c = SmallChain();
+  const double m = 1.25;
+  c["display"]["field_of_view_deg"] = 2 * std::atan(m * 320.0 / 500.0) * 180 / M_PI;
+  WriteJson("in/chain.json", c);
+  const CommandResult r = Run("err-sim", {"run", "in/chain.json", "-o", "out/r.json", "--no-budget", "--samples", "200", "-q"});
+  ASSERT_EQ(r.exit_code, kOk) << r.err;
+  const Json report = ReadJson("out/r.json");
+  for (size_t k = 0; k < 3; ++k) {
+    const Json& world = report["test_points"][k]["world"];
+    const double depth = world[2].get<double>() + 1000;  // the hmd frame: 1 m behind the world origin
+    const Json& offset = report["test_points"][k]["misperception"]["systematic"]["offset"];
+    EXPECT_NEAR(offset[0].get<double>(), 0.0, 1e-9 * depth) << k;
+    EXPECT_NEAR(offset[1].get<double>(), 0.0, 1e-9 * depth) << k;
+    EXPECT_NEAR(offset[2].get<double>(), depth / m - depth, 1e-9 * depth) << k;
+  }
+  for (const double bad : {0.0, 180.0, 250.0}) {
+    c["display"]["field_of_view_deg"] = bad;
+    WriteJson("in/bad.json", c);
+    std::filesystem::remove_all(Path("out"));
+    std::filesystem::create_directories(Path("out"));
+    EXPECT_TRUE(FailsWith(Run("err-sim", {"run", "in/bad.json", "-o", "out/bad.json"}), "err-sim", kBadInput,
+                          "in/bad.json: display.field_of_view_deg: ", {"must lie strictly between 0 and 180 degrees", "0 < φ < 180"}))
+        << bad;
+    EXPECT_TRUE(OutDirEmpty()) << bad;
+  }
 }
 
 TEST_F(CliErrSim, NegativeSigma) {

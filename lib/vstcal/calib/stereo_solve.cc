@@ -470,6 +470,27 @@ StereoSolveResult SolveStereo(Correspondences left, Correspondences right, const
     relative.matrix = global.bottomRightCorner(6, 6);
     relative.matrix = (0.5 * (relative.matrix + relative.matrix.transpose())).eval();
     rig.covariance = std::move(relative);
+    // The same information's joint covariance, cross-covariances kept (err-sim draws a rig's
+    // errors from it as one): each camera's free parameters mapped to the lens parameters they
+    // move, as RigCamera does for the marginals, so that its blocks are those marginals.
+    const int nl = sl.free.size(), nr = sr.free.size();
+    const Eigen::MatrixXd bl = nl > 0 ? sl.free.MovedBasis() : Eigen::MatrixXd(0, 0);
+    const Eigen::MatrixXd br = nr > 0 ? sr.free.MovedBasis() : Eigen::MatrixXd(0, 0);
+    Eigen::MatrixXd basis = Eigen::MatrixXd::Zero(bl.rows() + br.rows() + 6, g);
+    if (nl > 0) basis.block(0, 0, bl.rows(), nl) = bl;
+    if (nr > 0) basis.block(bl.rows(), nl, br.rows(), nr) = br;
+    basis.bottomRightCorner(6, 6).setIdentity();
+    ParameterCovariance joint;
+    if (nl > 0) {
+      for (const std::string& p : sl.free.MovedParams(sl.model)) joint.parameters.push_back(JointCovarianceName(0, p));
+    }
+    if (nr > 0) {
+      for (const std::string& p : sr.free.MovedParams(sr.model)) joint.parameters.push_back(JointCovarianceName(1, p));
+    }
+    joint.parameters.insert(joint.parameters.end(), RelativePoseTangentNames().begin(), RelativePoseTangentNames().end());
+    joint.matrix = basis * global * basis.transpose();
+    joint.matrix = (0.5 * (joint.matrix + joint.matrix.transpose())).eval();
+    rig.joint_covariance = std::move(joint);
   } else {
     out.notes.push_back("no covariance written: the joint problem's information is singular (smallest scaled eigenvalue " +
                         std::to_string(inverse.observability.smallest_eigenvalue) + "); hold a camera or add views");

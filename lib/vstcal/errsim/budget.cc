@@ -129,6 +129,8 @@ ErrorBudget Budget(const ChainModel& model, const SimulationResult& result) {
                                    [](const BudgetEntry& e) { return e.share_of_image_ms; });
   budget.by_misperception = rank([](const BudgetEntry& e) { return e.share_of_misperception_ms; },
                                  [](const BudgetEntry& e) { return e.share_of_misregistration_ms; });
+  budget.by_image = rank([](const BudgetEntry& e) { return e.share_of_image_ms; },
+                         [](const BudgetEntry& e) { return e.share_of_misregistration_ms; });
   return budget;
 }
 

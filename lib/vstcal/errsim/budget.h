@@ -1,7 +1,8 @@
 // err-sim's totals and error budget (docs/math/vst-chain.md#budget): per scenario the RMS of the
 // image misregistration, of the 3-D misregistration and of the misperception (relative to the
 // error-free chain's systematic one); per active source its contribution alone, the whole chain
-// with it halved, and its share of each mean square, ranked for each measure.
+// with it halved, and its share of each mean square, ranked for each measure (by default by the
+// image misregistration: what the user sees).
 #pragma once
 
 #include <string>
@@ -68,6 +69,9 @@ struct ErrorBudget {
   std::vector<BudgetEntry> entries;            // in source order
   std::vector<size_t> by_misregistration;      // entry indices, largest share first (ties: image share)
   std::vector<size_t> by_misperception;        // entry indices, largest share first
+  // The default ranking (issue 21 item 3): by what the user sees, the image misregistration's
+  // share (ties: the 3-D share); the 3-D and misperception rankings stand beside it.
+  std::vector<size_t> by_image;
 };
 ErrorBudget Budget(const ChainModel& model, const SimulationResult& result);
 

@@ -48,7 +48,9 @@ ChainEvaluator::ChainEvaluator(const ChainModel& model) : model_(model), layout_
     extrinsic_mixing_is_identity_[e] = model_.extrinsic_mixing[e].isIdentity(0.0);
     const std::vector<double>& p = camera.params;
     using namespace intrinsic;
-    display_[e] = {p[kCx], p[kCy], p[kSkew], 1.0 / p[kFx], 1.0 / p[kFy], g.camera_from_hmd[e].R.transpose(),
+    // The display's focal lengths: its own when its field of view is given, else the camera's.
+    const Eigen::Vector2d focal = g.display.focal_px[e].value_or(Eigen::Vector2d(p[kFx], p[kFy]));
+    display_[e] = {p[kCx], p[kCy], p[kSkew] * focal.x() / p[kFx], 1.0 / focal.x(), 1.0 / focal.y(), g.camera_from_hmd[e].R.transpose(),
                    g.camera_from_hmd[e].R == Eigen::Matrix3d::Identity(), -0.5, camera.image_size.width - 0.5, -0.5,
                    camera.image_size.height - 0.5};
   }

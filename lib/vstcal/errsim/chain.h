@@ -98,7 +98,7 @@ class ChainEvaluator {
   // such a chain, naming the point).
   Undefined nominal_undefined(size_t point) const { return nominal_undefined_[point]; }
 
-  // The chain at θ; shared and correlated eye terms (model().couplings) are applied first.
+  // The chain at θ; shared and correlated terms (model().couplings) are applied first.
   template <typename T>
   void Evaluate(const T* theta, ChainSample<T>* out) const;
 
@@ -121,7 +121,7 @@ class ChainEvaluator {
   }
   template <typename T>
   Rigid3<T> VirtualFromObject(const T* theta) const;
-  // The chain at θ whose slots are read as they are (no coupling between the eyes).
+  // The chain at θ whose slots are read as they are (no coupling between slots).
   template <typename T>
   void EvaluateUncoupled(const T* theta, ChainSample<T>* out) const;
   // (ω, ρ) ← M·(ω, ρ): standard normals to a measured covariance's correlated pose error (a rig's
@@ -152,7 +152,7 @@ class ChainEvaluator {
   std::array<std::vector<double>, kNumEyes> real_depth_, surface_disparity_;
   std::array<double, kNumEyes> focal_baseline_{};
   struct DisplayConstants {
-    double cx, cy, s, inverse_fx, inverse_fy;  // the true camera's K⁻¹: the display shows its field of view
+    double cx, cy, s, inverse_fx, inverse_fy;  // the display's K⁻¹: the true camera's, or scaled to its own field of view
     Eigen::Matrix3d hmd_from_camera;           // nominal rotation: the display is aligned with the camera's axes
     bool camera_axes_are_hmd_axes;             // hmd_from_camera is exactly I (most rigs): no rotation to apply
     double min_u, max_u, min_v, max_v;         // the image, px
@@ -212,8 +212,7 @@ void ChainEvaluator::Evaluate(const T* theta, ChainSample<T>* out) const {
   const size_t n = static_cast<size_t>(layout_.size());
   // On the stack for the Monte Carlo scalars (no allocation per sample); Jets go to the heap.
   auto couple = [&](T* coupled) {
-    for (size_t j = 0; j < n; ++j) coupled[j] = theta[j];
-    for (const ChainModel::EyeCoupling& c : model_.couplings) coupled[c.right] += T(c.alpha) * theta[c.left];
+    ApplyCouplings(model_, theta, coupled);
     EvaluateUncoupled(static_cast<const T*>(coupled), out);
   };
   constexpr size_t kOnStack = 512;

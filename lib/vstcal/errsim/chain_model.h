@@ -44,6 +44,12 @@ struct DisplayGeometry {
   // 1/D, the inverse distance of the virtual image (0: a collimated display, image at infinity).
   double inverse_image_distance = 0;
 
+  // The display's own focal lengths (fx, fy) of eye e, in the camera's pixels: the camera's image
+  // spans the display's field of view, so pixel q is shown along ((q_u − c_x − s'·y)/fx, (q_v −
+  // c_y)/fy, 1) with s' the camera's skew scaled by fx/f_x (docs/math/vst-chain.md#display-fov).
+  // Absent: the camera's own (an orthoscopic display). A display wider than the camera magnifies.
+  std::array<std::optional<Eigen::Vector2d>, kNumEyes> focal_px = {};
+
   Eigen::Vector3d DesignEyepoint(int eye) const {
     return eye_centre_in_hmd + Eigen::Vector3d((eye == 0 ? -0.5 : 0.5) * ipd, 0, 0);
   }
@@ -112,17 +118,19 @@ struct ChainModel {
   // (camera_extrinsic.right.covariance) when those six slots hold standard normals.
   using Matrix6d = Eigen::Matrix<double, 6, 6>;
   std::array<Matrix6d, kNumEyes> extrinsic_mixing = {Matrix6d::Identity(), Matrix6d::Identity()};
-  // Errors shared or correlated between the eyes (docs/math/vst-chain.md#correlated-eyes): the
-  // chain reads slot `right` of θ as θ[right] + alpha·θ[left], where θ[left] is the left eye's
-  // slot of the same term and component. A shared term has alpha 1 and θ[right] fixed at 0; a
-  // correlation ρ has alpha = ρ·σ_R/σ_L and θ[right] ~ N(μ_R − alpha·μ_L, σ_R·√(1 − ρ²)). The
-  // slots of θ stay independent (what Sobol indices and linear propagation assume) and the map
-  // is linear in θ, so scaling a source scales the coupled error with it.
-  struct EyeCoupling {
-    int left = 0, right = 0;
+  // Errors shared or correlated between the eyes (docs/math/vst-chain.md#correlated-eyes) and a
+  // rig's joint covariance (#joint-draw): the chain reads slot `to` of θ as θ[to] + Σ alpha·θ[from]
+  // over the couplings into it, each θ[from] as drawn (not itself coupled). A shared term has
+  // alpha 1 from the left eye's slot and θ[right] fixed at 0; a correlation ρ has alpha =
+  // ρ·σ_R/σ_L and θ[right] ~ N(μ_R − alpha·μ_L, σ_R·√(1 − ρ²)); a joint covariance Σ = L D Lᵀ
+  // has alpha = L(j, k) from slot k to slot j and θ[k] ~ N(0, D_k). The slots of θ stay
+  // independent (what Sobol indices and linear propagation assume) and the map is linear in θ, so
+  // scaling a source scales the coupled error with it.
+  struct SlotCoupling {
+    int from = 0, to = 0;
     double alpha = 0;
   };
-  std::vector<EyeCoupling> couplings;  // in right-slot order
+  std::vector<SlotCoupling> couplings;  // in (to, from) order
   ParameterLayout layout;
   std::vector<ChainParameter> parameters;  // size layout.size(), in θ order
   uint64_t samples = 0;
@@ -149,5 +157,14 @@ struct ChainModel {
   ChainModel WithSourceScaled(Source source, double factor) const;
   bool SourceActive(Source source) const;  // some parameter of the source is not fixed at 0
 };
+
+// θ as the chain reads it: coupled[j] = θ[j] + Σ alpha·θ[from] over the couplings into j (the
+// parameters' errors themselves, in internal units). `coupled` holds model.layout.size() values.
+template <typename T>
+void ApplyCouplings(const ChainModel& model, const T* theta, T* coupled) {
+  const size_t n = model.parameters.size();
+  for (size_t j = 0; j < n; ++j) coupled[j] = theta[j];
+  for (const ChainModel::SlotCoupling& c : model.couplings) coupled[c.to] += T(c.alpha) * theta[c.from];
+}
 
 }  // namespace vstcal

@@ -148,6 +148,13 @@ std::string ChainDigest(const ChainModel& model) {
   h.Add(g.display.ipd);
   h.Add(g.display.eye_centre_in_hmd);
   h.Add(g.display.inverse_image_distance);
+  // Only when given: a chain whose display shows the camera's field of view keeps its digest.
+  for (int e = 0; e < kNumEyes; ++e) {
+    if (!g.display.focal_px[e]) continue;
+    h.Add("display_focal");
+    h.Add(static_cast<double>(e));
+    h.Add(*g.display.focal_px[e]);
+  }
   h.Add(g.head_angular_velocity);
   h.Add(g.head_linear_velocity);
   for (const ChainTestPoint& tp : g.test_points) {
@@ -164,11 +171,11 @@ std::string ChainDigest(const ChainModel& model) {
   for (const auto* m : {&model.mount_mixing, &model.tracker_alignment_mixing}) {
     if (!m->isIdentity(0.0)) h.Add(*m);
   }
-  // Likewise only when used: the eyes' shared and correlated terms.
-  for (const ChainModel::EyeCoupling& c : model.couplings) {
+  // Likewise only when used: shared, correlated and jointly drawn terms.
+  for (const ChainModel::SlotCoupling& c : model.couplings) {
     h.Add("coupling");
-    h.Add(static_cast<double>(c.left));
-    h.Add(static_cast<double>(c.right));
+    h.Add(static_cast<double>(c.from));
+    h.Add(static_cast<double>(c.to));
     h.Add(c.alpha);
   }
   for (const ChainParameter& p : model.parameters) {

@@ -41,7 +41,9 @@ std::string QuantileBarsScript(const std::vector<QuantileBar>& bars, const std::
 std::string BudgetScript(const OrderedJson& report, const std::string& measure) {
   const OrderedJson& budget = report.at("budget");
   if (budget.is_null()) return "";
-  const std::string rms = measure + "_rms";
+  // The image misregistration is in px, the 3-D measures in the length unit.
+  const bool image = measure == "image";
+  const std::string rms = image ? std::string("image_rms_px") : measure + "_rms";
   std::string s = SvgChartHeader(900, 380);
   s += "$b << EOD\n";
   bool any = false;
@@ -54,9 +56,9 @@ std::string BudgetScript(const OrderedJson& report, const std::string& measure) 
     }
   }
   if (!any) return "";
-  const std::string unit = report.at("length_unit").get<std::string>();
+  const std::string unit = image ? std::string("px") : report.at("length_unit").get<std::string>();
   s += "EOD\nset style data histograms\nset style histogram clustered gap 1\nset style fill solid 0.85 border -1\n"
-       "set ylabel " + GnuplotQuoted(measure + " RMS (" + unit + ")") + "\nset yrange [0:*]\nset xtics rotate by -30 noenhanced\n";
+       "set ylabel " + GnuplotQuoted((image ? std::string("image misregistration") : measure) + " RMS (" + unit + ")") + "\nset yrange [0:*]\nset xtics rotate by -30 noenhanced\n";
   s += "plot $b using 2:xtic(1) lc rgb \"" + std::string(ChartColour(0)) + "\" title \"this source alone\", "
        "$b using 3 lc rgb \"" + ChartColour(4) + "\" title \"whole chain, this source halved\", " +
        Datum(report.at("totals"), rms.c_str()) + " with lines lw 2 dt 2 lc rgb \"black\" title \"whole chain\"\n";

@@ -22,7 +22,7 @@ struct QuantileBar {
 // Empty when no distribution has a value (as every script below when it would draw nothing).
 std::string QuantileBarsScript(const std::vector<QuantileBar>& bars, const std::string& ylabel);
 
-// The error budget of `measure` ("misregistration" or "misperception"): the sources in the report's
+// The error budget of `measure` ("image", "misregistration" or "misperception"): the sources in the report's
 // ranking for that measure, each with two bars, the RMS with that source alone and the RMS of the
 // whole chain with that source halved, and the whole chain's RMS as a line. Empty without a budget.
 std::string BudgetScript(const OrderedJson& report, const std::string& measure);

@@ -103,12 +103,25 @@ std::string Budget(const OrderedJson& r) {
   const std::string unit = r.at("length_unit").get<std::string>();
   std::string s = "<section><h2>Error budget</h2>\n<p>Each source alone and the whole chain with that source halved (" +
                   std::to_string(budget.at("samples").get<uint64_t>()) +
-                  " samples a scenario, common random numbers); ranked by its share of the whole chain's mean square. "
+                  " samples a scenario, common random numbers); ranked by its share of the whole chain's mean square — "
+                  "first by what the user sees, the image misregistration (the default ranking), then by the 3-D "
+                  "misregistration and by the misperception. "
                   "The shares and the row of interactions and means in common (what the sources' parts leave out) add "
                   "to 1 (docs/math/sensitivity.md#shares-of-the-whole).</p>\n";
-  for (const std::string measure : {"misregistration", "misperception"}) {
-    s += ChartOrNote(BudgetScript(r, measure), "error budget, " + measure,
-                     "Error budget of the " + measure + " (" + unit + "), sources ranked largest share first.");
+  // Each ranked measure with another beside it: the image's RMS is in px, the others' in the length unit.
+  struct Ranked {
+    std::string measure, beside;
+  };
+  auto rms_of = [](const std::string& m) { return m == "image" ? std::string("image_rms_px") : m + "_rms"; };
+  auto unit_of = [&](const std::string& m) { return m == "image" ? std::string("px") : unit; };
+  auto title_of = [](const std::string& m) { return m == "image" ? std::string("image misregistration") : m; };
+  auto short_of = [](const std::string& m) { return m == "misregistration" ? std::string("3-D") : m; };  // narrow column heads
+  for (const Ranked& ranked : {Ranked{"image", "misregistration"}, Ranked{"misregistration", "image"}, Ranked{"misperception", "image"}}) {
+    const std::string& measure = ranked.measure;
+    if (!budget.at("ranking").contains(measure)) continue;  // a report written before the image ranking
+    const std::string rms = rms_of(measure), beside_rms = rms_of(ranked.beside);
+    s += ChartOrNote(BudgetScript(r, measure), "error budget, " + title_of(measure),
+                     "Error budget of the " + title_of(measure) + " (" + unit_of(measure) + "), sources ranked largest share first.");
     std::string rows;
     size_t rank = 0;
     for (const auto& source : budget.at("ranking").at(measure)) {
@@ -117,9 +130,9 @@ std::string Budget(const OrderedJson& r) {
         if (entries[i].at("source") != source) continue;
         const std::string key = "/budget/entries/" + std::to_string(i);
         rows += "<tr><th>" + std::to_string(++rank) + ". " + Escape(source.get<std::string>()) + "</th>" +
-                ValueCell(r, key + "/share_of_" + measure + "_ms") + ValueCell(r, key + "/alone/" + measure + "_rms") +
-                ValueCell(r, key + "/halved/" + measure + "_rms") + ValueCell(r, key + "/share_of_image_ms") +
-                ValueCell(r, key + "/halved/image_rms_px") + "<td style=\"text-align:left\">" +
+                ValueCell(r, key + "/share_of_" + measure + "_ms") + ValueCell(r, key + "/alone/" + rms) +
+                ValueCell(r, key + "/halved/" + rms) + ValueCell(r, key + "/share_of_" + ranked.beside + "_ms") +
+                ValueCell(r, key + "/halved/" + beside_rms) + "<td style=\"text-align:left\">" +
                 Escape(entries[i].at("correction").get<std::string>()) + "</td>" + OriginCell(entries[i]) + "</tr>\n";
         // The source's terms alone, largest share first (the tree source → term).
         const OrderedJson& terms = entries[i].at("terms");
@@ -132,8 +145,9 @@ std::string Budget(const OrderedJson& r) {
         for (const size_t t : order) {
           const std::string term_key = key + "/terms/" + std::to_string(t);
           rows += "<tr><th style=\"padding-left:2em\">" + Name(terms[t].at("term").get<std::string>()) + "</th>" +
-                  ValueCell(r, term_key + "/" + share) + ValueCell(r, term_key + "/alone/" + measure + "_rms") + EmptyCells(1) +
-                  ValueCell(r, term_key + "/share_of_image_ms") + EmptyCells(1) + "<td></td>" + OriginCell(terms[t]) + "</tr>\n";
+                  ValueCell(r, term_key + "/" + share) + ValueCell(r, term_key + "/alone/" + rms) + EmptyCells(1) +
+                  ValueCell(r, term_key + "/share_of_" + ranked.beside + "_ms") + EmptyCells(1) + "<td></td>" + OriginCell(terms[t]) +
+                  "</tr>\n";
         }
       }
     }
@@ -141,14 +155,15 @@ std::string Budget(const OrderedJson& r) {
     const std::string whole = "/budget/whole/" + measure;
     const bool none = budget.at("whole").at(measure).at("none").get<bool>();
     rows += "<tr><th>interactions and means in common</th>" + ValueCell(r, whole + "/remainder_share") + EmptyCells(2) +
-            ValueCell(r, "/budget/whole/image/remainder_share") + EmptyCells(1) +
+            ValueCell(r, "/budget/whole/" + ranked.beside + "/remainder_share") + EmptyCells(1) +
             "<td style=\"text-align:left\">" + std::string(none ? "none: the whole chain's mean square is 0 to rounding" : "") +
             "</td><td></td></tr>\n";
-    rows += "<tr><th>whole chain (RMS)</th>" + EmptyCells(1) + ValueCell(r, "/totals/" + measure + "_rms") + EmptyCells(2) +
-            ValueCell(r, "/totals/image_rms_px") + EmptyCells(2) + "</tr>\n";
-    s += Table("ranked by " + measure,
-               "<th>source</th><th>share of mean square</th><th>alone RMS (" + unit + ")</th><th>whole chain, halved (" +
-                   unit + ")</th><th>share of image mean square</th><th>image RMS halved (px)</th><th>correction</th>"
+    rows += "<tr><th>whole chain (RMS)</th>" + EmptyCells(1) + ValueCell(r, "/totals/" + rms) + EmptyCells(2) +
+            ValueCell(r, "/totals/" + beside_rms) + EmptyCells(2) + "</tr>\n";
+    s += Table("ranked by " + title_of(measure) + (measure == "image" ? " (what the user sees: the default ranking)" : ""),
+               "<th>source</th><th>share of mean square</th><th>alone RMS (" + unit_of(measure) + ")</th><th>whole chain, halved (" +
+                   unit_of(measure) + ")</th><th>share of " + short_of(ranked.beside) + " mean square</th><th>" +
+                   short_of(ranked.beside) + " RMS halved (" + unit_of(ranked.beside) + ")</th><th>correction</th>"
                    "<th title=\"measured: from a calibration's file; assumed: typed into the chain\">distributions</th>",
                rows);
   }

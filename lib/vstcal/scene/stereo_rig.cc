@@ -13,6 +13,10 @@ const std::array<std::string, 6>& RelativePoseTangentNames() {
   return kNames;
 }
 
+std::string JointCovarianceName(int eye, std::string_view lens_parameter) {
+  return std::string(eye == 0 ? "left." : "right.").append(lens_parameter);
+}
+
 namespace {
 
 // Σ over (ω, ρ) in RelativePoseTangentNames() order, whatever order the file lists them in.

@@ -64,9 +64,18 @@ struct StereoRig {
   // How the solve paired the two cameras' views (given or derived from their names); later pairings
   // of correspondences with this rig use it. Absent: by name.
   std::optional<ViewPairing> view_pairing;
+  // The joint covariance of both cameras' lens parameters and right_from_left's tangent, with their
+  // cross-covariances (calib-stereo solve: one problem estimated them together). Names
+  // JointCovarianceName(): "left.fx" …, "right.fx" …, then "right_from_left.rx" … ".tz"; its
+  // blocks are left.covariance, right.covariance and covariance. err-sim draws a rig's errors
+  // from it as one correlated draw (docs/formats.md#vst-chain-joint).
+  std::optional<ParameterCovariance> joint_covariance;
 
   double baseline() const { return right_from_left.t.norm(); }
 };
+
+// A joint covariance's name of camera `eye`'s (0 left, 1 right) lens parameter: "left.fx".
+std::string JointCovarianceName(int eye, std::string_view lens_parameter);
 
 // "right_from_left.rx", … ".tz": ω (radians) then ρ (length unit).
 const std::array<std::string, 6>& RelativePoseTangentNames();

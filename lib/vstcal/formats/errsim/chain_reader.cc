@@ -102,7 +102,7 @@ RigSpec ReadRigSpec(const JsonNode& node, const std::filesystem::path& directory
   }
   (*cameras)[0] = {"", std::move(rig.left.camera), std::move(rig.left.covariance)};
   (*cameras)[1] = {"", std::move(rig.right.camera), std::move(rig.right.covariance)};
-  return {std::move(file), rig.right_from_left, std::move(rig.covariance)};
+  return {std::move(file), rig.right_from_left, std::move(rig.covariance), std::move(rig.joint_covariance)};
 }
 
 // The length unit of a referenced measurement must be the chain's: its translations and σ's are
@@ -589,6 +589,102 @@ class SourcesReader {
   ParameterCovariance handeye_covariance_;  // the handeye file's, named
 };
 
+// One angle of a display's field of view: the camera's image spans it, so it must be a real
+// field, more than 0° and less than 180°.
+double ReadFieldAngle(const JsonNode& node) {
+  const double deg = node.Number();
+  if (!(deg > 0 && deg < 180)) {
+    node.Fail("must lie strictly between 0 and 180 degrees, got " + Number(deg),
+              "give the angle the camera's image spans on the display, 0 < φ < 180 (e.g. 90), or delete the field to show the camera's own");
+  }
+  return deg;
+}
+
+// φ_h, or [φ_h, φ_v].
+DisplayFieldOfView ReadOneFieldOfView(const JsonNode& node) {
+  DisplayFieldOfView fov;
+  if (node.json().is_array()) {
+    node.ArraySize(2);
+    fov.horizontal_deg = ReadFieldAngle(node.at(0));
+    fov.vertical_deg = ReadFieldAngle(node.at(1));
+  } else {
+    fov.horizontal_deg = ReadFieldAngle(node);
+  }
+  return fov;
+}
+
+// display.field_of_view_deg (docs/formats.md#vst-chain-display-fov): one field for both eyes, or
+// {"left": …, "right": …} (an eye not given shows its camera's own field).
+std::array<std::optional<DisplayFieldOfView>, kNumEyes> ReadDisplayFieldOfView(const JsonNode& node) {
+  std::array<std::optional<DisplayFieldOfView>, kNumEyes> out;
+  if (node.json().is_object()) {
+    ExpectKeys(node, {"left", "right"}, "eye");
+    for (int e = 0; e < kNumEyes; ++e) {
+      if (const auto eye = node.find(kEyeNames[e])) out[e] = ReadOneFieldOfView(*eye);
+    }
+    return out;
+  }
+  out[0] = out[1] = ReadOneFieldOfView(node);
+  return out;
+}
+
+// "joint_covariance" (docs/formats.md#vst-chain-joint): "rig" or inline. Each parameter it
+// draws is drawn by it alone: a σ, a correlation or a covariance given for the same error under
+// sources would be a second answer.
+JointCovarianceSpec ReadJointCovarianceSpec(const JsonNode& node, const ChainSpec& spec) {
+  JointCovarianceSpec out;
+  if (node.json().is_string()) {
+    if (node.String() != "rig") {
+      node.Fail("unknown value " + Quoted(node.String()),
+                "write \"rig\" (the rig file's joint_covariance) or an object {\"parameters\", \"matrix\"} over left.<lens "
+                "parameter>, right.<lens parameter> and right_from_left.rx … .tz");
+    }
+    if (!spec.rig) node.Fail("the chain references no rig", "add \"rig\": {\"file\": \"<stereo@1 file>\"}, or give the covariance inline");
+    if (!spec.rig->joint_covariance) {
+      node.Fail("the rig " + spec.rig->file + " has no joint_covariance",
+                "reference a rig solved by calib-stereo solve (it writes one), or give the covariance inline");
+    }
+    out.from_rig = true;
+    out.covariance = *spec.rig->joint_covariance;
+  } else {
+    out.covariance = ReadJointCovariance(node, spec.cameras[0].camera.model, spec.cameras[1].camera.model);
+  }
+  const ParameterCovariance& c = out.covariance;
+  auto twice = [&](const std::string& name, const std::string& field) {
+    node.Fail("draws " + name + ", which " + field + " also gives",
+              "give each error once: delete it from " + field + ", or from joint_covariance");
+  };
+  bool pose = false;
+  for (const std::string& t : RelativePoseTangentNames()) pose = pose || c.Find(t).has_value();
+  for (const TermSpec& t : spec.terms) {
+    const bool right = t.eye_key == "right" || t.eye_key == "both" || t.eye_key == "shared";
+    const bool left = t.eye_key == "left" || t.eye_key == "both" || t.eye_key == "shared";
+    const std::string field = "sources." + std::string(SourceKey(Declaration(t.term).source)) + "." + t.eye_key + "." + t.key;
+    if (t.term == Term::kLens) {
+      if (left && c.Find(JointCovarianceName(0, t.key))) twice(JointCovarianceName(0, t.key), field);
+      if (right && c.Find(JointCovarianceName(1, t.key))) twice(JointCovarianceName(1, t.key), field);
+    }
+    if ((t.term == Term::kCameraRotation || t.term == Term::kCameraTranslation) && right && pose) {
+      twice("right_from_left's error (the right camera's pose)", field);
+    }
+  }
+  for (const CorrelationSpec& r : spec.correlations) {
+    if (r.term == Term::kLens && (c.Find(JointCovarianceName(0, r.key)) || c.Find(JointCovarianceName(1, r.key)))) {
+      twice("both eyes' " + r.key + " with their correlation", "sources.camera_intrinsic.correlation." + r.key);
+    }
+  }
+  for (const IntrinsicCovarianceSpec& ic : spec.intrinsic_covariances) {
+    for (int e = 0; e < kNumEyes; ++e) {
+      if (ic.eye_key != "both" && ic.eye_key != kEyeNames[e]) continue;
+      for (const std::string_view p : LensModelParamNames(spec.cameras[e].camera.model)) {
+        if (c.Find(JointCovarianceName(e, p))) twice(JointCovarianceName(e, p), "sources.camera_intrinsic." + ic.eye_key + ".covariance");
+      }
+    }
+  }
+  if (pose && spec.extrinsic_covariance) twice("right_from_left's error", "sources.camera_extrinsic.right.covariance");
+  return out;
+}
+
 }  // namespace
 
 ChainSpec ChainSpecFromJson(const JsonDocument& doc, const std::filesystem::path& directory) {
@@ -596,7 +692,7 @@ ChainSpec ChainSpecFromJson(const JsonDocument& doc, const std::filesystem::path
   root.ExpectObject();
   CheckFormat(root, kChainFormat);
   ExpectKeys(root, {"format", "name", "length_unit", "samples", "seed", "frames", "rig", "handeye", "tracker_noise", "cameras",
-                    "display", "head_motion", "test_points", "sources", "provenance"},
+                    "display", "head_motion", "test_points", "sources", "joint_covariance", "provenance"},
              "field of a chain");
   ChainSpec spec;
   spec.file = doc.name();
@@ -676,7 +772,8 @@ ChainSpec ChainSpecFromJson(const JsonDocument& doc, const std::filesystem::path
   }
 
   const JsonNode display = root.at("display");
-  ExpectKeys(display, {"ipd", "eye_centre", "camera_baseline", "virtual_image_distance"}, "field of display");
+  ExpectKeys(display, {"ipd", "eye_centre", "camera_baseline", "virtual_image_distance", "field_of_view_deg"}, "field of display");
+  if (const auto fov = display.find("field_of_view_deg")) spec.display_field_of_view = ReadDisplayFieldOfView(*fov);
   spec.ipd = display.at("ipd").PositiveNumber();
   spec.eye_centre = (0.5 * (left + right)).array() + 0.0;  // + 0.0: no −0 in a written chain
   if (const auto c = display.find("eye_centre")) spec.eye_centre = c->Vector<3>();
@@ -727,6 +824,7 @@ ChainSpec ChainSpecFromJson(const JsonDocument& doc, const std::filesystem::path
   }
 
   SourcesReader(&spec).Read(root.at("sources"));
+  if (const auto joint = root.find("joint_covariance")) spec.joint_covariance = ReadJointCovarianceSpec(*joint, spec);
   if (const auto provenance = root.find("provenance")) {
     provenance->ExpectObject();
     spec.provenance = OrderedJson::parse(provenance->json().dump());

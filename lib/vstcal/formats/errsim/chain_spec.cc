@@ -94,7 +94,7 @@ int ComponentsOf(const ChainModel& model, Term term) {
 void Share(const TermSpec& t, ChainModel* model) {
   for (int i = 0; i < ComponentsOf(*model, t.term); ++i) {
     const auto slots = EyeSlots(*model, t.term, t.key, i);
-    model->couplings.push_back({slots[0], slots[1], 1.0});
+    model->couplings.push_back({slots[0], slots[1], 1.0});  // from the left eye's slot to the right's
   }
 }
 
@@ -233,6 +233,66 @@ void ApplyCovariance(const ChainSpec& spec, const ParameterCovariance& cov, int 
   }
 }
 
+// A rig's joint covariance as one correlated draw (docs/math/vst-chain.md#joint-draw). Its
+// parameters in a fixed order — the left lens, the right lens (each in the renderer's layout),
+// then right_from_left's (ω, ρ) — and Σ = L D Lᵀ in that order (L unit lower triangular, no
+// pivoting): slot k of θ holds N(0, D_k), the variance of parameter k given the ones before it,
+// and parameter j reads θ[j] + Σ_k<j L(j, k)·θ[k]. So the part of the right camera's pose error
+// that the lens errors explain moves with camera_intrinsic (switched off or scaled with it), and
+// camera_extrinsic keeps what remains; a parameter the ones before it determine (D_k = 0, e.g.
+// perfectly correlated cx's) draws nothing of its own.
+void ApplyJointCovariance(const ChainSpec& spec, ChainModel* model) {
+  const ParameterCovariance& cov = spec.joint_covariance->covariance;
+  struct Entry {
+    int slot;
+    size_t index;  // in cov
+  };
+  std::vector<Entry> order;
+  for (int e = 0; e < kNumEyes; ++e) {
+    const auto names = LensModelParamNames(model->renderer[e].model);
+    for (size_t i = 0; i < names.size(); ++i) {
+      if (const auto at = cov.Find(JointCovarianceName(e, names[i]))) order.push_back({model->layout.Offset(Term::kLens, e) + static_cast<int>(i), *at});
+    }
+  }
+  constexpr int kRight = 1;
+  const auto& tangents = RelativePoseTangentNames();
+  for (int i = 0; i < 6; ++i) {
+    const Term term = i < 3 ? Term::kCameraRotation : Term::kCameraTranslation;
+    if (const auto at = cov.Find(tangents[i])) order.push_back({model->layout.Offset(term, kRight) + i % 3, *at});
+  }
+  const int n = static_cast<int>(order.size());
+  Eigen::MatrixXd sigma(n, n);
+  for (int a = 0; a < n; ++a)
+    for (int b = 0; b < n; ++b) sigma(a, b) = cov.matrix(order[a].index, order[b].index);
+  // LDLᵀ by columns. A pivot below the rounding of its own diagonal is 0: the parameter is a
+  // combination of the ones before it, and (Σ being PSD) so is its covariance with every later one.
+  Eigen::MatrixXd L = Eigen::MatrixXd::Identity(n, n);
+  Eigen::VectorXd d(n);
+  for (int k = 0; k < n; ++k) {
+    double dk = sigma(k, k);
+    for (int m = 0; m < k; ++m) dk -= L(k, m) * L(k, m) * d(m);
+    if (dk < -1e-9 * std::max(sigma(k, k), 0.0) - 1e-300) {
+      FailField(spec.file, "joint_covariance.matrix", "is not positive semi-definite (pivot " + MessageNumber(dk) + " at " + cov.parameters[order[k].index] + ")",
+                "give a valid covariance matrix");
+    }
+    d(k) = dk > 1e-12 * sigma(k, k) ? dk : 0.0;
+    for (int j = k + 1; j < n; ++j) {
+      double v = sigma(j, k);
+      for (int m = 0; m < k; ++m) v -= L(j, m) * L(k, m) * d(m);
+      L(j, k) = d(k) > 0 ? v / d(k) : 0.0;
+    }
+  }
+  const DistributionOrigin origin = spec.joint_covariance->from_rig ? DistributionOrigin{spec.rig->file, "vstcal/stereo@1"} : DistributionOrigin{};
+  for (int k = 0; k < n; ++k) {
+    ChainParameter& p = model->parameters[order[k].slot];
+    p.distribution = d(k) > 0 ? Distribution::MakeNormal(0, std::sqrt(d(k))) : Distribution::MakeFixed(0);
+    p.origin = origin;
+    for (int j = k + 1; j < n; ++j) {
+      if (L(j, k) != 0) model->couplings.push_back({order[k].slot, order[j].slot, L(j, k)});
+    }
+  }
+}
+
 }  // namespace
 
 double DefaultVirtualImageDistance(LengthUnit unit) { return 1.5 / MetresPer(unit); }
@@ -272,6 +332,17 @@ ChainModel BuildChainModel(const ChainSpec& spec) {
   g.display.ipd = spec.ipd;
   g.display.eye_centre_in_hmd = spec.eye_centre;
   g.display.inverse_image_distance = spec.virtual_image_distance > 0 ? 1.0 / spec.virtual_image_distance : 0.0;
+  for (int e = 0; e < kNumEyes; ++e) {
+    // The camera's image, W × H px, spans the display's field of view: f = (W/2)/tan(φ_h/2); the
+    // vertical by its own angle, else with the camera's pixel aspect fy/fx.
+    const auto& fov = spec.display_field_of_view[e];
+    if (!fov) continue;
+    const Camera& camera = spec.cameras[e].camera;
+    const double fx = 0.5 * camera.image_size.width / std::tan(0.5 * DegToRad(fov->horizontal_deg));
+    const double fy = fov->vertical_deg ? 0.5 * camera.image_size.height / std::tan(0.5 * DegToRad(*fov->vertical_deg))
+                                        : fx * camera.params[intrinsic::kFy] / camera.params[intrinsic::kFx];
+    g.display.focal_px[e] = Eigen::Vector2d(fx, fy);
+  }
   g.head_angular_velocity = DegToRad(1.0) * spec.angular_velocity_deg_s;
   g.head_linear_velocity = spec.linear_velocity;
   g.test_points = spec.test_points;
@@ -336,8 +407,10 @@ ChainModel BuildChainModel(const ChainSpec& spec) {
     if (t.eye_key == "shared") Share(t, &model);
   }
   for (const CorrelationSpec& c : spec.correlations) Correlate(c, &model);
-  std::sort(model.couplings.begin(), model.couplings.end(),
-            [](const ChainModel::EyeCoupling& a, const ChainModel::EyeCoupling& b) { return a.right < b.right; });
+  if (spec.joint_covariance) ApplyJointCovariance(spec, &model);
+  std::sort(model.couplings.begin(), model.couplings.end(), [](const ChainModel::SlotCoupling& a, const ChainModel::SlotCoupling& b) {
+    return a.to != b.to ? a.to < b.to : a.from < b.from;
+  });
   const ChainEvaluator chain(model);
   for (size_t k = 0; k < chain.num_points(); ++k) {
     if (chain.nominal_undefined(k) != Undefined::kNone) {

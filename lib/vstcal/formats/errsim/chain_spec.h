@@ -79,6 +79,7 @@ struct RigSpec {
   std::string file;  // as written, relative to the chain's folder
   Rigid3d right_from_left;
   std::optional<ParameterCovariance> covariance;  // over RelativePoseTangentNames(): ω rad, ρ length unit
+  std::optional<ParameterCovariance> joint_covariance;  // the rig's (StereoRig::joint_covariance)
 };
 
 // camera_extrinsic.right.covariance: "rig" (the rig file's) or an inline covariance over
@@ -122,6 +123,24 @@ struct PoseCovarianceSpec {
   ParameterCovariance covariance;  // 6×6 in the names' order (from_handeye: the file's block)
 };
 
+// "joint_covariance": "rig" (the rig file's joint_covariance) or inline {"parameters", "matrix"}
+// over left.<lens parameter>, right.<lens parameter> and right_from_left.rx … .tz: both cameras'
+// lens errors and the right camera's pose error as one correlated draw, factored in that order
+// (docs/math/vst-chain.md#joint-draw).
+struct JointCovarianceSpec {
+  bool from_rig = false;
+  ParameterCovariance covariance;  // the inline one (from_rig: the rig's)
+};
+
+// display.field_of_view_deg of one eye: the angle the camera's image spans on the display,
+// horizontally and (when given) vertically, each in (0°, 180°). Without a vertical angle the
+// display keeps the camera's pixel aspect (docs/math/vst-chain.md#display-fov).
+struct DisplayFieldOfView {
+  double horizontal_deg = 0;
+  std::optional<double> vertical_deg;
+  bool operator==(const DisplayFieldOfView&) const = default;
+};
+
 struct ChainSpec {
   std::string file;  // the chain file's name as given, for messages
   std::string name;  // free text
@@ -151,6 +170,8 @@ struct ChainSpec {
   std::optional<TrackerNoiseReference> tracker_noise;
   std::optional<PoseCovarianceSpec> mount_covariance;      // sources.camera_extrinsic.rig.covariance
   std::optional<PoseCovarianceSpec> alignment_covariance;  // sources.tracker_alignment.covariance
+  std::optional<JointCovarianceSpec> joint_covariance;
+  std::array<std::optional<DisplayFieldOfView>, kNumEyes> display_field_of_view;  // absent: the camera's
 
   // The renderer's lens model of each eye: the camera's, or the smallest model of the variant
   // that also holds every lens parameter the chain names for that eye.

@@ -129,6 +129,13 @@ OrderedJson ChainSpecToJson(const ChainSpec& spec, const Provenance& provenance)
   display["eye_centre"] = MatrixToJson(spec.eye_centre);
   if (spec.camera_baseline) display["camera_baseline"] = *spec.camera_baseline;
   display["virtual_image_distance"] = spec.virtual_image_distance > 0 ? OrderedJson(spec.virtual_image_distance) : OrderedJson("infinity");
+  // Per eye, as the reader keeps it: {"left": φ_h or [φ_h, φ_v], "right": …}.
+  for (int e = 0; e < kNumEyes; ++e) {
+    if (const auto& fov = spec.display_field_of_view[e]) {
+      display["field_of_view_deg"][std::string(kEyeNames[e])] =
+          fov->vertical_deg ? OrderedJson::array({fov->horizontal_deg, *fov->vertical_deg}) : OrderedJson(fov->horizontal_deg);
+    }
+  }
   j["display"] = std::move(display);
   j["head_motion"] = {{"angular_velocity_deg_s", MatrixToJson(spec.angular_velocity_deg_s)},
                       {"linear_velocity", MatrixToJson(spec.linear_velocity)}};
@@ -142,6 +149,7 @@ OrderedJson ChainSpecToJson(const ChainSpec& spec, const Provenance& provenance)
   }
   j["test_points"] = std::move(points);
   j["sources"] = SourcesToJson(spec);
+  if (const auto& c = spec.joint_covariance) j["joint_covariance"] = c->from_rig ? OrderedJson("rig") : CovarianceToJson(c->covariance);
   j["provenance"] = spec.provenance ? CanonicalProvenance(*spec.provenance) : ProvenanceToJson(provenance);
   return j;
 }

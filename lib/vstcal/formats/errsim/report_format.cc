@@ -206,7 +206,8 @@ OrderedJson ReportToJson(const ChainEvaluator& chain, const SimulationResult& re
                          {"origin", OriginsToJson(t.origins)}});
       }
       b["terms"] = std::move(terms);
-      b["dominant_term"] = {{"misregistration", e.terms[DominantTerm(e, &TermPart::share_of_misregistration_ms)].name},
+      b["dominant_term"] = {{"image", e.terms[DominantTerm(e, &TermPart::share_of_image_ms)].name},
+                            {"misregistration", e.terms[DominantTerm(e, &TermPart::share_of_misregistration_ms)].name},
                             {"misperception", e.terms[DominantTerm(e, &TermPart::share_of_misperception_ms)].name}};
       b["origin"] = OriginsToJson(e.origins);
       entries.push_back(std::move(b));
@@ -220,7 +221,10 @@ OrderedJson ReportToJson(const ChainEvaluator& chain, const SimulationResult& re
                    {"whole", {{"image", WholeToJson(budget.image)},
                               {"misregistration", WholeToJson(budget.misregistration)},
                               {"misperception", WholeToJson(budget.misperception)}}},
-                   {"ranking", {{"misregistration", ranking(budget.by_misregistration)},
+                   // The default ranking is by what the user sees (issue 21 item 3); the others beside it.
+                   {"ranked_by", "image"},
+                   {"ranking", {{"image", ranking(budget.by_image)},
+                                {"misregistration", ranking(budget.by_misregistration)},
                                 {"misperception", ranking(budget.by_misperception)}}},
                    {"entries", std::move(entries)}};
   } else {
@@ -288,104 +292,129 @@ std::string ReportText(const ChainEvaluator& chain, const SimulationResult& resu
       << Fixed(SystematicMisperceptionRms(chain), 2) << " " << unit << ")";
   if (std::isfinite(t.wrong_occlusion_rate)) out << ", wrong occlusion " << Fixed(100 * t.wrong_occlusion_rate, 2) << " %";
   out << "\n";
+  // A display with its own field of view magnifies the video: nominal, so in the systematic part
+  // (docs/math/vst-chain.md#display-fov).
+  if (model.geometry.display.focal_px[0] || model.geometry.display.focal_px[1]) {
+    out << "  display: its own field of view magnifies the video";
+    for (int e = 0; e < kNumEyes; ++e) {
+      const std::vector<double>& p = model.geometry.cameras[e].params;
+      const Eigen::Vector2d focal = model.geometry.display.focal_px[e].value_or(Eigen::Vector2d(p[intrinsic::kFx], p[intrinsic::kFy]));
+      out << (e ? ", " : " ") << kEyeNames[e] << " ×" << Fixed(p[intrinsic::kFx] / focal.x(), 3) << " × " << Fixed(p[intrinsic::kFy] / focal.y(), 3);
+    }
+    out << " (horizontal × vertical, against the camera's); part of the systematic misperception\n";
+  }
   if (run.options.budget) {
     const ErrorBudget budget = Budget(model, result);
     // Each source's share of the whole chain's mean square, then what the parts leave out and the
-    // whole: the rows add to 100 % (docs/math/sensitivity.md#shares-of-the-whole).
-    auto table = [&](const char* what, const std::vector<size_t>& order, double BudgetEntry::*share,
-                     double TermPart::*term_share, double ScenarioTotals::*total, const WholeOfMeasure& whole,
-                     const std::string& total_unit, bool with_image) {
-      const ScenarioTotals& w = t;
-      out << "  error budget of the " << what << " (" << run.options.budget_samples
-          << " samples per scenario), ranked by share of the whole chain's mean square";
-      if (whole.none) out << " (none: the whole chain's is 0 to rounding)";
+    // whole: the rows add to 100 % (docs/math/sensitivity.md#shares-of-the-whole). Ranked by the
+    // table's measure; a second measure may stand beside it (its share and its own rank).
+    struct Measure {
+      std::string name;    // "image misregistration"
+      std::string column;  // the short column head: "image", "3-D"
+      double BudgetEntry::*share;
+      double TermPart::*term_share;
+      double ScenarioTotals::*total;
+      const WholeOfMeasure* whole;
+      std::string unit;
+      const std::vector<size_t>* order;
+    };
+    const Measure image{"image misregistration", "image", &BudgetEntry::share_of_image_ms, &TermPart::share_of_image_ms, &ScenarioTotals::image_rms_px,
+                        &budget.image, "px", &budget.by_image};
+    const Measure misregistration{"3-D misregistration", "3-D", &BudgetEntry::share_of_misregistration_ms, &TermPart::share_of_misregistration_ms,
+                                  &ScenarioTotals::misregistration_rms, &budget.misregistration, unit, &budget.by_misregistration};
+    const Measure misperception{"misperception", "share", &BudgetEntry::share_of_misperception_ms, &TermPart::share_of_misperception_ms,
+                                &ScenarioTotals::misperception_rms, &budget.misperception, unit, &budget.by_misperception};
+    auto table = [&](const std::string& what, const Measure& m, const Measure* beside) {
+      out << "  error budget of " << what << " (" << run.options.budget_samples
+          << " samples per scenario), ranked by each source's share of the whole chain's mean square of the " << m.name;
+      if (beside) out << "; the " << beside->name << "'s share and rank beside it";
+      if (m.whole->none) out << " (none: the whole chain's is 0 to rounding)";
       out << ":\n";
       size_t name_width = std::string("interactions and means in common").size() + 2;
       for (const BudgetEntry& e : budget.entries) {
         for (const TermPart& term : e.terms) name_width = std::max(name_width, term.name.size() + 4);
       }
-      out << "    " << Pad("#", 3) << Pad("source", name_width) << Pad("share", 9);
-      if (with_image) out << Pad("image", 9);
+      out << "    " << Pad("#", 3) << Pad("source", name_width) << Pad(m.column, 9);
+      if (beside) out << Pad(beside->column, 9) << Pad(beside->column + " #", 6);
       out << Pad("alone", 22) << "all, this halved\n";
       std::vector<const BudgetEntry*> shown;
       int silent = 0;
-      for (const size_t i : order) {
+      for (const size_t i : *m.order) {
         const BudgetEntry& e = budget.entries[i];
-        if (!with_image && e.alone.*total == 0) {  // the misperception table: sources that do not touch what the eyes see
+        if (!beside && e.alone.*m.total == 0) {  // the misperception table: sources that do not touch what the eyes see
           ++silent;
           continue;
         }
         shown.push_back(&e);
       }
-      std::vector<double> shares, image_shares;
-      for (const BudgetEntry* e : shown) shares.push_back(e->*share), image_shares.push_back(e->share_of_image_ms);
-      shares.push_back(whole.remainder_share);
-      image_shares.push_back(budget.image.remainder_share);
-      const std::vector<std::string> percents = PercentsAddingUp(shares), image_percents = PercentsAddingUp(image_shares);
+      std::vector<double> shares, beside_shares;
+      for (const BudgetEntry* e : shown) shares.push_back(e->*m.share), beside_shares.push_back(beside ? e->*beside->share : 0.0);
+      shares.push_back(m.whole->remainder_share);
+      beside_shares.push_back(beside ? beside->whole->remainder_share : 0.0);
+      const std::vector<std::string> percents = PercentsAddingUp(shares), beside_percents = PercentsAddingUp(beside_shares);
       auto cell = [](bool none, const std::string& percent) { return none ? std::string("none") : percent; };
+      // Built by appending: GCC 12's -Wrestrict misfires on "literal" + std::string.
+      auto rms = [&](const ScenarioTotals& totals) {
+        std::string text = Fixed(totals.*m.total, 2).append(" ").append(m.unit);
+        if (beside) text.append(" ").append(Fixed(totals.*beside->total, 2)).append(" ").append(beside->unit);
+        return text;
+      };
       int rank = 1;
       for (size_t r = 0; r < shown.size(); ++r) {
         const BudgetEntry& e = *shown[r];
         out << "    " << Pad(std::to_string(rank++), 3) << Pad(std::string(SourceKey(e.source)), name_width)
-            << Pad(cell(whole.none, percents[r]), 9);
-        if (with_image) out << Pad(cell(budget.image.none, image_percents[r]), 9);
-        // Built by appending: GCC 12's -Wrestrict misfires on "literal" + std::string.
-        std::string alone = Fixed(e.alone.*total, 2).append(" ").append(total_unit);
-        std::string halved = Fixed(e.halved.*total, 2).append(" ").append(total_unit);
-        if (with_image) {
-          alone.append(" ").append(Fixed(e.alone.image_rms_px, 2)).append(" px");
-          halved.append(" ").append(Fixed(e.halved.image_rms_px, 2)).append(" px");
+            << Pad(cell(m.whole->none, percents[r]), 9);
+        if (beside) {
+          const auto at = std::find(beside->order->begin(), beside->order->end(), static_cast<size_t>(&e - budget.entries.data()));
+          out << Pad(cell(beside->whole->none, beside_percents[r]), 9) << Pad(std::to_string(at - beside->order->begin() + 1), 6);
         }
-        out << Pad(alone, 22) << halved << "\n";
+        out << Pad(rms(e.alone), 22) << rms(e.halved) << "\n";
         // Its terms alone, largest share first, when it has several: the tree source → term.
         std::vector<size_t> terms(e.terms.size());
         std::iota(terms.begin(), terms.end(), size_t{0});
-        auto key = [&](size_t i) { return std::isfinite(e.terms[i].*term_share) ? e.terms[i].*term_share : -1.0; };
+        auto key = [&](size_t i) { return std::isfinite(e.terms[i].*m.term_share) ? e.terms[i].*m.term_share : -1.0; };
         std::stable_sort(terms.begin(), terms.end(), [&](size_t a, size_t b) { return key(a) > key(b); });
         size_t small = 0;
         for (const size_t i : terms) {
           if (e.terms.size() < 2) break;
           const TermPart& term = e.terms[i];
           // Terms below what the column shows (0.0 %) are counted, not listed.
-          if (!whole.none && !(term.*term_share >= 0.0005)) {
+          if (!m.whole->none && !(term.*m.term_share >= 0.0005)) {
             ++small;
             continue;
           }
-          std::string term_alone = Fixed(term.alone.*total, 2).append(" ").append(total_unit);
-          if (with_image) term_alone.append(" ").append(Fixed(term.alone.image_rms_px, 2)).append(" px");
           out << "    " << Pad("", 3) << Pad("  " + term.name, name_width)
-              << Pad(whole.none ? std::string("none") : Fixed(100 * (term.*term_share), 1) + " %", 9);
-          if (with_image) out << Pad(budget.image.none ? std::string("none") : Fixed(100 * term.share_of_image_ms, 1) + " %", 9);
-          out << term_alone << "\n";
+              << Pad(m.whole->none ? std::string("none") : Fixed(100 * (term.*m.term_share), 1) + " %", 9);
+          if (beside) {
+            out << Pad(beside->whole->none ? std::string("none") : Fixed(100 * (term.*beside->term_share), 1) + " %", 9) << Pad("", 6);
+          }
+          out << rms(term.alone) << "\n";
         }
         if (small > 0 && small < e.terms.size()) {
           out << "    " << Pad("", 3) << "  (" << small << " more term" << (small > 1 ? "s" : "") << " below 0.05 %)\n";
         }
         // No advice against a share of nothing; the advice is the source's, aimed at its dominant term.
-        if (rank <= 4 && !whole.none) {
+        if (rank <= 4 && !m.whole->none) {
           out << "       → ";
-          if (e.terms.size() > 1) out << "mostly " << e.terms[DominantTerm(e, term_share)].name << ": ";
+          if (e.terms.size() > 1) out << "mostly " << e.terms[DominantTerm(e, m.term_share)].name << ": ";
           out << SourceCorrection(e.source) << "\n";
         }
       }
       out << "    " << Pad("", 3) << Pad("interactions and means in common", name_width)
-          << (with_image ? Pad(cell(whole.none, percents.back()), 9) + cell(budget.image.none, image_percents.back())
-                         : cell(whole.none, percents.back()));
-      out << "\n    " << Pad("", 3) << Pad("whole chain", name_width) << Pad(whole.none ? "none" : "100.0 %", 9);
-      if (with_image) out << Pad(budget.image.none ? "none" : "100.0 %", 9);
-      std::string all_rms = Fixed(w.*total, 2).append(" ").append(total_unit);
-      if (with_image) all_rms.append(" ").append(Fixed(w.image_rms_px, 2)).append(" px");
-      out << all_rms << "\n";
+          << (beside ? Pad(cell(m.whole->none, percents.back()), 9) + cell(beside->whole->none, beside_percents.back())
+                     : cell(m.whole->none, percents.back()));
+      out << "\n    " << Pad("", 3) << Pad("whole chain", name_width) << Pad(m.whole->none ? "none" : "100.0 %", 9);
+      if (beside) out << Pad(beside->whole->none ? "none" : "100.0 %", 9) << Pad("", 6);
+      out << rms(t) << "\n";
       if (silent > 0) {
         out << "    (" << silent << " other source" << (silent > 1 ? "s do" : " does")
             << " not move what the eyes see of the physical world: 0 here)\n";
       }
     };
-    table("misregistration", budget.by_misregistration, &BudgetEntry::share_of_misregistration_ms,
-          &TermPart::share_of_misregistration_ms, &ScenarioTotals::misregistration_rms, budget.misregistration, unit, true);
-    table("misperception (from the errors, beside the systematic part)", budget.by_misperception,
-          &BudgetEntry::share_of_misperception_ms, &TermPart::share_of_misperception_ms, &ScenarioTotals::misperception_rms,
-          budget.misperception, unit, false);
+    // The default ranking is by what the user sees: the overlay's error in each eye's image
+    // (issue 21 item 3), the 3-D misregistration's rank beside it; the misperception's below.
+    table("what the user sees", image, &misregistration);
+    table("the misperception (from the errors, beside the systematic part)", misperception, nullptr);
     // Where each source's σ's come from, beside what it does alone (misregistration): a budget built
     // from measurements reads differently from one built from guesses.
     out << "  where the distributions come from (measured: a calibration's file; assumed: typed into the chain), "

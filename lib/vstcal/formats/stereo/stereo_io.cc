@@ -8,6 +8,7 @@
 #include "vstcal/core/error.h"
 #include "vstcal/formats/camera/correspondences_io.h"
 #include "vstcal/formats/camera/residual_stats_json.h"
+#include "vstcal/json/fields.h"
 #include "vstcal/json/format_check.h"
 
 namespace vstcal {
@@ -165,6 +166,65 @@ OrderedJson RigCameraToJson(const CalibratedCamera& camera, const Provenance& pr
   return j;
 }
 
+// An entry of the joint covariance and of a marginal block the file also gives must be one
+// number (the blocks are that marginal), to this relative tolerance of √(Σaa·Σbb).
+void CheckJointBlock(const JsonNode& node, const ParameterCovariance& joint, const std::optional<ParameterCovariance>& marginal,
+                     const std::string& prefix, const std::string& marginal_field) {
+  if (!marginal) return;
+  for (size_t a = 0; a < marginal->parameters.size(); ++a) {
+    for (size_t b = 0; b < marginal->parameters.size(); ++b) {
+      const auto ja = joint.Find(prefix + marginal->parameters[a]), jb = joint.Find(prefix + marginal->parameters[b]);
+      if (!ja || !jb) continue;
+      const double j = joint.matrix(*ja, *jb), m = marginal->matrix(a, b);
+      const double scale = std::sqrt(std::abs(joint.matrix(*ja, *ja) * joint.matrix(*jb, *jb)));
+      if (std::abs(j - m) > kAgreement * scale + 1e-300) {
+        node.at("matrix").Fail("its entry (" + prefix + marginal->parameters[a] + ", " + prefix + marginal->parameters[b] + ") = " +
+                                   ShortestDecimal(j) + " disagrees with " + marginal_field + "'s " + ShortestDecimal(m),
+                               "give the joint covariance whose blocks are the marginals written beside it, or delete \"joint_covariance\"");
+      }
+    }
+  }
+}
+
+}  // namespace
+
+ParameterCovariance ReadJointCovariance(const JsonNode& node, const AnyLensModel& left, const AnyLensModel& right) {
+  node.ExpectObject();
+  ExpectKeys(node, {"parameters", "matrix"}, "field of a covariance");
+  const JsonNode names = node.at("parameters");
+  const size_t n = names.ArraySize();
+  const auto& tangents = RelativePoseTangentNames();
+  std::vector<std::string> read;
+  for (size_t i = 0; i < n; ++i) {
+    std::string name = names.at(i).String();
+    bool known = std::find(tangents.begin(), tangents.end(), name) != tangents.end();
+    for (int eye = 0; eye < 2 && !known; ++eye) {
+      for (const std::string_view p : LensModelParamNames(eye == 0 ? left : right)) {
+        if (name == JointCovarianceName(eye, p)) known = true;
+      }
+    }
+    if (!known) {
+      names.at(i).Fail("unknown parameter \"" + name + "\"",
+                       "a rig's joint covariance is over left.<lens parameter>, right.<lens parameter> (fx, fy, cx, cy, s and "
+                       "each camera's distortion terms) and right_from_left.rx … .tz");
+    }
+    if (std::find(read.begin(), read.end(), name) != read.end()) names.at(i).Fail("duplicate parameter \"" + name + "\"", "list each parameter once");
+    read.push_back(std::move(name));
+  }
+  return ReadCovarianceMatrix(node, std::move(read));
+}
+
+namespace {
+
+// The rig's joint covariance: its blocks are the marginals the file gives beside it.
+ParameterCovariance ReadRigJointCovariance(const JsonNode& node, const StereoRig& rig) {
+  ParameterCovariance joint = ReadJointCovariance(node, rig.left.camera.model, rig.right.camera.model);
+  CheckJointBlock(node, joint, rig.left.covariance, "left.", "left.covariance");
+  CheckJointBlock(node, joint, rig.right.covariance, "right.", "right.covariance");
+  CheckJointBlock(node, joint, rig.covariance, "", "covariance");
+  return joint;
+}
+
 }  // namespace
 
 ParameterCovariance ReadRelativePoseCovariance(const JsonNode& node) {
@@ -215,6 +275,7 @@ StereoRig StereoRigFromJson(const JsonDocument& doc) {
   }
   if (const auto fit = root.find("fit"); fit && !fit->json().is_null()) rig.fit = ReadFit(*fit);
   if (const auto cov = root.find("covariance")) rig.covariance = ReadRelativePoseCovariance(*cov);
+  if (const auto joint = root.find("joint_covariance")) rig.joint_covariance = ReadRigJointCovariance(*joint, rig);
   if (const auto rect = root.find("rectification")) rig.rectification = ReadRectification(*rect, rig);
   if (const auto pairing = root.find("view_pairing")) rig.view_pairing = ReadViewPairing(*pairing);
   return rig;
@@ -243,6 +304,9 @@ OrderedJson StereoRigToJson(const StereoRig& rig, const Provenance& provenance) 
     const Eigen::Vector3d rotation = *RelativeRotationSigma(rig);
     j["relative_pose_sigma"] = {{"baseline", *BaselineSigma(rig)},
                                 {"rotation_deg", {RadToDeg(rotation.x()), RadToDeg(rotation.y()), RadToDeg(rotation.z())}}};
+  }
+  if (rig.joint_covariance) {
+    j["joint_covariance"] = {{"parameters", rig.joint_covariance->parameters}, {"matrix", MatrixToJson(rig.joint_covariance->matrix)}};
   }
   if (rig.rectification) j["rectification"] = RectificationToJson(*rig.rectification);
   if (rig.view_pairing) {

@@ -27,6 +27,13 @@ bool IsStereoRigDocument(const JsonDocument& doc);
 // stereo@1 field, and a vst-chain's camera_extrinsic.right.covariance.
 ParameterCovariance ReadRelativePoseCovariance(const JsonNode& node);
 
+// A joint covariance {"parameters", "matrix"} of a rig's errors: "left.<lens parameter>" and
+// "right.<lens parameter>" of each camera's lens model (fx, fy, cx, cy, s, distortion terms) and
+// right_from_left's tangents (RelativePoseTangentNames), each at most once, any subset and order;
+// the matrix checked as a camera's (square, symmetric, PSD). The stereo@1 field (whose blocks must
+// also be the marginals beside it) and a vst-chain's inline joint_covariance.
+ParameterCovariance ReadJointCovariance(const JsonNode& node, const AnyLensModel& left, const AnyLensModel& right);
+
 // The stereo@1 object: a file written, read and written again is the same bytes.
 OrderedJson StereoRigToJson(const StereoRig& rig, const Provenance& provenance);
 
