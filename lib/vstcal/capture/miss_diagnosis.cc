@@ -62,14 +62,8 @@ std::optional<EdgeSharpness> SharpestEdgeBlur(const GrayImage& image, double rea
 std::string MissHint(const GrayImage& image, const DetectorOptions& options, std::vector<double> undecoded_sides_px, int cells,
                      std::string_view what) {
   char buf[320];
-  // The profile reaches far enough to see a σ somewhat above the limit (2.563 σ is the 10–90 % rise).
-  if (const auto sharp = SharpestEdgeBlur(image, std::clamp(4 * options.max_blur_px, 8.0, 24.0)); sharp && sharp->sigma_px > options.max_blur_px) {
-    std::snprintf(buf, sizeof buf,
-                  "the image looks blurred: its sharpest edges are blurred over σ = %.2f px (the sharpest tenth of %d strong edges), "
-                  "more than max_blur_px %.2f px; refocus the camera on the board, or steady it",
-                  sharp->sigma_px, sharp->edges, options.max_blur_px);
-    return buf;
-  }
+  // Too small first: where the markers are a few pixels a cell their edges lie closer together than
+  // a blur profile reaches, and the sharpest edges would read as blurred.
   if (cells > 0 && undecoded_sides_px.size() >= kMinUndecoded) {
     std::nth_element(undecoded_sides_px.begin(), undecoded_sides_px.begin() + static_cast<long>(undecoded_sides_px.size() / 2),
                      undecoded_sides_px.end());
@@ -82,6 +76,14 @@ std::string MissHint(const GrayImage& image, const DetectorOptions& options, std
                     needed, kMinPxPerCell);
       return buf;
     }
+  }
+  // The profile reaches far enough to see a σ somewhat above the limit (2.563 σ is the 10–90 % rise).
+  if (const auto sharp = SharpestEdgeBlur(image, std::clamp(4 * options.max_blur_px, 8.0, 24.0)); sharp && sharp->sigma_px > options.max_blur_px) {
+    std::snprintf(buf, sizeof buf,
+                  "the image looks blurred: its sharpest edges are blurred over σ = %.2f px (the sharpest tenth of %d strong edges), "
+                  "more than max_blur_px %.2f px; refocus the camera on the board, or steady it",
+                  sharp->sigma_px, sharp->edges, options.max_blur_px);
+    return buf;
   }
   return {};
 }

@@ -34,8 +34,9 @@ struct EdgeSharpness {
 };
 std::optional<EdgeSharpness> SharpestEdgeBlur(const GrayImage& image, double reach_px);
 
-// What to add to a not-found reason, or empty: "the image looks blurred: …; refocus …" first (a
-// blurred marker does not decode either), else "the markers look too small: …; move closer …".
+// What to add to a not-found reason, or empty: "the markers look too small: …; move closer …"
+// when the undecoded candidates are small (blur cannot be read where edges are a pixel or two
+// apart), else "the image looks blurred: …; refocus …" (a blurred marker does not decode either).
 // `undecoded_sides_px`: sides of the candidates a marker finder could not decode (empty for the
 // chessboard); `cells`: cells across a marker, black border included; `what`: "marker" or "tag".
 std::string MissHint(const GrayImage& image, const DetectorOptions& options, std::vector<double> undecoded_sides_px, int cells,
