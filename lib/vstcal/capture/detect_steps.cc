@@ -24,25 +24,6 @@ std::vector<int> IndexById(const Target& target, const std::vector<DetectedCorne
   return index;
 }
 
-// The homography mapping four board points to four pixels (DLT with h33 = 1); nullopt when singular.
-std::optional<Eigen::Matrix3d> Homography4(const std::array<Eigen::Vector2d, 4>& from, const std::array<Eigen::Vector2d, 4>& to) {
-  Eigen::Matrix<double, 8, 8> A;
-  Eigen::Matrix<double, 8, 1> b;
-  for (int i = 0; i < 4; ++i) {
-    const double x = from[i].x(), y = from[i].y(), u = to[i].x(), v = to[i].y();
-    A.row(2 * i) << x, y, 1, 0, 0, 0, -u * x, -u * y;
-    A.row(2 * i + 1) << 0, 0, 0, x, y, 1, -v * x, -v * y;
-    b(2 * i) = u;
-    b(2 * i + 1) = v;
-  }
-  const Eigen::FullPivLU<Eigen::Matrix<double, 8, 8>> lu(A);
-  if (!lu.isInvertible()) return std::nullopt;
-  const Eigen::Matrix<double, 8, 1> h = lu.solve(b);
-  Eigen::Matrix3d H;
-  H << h(0), h(1), h(2), h(3), h(4), h(5), h(6), h(7), 1;
-  return H;
-}
-
 }  // namespace
 
 std::vector<double> NeighbourSpacing(const Target& target, const std::vector<DetectedCorner>& corners) {
