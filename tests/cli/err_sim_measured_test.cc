@@ -7,6 +7,8 @@
 #include <cstdio>
 #include <random>
 
+#include <sstream>
+
 #include "cli_fixture.h"
 #include "vstcal/geometry/rigid3.h"
 #include "vstcal/geometry/rotation.h"
@@ -112,6 +114,15 @@ TEST_F(CliErrSimMeasured, BudgetSaysWhatWasMeasured) {
       EXPECT_EQ(origin[0].at("format"), source == "tracking" ? "vstcal/tracker-noise@1" : "vstcal/handeye@1") << source;
     }
   }
+  // The list of origins follows the default ranking (what the user sees), as the first table does.
+  std::vector<std::string> listed;
+  const size_t list = r.err.find("where the distributions come from");
+  ASSERT_NE(list, std::string::npos);
+  std::istringstream lines(r.err.substr(r.err.find('\n', list) + 1));
+  for (std::string line; std::getline(lines, line) && line.rfind("    ", 0) == 0;) {
+    listed.push_back(line.substr(4, line.find(':') - 4));
+  }
+  EXPECT_EQ(Json(listed), report.at("budget").at("ranking").at("image"));
   // err-sim check reads the report with its new fields, as it reads older ones.
   const CommandResult check = Run("err-sim", {"check", "out/report.json", "--report", "out/report.json"});
   EXPECT_EQ(check.exit_code, kOk) << check.err;

@@ -415,20 +415,23 @@ std::string ReportText(const ChainEvaluator& chain, const SimulationResult& resu
     // (issue 21 item 3), the 3-D misregistration's rank beside it; the misperception's below.
     table("what the user sees", image, &misregistration);
     table("the misperception (from the errors, beside the systematic part)", misperception, nullptr);
-    // Where each source's σ's come from, beside what it does alone (misregistration): a budget built
-    // from measurements reads differently from one built from guesses.
+    // Where each source's σ's come from, beside what it does alone (in the image, then in 3-D): a
+    // budget built from measurements reads differently from one built from guesses. In the default
+    // ranking's order, as the first table.
     out << "  where the distributions come from (measured: a calibration's file; assumed: typed into the chain), "
-           "each source alone:\n";
-    for (const size_t i : budget.by_misregistration) {
+           "each source alone, in the order of what the user sees:\n";
+    for (const size_t i : budget.by_image) {
       const BudgetEntry& e = budget.entries[i];
       const std::string key(SourceKey(e.source));
+      const std::string alone =
+          Fixed(e.alone.image_rms_px, 2) + " px " + Fixed(e.alone.misregistration_rms, 2) + " " + std::string(unit);
       out << "    " << key << ": ";
       const bool uniform = std::all_of(e.terms.begin(), e.terms.end(), [&](const TermPart& p) { return p.origins == e.origins; });
       if (uniform) {
-        out << OriginsText(e.origins) << ", " << Fixed(e.alone.misregistration_rms, 2) << " " << unit << "\n";
+        out << OriginsText(e.origins) << ", " << alone << "\n";
         continue;
       }
-      out << Fixed(e.alone.misregistration_rms, 2) << " " << unit;
+      out << alone;
       for (const TermPart& p : e.terms) {
         out << "; " << p.name.substr(key.size() + 1) << ": " << OriginsText(p.origins);
       }
