@@ -6,9 +6,9 @@
 
 namespace vstcal {
 
-ArucoSearch FindArucoTags(const GrayImage& image, int dictionary, int border_cells) {
+ArucoSearch FindArucoTags(const GrayImage& image, int dictionary, int border_cells, MarkerSearch where) {
   const cv::Mat gray(image.height, image.width, CV_8U, const_cast<uint8_t*>(image.pixels.data()));
-  const SearchImage search = ReduceForSearch(gray);
+  const SearchImage search = where == MarkerSearch::kReduced ? ReduceForSearch(gray) : SearchImage{gray, 1};
   const cv::Ptr<cv::aruco::DetectorParameters> params = cv::aruco::DetectorParameters::create();
   params->markerBorderBits = border_cells;
   std::vector<std::vector<cv::Point2f>> corners, rejected;

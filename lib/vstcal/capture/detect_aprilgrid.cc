@@ -90,7 +90,7 @@ Detection DetectAprilGrid(const GrayImage& image, const Target& target, const De
   std::map<int, DetectedMarker> by_index;
   std::vector<int> repeated;
   int foreign = 0;
-  const ArucoSearch search = FindArucoTags(image, cv::aruco::DICT_APRILTAG_36h11, kAprilGridBorderCells);
+  const ArucoSearch search = FindArucoTags(image, cv::aruco::DICT_APRILTAG_36h11, kAprilGridBorderCells, MarkerSearch::kFullResolution);
   for (const ArucoTag& tag : search.tags) {
     if (tag.id >= num_tags) {
       ++foreign;
@@ -108,7 +108,7 @@ Detection DetectAprilGrid(const GrayImage& image, const Target& target, const De
       return d;
     }
     // A vstcal apriltag-grid (libapriltag's one-cell border) is not read with a two-cell border.
-    const size_t one_cell = FindArucoTags(image, cv::aruco::DICT_APRILTAG_36h11, 1).tags.size();
+    const size_t one_cell = FindArucoTags(image, cv::aruco::DICT_APRILTAG_36h11, 1, MarkerSearch::kReduced).tags.size();
     if (one_cell > 0) {
       d.status = DetectionStatus::kRejected;
       d.reason = "another target type: " + std::to_string(one_cell) +

@@ -96,7 +96,7 @@ Detection DetectAprilTagGrid(const GrayImage& image, const Target& target, const
     // Kalibr's aprilgrid has tag36h11 tags with a two-cell black border, which libapriltag does not
     // read: say so when OpenCV finds such tags where libapriltag found none of this board's.
     const int dictionary = ArucoDictionaryOfAprilTagFamily(target.family);
-    const ArucoSearch two_cell_search = dictionary >= 0 ? FindArucoTags(image, dictionary, 2) : ArucoSearch{};
+    const ArucoSearch two_cell_search = dictionary >= 0 ? FindArucoTags(image, dictionary, 2, MarkerSearch::kReduced) : ArucoSearch{};
     const size_t two_cell = two_cell_search.tags.size();
     if (two_cell > 0) {
       d.status = DetectionStatus::kRejected;

@@ -73,7 +73,7 @@ Detection DetectCharuco(const GrayImage& image, const Target& target, const Dete
   const cv::Ptr<cv::aruco::Dictionary> dictionary = cv::aruco::getPredefinedDictionary(dictionary_index);
   // In an image above 1 MP the markers are found in a reduced copy (search_image.h); OpenCV then
   // interpolates the corners between them, and cornerSubPix's them, at full resolution.
-  const ArucoSearch search = FindArucoTags(image, dictionary_index, 1);
+  const ArucoSearch search = FindArucoTags(image, dictionary_index, 1, MarkerSearch::kReduced);
   const std::vector<ArucoTag>& found = search.tags;
   Detection d;
   const std::vector<Quad> quads = MarkerQuads(target);
