@@ -15,6 +15,7 @@ ArucoSearch FindArucoTags(const GrayImage& image, int dictionary, int border_cel
   std::vector<int> ids;
   cv::aruco::detectMarkers(search.image, cv::aruco::getPredefinedDictionary(dictionary), corners, ids, params, rejected);
   ArucoSearch out;
+  out.factor = search.factor;
   out.tags.resize(ids.size());
   for (size_t k = 0; k < ids.size(); ++k) {
     out.tags[k].id = ids[k];

@@ -25,7 +25,8 @@ struct ArucoTag {
 // refine there (bounded time on large images: ChArUco's markers); or in the full image (Kalibr's
 // aprilgrid: its corner refinement needs OpenCV's full-resolution corners — from the reduced image
 // it found 1 to 27 of 96 corners on 1,600–4,000 px views, and at 4,000 px 17 corners a cell off,
-// where the full image gives 84–92, none off; OpenCV takes 0.3 s on a 12 MP view).
+// where the full image gives 84–92, none off; OpenCV takes 0.3 s on a 12 MP view). The reduced
+// search still tells it whether there is anything to search.
 enum class MarkerSearch { kReduced, kFullResolution };
 
 // The markers of OpenCV's predefined dictionary `dictionary` (cv::aruco::PREDEFINED_DICTIONARY_NAME)
@@ -35,6 +36,8 @@ struct ArucoSearch {
   // The mean side, px, of each quadrilateral OpenCV took for a marker and could not decode (its
   // rejected candidates): what miss_diagnosis.h judges too small.
   std::vector<double> undecoded_sides_px;
+  // The reduction of the image searched: 1 when searched at full resolution.
+  int factor = 1;
 };
 ArucoSearch FindArucoTags(const GrayImage& image, int dictionary, int border_cells, MarkerSearch where);
 
