@@ -372,15 +372,7 @@ void BM_CaptureDetect12MP(benchmark::State& state) {
 Target MarkerBoard(int which) {
   if (which == 0) return testing::Charuco7x5();
   if (which == 2) return testing::AprilGrid6x4();
-  Target t;
-  t.type = TargetType::kAprilGrid;
-  t.rows = 4;
-  t.cols = 6;
-  t.tag_size = 30;
-  t.tag_spacing = 0.3;
-  t.family = "tag36h11";
-  t.margin = 9;
-  return t;
+  return testing::KalibrAprilGrid6x4();
 }
 
 // A 4000×3000 view of marker board `which` (squares or tags ≈ 150 px, blur σ 1.5 px, noise σ 2).

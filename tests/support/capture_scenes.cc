@@ -40,6 +40,18 @@ Target AprilGrid6x4() {
   return t;
 }
 
+Target KalibrAprilGrid6x4() {
+  Target t;
+  t.type = TargetType::kAprilGrid;
+  t.rows = 4;
+  t.cols = 6;
+  t.tag_size = 30;
+  t.tag_spacing = 0.3;
+  t.family = "tag36h11";
+  t.margin = 9;
+  return t;
+}
+
 Camera PinholeCamera(int width, int height, double f) {
   Eigen::Matrix3d K;
   K << f, 0, 0.5 * (width - 1), 0, f, 0.5 * (height - 1), 0, 0, 1;

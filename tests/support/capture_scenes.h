@@ -22,6 +22,8 @@ Target Chessboard9x6();
 Target Charuco7x5();
 // A 6×4 tag36h11 grid of 30 mm tags, 7.5 mm apart.
 Target AprilGrid6x4();
+// Kalibr's aprilgrid of 6×4 tag36h11 tags, 30 mm, spacing 0.3 (its two-cell black border).
+Target KalibrAprilGrid6x4();
 
 // A pinhole camera with fx = fy = f and the principal point at the image centre.
 Camera PinholeCamera(int width, int height, double f);

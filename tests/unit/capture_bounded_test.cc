@@ -99,25 +99,13 @@ TEST(BoundedDetection, LargeImageCornersMapBackToFullResolution) {
 }
 
 // Marker boards in an image above 1 MP: the markers are found in the reduced search image (half
-// of 1600×1200 here; the 12 MP case is bench_capture's BM_CaptureDetect12MPMarkers), the corners interpolated, fitted or refined at full resolution — as accurate as
+// of 1600×1200 here; Kalibr's aprilgrid is looked for there and read in the full image; the 12 MP case is bench_capture's BM_CaptureDetect12MPMarkers), the corners interpolated, fitted or refined at full resolution — as accurate as
 // the same boards' corners at 640×480 (docs/experiments/corners.md: ChArUco and aprilgrid 0.013 px,
 // libapriltag's tag corners 0.06 px). A ChArUco board, Kalibr's aprilgrid and an AprilTag grid, one
 // view each, squares or tags of 90 px (45 px in the search image).
-Target KalibrAprilGrid() {
-  Target t;
-  t.type = TargetType::kAprilGrid;
-  t.rows = 4;
-  t.cols = 6;
-  t.tag_size = 30;
-  t.tag_spacing = 0.3;
-  t.family = "tag36h11";
-  t.margin = 9;
-  return t;
-}
-
 TEST(BoundedDetection, MarkerBoardsInLargeImagesAreFoundAtFullAccuracy) {
   const Camera camera = testing::DistortedCamera(1600, 1200, 1200);
-  const Target charuco = testing::Charuco7x5(), aprilgrid = KalibrAprilGrid(), tag_grid = testing::AprilGrid6x4();
+  const Target charuco = testing::Charuco7x5(), aprilgrid = testing::KalibrAprilGrid6x4(), tag_grid = testing::AprilGrid6x4();
   for (const auto& [target, max_rms] : {std::pair{&charuco, 0.03}, {&aprilgrid, 0.03}, {&tag_grid, 0.12}}) {
     for (int k = 0; k < 1; ++k) {
       RenderOptions o;
@@ -140,7 +128,7 @@ TEST(BoundedDetection, MarkerBoardsInLargeImagesAreFoundAtFullAccuracy) {
 // their place, where the full image gives 92 of 96, none wrong.
 TEST(BoundedDetection, KalibrsAprilgridKeepsItsCornersOnATiltedLargeView) {
   const Camera camera = testing::DistortedCamera(2400, 1800, 2256);
-  const Target aprilgrid = KalibrAprilGrid();
+  const Target aprilgrid = testing::KalibrAprilGrid6x4();
   RenderOptions o;
   o.blur_px = 1.5;
   o.noise = 2;
@@ -165,7 +153,7 @@ TEST(BoundedDetection, BoardlessImagesAreNotFound) {
     EXPECT_EQ(d.status, DetectionStatus::kNotFound);
     EXPECT_EQ(d.reason.rfind("no chessboard of 10×10 inner corners", 0), 0u) << d.reason;
     // The marker boards' finders search the same reduced images.
-    for (const Target& t : {testing::Charuco7x5(), KalibrAprilGrid(), testing::AprilGrid6x4()}) {
+    for (const Target& t : {testing::Charuco7x5(), testing::KalibrAprilGrid6x4(), testing::AprilGrid6x4()}) {
       EXPECT_EQ(DetectTarget(*image, t, DetectorOptions{}).status, DetectionStatus::kNotFound) << DescribeTarget(t);
     }
   }

@@ -15,18 +15,6 @@ namespace {
 
 using testing::RenderedView;
 
-Target KalibrGrid() {
-  Target t;
-  t.type = TargetType::kAprilGrid;
-  t.rows = 4;
-  t.cols = 6;
-  t.tag_size = 30;
-  t.tag_spacing = 0.3;
-  t.family = "tag36h11";
-  t.margin = 9;
-  return t;
-}
-
 RenderedView MissView(const Target& t, double square_px, double blur_px, int k) {
   const Camera camera = testing::DistortedCamera(640, 480, 600);
   RenderOptions o;
@@ -48,7 +36,7 @@ TEST(MissDiagnosis, SharpestEdgeBlurReadsTheRenderedBlur) {
 }
 
 TEST(MissDiagnosis, BlurredBoardsSayBlurred) {
-  for (const Target& t : {testing::Chessboard9x6(), testing::Charuco7x5(), KalibrGrid(), testing::AprilGrid6x4()}) {
+  for (const Target& t : {testing::Chessboard9x6(), testing::Charuco7x5(), testing::KalibrAprilGrid6x4(), testing::AprilGrid6x4()}) {
     const Detection d = DetectTarget(MissView(t, 40, 7, 1).image, t, DetectorOptions{});
     ASSERT_NE(d.status, DetectionStatus::kFound) << DescribeTarget(t);
     if (d.status == DetectionStatus::kRejected) {  // found and measured: the found path's own message
@@ -63,7 +51,7 @@ TEST(MissDiagnosis, BlurredBoardsSayBlurred) {
 
 TEST(MissDiagnosis, BoardsTooSmallSayTooSmall) {
   // Each at a size its detector cannot read: libapriltag still decodes vstcal's grid at 11 px.
-  for (const auto& [t, square_px] : {std::pair{testing::Charuco7x5(), 11.0}, {KalibrGrid(), 11.0}, {testing::AprilGrid6x4(), 7.0}}) {
+  for (const auto& [t, square_px] : {std::pair{testing::Charuco7x5(), 11.0}, {testing::KalibrAprilGrid6x4(), 11.0}, {testing::AprilGrid6x4(), 7.0}}) {
     const Detection d = DetectTarget(MissView(t, square_px, 0.5, 2).image, t, DetectorOptions{});
     ASSERT_EQ(d.status, DetectionStatus::kNotFound) << DescribeTarget(t) << ": " << d.reason;
     EXPECT_TRUE(Has(d.reason, "look too small: ")) << DescribeTarget(t) << ": " << d.reason;
@@ -80,7 +68,7 @@ TEST(MissDiagnosis, PlainMissesSayNeither) {
   const GrayImage chessboard = MissView(testing::Chessboard9x6(), 40, 0.8, 3).image;  // sharp, but not the board looked for
   const GrayImage grey(640, 480, 128);
   const std::vector<const GrayImage*> images = {&noise, &chessboard, &grey};
-  for (const Target& t : {testing::Chessboard9x6(), testing::Charuco7x5(), KalibrGrid(), testing::AprilGrid6x4()}) {
+  for (const Target& t : {testing::Chessboard9x6(), testing::Charuco7x5(), testing::KalibrAprilGrid6x4(), testing::AprilGrid6x4()}) {
     for (const GrayImage* image : images) {
       const Detection d = DetectTarget(*image, t, DetectorOptions{});
       if (d.status == DetectionStatus::kFound) continue;  // the chessboard itself
