@@ -35,4 +35,29 @@ ChainGeometry ParallelRig(std::vector<Eigen::Vector3d> points_in_world, double f
   return g;
 }
 
+OrderedJson ChainPose(double tx, double ty, double tz) { return {{"rotvec_deg", {0.0, 0.0, 0.0}}, {"t", {tx, ty, tz}}}; }
+OrderedJson ChainNormal(double sigma) { return {{"distribution", "normal"}, {"sigma", sigma}}; }
+
+OrderedJson ParallelRigChain(const OrderedJson& sources, double focal, double depth, const OrderedJson& joint) {
+  const OrderedJson camera = {{"image_size", {1280, 720}},
+                              {"K", {{focal, 0.0, 639.5}, {0.0, focal, 359.5}, {0.0, 0.0, 1.0}}},
+                              {"distortion", {{"model", "none"}}}};
+  OrderedJson c;
+  c["format"] = "vstcal/vst-chain@1";
+  c["length_unit"] = "mm";
+  c["samples"] = 1000;
+  c["seed"] = 5;
+  c["frames"] = {{"tracker_from_world", ChainPose(0, 0, 0)},
+                 {"hmd_from_tracker", ChainPose(0, 0, 0)},
+                 {"camera_from_hmd", {{"left", ChainPose(31.5, 0, 0)}, {"right", ChainPose(-31.5, 0, 0)}}},
+                 {"world_from_object", ChainPose(0, 0, 0)}};
+  c["cameras"] = {{"left", camera}, {"right", camera}};
+  c["display"] = {{"ipd", 63.0}, {"virtual_image_distance", "infinity"}};
+  c["test_points"] = {{{"name", "axis"}, {"world", {0.0, 0.0, depth}}},
+                      {{"name", "aside"}, {"world", {200.0, -100.0, 1200.0}}}};
+  c["sources"] = sources;
+  if (!joint.is_null()) c["joint_covariance"] = joint;
+  return c;
+}
+
 }  // namespace vstcal::testing

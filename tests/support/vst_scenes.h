@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "vstcal/errsim/chain_model.h"
+#include "vstcal/json/json_writer.h"
 
 namespace vstcal::testing {
 
@@ -21,5 +22,15 @@ ChainGeometry ParallelRig(std::vector<Eigen::Vector3d> points_in_world, double f
 // The hmd frame's origin expressed in the world frame of ParallelRig: a point at hmd (x, y, z) is
 // at world (x, y, z − 2000).
 Eigen::Vector3d WorldFromHmdPoint(const Eigen::Vector3d& point_in_hmd);
+
+// A vst-chain@1 document of a parallel orthostereo rig (pinhole 1280×720, fx = fy = `focal`,
+// baseline and ipd 63 mm, a collimated display) with the hmd at the world origin and every frame the
+// identity but the cameras' ±31.5 mm: a test point on the cyclopean axis at `depth` ("axis") and one
+// off it ("aside", (200, −100, 1200)); `sources` its error sources and, when not null, `joint` its
+// joint_covariance. Lengths in mm, 1,000 samples, seed 5.
+OrderedJson ParallelRigChain(const OrderedJson& sources, double focal, double depth, const OrderedJson& joint = nullptr);
+// A pose of the chain's frames: no rotation, translation (tx, ty, tz); a normal distribution of σ.
+OrderedJson ChainPose(double tx, double ty, double tz);
+OrderedJson ChainNormal(double sigma);
 
 }  // namespace vstcal::testing

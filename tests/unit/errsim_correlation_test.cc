@@ -9,6 +9,7 @@
 
 #include <cmath>
 
+#include "support/vst_scenes.h"
 #include "vstcal/core/error.h"
 #include "vstcal/errsim/chain.h"
 #include "vstcal/errsim/sampler.h"
@@ -22,30 +23,10 @@ namespace {
 
 constexpr double kFocal = 700.0, kDepth = 1500.0;
 
-OrderedJson Pose(double tx, double ty, double tz) { return {{"rotvec_deg", {0.0, 0.0, 0.0}}, {"t", {tx, ty, tz}}}; }
-OrderedJson Normal(double sigma) { return {{"distribution", "normal"}, {"sigma", sigma}}; }
+OrderedJson Normal(double sigma) { return testing::ChainNormal(sigma); }
 
 // The hmd at the world origin; a test point on the cyclopean axis at depth kDepth and one off it.
-OrderedJson Chain(const OrderedJson& sources) {
-  const OrderedJson camera = {{"image_size", {1280, 720}},
-                              {"K", {{kFocal, 0.0, 639.5}, {0.0, kFocal, 359.5}, {0.0, 0.0, 1.0}}},
-                              {"distortion", {{"model", "none"}}}};
-  OrderedJson c;
-  c["format"] = "vstcal/vst-chain@1";
-  c["length_unit"] = "mm";
-  c["samples"] = 1000;
-  c["seed"] = 5;
-  c["frames"] = {{"tracker_from_world", Pose(0, 0, 0)},
-                 {"hmd_from_tracker", Pose(0, 0, 0)},
-                 {"camera_from_hmd", {{"left", Pose(31.5, 0, 0)}, {"right", Pose(-31.5, 0, 0)}}},
-                 {"world_from_object", Pose(0, 0, 0)}};
-  c["cameras"] = {{"left", camera}, {"right", camera}};
-  c["display"] = {{"ipd", 63.0}, {"virtual_image_distance", "infinity"}};
-  c["test_points"] = {{{"name", "axis"}, {"world", {0.0, 0.0, kDepth}}},
-                      {{"name", "aside"}, {"world", {200.0, -100.0, 1200.0}}}};
-  c["sources"] = sources;
-  return c;
-}
+OrderedJson Chain(const OrderedJson& sources) { return testing::ParallelRigChain(sources, kFocal, kDepth); }
 
 ChainSpec Spec(const OrderedJson& chain) { return ChainSpecFromJson(JsonDocument::Parse(chain.dump(), "chain.json"), "."); }
 ChainModel Model(const OrderedJson& chain) { return BuildChainModel(Spec(chain)); }

@@ -14,6 +14,7 @@
 
 #include "support/scenes.h"
 #include "support/stereo_rigs.h"
+#include "support/vst_scenes.h"
 #include "vstcal/calib/stereo_solve.h"
 #include "vstcal/core/error.h"
 #include "vstcal/errsim/chain.h"
@@ -30,32 +31,13 @@ namespace {
 const Provenance kJointProvenance{"errsim_joint_test", {}, std::nullopt};
 constexpr double kJointFocal = 700.0, kJointDepth = 1500.0;
 
-OrderedJson JointPose(double tx, double ty, double tz) { return {{"rotvec_deg", {0.0, 0.0, 0.0}}, {"t", {tx, ty, tz}}}; }
-OrderedJson JointNormal(double sigma) { return {{"distribution", "normal"}, {"sigma", sigma}}; }
+OrderedJson JointNormal(double sigma) { return testing::ChainNormal(sigma); }
 OrderedJson CovarianceJson(const ParameterCovariance& c) { return {{"parameters", c.parameters}, {"matrix", MatrixToJson(c.matrix)}}; }
 
 // A parallel orthostereo rig (pinhole, fx = 700, 63 mm), the hmd at the world origin, a point on
 // the cyclopean axis at kJointDepth and one off it; `joint` the chain's joint_covariance.
 OrderedJson ParallelChain(const OrderedJson& joint, const OrderedJson& sources = OrderedJson::object()) {
-  const OrderedJson camera = {{"image_size", {1280, 720}},
-                              {"K", {{kJointFocal, 0.0, 639.5}, {0.0, kJointFocal, 359.5}, {0.0, 0.0, 1.0}}},
-                              {"distortion", {{"model", "none"}}}};
-  OrderedJson c;
-  c["format"] = "vstcal/vst-chain@1";
-  c["length_unit"] = "mm";
-  c["samples"] = 1000;
-  c["seed"] = 5;
-  c["frames"] = {{"tracker_from_world", JointPose(0, 0, 0)},
-                 {"hmd_from_tracker", JointPose(0, 0, 0)},
-                 {"camera_from_hmd", {{"left", JointPose(31.5, 0, 0)}, {"right", JointPose(-31.5, 0, 0)}}},
-                 {"world_from_object", JointPose(0, 0, 0)}};
-  c["cameras"] = {{"left", camera}, {"right", camera}};
-  c["display"] = {{"ipd", 63.0}, {"virtual_image_distance", "infinity"}};
-  c["test_points"] = {{{"name", "axis"}, {"world", {0.0, 0.0, kJointDepth}}},
-                      {{"name", "aside"}, {"world", {200.0, -100.0, 1200.0}}}};
-  c["sources"] = sources;
-  if (!joint.is_null()) c["joint_covariance"] = joint;
-  return c;
+  return testing::ParallelRigChain(sources, kJointFocal, kJointDepth, joint);
 }
 
 ChainModel ModelIn(const OrderedJson& chain, const std::filesystem::path& dir = ".") {
@@ -166,7 +148,7 @@ TEST_F(ErrSimJoint, TheJointDrawReproducesTheSolvedRigsCovariance) {
   OrderedJson chain = ParallelChain("rig");
   chain.erase("cameras");
   chain["frames"]["camera_from_hmd"].erase("right");
-  chain["frames"]["hmd_from_tracker"] = JointPose(0, 0, 600);
+  chain["frames"]["hmd_from_tracker"] = testing::ChainPose(0, 0, 600);
   chain["test_points"] = {{{"name", "a"}, {"world", {0, 0, 0}}}, {{"name", "b"}, {"world", {60, -40, 150}}}};
   chain["rig"] = {{"file", "rig.json"}};
   const ChainModel model = ModelIn(chain, dir_);
