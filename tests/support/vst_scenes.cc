@@ -1,5 +1,9 @@
 #include "support/vst_scenes.h"
 
+#include <gtest/gtest.h>
+
+#include "vstcal/errsim/simulation.h"
+
 namespace vstcal::testing {
 
 namespace {
@@ -58,6 +62,27 @@ OrderedJson ParallelRigChain(const OrderedJson& sources, double focal, double de
   c["sources"] = sources;
   if (!joint.is_null()) c["joint_covariance"] = joint;
   return c;
+}
+
+void ExpectTheSameBitsWhateverThreadsAndShards(const ChainModel& model) {
+  SimulationOptions one;
+  one.samples = one.budget_samples = 3000;
+  one.seed = 3;
+  one.threads = 1;
+  SimulationOptions two = one;
+  two.threads = 2;
+  two.shards = 2;
+  const auto scenarios = MakeScenarios(model, true);
+  const SimulationResult a = RunSimulation(scenarios, one, "d");
+  SimulationResult b = RunSimulation(scenarios, two, "d");
+  two.shard = 1;
+  MergeSimulation(&b, RunSimulation(scenarios, two, "d"));
+  for (size_t s = 0; s < a.summaries.size(); ++s) {
+    for (size_t k = 0; k < a.summaries[s].plan().output_names.size(); ++k) {
+      EXPECT_EQ(a.summaries[s].Statistics(k).rms, b.summaries[s].Statistics(k).rms);
+      EXPECT_EQ(a.summaries[s].Statistics(k).max, b.summaries[s].Statistics(k).max);
+    }
+  }
 }
 
 }  // namespace vstcal::testing

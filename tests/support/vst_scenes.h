@@ -33,4 +33,8 @@ OrderedJson ParallelRigChain(const OrderedJson& sources, double focal, double de
 OrderedJson ChainPose(double tx, double ty, double tz);
 OrderedJson ChainNormal(double sigma);
 
+// Expects a run of `model`'s scenarios (3,000 samples, seed 3) on one thread and on two threads
+// split into two merged shards to give every statistic of every output to the bit.
+void ExpectTheSameBitsWhateverThreadsAndShards(const ChainModel& model);
+
 }  // namespace vstcal::testing

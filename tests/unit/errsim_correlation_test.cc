@@ -122,24 +122,7 @@ TEST(CorrelatedEyes, SharedIsCorrelationOneAndRunsAreReproducible) {
                                                           {"correlation", {{"cx", 0.8}}}}}});
   const ChainModel model = Model(shared);
   EXPECT_EQ(model.couplings.size(), 4u);  // screen shift u, v; fx; cx
-  SimulationOptions one;
-  one.samples = one.budget_samples = 3000;
-  one.seed = 3;
-  one.threads = 1;
-  SimulationOptions two = one;
-  two.threads = 2;
-  two.shards = 2;
-  const auto scenarios = MakeScenarios(model, true);
-  const SimulationResult a = RunSimulation(scenarios, one, "d");
-  SimulationResult b = RunSimulation(scenarios, two, "d");
-  two.shard = 1;
-  MergeSimulation(&b, RunSimulation(scenarios, two, "d"));
-  for (size_t s = 0; s < a.summaries.size(); ++s) {
-    for (size_t k = 0; k < a.summaries[s].plan().output_names.size(); ++k) {
-      EXPECT_EQ(a.summaries[s].Statistics(k).rms, b.summaries[s].Statistics(k).rms);
-      EXPECT_EQ(a.summaries[s].Statistics(k).max, b.summaries[s].Statistics(k).max);
-    }
-  }
+  testing::ExpectTheSameBitsWhateverThreadsAndShards(model);
   // Written and read back: the same chain (same digest), and a fixed point of writing.
   const Provenance provenance{"errsim_correlation_test", {}, std::nullopt};
   const OrderedJson written = ChainSpecToJson(Spec(shared), provenance);

@@ -239,24 +239,7 @@ TEST(JointDraw, RunsKeepTheirBitsAndAWrittenChainReadsBack) {
   cov.matrix = (Eigen::Matrix3d() << 1.0, 0.9, 0.1, 0.9, 1.0, -0.1, 0.1, -0.1, 0.25).finished();
   const OrderedJson chain = ParallelChain(CovarianceJson(cov), {{"tracking", {{"translation", JointNormal(1.0)}}}});
   const ChainModel model = ModelIn(chain);
-  SimulationOptions one;
-  one.samples = one.budget_samples = 3000;
-  one.seed = 3;
-  one.threads = 1;
-  SimulationOptions two = one;
-  two.threads = 2;
-  two.shards = 2;
-  const auto scenarios = MakeScenarios(model, true);
-  const SimulationResult a = RunSimulation(scenarios, one, "d");
-  SimulationResult b = RunSimulation(scenarios, two, "d");
-  two.shard = 1;
-  MergeSimulation(&b, RunSimulation(scenarios, two, "d"));
-  for (size_t s = 0; s < a.summaries.size(); ++s) {
-    for (size_t k = 0; k < a.summaries[s].plan().output_names.size(); ++k) {
-      EXPECT_EQ(a.summaries[s].Statistics(k).rms, b.summaries[s].Statistics(k).rms);
-      EXPECT_EQ(a.summaries[s].Statistics(k).max, b.summaries[s].Statistics(k).max);
-    }
-  }
+  testing::ExpectTheSameBitsWhateverThreadsAndShards(model);
   const ChainSpec spec = ChainSpecFromJson(JsonDocument::Parse(chain.dump(), "chain.json"), ".");
   const OrderedJson written = ChainSpecToJson(spec, kJointProvenance);
   EXPECT_EQ(ChainDigest(ModelIn(written)), ChainDigest(model));
