@@ -259,6 +259,77 @@ TEST_F(CliCalibTsai, SinglePlaneEstimatesThePrincipalPointUnderAPrior) {
                         kTool, kBadInput, "--principal-point-sigma: ", {"applies to --free-principal-point prior only"}));
 }
 
+// --prior: the user's own prior on the principal point replaces the one-plane rule. The file
+// records it as the priors and the one-plane decision, the posterior σ is at most the prior's, and
+// the estimate lies within 5σ of the truth. On a volume, a prior on k3 narrows k3's σ to at most
+// the prior's.
+TEST_F(CliCalibTsai, PriorsGivenOnTheCommandLineAreThePosteriorsPriors) {
+  Synth("in/plane.json", PlaneArgs());
+  const Json camera = Calibrate("in/plane.json", {"--prior", "cx=319.5,10", "--prior", "cy=239.5,10"});
+  const Json& refinement = camera.at("refinement");
+  ASSERT_EQ(refinement.at("priors").size(), 2u);
+  EXPECT_EQ(refinement.at("priors")[1].at("parameter"), "cy");
+  EXPECT_EQ(refinement.at("priors")[1].at("sigma"), 10.0);
+  EXPECT_NE(refinement.at("priors")[0].at("because").get<std::string>().find("the user's prior (--prior)"), std::string::npos);
+  const Json& one_plane = refinement.at("one_plane");
+  EXPECT_EQ(one_plane.at("mode"), "prior");
+  EXPECT_EQ(one_plane.at("prior_sigma_px"), 10.0);
+  const auto cx = CovarianceIndex(camera, "cx");
+  ASSERT_TRUE(cx.has_value());
+  const double sigma = std::sqrt(camera.at("covariance").at("matrix")[*cx][*cx].get<double>());
+  EXPECT_GT(sigma, 0);
+  EXPECT_LE(sigma, 10.0);
+  EXPECT_TRUE(WithinSigmas(camera, ReadJson("in/plane.truth.json"), {"fx", "fy", "cx", "cy", "k1", "k2"}, 5));
+  EXPECT_NE(last_.err.find("cx = 319.5 +- 10, cy = 239.5 +- 10"), std::string::npos) << last_.err;
+
+  Synth("in/volume.json", DistortedVolumeArgs());
+  const Json volume = Calibrate("in/volume.json", {"--distortion", "k1,k2,p1,p2,k3", "--prior", "k3=0,0.001"});
+  const auto k3 = CovarianceIndex(volume, "k3");
+  ASSERT_TRUE(k3.has_value());
+  EXPECT_LE(std::sqrt(volume.at("covariance").at("matrix")[*k3][*k3].get<double>()), 0.001);
+  EXPECT_EQ(volume.at("refinement").at("priors")[0].at("parameter"), "k3");
+}
+
+// --hold: held at the closed-form start, listed as held with the reason, and the σ's conditional
+// on them (the principal point has no row in the covariance).
+TEST_F(CliCalibTsai, HoldKeepsParametersAndSaysTheSigmasAreConditional) {
+  Synth("in/volume.json", DistortedVolumeArgs());
+  const Json camera = Calibrate("in/volume.json", {"--hold", "cx,cy"});
+  const Json& refinement = camera.at("refinement");
+  std::map<std::string, Json> held;
+  for (const Json& h : refinement.at("held")) held[h.at("parameter")] = h;
+  ASSERT_TRUE(held.count("cx") && held.count("cy")) << refinement.at("held").dump();
+  EXPECT_NE(held["cx"].at("because").get<std::string>().find("--hold"), std::string::npos);
+  EXPECT_EQ(held["cx"].at("value"), camera.at("tsai").at("principal_point")[0]);
+  const Json& conditional = refinement.at("covariance_conditional_on");
+  EXPECT_NE(std::find(conditional.begin(), conditional.end(), "cx"), conditional.end()) << conditional.dump();
+  EXPECT_FALSE(CovarianceIndex(camera, "cx").has_value());
+  EXPECT_TRUE(CovarianceIndex(camera, "fx").has_value());
+}
+
+TEST_F(CliCalibTsai, BadPriorsAndHoldsAreRefusedBeforeAnythingIsWritten) {
+  Synth("in/plane.json", PlaneArgs());
+  const auto fails = [&](std::vector<std::string> extra, const std::string& start, std::vector<std::string> parts) {
+    std::vector<std::string> args = {"in/plane.json", "-o", "out/camera.json"};
+    args.insert(args.end(), extra.begin(), extra.end());
+    return FailsWith(Run(kTool, args), kTool, kBadInput, start, parts);
+  };
+  EXPECT_TRUE(fails({"--prior", "cx=319.5,0"}, "--prior cx: ", {"the sigma must be > 0", "--hold cx"}));
+  EXPECT_TRUE(fails({"--prior", "cx=319.5,-2"}, "--prior cx: ", {"the sigma must be > 0"}));
+  EXPECT_TRUE(fails({"--prior", "cx=319.5"}, "--prior: ", {"is not NAME=VALUE,SIGMA", "e.g. cx=639.5,32"}));
+  EXPECT_TRUE(fails({"--prior", "cx=abc,2"}, "--prior cx: ", {"the value \"abc\" is not a finite number"}));
+  EXPECT_TRUE(fails({"--prior", "kx=0,1"}, "refinement prior on \"kx\": ", {"has no such parameter"}));
+  EXPECT_TRUE(fails({"--prior", "k3=0,1"}, "refinement prior on \"k3\": ", {"does not estimate k3"}));
+  EXPECT_TRUE(fails({"--prior", "k1=0,1", "--prior", "k1=0,2"}, "refinement prior on \"k1\": ", {"given twice"}));
+  EXPECT_TRUE(fails({"--hold", "cx"}, "--hold: ", {"cx is held only with cy", "--hold cx,cy"}));
+  EXPECT_TRUE(fails({"--hold", "zz"}, "--hold: ", {"\"zz\" is not an estimated lens parameter"}));
+  EXPECT_TRUE(fails({"--hold", "s", "--skew"}, "--hold: ", {"--skew frees it"}));
+  EXPECT_TRUE(fails({"--hold", "k1", "--prior", "k1=0,1"}, "--hold: ", {"also has a --prior"}));
+  EXPECT_TRUE(fails({"--prior", "cx=319.5,5", "--free-principal-point", "no"}, "--free-principal-point: ",
+                    {"already has a --prior or --hold"}));
+  EXPECT_TRUE(OutDirEmpty());
+}
+
 TEST_F(CliCalibTsai, FreePrincipalPointAppliesToOnePlaneOnly) {
   Synth("in/volume.json", DistortedVolumeArgs());
   EXPECT_TRUE(FailsWith(Run(kTool, {"in/volume.json", "-o", "out/camera.json", "--free-principal-point", "yes"}), kTool,

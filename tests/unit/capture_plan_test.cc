@@ -5,10 +5,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include <Eigen/Eigenvalues>
 
 #include "support/sanitizers.h"
+#include "vstcal/calib/pipeline.h"
 #include "vstcal/calib/refine.h"
 #include "vstcal/capture/plan.h"
 #include "vstcal/core/error.h"
@@ -214,16 +216,70 @@ TEST(CapturePlan, PlanarViewsPredictionMatchesTheMonteCarloSpreadOfRefinements) 
   EXPECT_EQ(ExpectLensSigmasMatch(plan, mc), 6u);  // fx fy cx cy k1 k2
 }
 
-TEST(CapturePlan, TsaiOnOnePlaneHoldsWhatOnePlaneCannotDetermine) {
+// One plane under calib-tsai (docs/math/uncertainty.md#one-plane): the plan predicts the solve
+// calib-tsai runs by default, the principal point under its prior. That posterior σ is the spread
+// of the error when the true principal point is itself drawn from the prior, so each trial draws
+// one, renders the plane through it with fresh noise and runs calib-tsai's whole pipeline.
+TEST(CapturePlan, TsaiOnOnePlanePredictsTheSpreadUnderItsPrior) {
+  VSTCAL_STATISTICAL_TEST_RELEASE_ONLY();
   PlanRequest r = VolumeRequest();
   r.volume.far = 0;
   r.volume.tilt_deg = 30;  // a fronto-parallel plane cannot tell f from the distance
   r.method = "tsai";
+  r.pixel_sigma = 0.3;
+  const CapturePlan plan = PlanCapture(r);
+  ASSERT_TRUE(plan.prediction.observable) << plan.prediction.message;
+  ASSERT_EQ(plan.corners.views.size(), 1u);
+  const double prior_sigma = 0.05 * std::hypot(1280.0, 1024.0);
+  std::optional<double> predicted[2];
+  for (const ParameterSigma& s : plan.sigmas) {
+    if (s.name == "cx") predicted[0] = s.sigma;
+    if (s.name == "cy") predicted[1] = s.sigma;
+  }
+  ASSERT_TRUE(predicted[0] && predicted[1]) << "the prior's principal point is estimated, so it has a sigma";
+  // A plane tilted about one axis tells the principal point's other coordinate (here cy, to a few
+  // px) and leaves the first to the prior: a posterior σ never exceeds the prior's.
+  for (const std::optional<double>& p : predicted) EXPECT_LE(*p, prior_sigma * (1 + 1e-9));
+  EXPECT_NEAR(*predicted[0], prior_sigma, 0.01 * prior_sigma);
+  EXPECT_LT(*predicted[1], 0.2 * prior_sigma);
+  std::vector<Eigen::Vector2d> errors;
+  for (int trial = 0; trial < kTrials; ++trial) {
+    const CounterRng rng(5000 + trial, 0);
+    uint64_t index = 0;
+    const auto shift = rng.Normal2(index++, 0);
+    Camera truth = r.camera;
+    truth.params[intrinsic::kCx] += prior_sigma * shift[0];
+    truth.params[intrinsic::kCy] += prior_sigma * shift[1];
+    Correspondences c = plan.corners;
+    for (Observation& o : c.views.front().observations) {
+      const auto z = rng.Normal2(index++, 0);
+      o.pixel = *truth.Project(plan.camera_from_world * o.point) + r.pixel_sigma * Eigen::Vector2d(z[0], z[1]);
+    }
+    const CalibrationResult fit = Calibrate(c, CalibrationOptions{});
+    ASSERT_EQ(fit.exit_code, ExitCode::kOk) << fit.message;
+    errors.emplace_back(fit.camera.camera.params[intrinsic::kCx] - truth.params[intrinsic::kCx],
+                        fit.camera.camera.params[intrinsic::kCy] - truth.params[intrinsic::kCy]);
+  }
+  for (int k = 0; k < 2; ++k) {
+    double sq = 0;
+    for (const Eigen::Vector2d& e : errors) sq += e[k] * e[k];
+    const double rms = std::sqrt(sq / kTrials);
+    EXPECT_NEAR(rms / *predicted[k], 1, kTolerance) << (k ? "cy" : "cx") << ": predicted " << *predicted[k] << ", spread " << rms;
+  }
+}
+
+TEST(CapturePlan, TsaiOnOnePlaneHoldsThePrincipalPointWhereTheOptionsHoldIt) {
+  PlanRequest r = VolumeRequest();
+  r.volume.far = 0;
+  r.volume.tilt_deg = 30;
+  r.method = "tsai";
+  r.options.free_principal_point = false;
   const CapturePlan plan = PlanCapture(r);
   ASSERT_TRUE(plan.prediction.observable) << plan.prediction.message;
   std::vector<std::string> names;
   for (const ParameterSigma& s : plan.sigmas) names.push_back(s.name);
   EXPECT_EQ(std::count(names.begin(), names.end(), "cx"), 0);
+  r.options.free_principal_point = true;
   r.method = "dlt";  // one plane with everything free: the principal point is not determined
   EXPECT_FALSE(PlanCapture(r).prediction.observable);
 }

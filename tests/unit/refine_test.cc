@@ -286,7 +286,9 @@ TEST(Refine, MoreParametersThanResidualsIsRefusedBeforeSolving) {
   auto scene = testing::RandomVolumeScene(7, 0.1, 1);  // 14 residuals < 8 intrinsics + 6 pose + …
   Correspondences c;
   c.image_size = scene.camera.image_size;
-  c.views.push_back(View{"v", "", std::nullopt, scene.observations});
+  View& view = c.views.emplace_back();
+  view.name = "v";
+  view.observations = scene.observations;
   RefineOptions options;
   options.free_distortion = {"k1", "k2", "p1", "p2", "k3"};
   options.free_skew = true;

@@ -115,8 +115,9 @@ TEST(ViewPairing, DerivedFromNamesThatDifferByALeftRightToken) {
         << d.pairing->rule;
     EXPECT_EQ(d.paired, c.paired) << c.left[0];
     Correspondences l, r;
-    for (const std::string& n : c.left) l.views.push_back(View{.name = n});
-    for (const std::string& n : c.right) r.views.push_back(View{.name = n});
+    for (const auto& [names, views] : {std::pair{&c.left, &l.views}, std::pair{&c.right, &r.views}}) {
+      for (const std::string& n : *names) views->emplace_back().name = n;
+    }
     KeyViews(d.pairing->match_views, "l", &l);
     KeyViews(d.pairing->match_views, "r", &r);
     EXPECT_EQ(l.views[0].name, r.views[0].name) << c.left[0];

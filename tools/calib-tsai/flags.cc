@@ -54,6 +54,14 @@ CalibrationOptions TsaiFlags::Options(const CLI::App& app) {
   if (app.count("--principal-point-sigma") > 0 && options.plane_principal_point != CalibrationOptions::PlanePrincipalPoint::kPrior) {
     throw InputError("--principal-point-sigma: applies to --free-principal-point prior only; drop it or choose prior");
   }
+  if (PlacesPrincipalPoint(options.refinement)) {  // the user's own prior or hold replaces the one-plane rule
+    for (const char* flag : {"--free-principal-point", "--principal-point-sigma"}) {
+      if (app.count(flag) > 0) {
+        throw InputError(std::string(flag) + ": the principal point already has a --prior or --hold of its own, which "
+                         "replaces the one-plane rule; give one of the two");
+      }
+    }
+  }
   return options;
 }
 

@@ -36,7 +36,7 @@ int main(int argc, char** argv) {
     f.CheckUsed(app, result);
     app::Outcome halves;
     if (f.split_halves && result.exit_code == ExitCode::kOk) {
-      halves = app::CalibrateHalves(read.corners, options, {name, f.input.Name(), f.output, "", request}, MakeProvenance(name, argc, argv));
+      halves = app::CalibrateHalves(read.corners, options, {name, f.input.Name(), f.output, "", request, ""}, MakeProvenance(name, argc, argv));
     }
     return tools::FinishCalibration(name, f.input, read, f.output, result, options, f.calibration, request, argc, argv, std::move(halves));
   });

@@ -1,7 +1,9 @@
 #include "common/calibration_flags.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <iostream>
 
 #include "common/validators.h"
@@ -23,6 +25,35 @@ void ExpectThree(const std::vector<double>& numbers, const std::string& flag, co
                    "); give each point as its own " + flag);
 }
 
+// "NAME=VALUE,SIGMA" (--prior) as a prior; throws InputError naming the flag and the form.
+IntrinsicPrior ParsePrior(const std::string& text) {
+  const std::string form = "give NAME=VALUE,SIGMA in the parameter's unit (px for fx, fy, cx, cy, s), e.g. cx=639.5,32";
+  const size_t eq = text.find('='), comma = text.find(',');
+  if (eq == std::string::npos || eq == 0 || comma == std::string::npos || comma < eq) {
+    throw InputError("--prior: \"" + text + "\" is not NAME=VALUE,SIGMA; " + form);
+  }
+  IntrinsicPrior prior;
+  prior.parameter = text.substr(0, eq);
+  const auto number = [&](const std::string& part, const char* what) {
+    char* end = nullptr;
+    const double v = std::strtod(part.c_str(), &end);
+    if (part.empty() || end != part.c_str() + part.size() || !std::isfinite(v)) {
+      throw InputError("--prior " + prior.parameter + ": the " + what + " \"" + part + "\" is not a finite number; " + form);
+    }
+    return v;
+  };
+  prior.value = number(text.substr(eq + 1, comma - eq - 1), "value");
+  prior.sigma = number(text.substr(comma + 1), "sigma");
+  if (!(prior.sigma > 0)) {
+    throw InputError("--prior " + prior.parameter + ": the sigma must be > 0, got " + text.substr(comma + 1) +
+                     "; give a positive sigma, or hold the parameter with --hold " + prior.parameter);
+  }
+  char because[160];
+  std::snprintf(because, sizeof because, "the user's prior (--prior): %.10g, sigma %.10g", prior.value, prior.sigma);
+  prior.because = because;
+  return prior;
+}
+
 }  // namespace
 
 std::vector<CLI::Option*> CalibrationFlags::AddRefinement(CLI::App& app) {
@@ -42,6 +73,15 @@ std::vector<CLI::Option*> CalibrationFlags::AddRefinement(CLI::App& app) {
   options.push_back(app.add_option("--max-iterations", max_iterations, "refinement iteration limit")
                         ->check(CLI::Range(1, 100000))
                         ->capture_default_str());
+  options.push_back(app.add_option("--prior", priors,
+                                   "a Gaussian prior on a lens parameter, NAME=VALUE,SIGMA in its unit (repeatable): the "
+                                   "parameter stays estimated and its uncertainty reaches every sigma")
+                        ->type_name("NAME=VALUE,SIGMA"));
+  options.push_back(app.add_option("--hold", holds,
+                                   "hold lens parameters at the closed-form start's values (fx,fy together; cx,cy "
+                                   "together; s; distortion terms): the sigmas are then conditional on them")
+                        ->delimiter(',')
+                        ->type_name("NAMES"));
   return options;
 }
 
@@ -115,7 +155,41 @@ RefineOptions CalibrationFlags::Refinement() const {
   }
   o.loss_scale_px = loss_scale_px;
   o.max_iterations = max_iterations;
+  for (const std::string& text : priors) o.priors.push_back(ParsePrior(text));
+  ApplyHolds(&o);
   return o;
+}
+
+void CalibrationFlags::ApplyHolds(RefineOptions* o) const {
+  const auto held = [&](const char* name) { return std::find(holds.begin(), holds.end(), name) != holds.end(); };
+  const std::string because = "held at the closed-form start's value (--hold): the sigmas are conditional on it";
+  for (const auto& [a, b] : {std::pair{"fx", "fy"}, std::pair{"cx", "cy"}}) {
+    if (held(a) != held(b)) {
+      throw InputError(std::string("--hold: ") + (held(a) ? a : b) + " is held only with " + (held(a) ? b : a) +
+                       " (the refinement moves them as a pair); give --hold " + a + "," + b);
+    }
+  }
+  for (const std::string& name : holds) {
+    if (name == "fx" || name == "fy") {
+      o->free_focal = false;
+      o->focal_held_because = because;
+    } else if (name == "cx" || name == "cy") {
+      o->free_principal_point = false;
+      o->principal_point_held_because = because;
+    } else if (name == "s") {
+      if (o->free_skew) throw InputError("--hold: s is held and --skew frees it; give one of the two");
+    } else {
+      const auto named = std::find(o->free_distortion.begin(), o->free_distortion.end(), name);
+      if (named == o->free_distortion.end()) {
+        throw InputError("--hold: \"" + name + "\" is not an estimated lens parameter (fx fy cx cy s, or a term --distortion \"" +
+                         distortion + "\" names); name one of those");
+      }
+      o->free_distortion.erase(named);
+    }
+    for (const IntrinsicPrior& p : o->priors) {
+      if (p.parameter == name) throw InputError("--hold: " + name + " is held and also has a --prior; give one of the two");
+    }
+  }
 }
 
 UncertaintyRequest CalibrationFlags::Uncertainty(const Correspondences& corners) const {

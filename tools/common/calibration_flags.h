@@ -21,6 +21,8 @@ struct CalibrationFlags {
   std::string loss = "none";
   double loss_scale_px = 1.0;
   int max_iterations = 100;
+  std::vector<std::string> priors;  // NAME=VALUE,SIGMA per --prior
+  std::vector<std::string> holds;   // lens parameter names, --hold (comma-separated, repeatable)
 
   std::optional<double> grid_depth;
   std::string grid_size = "16x9";
@@ -48,8 +50,11 @@ struct CalibrationFlags {
   void AddRejection(CLI::App& app);
   ViewRejectionOptions Rejection() const;
 
-  // Throws InputError for a flag that would do nothing (--loss-scale with --loss none).
+  // Throws InputError for a flag that would do nothing (--loss-scale with --loss none), a malformed
+  // --prior, or a --hold that contradicts another flag. The priors' parameters are checked against
+  // the model by the refinement (ResolvePriors), before anything is written.
   RefineOptions Refinement() const;
+  void ApplyHolds(RefineOptions* options) const;  // --hold, into the refinement's options
   // The uncertainty flags checked against the data before any solve: throws InputError naming the
   // flag for malformed values, pixels outside the image, and world points for planar views.
   UncertaintyRequest Uncertainty(const Correspondences& corners) const;

@@ -8,6 +8,7 @@
 #include <Eigen/Geometry>
 
 #include "vstcal/estimators/information.h"
+#include "vstcal/estimators/principal_point_prior.h"
 
 namespace vstcal {
 namespace {
@@ -150,12 +151,30 @@ void StartPlanar(CalibrationResult* r) {
 // it there, or frees it): docs/math/uncertainty.md#one-plane. Returns the decision to record.
 PlanePrincipalPointDecision OnePlaneRefinement(const TsaiResult& tsai, const ImageSize& size,
                                                const CalibrationOptions& options, RefineOptions* refinement) {
-  refinement->focal_aspect = tsai.sx;
-  refinement->focal_aspect_held_because =
-      "one plane: Tsai's coplanar sx (--sx), as one plane cannot tell the aspect from f and the principal point";
+  if (refinement->free_focal) {  // a caller's hold of fx and fy holds the aspect already
+    refinement->focal_aspect = tsai.sx;
+    refinement->focal_aspect_held_because =
+        "one plane: Tsai's coplanar sx (--sx), as one plane cannot tell the aspect from f and the principal point";
+  }
   PlanePrincipalPointDecision d;
   d.mode = options.plane_principal_point;
   d.prior_px = tsai.principal_point;
+  // The caller's own prior or hold on the principal point (calib-tsai --prior, --hold) replaces the rule.
+  if (PlacesPrincipalPoint(*refinement)) {
+    if (!refinement->free_principal_point) {
+      d.mode = CalibrationOptions::PlanePrincipalPoint::kHold;
+      d.because = "held by the caller: the sigmas are conditional on it";
+      return d;
+    }
+    d.mode = CalibrationOptions::PlanePrincipalPoint::kPrior;
+    for (const IntrinsicPrior& p : refinement->priors) {
+      if (p.parameter != "cx" && p.parameter != "cy") continue;
+      (p.parameter == "cx" ? d.prior_px.x() : d.prior_px.y()) = p.value;
+      d.prior_sigma_px = std::max(d.prior_sigma_px, p.sigma);
+    }
+    d.because = "estimated under the caller's prior";
+    return d;
+  }
   switch (d.mode) {
     case CalibrationOptions::PlanePrincipalPoint::kHold:
       refinement->free_principal_point = false;
@@ -168,13 +187,12 @@ PlanePrincipalPointDecision OnePlaneRefinement(const TsaiResult& tsai, const Ima
       d.because = "estimated without a prior (--free-principal-point yes)";
       break;
     case CalibrationOptions::PlanePrincipalPoint::kPrior: {
-      d.prior_sigma_px = options.plane_principal_point_prior_sigma * std::hypot(size.width, size.height);
+      d.prior_sigma_px = PrincipalPointPriorSigmaPx(size, options.plane_principal_point_prior_sigma);
       char because[200];
       std::snprintf(because, sizeof because,
                     "one plane: a prior at Tsai's principal point, sigma %.4g of the image diagonal (%.4g px)",
                     options.plane_principal_point_prior_sigma, d.prior_sigma_px);
-      refinement->priors.push_back({"cx", d.prior_px.x(), d.prior_sigma_px, because});
-      refinement->priors.push_back({"cy", d.prior_px.y(), d.prior_sigma_px, because});
+      AddPrincipalPointPrior(d.prior_px, d.prior_sigma_px, because, refinement);
       d.because = "estimated under the prior (--free-principal-point prior)";
       break;
     }

@@ -13,6 +13,7 @@
 #include "vstcal/calib/dlt.h"
 #include "vstcal/calib/refine.h"
 #include "vstcal/calib/tsai.h"
+#include "vstcal/estimators/principal_point_prior.h"
 #include "vstcal/estimators/view_rejection.h"
 #include "vstcal/calib/zhang.h"
 #include "vstcal/core/error.h"
@@ -37,7 +38,7 @@ struct CalibrationOptions {
   enum class PlanePrincipalPoint { kHold, kFree, kPrior };
   static constexpr EnumNames<PlanePrincipalPoint, 3> kPlanePrincipalPointNames = {{{PlanePrincipalPoint::kHold, "no"}, {PlanePrincipalPoint::kFree, "yes"}, {PlanePrincipalPoint::kPrior, "prior"}}};
   PlanePrincipalPoint plane_principal_point = PlanePrincipalPoint::kPrior;
-  double plane_principal_point_prior_sigma = 0.05;
+  double plane_principal_point_prior_sigma = kPlanePrincipalPointPriorSigma;
 
   // Reject views (then corners) inconsistent with the others and re-solve, until none is
   // (docs/math/uncertainty.md#view-rejection). Off by default for every rig.

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "vstcal/estimators/principal_point_prior.h"
 #include "vstcal/estimators/uncertainty.h"
 #include "vstcal/core/error.h"
 #include "vstcal/core/limits.h"
@@ -177,13 +178,19 @@ void Require(bool ok, const std::string& message) {
 }
 
 // What the solve the user will run estimates: RefineOptions as given; Tsai on one plane holds the
-// aspect and the principal point as calib-tsai does (calib/pipeline.cc, docs/math/uncertainty.md#one-plane).
+// aspect as calib-tsai does and, unless the options place the principal point themselves, puts it
+// under calib-tsai's default prior at the nominal camera's principal point
+// (calib/pipeline.cc, docs/math/uncertainty.md#one-plane).
 RefineOptions SolveOptions(const PlanRequest& request, bool one_plane) {
   RefineOptions o = request.options;
   if (request.method == "tsai" && one_plane) {
     const Eigen::Matrix3d K = request.camera.K();
     o.focal_aspect = K(0, 0) / K(1, 1);
-    o.free_principal_point = false;
+    if (!PlacesPrincipalPoint(o)) {
+      AddPrincipalPointPrior(Eigen::Vector2d(K(0, 2), K(1, 2)),
+                             PrincipalPointPriorSigmaPx(request.camera.image_size, kPlanePrincipalPointPriorSigma),
+                             "one plane: calib-tsai's default prior", &o);
+    }
   }
   return o;
 }

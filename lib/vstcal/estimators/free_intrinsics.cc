@@ -139,8 +139,8 @@ std::vector<HeldIntrinsic> HeldIntrinsics(const AnyLensModel& model, const std::
   const auto all = LensModelParamNames(model);
   std::vector<HeldIntrinsic> held;
   if (!options.free_focal) {
-    held.push_back({"fx", params[intrinsic::kFx], "held by the caller (RefineOptions::free_focal)"});
-    held.push_back({"fy", params[intrinsic::kFy], "held by the caller (RefineOptions::free_focal)"});
+    held.push_back({"fx", params[intrinsic::kFx], options.focal_held_because});
+    held.push_back({"fy", params[intrinsic::kFy], options.focal_held_because});
   } else if (options.focal_aspect) {
     held.push_back({"fx/fy", *options.focal_aspect, options.focal_aspect_held_because});
   }

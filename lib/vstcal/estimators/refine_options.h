@@ -56,6 +56,9 @@ struct RefineOptions {
   // Priors on free lens parameters (IntrinsicPrior). Each must name a parameter the refinement
   // estimates, once, with a finite value and sigma > 0 (ResolvePriors, free_intrinsics.h).
   std::vector<IntrinsicPrior> priors;
+
+  // Why fx and fy are held when free_focal is false (refinement.held in the camera file).
+  std::string focal_held_because = "held by the caller (RefineOptions::free_focal)";
 };
 
 }  // namespace vstcal
