@@ -106,6 +106,36 @@ foreach(file IN LISTS files)
   endforeach()
 endforeach()
 
+# Library messages name a request's options (core/option_name.h: VSTCAL_OPT("tilt_deg")), never one
+# front end's spelling of them: a string literal in lib/ that spells a flag ("--tilt-deg") breaks
+# the plan. A line that must (a file's header naming the command that wrote it) says
+# "house-plan: names a command" in its comment.
+set(flag_spelling_todo
+    camera/ formats/camera/ formats/errsim/ errsim/ handeye/ capture/detect_run.cc capture/synthetic_camera.cc
+    app/calib_handeye.cc)
+foreach(f IN LISTS lib_files)
+  if(NOT f MATCHES "\\.cc$")
+    continue()
+  endif()
+  set(todo FALSE)
+  foreach(prefix IN LISTS flag_spelling_todo)
+    string(FIND "${f}" "${prefix}" at)
+    if(at EQUAL 0)
+      set(todo TRUE)
+    endif()
+  endforeach()
+  if(todo)
+    continue()
+  endif()
+  file(STRINGS "${ROOT}/lib/vstcal/${f}" spelled REGEX "\"[^\"]*--[a-z]")
+  foreach(line IN LISTS spelled)
+    if(NOT line MATCHES "house-plan: names a command")
+      string(STRIP "${line}" line)
+      string(APPEND broken "\n  lib/vstcal/${f}: a flag spelled in a library message (name the option with VSTCAL_OPT): ${line}")
+    endif()
+  endforeach()
+endforeach()
+
 if(broken)
   message(FATAL_ERROR "The house plan (docs/architecture.md) is broken:${broken}")
 endif()

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <Eigen/Core>
@@ -64,6 +65,10 @@ JsonDocument DocumentOf(const py::handle& source, const char* name);
 std::string PathOf(const py::handle& source, const char* name);
 // Provenance of a file a binding writes: the function called from Python.
 Provenance PythonProvenance(const std::string& function);
+
+// A library message as a Python caller reads it: the options it names (core/option_name.h) as the
+// keyword arguments, "tilt_deg". Errors and warnings go through it.
+std::string ForPython(std::string_view message);
 
 void RegisterErrors(py::module_& m);
 void RegisterCamera(py::module_& m);    // camera.cc: the lens models, project, unproject, Jacobians

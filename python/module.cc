@@ -4,12 +4,15 @@
 
 #include "bindings.h"
 #include "vstcal/core/error.h"
+#include "vstcal/core/option_name.h"
 #include "vstcal/core/version.h"
 
 namespace vstcal::python {
 
 // vstcal.Error (exit_code 1, 2 or 3 as the tools exit), and one subclass per vstcal error type:
 // InputError is also a ValueError, so code that catches ValueError for bad arguments keeps working.
+std::string ForPython(std::string_view message) { return RenderOptionNames(message, OptionAsKeyword); }
+
 void RegisterErrors(py::module_& m) {
   auto make = [&](const char* name, const py::object& bases, int exit_code, const char* doc) {
     PyObject* type = PyErr_NewExceptionWithDoc((std::string("vstcal.") + name).c_str(), doc, bases.ptr(), nullptr);
@@ -36,13 +39,14 @@ void RegisterErrors(py::module_& m) {
     try {
       if (p) std::rethrow_exception(p);
     } catch (const InputError& e) {
-      PyErr_SetString(input, e.what());
+      PyErr_SetString(input, ForPython(e.what()).c_str());
     } catch (const DegenerateError& e) {
-      PyErr_SetString(degenerate, e.what());
+      PyErr_SetString(degenerate, ForPython(e.what()).c_str());
     } catch (const InternalError& e) {
-      PyErr_SetString(internal, e.what());
+      PyErr_SetString(internal, ForPython(e.what()).c_str());
     } catch (const Error& e) {  // an Error built from a status's exit code
-      PyErr_SetString(e.code() == ExitCode::kBadInput ? input : e.code() == ExitCode::kDegenerate ? degenerate : error, e.what());
+      PyErr_SetString(e.code() == ExitCode::kBadInput ? input : e.code() == ExitCode::kDegenerate ? degenerate : error,
+                      ForPython(e.what()).c_str());
     }
   });
 }

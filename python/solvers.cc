@@ -146,7 +146,7 @@ py::object Calibrate(const py::object& source, const std::string& method, std::o
   }
   // The tool prints these on stderr; Python's way is a warning each.
   for (const std::string& w : warnings) {
-    if (PyErr_WarnEx(PyExc_UserWarning, (input + ": " + w).c_str(), 1) < 0) throw py::error_already_set();
+    if (PyErr_WarnEx(PyExc_UserWarning, ForPython(input + ": " + w).c_str(), 1) < 0) throw py::error_already_set();
   }
   return ToPython(camera);
 }

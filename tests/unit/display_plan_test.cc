@@ -10,6 +10,7 @@
 #include "vstcal/errsim/chain.h"
 #include "vstcal/geometry/rotation.h"
 #include "vstcal/stereo/display_plan.h"
+#include "vstcal/core/option_name.h"
 
 namespace vstcal {
 namespace {
@@ -57,7 +58,7 @@ TEST(DisplayPlan, CaptureWidthFromTheFieldOfViewIsEq6) {
   EXPECT_EQ(*plan.capture_margin_px, 1280 - static_cast<int>(std::ceil(expected)));
   // z0 nearer than b/(2 tan(θ/2)) = 31.5: no width holds the translation.
   in.z0 = 30;
-  EXPECT_NE(ErrorOf([&] { PlanDisplay(in); }).find("--z0: 30 is not beyond 31.5"), std::string::npos);
+  EXPECT_NE(ErrorOf([&] { PlanDisplay(in); }).find(VSTCAL_OPT("z0") ": 30 is not beyond 31.5"), std::string::npos);
 }
 
 // Seed 001 §4.6 on an HMD that shows each camera's image to its eye at the camera's field of view:
@@ -140,10 +141,10 @@ TEST(DisplayPlan, AgreesWithErrSimsDisplayModel) {
 TEST(DisplayPlan, RefusesInputsOutsideTheirDomain) {
   DisplayPlanInput in = Zed();
   in.hfov_rad = 1.0;
-  EXPECT_NE(ErrorOf([&] { PlanDisplay(in); }).find("--focal-px, --hfov-deg: give exactly one"), std::string::npos);
+  EXPECT_NE(ErrorOf([&] { PlanDisplay(in); }).find(VSTCAL_OPT("focal_px") ", " VSTCAL_OPT("hfov_deg") ": give exactly one"), std::string::npos);
   in = Zed();
   in.baseline = 0;
-  EXPECT_NE(ErrorOf([&] { PlanDisplay(in); }).find("--baseline: must be a positive finite number"), std::string::npos);
+  EXPECT_NE(ErrorOf([&] { PlanDisplay(in); }).find(VSTCAL_OPT("baseline") ": must be a positive finite number"), std::string::npos);
 }
 
 }  // namespace

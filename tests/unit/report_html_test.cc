@@ -102,7 +102,7 @@ TEST(ErrSimReportHtml, UndefinedStatisticsAndNoBudgetAreDashesNotNumbers) {
                   {"wrong_occlusion_rate", nullptr}, {"systematic_misperception_rms", 3.0}}},
       {"budget", nullptr}};
   const std::string page = ErrSimHtml(report);
-  EXPECT_NE(page.find("Not computed (--no-budget)"), std::string::npos);
+  EXPECT_NE(page.find("Not computed: the run was asked for no budget"), std::string::npos);
   // Two charts drawn; the misperception, of no defined value, said so instead.
   EXPECT_NE(page.find("misperception per test point: no defined value to draw."), std::string::npos);
   size_t charts = 0;

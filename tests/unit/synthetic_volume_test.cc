@@ -5,6 +5,7 @@
 #include "vstcal/capture/synthetic_volume.h"
 #include "vstcal/core/error.h"
 #include "vstcal/random/philox.h"
+#include "vstcal/core/option_name.h"
 
 namespace vstcal {
 namespace {
@@ -126,27 +127,27 @@ TEST(SyntheticVolume, RejectsImpossibleSpecs) {
   };
   VolumeSpec s;
   s.spacing = 0;
-  expect_error(s, "--spacing");
+  expect_error(s, VSTCAL_OPT("spacing"));
   s = {};
   s.interval = -1;
-  expect_error(s, "--interval");
+  expect_error(s, VSTCAL_OPT("interval"));
   s = {};
   s.far = -5;
-  expect_error(s, "--far");
+  expect_error(s, VSTCAL_OPT("far"));
   s = {};
   s.noise_px = -0.1;
-  expect_error(s, "--noise");
+  expect_error(s, VSTCAL_OPT("noise"));
   s = {};
   s.camera_distance = 0;
-  expect_error(s, "--camera-distance");
+  expect_error(s, VSTCAL_OPT("camera_distance"));
   s = {};
   s.grid_cols = 41;  // a 4 m wide template
   s.camera_distance = 10;
   s.tilt_deg = 75;  // on a 1010 mm sphere the camera sits between the planes, beside the axis
-  expect_error(s, "--camera-distance");
+  expect_error(s, VSTCAL_OPT("camera_distance"));
   s = {};
   s.grid_cols = 1;
-  expect_error(s, "--grid");
+  expect_error(s, VSTCAL_OPT("grid"));
 }
 
 TEST(Fit, ResidualStatistics) {

@@ -12,6 +12,7 @@
 #include "vstcal/capture/synthetic_views.h"
 #include "vstcal/capture/synthetic_volume.h"
 #include "vstcal/random/philox.h"
+#include "vstcal/core/option_name.h"
 
 namespace vstcal {
 namespace {
@@ -162,7 +163,7 @@ TEST(ViewRejection, RefusesToLeaveTooFewViews) {
   MislabelByOneSquare(&c.views[1], PlanarViewsSpec{}.spacing);
   const CalibrationResult r = Calibrate(c, Rejecting());
   EXPECT_EQ(r.exit_code, ExitCode::kBadInput);
-  EXPECT_NE(r.message.find("--reject-views: view \"" + c.views[1].name + "\" is inconsistent"), std::string::npos) << r.message;
+  EXPECT_NE(r.message.find(VSTCAL_OPT("reject_views") ": view \"" + c.views[1].name + "\" is inconsistent"), std::string::npos) << r.message;
   EXPECT_NE(r.message.find("would leave 2 views, fewer than the 3 planar views need"), std::string::npos) << r.message;
 }
 

@@ -46,9 +46,9 @@ int main(int argc, char** argv) {
     } else {
       outputs = app::MakeTarget(target.Finish(), provenance);
     }
-    for (const std::string& w : outputs.warnings) std::cerr << w << "\n";
+    for (const std::string& w : outputs.warnings) std::cerr << tools::ForUser(w) << "\n";
     app::WriteOutcome(outputs);
-    if (!quiet) std::cerr << outputs.summary << "\n";
+    if (!quiet) std::cerr << tools::ForUser(outputs.summary) << "\n";
     return 0;
   });
 }

@@ -33,7 +33,7 @@ int main(int argc, char** argv) {
   return vstcal::tools::RunTool(app, argc, argv, [&] {
     vstcal::DeclareOutputs({request.junit});
     const vstcal::app::Outcome outcome = vstcal::app::Compare(request);
-    vstcal::tools::PrintToStdout(outcome.stdout_text);
+    vstcal::tools::PrintToStdout(vstcal::tools::ForUser(outcome.stdout_text));
     vstcal::app::WriteOutcome(outcome);
     return vstcal::app::ExitStatus(outcome);
   });

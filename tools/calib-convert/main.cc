@@ -21,7 +21,7 @@ int main(int argc, char** argv) {
     DeclareOutputs({flags.output, flags.output_right});
     const app::Outcome outcome = flags.Convert(MakeProvenance("calib-convert", argc, argv));
     app::WriteOutcome(outcome);
-    std::cerr << outcome.summary << "\n";
+    std::cerr << tools::ForUser(outcome.summary) << "\n";
     return 0;
   });
 }

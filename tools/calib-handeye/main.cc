@@ -22,7 +22,7 @@ int main(int argc, char** argv) {
     const vstcal::app::Outcome outcome =
         solving ? vstcal::app::SolveHandEyeFiles(f.solve, provenance) : vstcal::app::MeasureTrackerNoise(f.noise, provenance);
     vstcal::app::WriteOutcome(outcome);
-    if (!f.quiet) std::cerr << outcome.summary;
+    if (!f.quiet) std::cerr << vstcal::tools::ForUser(outcome.summary);
     return 0;
   });
 }

@@ -31,7 +31,7 @@ int main(int argc, char** argv) {
       const app::Outcome outcome = s.run(provenance);
       app::WriteOutcome(outcome);
       // Every line a note gets the tool's name, as every tool's warnings do.
-      std::istringstream lines(outcome.summary);
+      std::istringstream lines(tools::ForUser(outcome.summary));
       for (std::string line; std::getline(lines, line);) std::cerr << (line.rfind("note: ", 0) == 0 ? "calib-stereo: " : "") << line << "\n";
       for (const auto& [path, text] : outcome.files) std::cerr << "calib-stereo: wrote " << path.string() << "\n";
     }

@@ -21,9 +21,9 @@ int main(int argc, char** argv) {
     DeclareOutputs({request.output, request.truth});
     const app::Outcome outcome =
         app::Synthesize(request, MakeProvenance("calib-synth", argc, argv, request.volume.seed));
-    for (const std::string& w : outcome.warnings) std::cerr << w << "\n";
+    for (const std::string& w : outcome.warnings) std::cerr << tools::ForUser(w) << "\n";
     app::WriteOutcome(outcome);
-    if (!flags.quiet) std::cerr << outcome.summary << "\n";
+    if (!flags.quiet) std::cerr << tools::ForUser(outcome.summary) << "\n";
     return 0;
   });
 }

@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <iostream>
 
+#include "common/run_tool.h"
 #include "common/validators.h"
 #include "vstcal/core/limits.h"
 #include "vstcal/app/calibration.h"
@@ -241,9 +242,9 @@ int FinishCalibration(const std::string& tool, const CornerInput& input, const R
   for (auto& file : extra.files) outcome.files.push_back(std::move(file));
   for (auto& w : extra.warnings) outcome.warnings.push_back(std::move(w));
   outcome.summary += extra.summary;
-  for (const std::string& w : outcome.warnings) std::cerr << w << "\n";
+  for (const std::string& w : outcome.warnings) std::cerr << ForUser(w) << "\n";
   app::WriteOutcome(outcome);
-  if (!flags.quiet) std::cerr << outcome.summary;
+  if (!flags.quiet) std::cerr << ForUser(outcome.summary);
   return 0;
 }
 

@@ -12,6 +12,7 @@
 #include <glog/logging.h>
 
 #include "vstcal/core/error.h"
+#include "vstcal/core/option_name.h"
 #include "vstcal/core/suggest.h"
 #include "vstcal/core/version.h"
 #include "vstcal/files/input_protection.h"
@@ -121,9 +122,9 @@ int RunTool(CLI::App& app, int argc, char** argv, const std::function<int()>& bo
     return CheckStdout(tool, body());
   } catch (const Error& e) {
     if (e.code() == ExitCode::kInternal) {
-      std::cerr << tool << ": internal error: " << OneLine(e.what()) << " (please report this)\n";
+      std::cerr << tool << ": internal error: " << OneLine(ForUser(e.what())) << " (please report this)\n";
     } else {
-      std::cerr << tool << ": error: " << OneLine(e.what()) << "\n";
+      std::cerr << tool << ": error: " << OneLine(ForUser(e.what())) << "\n";
     }
     return static_cast<int>(e.code());
   } catch (const std::exception& e) {
@@ -131,6 +132,8 @@ int RunTool(CLI::App& app, int argc, char** argv, const std::function<int()>& bo
     return static_cast<int>(ExitCode::kInternal);
   }
 }
+
+std::string ForUser(std::string_view text) { return RenderOptionNames(text, OptionAsFlag); }
 
 void PrintToStdout(const std::string& text) {
   std::fputs(text.c_str(), stdout);

@@ -5,6 +5,7 @@
 #include <functional>
 #include <initializer_list>
 #include <string>
+#include <string_view>
 
 #include <CLI/CLI.hpp>
 
@@ -34,6 +35,11 @@ int RunTool(CLI::App& app, int argc, char** argv, const std::function<int()>& bo
 // The name a tool installed under several (`names`, the first its own) was run as: argv[0]'s file
 // name when it is one of them, else the first.
 std::string InvokedAs(int argc, char** argv, std::initializer_list<std::string> names);
+
+// A library message, summary or warning as this command line's user reads it: the options it
+// names (core/option_name.h) spelled as flags, "--tilt-deg". Every text a tool prints from the
+// library goes through it (RunTool's errors do).
+std::string ForUser(std::string_view text);
 
 // Writes `text` to stdout now and throws InputError when it cannot be written (a full disk,
 // > /dev/full): a tool that also writes files prints first, so that a lost table leaves no file.

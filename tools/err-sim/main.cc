@@ -23,7 +23,7 @@ int main(int argc, char** argv) {
       vstcal::DeclareOutputs({command_line.junit()});
       const vstcal::app::Outcome outcome = command_line.Check(argc, argv);
       vstcal::app::WriteOutcome(outcome);
-      if (!command_line.quiet()) std::cout << outcome.stdout_text;
+      if (!command_line.quiet()) std::cout << vstcal::tools::ForUser(outcome.stdout_text);
       return vstcal::app::ExitStatus(outcome);
     }
     vstcal::DeclareOutputs({command_line.output(), command_line.html()});
@@ -31,7 +31,7 @@ int main(int argc, char** argv) {
     std::vector<std::pair<std::filesystem::path, std::string>> files = {{command_line.output(), outcome.Text()}};
     if (!command_line.html().empty()) files.emplace_back(command_line.html(), vstcal::ErrSimHtml(outcome.json));
     vstcal::WriteFilesAtomically(files);
-    if (!command_line.quiet()) std::cerr << outcome.text << "  wrote " << command_line.output() << (command_line.html().empty() ? "" : " and " + command_line.html()) << "\n";
+    if (!command_line.quiet()) std::cerr << vstcal::tools::ForUser(outcome.text) << "  wrote " << command_line.output() << (command_line.html().empty() ? "" : " and " + command_line.html()) << "\n";
     return 0;
   });
 }

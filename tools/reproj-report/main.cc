@@ -47,7 +47,7 @@ int main(int argc, char** argv) {
       throw InputError("--match-views: goes with a stereo rig (RIG LEFT RIGHT); leave it out");
     }
     const app::Outcome outcome = app::RunReprojReport(r, MakeProvenance("reproj-report", argc, argv));
-    if (r.text) tools::PrintToStdout(outcome.stdout_text);  // first: a lost table leaves no file
+    if (r.text) tools::PrintToStdout(tools::ForUser(outcome.stdout_text));  // first: a lost table leaves no file
     app::WriteOutcome(outcome);
     std::fputs(outcome.summary.c_str(), stderr);
     return 0;

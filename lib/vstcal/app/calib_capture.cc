@@ -21,6 +21,7 @@
 #include "vstcal/formats/camera/correspondences_io.h"
 #include "vstcal/formats/capture/image_times.h"
 #include "vstcal/files/input_protection.h"
+#include "vstcal/core/option_name.h"
 
 namespace vstcal::app {
 namespace {
@@ -94,13 +95,13 @@ Target FitTarget(const TargetRequest& request) {
   const Paper& paper = *request.paper;
   const bool tags = t.type == TargetType::kAprilTagGrid || t.type == TargetType::kAprilGrid;
   const double size = tags ? t.tag_size : t.square_size;
-  const std::string field = tags ? "--tag-size" : "--square-size";
+  const std::string field = tags ? VSTCAL_OPT("tag_size") : VSTCAL_OPT("square_size");
   const std::string unit(LengthUnitName(t.length_unit));
   const std::optional<PaperFit> fit = FitToPaper(t, request.given, paper);
   if (size == 0) {
     if (!fit) {
-      throw InputError("--paper: the margin" + std::string(tags ? " and tag gap" : "") + " given leave no room for the board on " +
-                       PaperName(paper) + "; give a smaller --margin" + (tags ? " or --tag-gap" : "") + ", or a larger --paper");
+      throw InputError(VSTCAL_OPT("paper") ": the margin" + std::string(tags ? " and tag gap" : "") + " given leave no room for the board on " +
+                       PaperName(paper) + "; give a smaller " VSTCAL_OPT("margin") + (tags ? " or " VSTCAL_OPT("tag_gap") : "") + ", or a larger " VSTCAL_OPT("paper"));
     }
     return WithSize(t, fit->size, request.given);
   }
@@ -112,7 +113,7 @@ Target FitTarget(const TargetRequest& request) {
                    Sheet(sheet.width() * mm, sheet.height() * mm) + " sheet, larger than " + PaperName(paper) + " either way; " +
                    (fit ? "at most " + Number(fit->size) + " " + unit + " fits (" + (fit->landscape ? "landscape" : "portrait") + "): give " +
                               field + " " + Number(fit->size) + ", or leave it out to fit the paper"
-                        : "the margin given leaves no room: give a smaller --margin or a larger --paper"));
+                        : "the margin given leaves no room: give a smaller " VSTCAL_OPT("margin") " or a larger " VSTCAL_OPT("paper")));
 }
 
 }  // namespace
@@ -125,8 +126,8 @@ Outcome MakeTarget(const TargetRequest& request_in, const Provenance& provenance
   }
   request.target = FitTarget(request);
   if (const auto problem = CheckTarget(request.target)) throw InputError(Flag(problem->field) + ": " + problem->reason + "; " + problem->fix);
-  if (request.output.empty()) throw InputError("-o/--output: give the output's name (e.g. board)");
-  if (!(request.dpi >= 0)) throw InputError("--dpi: must be ≥ 0 (0: no PNG)");
+  if (request.output.empty()) throw InputError(VSTCAL_OPT("output") ": give the output's name (e.g. board)");
+  if (!(request.dpi >= 0)) throw InputError(VSTCAL_OPT("dpi") ": must be ≥ 0 (0: no PNG)");
   Outcome out;
   out.files.emplace_back(request.output + ".target.json", DumpJson(TargetToJson(request.target, provenance)));
   out.files.emplace_back(request.output + ".svg", TargetSvg(request.target));
@@ -148,7 +149,7 @@ Outcome MakeTarget(const TargetRequest& request_in, const Provenance& provenance
     const std::optional<Paper> needs = SmallestStandardPaper(w, h);
     out.warnings.push_back("calib-capture: warning: the " + Sheet(w, h) + " sheet fits neither A4 nor Letter; it needs " +
                            (needs ? PaperName(*needs) : "a sheet larger than A3: " + Sheet(w, h)) +
-                           " (or give --paper a4 or --paper letter to fit the board)");
+                           " (or give " VSTCAL_OPT("paper") " a4 or " VSTCAL_OPT("paper") " letter to fit the board)");
   }
   out.summary = "calib-capture: " + DescribeTarget(request.target) + " on a " + Sheet(w, h) + " sheet" + on + "; wrote " + Join(out.files, 3) +
                 png + "; print at 100 % (actual size)";
@@ -176,7 +177,7 @@ ImageArguments ExpandImageArguments(const std::vector<std::string>& arguments) {
       }
       if (found.empty()) {
         throw InputError(arg + ": no images (.png, .jpg, .jpeg, .bmp, .tif, .pgm …) in this folder" +
-                         (overlays ? " but overlays (*.overlay.png) of an earlier --overlay" : "") +
+                         (overlays ? " but overlays (*.overlay.png) of an earlier " VSTCAL_OPT("overlay") : "") +
                          "; give the folder of the images");
       }
       out.overlays_left_out += overlays;
@@ -187,7 +188,7 @@ ImageArguments ExpandImageArguments(const std::vector<std::string>& arguments) {
         throw InputError(arg + ": is not a regular file (a device, a pipe or a socket), not an image; give image files, a folder or a glob");
       }
       if (IsOverlayName(arg)) {
-        throw InputError(arg + ": is an overlay an earlier --overlay wrote (corners drawn on an image), not a view of the board; "
+        throw InputError(arg + ": is an overlay an earlier " VSTCAL_OPT("overlay") " wrote (corners drawn on an image), not a view of the board; "
                                "give the image it was drawn on");
       }
       images.push_back(arg);
@@ -221,15 +222,15 @@ namespace {
 // Each image's time from the --times file, every image checked before any is searched.
 std::map<std::string, double> ImageTimes(const DetectCommand& command, const std::vector<CaptureInput>& files) {
   if (command.times_file.empty()) return {};
-  if (files.empty()) throw InputError("--times: gives image files their times; a video's frames have theirs (drop --times)");
+  if (files.empty()) throw InputError(VSTCAL_OPT("times") ": gives image files their times; a video's frames have theirs (drop " VSTCAL_OPT("times") ")");
   const auto unit = FromName(kTimeUnitNames, command.times_unit);
-  if (!unit) throw InputError("--times-unit: \"" + command.times_unit + "\" is not a time unit; use " + JoinedNames(kTimeUnitNames));
+  if (!unit) throw InputError(VSTCAL_OPT("times_unit") ": \"" + command.times_unit + "\" is not a time unit; use " + JoinedNames(kTimeUnitNames));
   std::vector<std::string> names;
   std::map<std::string, std::string> seen;  // file name → the image that has it
   for (const CaptureInput& f : files) {
     const std::string name = fs::path(f.image).filename().string();
     if (const auto [it, added] = seen.emplace(name, f.image); !added) {
-      throw InputError("--times: " + it->second + " and " + f.image + " have one file name, which the times file cannot tell apart; "
+      throw InputError(VSTCAL_OPT("times") ": " + it->second + " and " + f.image + " have one file name, which the times file cannot tell apart; "
                        "rename one, or detect each folder on its own");
     }
     names.push_back(name);
@@ -247,13 +248,13 @@ DetectedCorners DetectCorners(DetectCommand command, const Provenance& provenanc
   const int sources = !command.images.empty() + !command.manifest.empty() + !command.video.file.empty() + (command.video.camera_index >= 0);
   if (sources != 1) {
     throw InputError(std::string(sources == 0 ? "no images: give" : "several image sources: give only one of") +
-                     " image files/folders/globs, --manifest, --video or --camera-index");
+                     " image files/folders/globs, " VSTCAL_OPT("manifest") ", " VSTCAL_OPT("video") " or " VSTCAL_OPT("camera_index"));
   }
   if (!command.offset_pattern.empty() && command.images.empty()) {
-    throw InputError("--offset-from-name: reads offsets from image file names; give the images, or use --manifest");
+    throw InputError(VSTCAL_OPT("offset_from_name") ": reads offsets from image file names; give the images, or use " VSTCAL_OPT("manifest"));
   }
   if (!command.overlay_folder.empty() && (!command.video.file.empty() || command.video.camera_index >= 0)) {
-    throw InputError("--overlay: draws on image files; it does not apply to --video or --camera-index");
+    throw InputError(VSTCAL_OPT("overlay") ": draws on image files; it does not apply to " VSTCAL_OPT("video") " or " VSTCAL_OPT("camera_index"));
   }
   DetectRequest& request = command.detect;
   request.target_file = command.target_file;
@@ -276,14 +277,14 @@ DetectedCorners DetectCorners(DetectCommand command, const Provenance& provenanc
     overlays_left_out = expanded.overlays_left_out;
     for (const std::string& image : expanded.images) {
       std::optional<double> offset;
-      if (!command.offset_pattern.empty()) offset = OffsetFromName(image, command.offset_pattern, "--offset-from-name");
+      if (!command.offset_pattern.empty()) offset = OffsetFromName(image, command.offset_pattern, VSTCAL_OPT("offset_from_name"));
       files.push_back({image, image, offset});
     }
   }
   // Overlays are written with the output, all-or-nothing, so they are held in memory until then.
   if (!command.overlay_folder.empty() && files.size() > kMaxOverlays) {
-    throw InputError("--overlay: " + std::to_string(files.size()) + " images; overlays are drawn for at most " + std::to_string(kMaxOverlays) +
-                     " at a time: run without --overlay, or on fewer images");
+    throw InputError(VSTCAL_OPT("overlay") ": " + std::to_string(files.size()) + " images; overlays are drawn for at most " + std::to_string(kMaxOverlays) +
+                     " at a time: run without " VSTCAL_OPT("overlay") ", or on fewer images");
   }
   for (const CaptureInput& f : files) inputs.push_back(f.path);
   if (!command.video.file.empty()) inputs.push_back(command.video.file);
@@ -322,20 +323,20 @@ DetectedCorners DetectCorners(DetectCommand command, const Provenance& provenanc
                 " corners in " + std::to_string(result.correspondences.views.size()) + " views (rig " +
                 (request.rig == Rig::kVolume ? "volume" : "planar-views") + ")" + (out.files.empty() ? "" : "; wrote " + Join(out.files, 2));
   if (overlays_left_out > 0) {
-    out.summary += "; left out " + std::to_string(overlays_left_out) + " overlays (*.overlay.png) of an earlier --overlay";
+    out.summary += "; left out " + std::to_string(overlays_left_out) + " overlays (*.overlay.png) of an earlier " VSTCAL_OPT("overlay");
   }
   return detected;
 }
 
 Outcome RunDetect(DetectCommand command, const Provenance& provenance, const Progress& progress) {
-  if (command.output.empty()) throw InputError("-o/--output: give the correspondences file to write");
+  if (command.output.empty()) throw InputError(VSTCAL_OPT("output") ": give the correspondences file to write");
   return DetectCorners(std::move(command), provenance, progress).outcome;
 }
 
 Outcome RunRender(const RenderCommand& command, const Provenance& provenance) {
   const Target target = ReadTarget(command.target_file);
   const CalibratedCamera camera = ReadCamera(command.camera_file);
-  if (command.output_folder.empty()) throw InputError("-o/--output: give the folder to write the images to");
+  if (command.output_folder.empty()) throw InputError(VSTCAL_OPT("output") ": give the folder to write the images to");
   CheckRenderSize(camera.camera.image_size, command.camera_file);
   const RenderedScene scene = RenderScene(camera.camera, target, command.scene);
   const fs::path folder(command.output_folder);

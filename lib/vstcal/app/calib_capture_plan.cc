@@ -8,6 +8,7 @@
 #include "vstcal/core/error.h"
 #include "vstcal/formats/camera/camera_io.h"
 #include "vstcal/json/json_writer.h"
+#include "vstcal/core/option_name.h"
 
 namespace vstcal::app {
 namespace {
@@ -17,17 +18,17 @@ Camera PlanCamera(PlanCommand& command) {
   SyntheticCameraSpec& spec = command.nominal;
   if (command.focal_mm || command.pixel_pitch_um) {
     if (!(command.focal_mm && command.pixel_pitch_um)) {
-      throw InputError("--focal-mm: give it with --pixel-pitch-um (the sensor's pixel size), or give --fx in px");
+      throw InputError(VSTCAL_OPT("focal_mm") ": give it with " VSTCAL_OPT("pixel_pitch_um") " (the sensor's pixel size), or give " VSTCAL_OPT("fx") " in px");
     }
-    if (spec.fx || spec.hfov_deg) throw InputError("--focal-mm: give one of --fx, --hfov-deg and --focal-mm");
+    if (spec.fx || spec.hfov_deg) throw InputError(VSTCAL_OPT("focal_mm") ": give one of " VSTCAL_OPT("fx") ", " VSTCAL_OPT("hfov_deg") " and " VSTCAL_OPT("focal_mm"));
     if (!(*command.focal_mm > 0 && *command.pixel_pitch_um > 0)) {
-      throw InputError("--focal-mm, --pixel-pitch-um: must be positive (mm, µm)");
+      throw InputError(VSTCAL_OPT("focal_mm") ", " VSTCAL_OPT("pixel_pitch_um") ": must be positive (mm, µm)");
     }
     spec.fx = *command.focal_mm * 1000 / *command.pixel_pitch_um;
   }
   if (!spec.fx && !spec.hfov_deg) {
-    throw InputError("--camera: give a camera@1 file, or the nominal focal length (--fx, --hfov-deg or --focal-mm with "
-                     "--pixel-pitch-um) and --image-size");
+    throw InputError(VSTCAL_OPT("camera") ": give a camera@1 file, or the nominal focal length (" VSTCAL_OPT("fx") ", " VSTCAL_OPT("hfov_deg") " or " VSTCAL_OPT("focal_mm") " with "
+                     VSTCAL_OPT("pixel_pitch_um") ") and " VSTCAL_OPT("image_size"));
   }
   return MakeSyntheticCamera(spec);
 }
@@ -40,7 +41,7 @@ Outcome RunPlan(PlanCommand command, const Provenance& provenance) {
     const PlanPrediction a = ReadPlanPrediction(command.compare.at(0)), b = ReadPlanPrediction(command.compare.at(1));
     const std::string text = ComparePlansText(a, b);
     out.files.emplace_back(command.output, command.text ? text : DumpJson(ComparePlansToJson(a, b, provenance)));
-    out.summary = "calib-capture plan --compare: " + text + "wrote " + command.output;
+    out.summary = "calib-capture plan " VSTCAL_OPT("compare") ": " + text + "wrote " + command.output;
     return out;
   }
   PlanRequest& r = command.request;

@@ -12,6 +12,7 @@
 #include "vstcal/formats/camera/camera_io.h"
 #include "vstcal/formats/camera/correspondences_io.h"
 #include "vstcal/scene/measured_volume.h"
+#include "vstcal/core/option_name.h"
 
 namespace vstcal::app {
 namespace {
@@ -35,7 +36,7 @@ void CheckThreshold(const std::optional<double>& value, const char* flag, const 
 void RequireCovariance(const CalibratedCamera& camera, const std::string& file, const char* flag) {
   if (!camera.covariance || camera.covariance->empty()) {
     throw InputError(file + ": covariance: none; " + flag + " needs both cameras' covariances (write them with "
-                            "calib-dlt --refine or calib-tsai), or bound the pixels with --max-px");
+                            "calib-dlt " VSTCAL_OPT("refine") " or calib-tsai), or bound the pixels with " VSTCAL_OPT("max_px"));
   }
 }
 
@@ -110,13 +111,13 @@ std::vector<CheckResult> Checks(const CompareRequest& request, const CameraCompa
 }  // namespace
 
 Outcome Compare(const CompareRequest& request) {
-  CheckThreshold(request.max_px, "--max-px", "px");
-  CheckThreshold(request.max_sigma, "--max-sigma", "σ (e.g. 3)");
+  CheckThreshold(request.max_px, VSTCAL_OPT("max_px"), "px");
+  CheckThreshold(request.max_sigma, VSTCAL_OPT("max_sigma"), "σ (e.g. 3)");
   if (!request.junit.empty() && !request.max_px && !request.max_sigma && !request.cross_validate) {
-    throw InputError("--junit: no check to report; give --max-px, --max-sigma or --cross-validate too");
+    throw InputError(VSTCAL_OPT("junit") ": no check to report; give " VSTCAL_OPT("max_px") ", " VSTCAL_OPT("max_sigma") " or " VSTCAL_OPT("cross_validate") " too");
   }
   const CalibratedCamera a = ReadCamera(request.reference), b = ReadCamera(request.other);
-  for (const auto& [flag, wanted] : {std::pair{"--max-sigma", request.max_sigma.has_value()}, {"--cross-validate", request.cross_validate}}) {
+  for (const auto& [flag, wanted] : {std::pair{VSTCAL_OPT("max_sigma"), request.max_sigma.has_value()}, {VSTCAL_OPT("cross_validate"), request.cross_validate}}) {
     if (!wanted) continue;
     RequireCovariance(a, request.reference, flag);
     RequireCovariance(b, request.other, flag);

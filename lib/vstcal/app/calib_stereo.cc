@@ -21,6 +21,7 @@
 #include "vstcal/formats/stereo/stereo_peer_formats.h"
 #include "vstcal/estimators/uncertainty.h"
 #include "vstcal/report/fit_summary.h"
+#include "vstcal/core/option_name.h"
 
 namespace vstcal::app {
 namespace {
@@ -108,7 +109,7 @@ GrayImage LoadViewImage(const std::string& image, const std::string& file, const
   if (!fs::exists(path) && path.is_relative()) path = fs::path(file).parent_path() / image;
   if (!fs::is_regular_file(path)) {
     throw InputError(field + "\"" + image + "\" not found (as given or beside the correspondences); run from the folder the path is " +
-                     "relative to, or leave out --undistort");
+                     "relative to, or leave out " VSTCAL_OPT("undistort"));
   }
   LoadedImage loaded = LoadImageFile(path);
   if (!loaded.problem.empty()) throw InputError(field + path.string() + ": " + loaded.problem + "; give a PNG or JPEG");
@@ -142,12 +143,12 @@ std::string AddRectifiedPairs(const StereoRig& rig, Correspondences left, Corres
     ++written;
   }
   if (written == 0) {
-    throw InputError("--undistort: no view both cameras saw names its image in " + request.left + " and " + request.right +
-                     " (views[].image); detect the corners with calib-capture detect, which records each view's image, or leave out --undistort");
+    throw InputError(VSTCAL_OPT("undistort") ": no view both cameras saw names its image in " + request.left + " and " + request.right +
+                     " (views[].image); detect the corners with calib-capture detect, which records each view's image, or leave out " VSTCAL_OPT("undistort"));
   }
   out->folders.push_back(request.undistort_folder);
   return "wrote " + std::to_string(written) + " rectified pairs (<view>.rectified.png, left | right, epipolar lines every 40 px) in " +
-         request.undistort_folder + (rig.rectification ? "" : " (OpenCV's default rectification; --rectify keeps it in the rig)") + "\n";
+         request.undistort_folder + (rig.rectification ? "" : " (OpenCV's default rectification; " VSTCAL_OPT("rectify") " keeps it in the rig)") + "\n";
 }
 
 }  // namespace
@@ -168,7 +169,7 @@ Outcome Solve(const SolveRequest& request, const Provenance& provenance) {
     for (const auto& note : in.notes) out.summary += "note: " + note + "\n";
   }
   if ((options.hold_left && !options.left_camera) || (options.hold_right && !options.right_camera)) {
-    out.summary += "note: a held camera without --left-camera/--right-camera is held at its own calibration from its file\n";
+    out.summary += "note: a held camera without " VSTCAL_OPT("left_camera") "/" VSTCAL_OPT("right_camera") " is held at its own calibration from its file\n";
   }
   StereoSolveResult solved = SolveStereo(left, right, options, request.left, request.right);
   if (solved.exit_code != ExitCode::kOk) throw Error(solved.exit_code, solved.message);
@@ -237,7 +238,7 @@ Outcome Register(const RegisterRequest& request, const Provenance& provenance) {
       if (tracks.frames[i].right.empty()) {
         throw InputError(request.tracks + ": frames[" + std::to_string(i) +
                          "].right: missing; per-eye registration needs the right image's pixels in every frame "
-                         "(or use --mode left)");
+                         "(or use " VSTCAL_OPT("mode") " left)");
       }
     }
   }
@@ -279,8 +280,8 @@ Outcome Plan(const DisplayPlanRequest& request, const Provenance& provenance) {
   std::string text;
   if (!request.rig.empty()) {
     if (input.baseline != 0 || input.focal_px || input.hfov_rad || input.capture_width) {
-      throw InputError("--rig: the rig gives the baseline, the focal length and the capture width; drop --baseline, "
-                       "--focal-px, --hfov-deg and --capture-width, or drop --rig");
+      throw InputError(VSTCAL_OPT("rig") ": the rig gives the baseline, the focal length and the capture width; drop " VSTCAL_OPT("baseline") ", "
+                       VSTCAL_OPT("focal_px") ", " VSTCAL_OPT("hfov_deg") " and " VSTCAL_OPT("capture_width") ", or drop " VSTCAL_OPT("rig"));
     }
     const StereoRig rig = ReadStereoRig(request.rig);
     unit = rig.length_unit;

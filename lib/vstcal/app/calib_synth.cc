@@ -15,6 +15,7 @@
 #include "vstcal/formats/camera/correspondences_io.h"
 #include "vstcal/formats/handeye/handeye_io.h"
 #include "vstcal/formats/handeye/pose_log_io.h"
+#include "vstcal/core/option_name.h"
 
 namespace vstcal::app {
 
@@ -43,7 +44,7 @@ void AddHandEyeImages(const SynthRequest& request, const Camera& camera, const H
   target.cols = request.volume.grid_cols;
   target.square_size = request.volume.spacing;
   target.margin = request.volume.spacing;
-  if (const auto problem = CheckTarget(target)) throw InputError("--grid: the board it draws: " + problem->reason + "; " + problem->fix);
+  if (const auto problem = CheckTarget(target)) throw InputError(VSTCAL_OPT("grid") ": the board it draws: " + problem->reason + "; " + problem->fix);
   const std::filesystem::path folder(request.images_folder);
   const PixelCornerRays rays(camera);
   const Pattern pattern = TargetPattern(target);
@@ -51,7 +52,7 @@ void AddHandEyeImages(const SynthRequest& request, const Camera& camera, const H
   options.blur_px = 0.7;
   options.noise = 2;
   options.seed = request.volume.seed;
-  std::string times = "# calib-synth --rig handeye: each image's time on the camera's clock, s\n";
+  std::string times = "# calib-synth --rig handeye: each image's time on the camera's clock, s\n";  // house-plan: names a command
   for (size_t k = 0; k < r.views.size(); ++k) {
     char name[32];
     std::snprintf(name, sizeof name, "view-%02zu.png", k);

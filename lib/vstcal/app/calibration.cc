@@ -12,6 +12,7 @@
 #include "vstcal/formats/calib/residuals_io.h"
 #include "vstcal/formats/camera/camera_io.h"
 #include "vstcal/report/fit_summary.h"
+#include "vstcal/core/option_name.h"
 
 namespace vstcal::app {
 
@@ -88,7 +89,7 @@ size_t AddUndistortedImages(const CalibrationResult& result, const CalibrationFi
     if (!fs::exists(path) && path.is_relative()) path = fs::path(files.input).parent_path() / view.image;
     if (!fs::is_regular_file(path)) {
       throw InputError(field + "\"" + view.image + "\" not found (as given or beside the correspondences); run from the folder the path is " +
-                       "relative to, or leave out --undistort");
+                       "relative to, or leave out " VSTCAL_OPT("undistort"));
     }
     const LoadedImage loaded = LoadImageFile(path);
     if (!loaded.problem.empty()) throw InputError(field + path.string() + ": " + loaded.problem + "; give a PNG or JPEG");
@@ -100,8 +101,8 @@ size_t AddUndistortedImages(const CalibrationResult& result, const CalibrationFi
     outcome->files.emplace_back(fs::path(files.undistort_folder) / (view.name + ".undistorted.png"), EncodePng(Remap(loaded.image, map)));
   }
   if (without == result.used.views.size()) {
-    throw InputError("--undistort: " + files.input + " names no image (views[].image); detect the corners with calib-capture detect, "
-                     "which records each view's image, or leave out --undistort");
+    throw InputError(VSTCAL_OPT("undistort") ": " + files.input + " names no image (views[].image); detect the corners with calib-capture detect, "
+                     "which records each view's image, or leave out " VSTCAL_OPT("undistort"));
   }
   outcome->folders.push_back(files.undistort_folder);
   return without;
@@ -119,7 +120,7 @@ Outcome CalibrationOutcome(const CalibrationResult& result, const CalibrationOpt
                                  ? "view \"" + x.view_name + "\" (views[" + std::to_string(x.view) + "])"
                                  : "views[" + std::to_string(x.view) + "].points[" + std::to_string(*x.point) +
                                        "] (view \"" + x.view_name + "\")";
-    outcome.warnings.push_back(files.tool + ": warning: --reject-views: rejected " + what + " in round " +
+    outcome.warnings.push_back(files.tool + ": warning: " VSTCAL_OPT("reject_views") ": rejected " + what + " in round " +
                                std::to_string(x.round) + ": " + x.because);
   }
   OrderedJson blocks = CalibrationBlocksToJson(result, options);
@@ -165,7 +166,7 @@ Outcome CalibrationOutcome(const CalibrationResult& result, const CalibrationOpt
 Outcome CalibrateHalves(const Correspondences& corners, const CalibrationOptions& options, const CalibrationFiles& files,
                         const Provenance& provenance) {
   if (corners.views.size() < 2) {
-    throw InputError("--split-halves: " + files.input + " has " + std::to_string(corners.views.size()) +
+    throw InputError(VSTCAL_OPT("split_halves") ": " + files.input + " has " + std::to_string(corners.views.size()) +
                      " view; halves need at least one view each (two calibrations need twice the views one needs)");
   }
   Outcome out;
@@ -176,7 +177,7 @@ Outcome CalibrateHalves(const Correspondences& corners, const CalibrationOptions
     part.views.clear();
     for (size_t v = static_cast<size_t>(half); v < corners.views.size(); v += 2) part.views.push_back(corners.views[v]);
     const CalibrationResult result = Calibrate(part, options);
-    const std::string where = "--split-halves: half " + name + " (" + std::to_string(part.views.size()) + " views)";
+    const std::string where = VSTCAL_OPT("split_halves") ": half " + name + " (" + std::to_string(part.views.size()) + " views)";
     if (result.exit_code != ExitCode::kOk) throw Error(result.exit_code, where + ": " + result.message + "; give more views");
     CalibrationFiles half_files = files;
     half_files.input = files.input + " (half " + name + ")";

@@ -21,6 +21,7 @@
 #include "vstcal/sensitivity/monte_carlo.h"
 #include "vstcal/sensitivity/oat_sweep.h"
 #include "vstcal/sensitivity/sobol_indices.h"
+#include "vstcal/core/option_name.h"
 
 namespace vstcal::app {
 namespace {
@@ -54,14 +55,14 @@ RunDescription Describe(const ChainRequest& request, const ChainModel& model) {
 
 void CheckThreads(unsigned threads) {
   if (threads > kMaxThreads) {
-    throw InputError("--threads: " + std::to_string(threads) + " is more than " + std::to_string(kMaxThreads) +
+    throw InputError(VSTCAL_OPT("threads") ": " + std::to_string(threads) + " is more than " + std::to_string(kMaxThreads) +
                      "; give at most " + std::to_string(kMaxThreads) + " (0: one per core)");
   }
 }
 
 void CheckSamples(uint64_t samples, const std::string& flag) {
   if (samples == 0 || samples > kMaxSamples) {
-    throw InputError(flag + ": " + std::to_string(samples) + " is outside 1 … 10^12; give at most 10^12 (split larger runs into --shard i/N)");
+    throw InputError(flag + ": " + std::to_string(samples) + " is outside 1 … 10^12; give at most 10^12 (split larger runs into " VSTCAL_OPT("shard") " i/N)");
   }
 }
 
@@ -99,16 +100,16 @@ void RequireDefinedPoints(const ChainModel& model, const SimulationResult& resul
 std::string ErrSimDocument::Text() const { return compact ? DumpJsonCompact(json) : DumpJson(json); }
 
 ChainModel LoadChain(const ChainRequest& request) {
-  const std::vector<Source> only = ParseSources(request.only, "--only");  // flags before files
-  const std::vector<Source> without = ParseSources(request.without, "--without");
+  const std::vector<Source> only = ParseSources(request.only, VSTCAL_OPT("only"));  // flags before files
+  const std::vector<Source> without = ParseSources(request.without, VSTCAL_OPT("without"));
   for (const Source s : without) {
     if (std::find(only.begin(), only.end(), s) != only.end()) {
-      throw InputError("--without: \"" + std::string(SourceKey(s)) +
-                       "\" is also given to --only; give each source to one of them (--only keeps, --without drops)");
+      throw InputError(VSTCAL_OPT("without") ": \"" + std::string(SourceKey(s)) +
+                       "\" is also given to " VSTCAL_OPT("only") "; give each source to one of them (" VSTCAL_OPT("only") " keeps, " VSTCAL_OPT("without") " drops)");
     }
   }
   CheckThreads(request.threads);
-  if (request.samples) CheckSamples(*request.samples, "--samples");
+  if (request.samples) CheckSamples(*request.samples, VSTCAL_OPT("samples"));
   ChainModel model = ReadChain(request.chain);
   if (request.samples) model.samples = *request.samples;
   if (request.seed) model.seed = *request.seed;
@@ -117,11 +118,11 @@ ChainModel LoadChain(const ChainRequest& request) {
 
 ErrSimDocument RunErrSim(const RunRequest& request, const Provenance& given, const Progress& progress) {
   if (!request.budget && request.budget_samples) {
-    throw InputError("--budget-samples: there is no budget with --no-budget; drop one of the two flags");
+    throw InputError(VSTCAL_OPT("budget_samples") ": there is no budget with " VSTCAL_OPT("no_budget") "; drop one of the two flags");
   }
-  if (request.budget_samples) CheckSamples(*request.budget_samples, "--budget-samples");
+  if (request.budget_samples) CheckSamples(*request.budget_samples, VSTCAL_OPT("budget_samples"));
   if (request.shards == 0 || request.shards > kMaxShards || request.shard >= request.shards) {
-    throw InputError("--shard: " + ShardName(request.shard, request.shards) + " is not a shard i/N with 0 ≤ i < N ≤ 10^6");
+    throw InputError(VSTCAL_OPT("shard") ": " + ShardName(request.shard, request.shards) + " is not a shard i/N with 0 ≤ i < N ≤ 10^6");
   }
   const ChainModel model = LoadChain(request.chain);
   const Provenance provenance = WithSeed(given, model.seed);
@@ -208,16 +209,16 @@ ErrSimDocument MergeErrSim(const std::string& chain, const std::vector<std::stri
 
 ErrSimDocument SweepErrSim(const SweepRequest& request, const Provenance& provenance) {
   if (request.points < 2 || request.points > kMaxSweepPoints) {
-    throw InputError("--points: " + std::to_string(request.points) + " is outside 2 … " + std::to_string(kMaxSweepPoints) +
+    throw InputError(VSTCAL_OPT("points") ": " + std::to_string(request.points) + " is outside 2 … " + std::to_string(kMaxSweepPoints) +
                      "; give at most " + std::to_string(kMaxSweepPoints));
   }
   if ((request.lo || request.hi) && request.parameters.size() != 1) {
-    throw InputError(std::string(request.lo ? "--lo" : "--hi") +
-                     ": a range is in one parameter's unit; give it with exactly one --parameter");
+    throw InputError(std::string(request.lo ? VSTCAL_OPT("lo") : VSTCAL_OPT("hi")) +
+                     ": a range is in one parameter's unit; give it with exactly one " VSTCAL_OPT("parameter"));
   }
   if (request.lo && request.hi && !(*request.lo < *request.hi)) {
-    throw InputError("--lo: " + ShortestDecimal(*request.lo) + " is not below --hi " + ShortestDecimal(*request.hi) +
-                     "; give --lo < --hi");
+    throw InputError(VSTCAL_OPT("lo") ": " + ShortestDecimal(*request.lo) + " is not below " VSTCAL_OPT("hi") " " + ShortestDecimal(*request.hi) +
+                     "; give " VSTCAL_OPT("lo") " < " VSTCAL_OPT("hi"));
   }
   const ChainModel model = LoadChain(request.chain);
   const ParameterSpace space = MakeParameterSpace(model);
@@ -233,13 +234,13 @@ ErrSimDocument SweepErrSim(const SweepRequest& request, const Provenance& proven
     for (const std::string& name : request.parameters) {
       const auto it = std::find(names.begin(), names.end(), name);
       if (it == names.end()) {
-        throw InputError(request.chain.chain + ": --parameter: the chain has no parameter \"" + name + "\"; " +
+        throw InputError(request.chain.chain + ": " VSTCAL_OPT("parameter") ": the chain has no parameter \"" + name + "\"; " +
                          SuggestKey(name, names));
       }
       const size_t i = static_cast<size_t>(it - names.begin());
       if (model.parameters[i].distribution.IsConstant() && !(request.lo && request.hi)) {
-        throw InputError("--parameter " + name + ": the chain gives it a constant value (" +
-                         model.parameters[i].distribution.Describe() + "), which has no default range; give --lo and --hi");
+        throw InputError(VSTCAL_OPT("parameter") " " + name + ": the chain gives it a constant value (" +
+                         model.parameters[i].distribution.Describe() + "), which has no default range; give " VSTCAL_OPT("lo") " and " VSTCAL_OPT("hi"));
       }
       chosen.push_back(i);
     }
@@ -247,10 +248,10 @@ ErrSimDocument SweepErrSim(const SweepRequest& request, const Provenance& proven
   const uint64_t outputs = VectorOutputNames(model).size();
   const uint64_t values = chosen.size() * (request.points + 1) * outputs;
   if (values > kMaxSweepValues) {
-    throw InputError(request.chain.chain + ": --points: sweeping " + std::to_string(chosen.size()) + " parameters at " +
+    throw InputError(request.chain.chain + ": " VSTCAL_OPT("points") ": sweeping " + std::to_string(chosen.size()) + " parameters at " +
                      std::to_string(request.points) + " points (and their slopes) for " + std::to_string(outputs) +
                      " outputs is " + std::to_string(values) + " values, more than the " + std::to_string(kMaxSweepValues) +
-                     " of one sweep; name fewer parameters with --parameter, give fewer --points, or split the test points");
+                     " of one sweep; name fewer parameters with " VSTCAL_OPT("parameter") ", give fewer " VSTCAL_OPT("points") ", or split the test points");
   }
   std::vector<ParameterSweep> sweeps;
   for (const size_t i : chosen) {
@@ -268,18 +269,18 @@ ErrSimDocument SweepErrSim(const SweepRequest& request, const Provenance& proven
 
 ErrSimDocument SobolErrSim(const SobolRequest& request, const Provenance& given) {
   if (request.bootstrap > kMaxBootstrap) {
-    throw InputError("--bootstrap: " + std::to_string(request.bootstrap) + " is more than " + std::to_string(kMaxBootstrap) +
+    throw InputError(VSTCAL_OPT("bootstrap") ": " + std::to_string(request.bootstrap) + " is more than " + std::to_string(kMaxBootstrap) +
                      "; give at most " + std::to_string(kMaxBootstrap) + " (the interval's own error is already below 1 % there)");
   }
   const ChainModel model = LoadChain(request.chain);
   if (model.samples < 2 || model.samples > kMaxSobolSamples) {
-    throw InputError("--samples: " + std::to_string(model.samples) + " is outside 2 … 2^24 for sobol; give a power of two up to 16777216");
+    throw InputError(VSTCAL_OPT("samples") ": " + std::to_string(model.samples) + " is outside 2 … 2^24 for sobol; give a power of two up to 16777216");
   }
   int groups = 0;
   for (int s = 0; s < kNumSources; ++s) groups += model.SourceActive(static_cast<Source>(s));
   const double bytes = 8.0 * static_cast<double>(model.samples) * (groups + 2) * static_cast<double>(ErrorOutputs(model).size());
   if (bytes > kMaxSobolBytes) {
-    throw InputError("--samples: sobol keeps 8·N·(sources + 2)·outputs bytes, " + std::to_string(static_cast<long long>(bytes / (1 << 20))) +
+    throw InputError(VSTCAL_OPT("samples") ": sobol keeps 8·N·(sources + 2)·outputs bytes, " + std::to_string(static_cast<long long>(bytes / (1 << 20))) +
                      " MiB for N = " + std::to_string(model.samples) + "; give fewer samples (at most 1 GiB) or fewer sources");
   }
   const Provenance provenance = WithSeed(given, model.seed);

@@ -7,6 +7,7 @@
 #include "vstcal/core/error.h"
 #include "vstcal/files/junit_xml.h"
 #include "vstcal/formats/errsim/report_reader.h"
+#include "vstcal/core/option_name.h"
 
 namespace vstcal::app {
 namespace {
@@ -25,11 +26,11 @@ std::string Cell(double v) {
 
 Outcome CheckErrSim(const ErrSimCheckRequest& request, const Provenance& provenance, const Progress& progress) {
   const std::string fix = "give an amount (0.5) or a percentage of the accepted value (10%)";
-  CheckPositive(request.by_default.amount, "--max-rise", fix);
-  for (const RiseRule& rule : request.rules) CheckPositive(rule.allowance.amount, "--max-rise " + rule.name, fix);
-  CheckPositive(request.z, "--z", "give the number of standard errors a rise may exceed its allowance by (e.g. 3)");
+  CheckPositive(request.by_default.amount, VSTCAL_OPT("max_rise"), fix);
+  for (const RiseRule& rule : request.rules) CheckPositive(rule.allowance.amount, VSTCAL_OPT("max_rise") " " + rule.name, fix);
+  CheckPositive(request.z, VSTCAL_OPT("z"), "give the number of standard errors a rise may exceed its allowance by (e.g. 3)");
   if (!request.report.empty() && !request.chain.empty()) {
-    throw InputError("--chain: names a chain to re-run, but --report gives the new report; drop one of the two");
+    throw InputError(VSTCAL_OPT("chain") ": names a chain to re-run, but " VSTCAL_OPT("report") " gives the new report; drop one of the two");
   }
   const ReportForCheck accepted = ReadReportForCheck(JsonDocument::Load(request.accepted));
   std::string fresh_name = request.report;
@@ -55,7 +56,7 @@ Outcome CheckErrSim(const ErrSimCheckRequest& request, const Provenance& provena
   try {
     checks = CheckMetrics(accepted.metrics, fresh.metrics, request.by_default, request.rules, request.z);
   } catch (const InputError& e) {
-    throw InputError(std::string("--max-rise: ") + e.what());
+    throw InputError(std::string(VSTCAL_OPT("max_rise") ": ") + e.what());
   }
 
   Outcome out;

@@ -9,6 +9,7 @@
 #include "vstcal/core/error.h"
 #include "vstcal/estimators/uncertainty.h"
 #include "vstcal/scene/measured_volume.h"
+#include "vstcal/core/option_name.h"
 
 namespace vstcal {
 namespace {
@@ -56,7 +57,7 @@ CameraComparison CompareCameras(const CalibratedCamera& a, const CalibratedCamer
     out.centre_distance = (a.camera_from_world->inverse().t - b.camera_from_world->inverse().t).norm();
   }
   out.depth = depth.value_or(posed ? a.camera_from_world->t.z() : 1000.0);
-  if (!(out.depth > 0)) throw InputError("--depth: must be positive (a point in front of the camera)");
+  if (!(out.depth > 0)) throw InputError(VSTCAL_OPT("depth") ": must be positive (a point in front of the camera)");
 
   // Without poses both cameras sit at the same place: compare the intrinsics alone.
   const Rigid3d world_from_a = posed ? a.camera_from_world->inverse() : Rigid3d::Identity();

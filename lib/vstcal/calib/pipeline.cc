@@ -9,6 +9,7 @@
 
 #include "vstcal/estimators/information.h"
 #include "vstcal/estimators/principal_point_prior.h"
+#include "vstcal/core/option_name.h"
 
 namespace vstcal {
 namespace {
@@ -154,7 +155,7 @@ PlanePrincipalPointDecision OnePlaneRefinement(const TsaiResult& tsai, const Ima
   if (refinement->free_focal) {  // a caller's hold of fx and fy holds the aspect already
     refinement->focal_aspect = tsai.sx;
     refinement->focal_aspect_held_because =
-        "one plane: Tsai's coplanar sx (--sx), as one plane cannot tell the aspect from f and the principal point";
+        "one plane: Tsai's coplanar sx, as one plane cannot tell the aspect from f and the principal point";
   }
   PlanePrincipalPointDecision d;
   d.mode = options.plane_principal_point;
@@ -179,12 +180,12 @@ PlanePrincipalPointDecision OnePlaneRefinement(const TsaiResult& tsai, const Ima
     case CalibrationOptions::PlanePrincipalPoint::kHold:
       refinement->free_principal_point = false;
       refinement->principal_point_held_because =
-          "one plane: held where Tsai's stages assumed it (the image centre or --principal-point), by "
-          "--free-principal-point no; the sigmas are conditional on it";
-      d.because = "held (--free-principal-point no): the sigmas are conditional on it";
+          "one plane: held where Tsai's stages assumed it (the image centre or the principal point given), as asked; "
+          "the sigmas are conditional on it";
+      d.because = "held, as asked: the sigmas are conditional on it";
       break;
     case CalibrationOptions::PlanePrincipalPoint::kFree:
-      d.because = "estimated without a prior (--free-principal-point yes)";
+      d.because = "estimated without a prior, as asked";
       break;
     case CalibrationOptions::PlanePrincipalPoint::kPrior: {
       d.prior_sigma_px = PrincipalPointPriorSigmaPx(size, options.plane_principal_point_prior_sigma);
@@ -193,7 +194,7 @@ PlanePrincipalPointDecision OnePlaneRefinement(const TsaiResult& tsai, const Ima
                     "one plane: a prior at Tsai's principal point, sigma %.4g of the image diagonal (%.4g px)",
                     options.plane_principal_point_prior_sigma, d.prior_sigma_px);
       AddPrincipalPointPrior(d.prior_px, d.prior_sigma_px, because, refinement);
-      d.because = "estimated under the prior (--free-principal-point prior)";
+      d.because = "estimated under the one-plane prior";
       break;
     }
   }
@@ -253,10 +254,10 @@ CalibrationResult CalibrateRejecting(Correspondences c, const CalibrationOptions
       CalibrationResult refused;
       refused.exit_code = ExitCode::kBadInput;
       refused.rejections = rejections;
-      refused.message = "--reject-views: view \"" + x.view_name + "\" is inconsistent with the others (" + x.because +
+      refused.message = VSTCAL_OPT("reject_views") ": view \"" + x.view_name + "\" is inconsistent with the others (" + x.because +
                         "), but rejecting it would leave " + std::to_string(c.views.size() - 1) + " views, fewer than the " +
                         std::to_string(min_views) + (c.rig == Rig::kVolume ? " a volume" : " planar views") +
-                        " need; recapture that view or add views, or drop --reject-views";
+                        " need; recapture that view or add views, or drop " VSTCAL_OPT("reject_views");
       return refused;
     }
     rejections.push_back(x);
@@ -290,10 +291,10 @@ CalibrationResult CalibrateRejecting(Correspondences c, const CalibrationOptions
     if (r.exit_code != ExitCode::kOk) {
       if (!rejections.empty()) {
         r.exit_code = ExitCode::kBadInput;
-        r.message = "--reject-views: after rejecting " + std::to_string(rejections.size()) +
+        r.message = VSTCAL_OPT("reject_views") ": after rejecting " + std::to_string(rejections.size()) +
                     " views or corners (last: view \"" + rejections.back().view_name +
                     "\"), the rest cannot be solved: " + r.message +
-                    "; fix or recapture the rejected views, or drop --reject-views";
+                    "; fix or recapture the rejected views, or drop " VSTCAL_OPT("reject_views");
       }
       return r;
     }
@@ -302,7 +303,7 @@ CalibrationResult CalibrateRejecting(Correspondences c, const CalibrationOptions
     r.rejection_sigma_px = t.sigma_px;
     if (!t.worst_view && t.corners.empty()) return r;
     if (round >= o.max_rounds) {
-      r.warnings.push_back("--reject-views: still rejecting after " + std::to_string(o.max_rounds) +
+      r.warnings.push_back(VSTCAL_OPT("reject_views") ": still rejecting after " + std::to_string(o.max_rounds) +
                            " rounds; the last solve is kept with what it would have rejected");
       return r;
     }
@@ -336,7 +337,7 @@ CalibrationResult CalibrateRejecting(Correspondences c, const CalibrationOptions
     if (c.rig == Rig::kPlanarViews) {
       for (size_t v = c.views.size(); v-- > 0;) {
         if (c.views[v].observations.size() >= kMinPointsPerPlanarView) continue;
-        warnings.push_back("--reject-views: view \"" + c.views[v].name + "\" has fewer than " +
+        warnings.push_back(VSTCAL_OPT("reject_views") ": view \"" + c.views[v].name + "\" has fewer than " +
                            std::to_string(kMinPointsPerPlanarView) + " corners left after rejecting corners; dropped");
         erase_view(v);
       }
@@ -367,7 +368,7 @@ CalibrationResult CalibrateOnce(Correspondences correspondences, const Calibrati
   RefineOptions refinement = options.refinement;
   const bool one_plane = r.tsai && r.tsai->variant == TsaiOptions::Variant::kCoplanar;
   if (!one_plane && options.plane_principal_point != CalibrationOptions::PlanePrincipalPoint::kPrior) {
-    throw InputError("--free-principal-point: applies to one plane (Tsai's coplanar variant) only; a volume's or planar "
+    throw InputError(VSTCAL_OPT("free_principal_point") ": applies to one plane (Tsai's coplanar variant) only; a volume's or planar "
                      "views' principal point is always estimated; remove it");
   }
   if (one_plane) r.plane_principal_point = OnePlaneRefinement(*r.tsai, r.used.image_size, options, &refinement);

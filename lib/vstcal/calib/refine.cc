@@ -10,6 +10,7 @@
 #include "vstcal/estimators/reprojection_cost.h"
 #include "vstcal/estimators/robust_loss.h"
 #include "vstcal/core/error.h"
+#include "vstcal/core/option_name.h"
 
 namespace vstcal {
 namespace {
@@ -129,7 +130,7 @@ Refinement RefineWith(const Correspondences& c, Problem* p, const RefineOptions&
     out.status = RefineStatus::kTooFewPoints;
     out.message = "the refinement needs more residuals than free parameters, but " + std::to_string(n) + " points give " +
                   std::to_string(2 * n) + " for " + std::to_string(free) + " (" + std::to_string(p->free.size()) +
-                  " intrinsics, 6 per pose); add points or estimate fewer terms (--distortion)";
+                  " intrinsics, 6 per pose); add points or estimate fewer terms (" VSTCAL_OPT("distortion") ")";
     return out;
   }
 
@@ -251,7 +252,7 @@ Refinement RefineWith(const Correspondences& c, Problem* p, const RefineOptions&
     out.message = "the refinement did not converge in " + std::to_string(options.max_iterations) + " iterations" +
                   (!covariance.observable         ? ": " + covariance.message
                    : !covariance.weakest.empty() ? ": " + covariance.weakest
-                                                  : "; raise --max-iterations or start from a better camera");
+                                                  : "; raise " VSTCAL_OPT("max_iterations") " or start from a better camera");
     return out;
   }
   if (covariance.observable) {

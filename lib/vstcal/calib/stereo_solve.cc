@@ -17,6 +17,7 @@
 #include "vstcal/estimators/chained_reprojection_cost.h"
 #include "vstcal/scene/epipolar.h"
 #include "vstcal/geometry/rotation_average.h"
+#include "vstcal/core/option_name.h"
 
 namespace vstcal {
 namespace {
@@ -71,7 +72,7 @@ void CheckInputs(const Correspondences& left, const Correspondences& right, cons
                      "); both cameras must see the same target in one unit: convert one file");
   }
   if (options.calibration.refinement.loss != RefineOptions::Loss::kNone) {
-    throw InputError("--loss: the joint stereo solve is least squares; drop --loss (outliers are listed by calib-tsai on each "
+    throw InputError(VSTCAL_OPT("loss") ": the joint stereo solve is least squares; drop " VSTCAL_OPT("loss") " (outliers are listed by calib-tsai on each "
                      "camera's file)");
   }
   if (left.rig != right.rig) {
@@ -83,7 +84,7 @@ void CheckInputs(const Correspondences& left, const Correspondences& right, cons
     for (const View& v : c->views) {
       if (c->rig == Rig::kPlanarViews && !names.insert(v.name).second) {
         throw InputError(*file + ": views: two views have the key \"" + v.name + "\"; views are matched between the cameras by "
-                         "name (or by their --match-views key), so each must be unique");
+                         "name (or by their " VSTCAL_OPT("match_views") " key), so each must be unique");
       }
     }
   }
@@ -302,11 +303,11 @@ StereoSolveResult SolveStereo(Correspondences left, Correspondences right, const
     if (!derived.pairing) {
       throw InputError(left_file + " and " + right_file + ": views: no view name is in both files and they cannot be paired by themselves: " +
                        derived.problem + "; " +
-                       (derived.suggestion.empty() ? std::string("give --match-views with a group that takes the key both names share, e.g. '([0-9]+)$'")
-                                                   : "pair them by the number in their names with --match-views '" + derived.suggestion + "'"));
+                       (derived.suggestion.empty() ? std::string("give " VSTCAL_OPT("match_views") " with a group that takes the key both names share, e.g. '([0-9]+)$'")
+                                                   : "pair them by the number in their names with " VSTCAL_OPT("match_views") " '" + derived.suggestion + "'"));
     }
     pairing = derived.pairing;
-    out.notes.push_back("paired " + std::to_string(derived.paired) + " views by themselves: " + pairing->rule + ", as --match-views '" +
+    out.notes.push_back("paired " + std::to_string(derived.paired) + " views by themselves: " + pairing->rule + ", as " VSTCAL_OPT("match_views") " '" +
                         pairing->match_views + "'; the rig keeps this rule");
   }
   if (pairing) {
@@ -383,7 +384,7 @@ StereoSolveResult SolveStereo(Correspondences left, Correspondences right, const
   if (2 * n <= static_cast<size_t>(free)) {
     out.exit_code = ExitCode::kDegenerate;
     out.message = left_file + " and " + right_file + ": " + std::to_string(n) + " points give " + std::to_string(2 * n) +
-                  " residuals for " + std::to_string(free) + " free parameters; add views or hold a camera (--hold-left)";
+                  " residuals for " + std::to_string(free) + " free parameters; add views or hold a camera (" VSTCAL_OPT("hold_left") ")";
     return out;
   }
 

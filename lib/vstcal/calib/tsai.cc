@@ -1,4 +1,5 @@
 #include "vstcal/calib/tsai.h"
+#include "vstcal/core/option_name.h"
 
 #include <ceres/ceres.h>
 
@@ -347,13 +348,13 @@ TsaiResult SolveTsai(std::span<const Observation> obs, ImageSize size, const Tsa
   if (out.variant == Variant::kNonCoplanar && planar) {
     return Fail(out, TsaiStatus::kCoplanarForced,
                 Format("the non-coplanar variant was asked for, but the points are coplanar (thickness/extent %.3g < "
-                       "%.3g); use the coplanar variant (--variant coplanar or auto)",
+                       "%.3g); use the coplanar variant (" VSTCAL_OPT("variant") " coplanar or auto)",
                        extents(0) / extents(2), options.min_extent_ratio));
   }
   if (out.variant == Variant::kCoplanar && !planar) {
     return Fail(out, TsaiStatus::kDegenerate,
                 Format("the coplanar variant was asked for, but the points span a volume (thickness/extent %.3g >= "
-                       "%.3g); use the non-coplanar variant (--variant non-coplanar or auto)",
+                       "%.3g); use the non-coplanar variant (" VSTCAL_OPT("variant") " non-coplanar or auto)",
                        extents(0) / extents(2), options.min_extent_ratio));
   }
   const size_t needed = out.variant == Variant::kCoplanar ? 5 : 7;

@@ -9,6 +9,7 @@
 #include "vstcal/core/error.h"
 #include "vstcal/core/limits.h"
 #include "vstcal/geometry/rotation.h"
+#include "vstcal/core/option_name.h"
 
 namespace vstcal {
 namespace {
@@ -198,12 +199,12 @@ RefineOptions SolveOptions(const PlanRequest& request, bool one_plane) {
 }  // namespace
 
 CapturePlan PlanCapture(const PlanRequest& request) {
-  Require(request.method == "dlt" || request.method == "tsai", "--method: give dlt or tsai, got \"" + request.method + "\"");
+  Require(request.method == "dlt" || request.method == "tsai", VSTCAL_OPT("method") ": give dlt or tsai, got \"" + request.method + "\"");
   Require(std::isfinite(request.pixel_sigma) && request.pixel_sigma > 0,
-          "--pixel-sigma: the corner noise σ must be a positive number of pixels");
+          VSTCAL_OPT("pixel_sigma") ": the corner noise σ must be a positive number of pixels");
   if (request.sharp_near || request.sharp_far) {
     Require(request.sharp_near && request.sharp_far && *request.sharp_near < *request.sharp_far,
-            "--depth-of-field: give NEAR,FAR with NEAR < FAR (length unit)");
+            VSTCAL_OPT("depth_of_field") ": give NEAR,FAR with NEAR < FAR (length unit)");
   }
   CapturePlan plan;
   plan.request = request;
@@ -248,9 +249,9 @@ CapturePlan PlanCapture(const PlanRequest& request) {
     spec.grid_rows = 2;
     spec.spacing = 0;
     Require(spec.num_views >= 1 && static_cast<size_t>(spec.num_views) <= limits::kMaxViews,
-            "--views: give 1 to " + std::to_string(limits::kMaxViews) + " views");
-    Require(spec.distance > 0 && spec.distance <= limits::kMaxSyntheticScale, "--distance: must be positive, at most 1e9");
-    Require(spec.max_tilt_deg >= 0 && spec.max_tilt_deg < 80, "--max-tilt-deg: must lie in [0, 80)");
+            VSTCAL_OPT("views") ": give 1 to " + std::to_string(limits::kMaxViews) + " views");
+    Require(spec.distance > 0 && spec.distance <= limits::kMaxSyntheticScale, VSTCAL_OPT("distance") ": must be positive, at most 1e9");
+    Require(spec.max_tilt_deg >= 0 && spec.max_tilt_deg < 80, VSTCAL_OPT("max_tilt_deg") ": must lie in [0, 80)");
     for (int k = 0; k < spec.num_views; ++k) {
       PositionPlan p;
       p.name = "view " + std::to_string(k);
@@ -317,13 +318,13 @@ CapturePlan PlanCapture(const PlanRequest& request) {
   for (const TestPoint& t : request.test_points) {
     const auto tied = ProjectionUncertaintyAtWorldPoint(predicted, t.point_in_world, ProjectionUncertaintyKind::kWithPoses);
     const auto alone = ProjectionUncertaintyAtWorldPoint(predicted, t.point_in_world, ProjectionUncertaintyKind::kIntrinsicsOnly);
-    Require(tied && alone, "--test-point " + t.name + ": behind the camera; give points in front of it");
+    Require(tied && alone, VSTCAL_OPT("test_point") " " + t.name + ": behind the camera; give points in front of it");
     plan.points.push_back({t.name, t.point_in_world, std::nullopt, tied->sigma_major_px, alone->sigma_major_px});
   }
   for (const Eigen::Vector3d& q : request.pixel_points) {
     const auto tied = ProjectionUncertaintyAtPixel(predicted, q.head<2>(), q.z(), ProjectionUncertaintyKind::kWithPoses);
     const auto alone = ProjectionUncertaintyAtPixel(predicted, q.head<2>(), q.z(), ProjectionUncertaintyKind::kIntrinsicsOnly);
-    Require(tied && alone, Fmt("--uncertainty-pixel: (%.6g, %.6g) has no ray in this lens model; give a pixel inside the image", q.x(), q.y()));
+    Require(tied && alone, Fmt(VSTCAL_OPT("uncertainty_pixel") ": (%.6g, %.6g) has no ray in this lens model; give a pixel inside the image", q.x(), q.y()));
     plan.points.push_back({Fmt("pixel (%.6g, %.6g)", q.x(), q.y()), std::nullopt, q, tied->sigma_major_px, alone->sigma_major_px});
   }
   return plan;

@@ -8,6 +8,7 @@
 #include "vstcal/capture/target_pattern.h"
 #include "vstcal/core/error.h"
 #include "vstcal/core/parallel.h"
+#include "vstcal/core/option_name.h"
 
 namespace vstcal {
 namespace {
@@ -56,12 +57,12 @@ RenderedScene RenderScene(const Camera& camera, const Target& target, const Scen
   std::vector<std::optional<double>> offsets;
   if (spec.rig == Rig::kVolume) {
     const VolumeSpec& v = spec.volume;
-    if (!(v.interval > 0)) throw InputError("--interval: must be positive");
-    if (!(v.far >= v.near)) throw InputError("--far: must not be less than --near");
-    if (!(v.camera_distance > 0)) throw InputError("--camera-distance: must be positive");
-    if (!(std::abs(v.tilt_deg) < 80)) throw InputError("--tilt-deg: must lie within ±80°");
+    if (!(v.interval > 0)) throw InputError(VSTCAL_OPT("interval") ": must be positive");
+    if (!(v.far >= v.near)) throw InputError(VSTCAL_OPT("far") ": must not be less than " VSTCAL_OPT("near"));
+    if (!(v.camera_distance > 0)) throw InputError(VSTCAL_OPT("camera_distance") ": must be positive");
+    if (!(std::abs(v.tilt_deg) < 80)) throw InputError(VSTCAL_OPT("tilt_deg") ": must lie within ±80°");
     const int n = NumPlanes(v);
-    if (n > kMaxImages) throw InputError("--interval: more than 1000 template positions; use a larger interval");
+    if (n > kMaxImages) throw InputError(VSTCAL_OPT("interval") ": more than 1000 template positions; use a larger interval");
     const Rigid3d camera_from_world = VolumeCameraPose(v) * Rigid3d{Eigen::Matrix3d::Identity(), -centre};
     scene.truth_camera.camera_from_world = camera_from_world;
     for (int k = 0; k < n; ++k) {
@@ -72,9 +73,9 @@ RenderedScene RenderScene(const Camera& camera, const Target& target, const Scen
     }
   } else {
     PlanarViewsSpec v = spec.views;
-    if (v.num_views < 1 || v.num_views > kMaxImages) throw InputError("--views: give 1 to 1000 views");
-    if (!(v.distance > 0)) throw InputError("--distance: must be positive");
-    if (!(v.max_tilt_deg >= 0 && v.max_tilt_deg < 80)) throw InputError("--max-tilt-deg: must lie in [0, 80)");
+    if (v.num_views < 1 || v.num_views > kMaxImages) throw InputError(VSTCAL_OPT("views") ": give 1 to 1000 views");
+    if (!(v.distance > 0)) throw InputError(VSTCAL_OPT("distance") ": must be positive");
+    if (!(v.max_tilt_deg >= 0 && v.max_tilt_deg < 80)) throw InputError(VSTCAL_OPT("max_tilt_deg") ": must lie in [0, 80)");
     // PlanarViewPose aims the centre of a grid_cols × grid_rows grid of `spacing`; shift it to
     // the centre of this target's corners.
     v.grid_cols = v.grid_rows = 2;
@@ -91,7 +92,7 @@ RenderedScene RenderScene(const Camera& camera, const Target& target, const Scen
   if (megapixels > 1000) {
     char buf[200];
     std::snprintf(buf, sizeof buf, "%s: %zu images of %d×%d are %.0f megapixels in all, more than 1000; render fewer or smaller images",
-                  spec.rig == Rig::kVolume ? "--interval" : "--views", scene.names.size(), size.width, size.height, megapixels);
+                  spec.rig == Rig::kVolume ? VSTCAL_OPT("interval") : VSTCAL_OPT("views"), scene.names.size(), size.width, size.height, megapixels);
     throw InputError(buf);
   }
   for (size_t k = 0; k < scene.names.size(); ++k) {
@@ -102,7 +103,7 @@ RenderedScene RenderScene(const Camera& camera, const Target& target, const Scen
     for (const TargetCorner& c : TargetCorners(target)) {
       const Eigen::Vector3d p_board(c.xy.x(), c.xy.y(), 0);
       const Eigen::Vector3d p_cam = scene.camera_from_board[k] * p_board;
-      if (!(p_cam.z() > 0)) throw InputError("--camera-distance: the camera sits inside the volume (" + view.name + "); move it back");
+      if (!(p_cam.z() > 0)) throw InputError(VSTCAL_OPT("camera_distance") ": the camera sits inside the volume (" + view.name + "); move it back");
       const auto px = camera.Project(p_cam);
       if (!px || !camera.InImage(*px)) continue;
       view.observations.push_back({Eigen::Vector3d(c.xy.x(), c.xy.y(), offsets[k].value_or(0.0)), *px});

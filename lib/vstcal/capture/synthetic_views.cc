@@ -9,6 +9,7 @@
 #include "vstcal/core/error.h"
 #include "vstcal/core/limits.h"
 #include "vstcal/random/philox.h"
+#include "vstcal/core/option_name.h"
 
 namespace vstcal {
 namespace {
@@ -51,23 +52,23 @@ Rigid3d PlanarViewPose(const Camera& camera, const PlanarViewsSpec& spec, int vi
 }
 
 SyntheticViews SynthesizePlanarViews(const Camera& camera, const PlanarViewsSpec& spec) {
-  Require(spec.grid_cols >= 2 && spec.grid_rows >= 2, "--grid: the board needs at least 2×2 corners");
-  Require(spec.spacing > 0, "--spacing: must be positive");
+  Require(spec.grid_cols >= 2 && spec.grid_rows >= 2, VSTCAL_OPT("grid") ": the board needs at least 2×2 corners");
+  Require(spec.spacing > 0, VSTCAL_OPT("spacing") ": must be positive");
   Require(spec.num_views >= 1 && static_cast<size_t>(spec.num_views) <= limits::kMaxViews,
-          "--views: give 1 to " + std::to_string(limits::kMaxViews) + " views");
-  Require(spec.distance > 0, "--distance: must be positive");
-  for (const auto& [flag, value] : {std::pair<const char*, double>{"--spacing", spec.spacing},
-                                    {"--distance", spec.distance}, {"--noise", spec.noise_px}}) {
+          VSTCAL_OPT("views") ": give 1 to " + std::to_string(limits::kMaxViews) + " views");
+  Require(spec.distance > 0, VSTCAL_OPT("distance") ": must be positive");
+  for (const auto& [flag, value] : {std::pair<const char*, double>{VSTCAL_OPT("spacing"), spec.spacing},
+                                    {VSTCAL_OPT("distance"), spec.distance}, {VSTCAL_OPT("noise"), spec.noise_px}}) {
     Require(std::abs(value) <= limits::kMaxSyntheticScale,
             std::string(flag) + ": beyond ±1e9 (docs/reliability.md#limits); give a realistic value");
   }
   const double points = static_cast<double>(spec.num_views) * spec.grid_cols * spec.grid_rows;
   Require(points <= static_cast<double>(limits::kMaxPoints),
-          "--grid/--views: " + std::to_string(spec.grid_cols) + "×" + std::to_string(spec.grid_rows) + " corners in " +
+          VSTCAL_OPT("grid") "/" VSTCAL_OPT("views") ": " + std::to_string(spec.grid_cols) + "×" + std::to_string(spec.grid_rows) + " corners in " +
               std::to_string(spec.num_views) + " views is more than the " + std::to_string(limits::kMaxPoints) +
               " points a file may hold (docs/reliability.md#limits); use fewer corners or views");
-  Require(spec.max_tilt_deg >= 0 && spec.max_tilt_deg < 80, "--max-tilt-deg: must lie in [0, 80)");
-  Require(spec.noise_px >= 0, "--noise: σ must not be negative");
+  Require(spec.max_tilt_deg >= 0 && spec.max_tilt_deg < 80, VSTCAL_OPT("max_tilt_deg") ": must lie in [0, 80)");
+  Require(spec.noise_px >= 0, VSTCAL_OPT("noise") ": σ must not be negative");
 
   SyntheticViews out;
   Correspondences& c = out.correspondences;
@@ -100,7 +101,7 @@ SyntheticViews SynthesizePlanarViews(const Camera& camera, const PlanarViewsSpec
     c.views.push_back(std::move(view));
     out.camera_from_board.push_back(camera_from_board);
   }
-  Require(!c.views.empty(), "--distance/--max-tilt-deg: no view shows the board; move it into the field of view");
+  Require(!c.views.empty(), VSTCAL_OPT("distance") "/" VSTCAL_OPT("max_tilt_deg") ": no view shows the board; move it into the field of view");
   return out;
 }
 

@@ -8,6 +8,7 @@
 #include "vstcal/core/error.h"
 #include "vstcal/core/limits.h"
 #include "vstcal/random/philox.h"
+#include "vstcal/core/option_name.h"
 
 namespace vstcal {
 namespace {
@@ -63,16 +64,16 @@ std::vector<TestPoint> Seed000TestPoints(const VolumeSpec& spec) {
 }
 
 SyntheticVolume SynthesizeVolume(const Camera& camera, const VolumeSpec& spec, std::vector<TestPoint> test_points) {
-  Require(spec.grid_cols >= 2 && spec.grid_rows >= 2, "--grid: the template needs at least 2×2 corners");
-  Require(spec.spacing > 0, "--spacing: must be positive, got " + Num(spec.spacing));
-  Require(spec.interval > 0, "--interval: must be positive, got " + Num(spec.interval));
-  Require(spec.far >= spec.near, "--far: must not be less than --near (" + Num(spec.far) + " < " + Num(spec.near) + ")");
-  Require(spec.camera_distance > 0, "--camera-distance: must be positive, got " + Num(spec.camera_distance));
-  Require(spec.noise_px >= 0, "--noise: σ must not be negative, got " + Num(spec.noise_px));
-  Require(std::abs(spec.tilt_deg) < 80, "--tilt-deg: must lie within ±80°, got " + Num(spec.tilt_deg));
-  for (const auto& [flag, value] : {std::pair<const char*, double>{"--spacing", spec.spacing}, {"--near", spec.near},
-                                    {"--far", spec.far}, {"--interval", spec.interval},
-                                    {"--camera-distance", spec.camera_distance}, {"--noise", spec.noise_px}}) {
+  Require(spec.grid_cols >= 2 && spec.grid_rows >= 2, VSTCAL_OPT("grid") ": the template needs at least 2×2 corners");
+  Require(spec.spacing > 0, VSTCAL_OPT("spacing") ": must be positive, got " + Num(spec.spacing));
+  Require(spec.interval > 0, VSTCAL_OPT("interval") ": must be positive, got " + Num(spec.interval));
+  Require(spec.far >= spec.near, VSTCAL_OPT("far") ": must not be less than " VSTCAL_OPT("near") " (" + Num(spec.far) + " < " + Num(spec.near) + ")");
+  Require(spec.camera_distance > 0, VSTCAL_OPT("camera_distance") ": must be positive, got " + Num(spec.camera_distance));
+  Require(spec.noise_px >= 0, VSTCAL_OPT("noise") ": σ must not be negative, got " + Num(spec.noise_px));
+  Require(std::abs(spec.tilt_deg) < 80, VSTCAL_OPT("tilt_deg") ": must lie within ±80°, got " + Num(spec.tilt_deg));
+  for (const auto& [flag, value] : {std::pair<const char*, double>{VSTCAL_OPT("spacing"), spec.spacing}, {VSTCAL_OPT("near"), spec.near},
+                                    {VSTCAL_OPT("far"), spec.far}, {VSTCAL_OPT("interval"), spec.interval},
+                                    {VSTCAL_OPT("camera_distance"), spec.camera_distance}, {VSTCAL_OPT("noise"), spec.noise_px}}) {
     Require(std::abs(value) <= limits::kMaxSyntheticScale,
             std::string(flag) + ": " + Num(value) + " is beyond ±" + Num(limits::kMaxSyntheticScale) +
                 " (docs/reliability.md#limits); give a realistic value");
@@ -80,12 +81,12 @@ SyntheticVolume SynthesizeVolume(const Camera& camera, const VolumeSpec& spec, s
   // Counted in double before any loop: a tiny interval would otherwise ask for 1e300 planes.
   const double planes = std::floor((spec.far - spec.near) / spec.interval + 1e-9) + 1;
   Require(planes <= static_cast<double>(limits::kMaxViews),
-          "--interval: " + Num(planes) + " template positions, more than the " + std::to_string(limits::kMaxViews) +
+          VSTCAL_OPT("interval") ": " + Num(planes) + " template positions, more than the " + std::to_string(limits::kMaxViews) +
               " views a file may hold (docs/reliability.md#limits); use a larger interval");
   const size_t n_planes = static_cast<size_t>(planes);
   const double points = planes * spec.grid_cols * spec.grid_rows;
   Require(points <= static_cast<double>(limits::kMaxPoints),
-          "--grid: " + std::to_string(spec.grid_cols) + "×" + std::to_string(spec.grid_rows) + " corners on " +
+          VSTCAL_OPT("grid") ": " + std::to_string(spec.grid_cols) + "×" + std::to_string(spec.grid_rows) + " corners on " +
               std::to_string(n_planes) + " planes is " + Num(points) + " points, more than the " +
               std::to_string(limits::kMaxPoints) + " a file may hold (docs/reliability.md#limits); use fewer corners");
 
@@ -111,7 +112,7 @@ SyntheticVolume SynthesizeVolume(const Camera& camera, const VolumeSpec& spec, s
       for (int i = 0; i < spec.grid_cols; ++i) {
         const Eigen::Vector3d p(x0 + i * spec.spacing, y0 + j * spec.spacing, offset);
         const Eigen::Vector3d p_cam = out.camera_from_world * p;
-        Require(p_cam.z() > 0, "--camera-distance: the camera sits inside the volume (a corner of plane " +
+        Require(p_cam.z() > 0, VSTCAL_OPT("camera_distance") ": the camera sits inside the volume (a corner of plane " +
                                    std::to_string(k) + " is behind it); move it back");
         const auto px = camera.Project(p_cam);
         if (!px || !camera.InImage(*px)) continue;
@@ -124,7 +125,7 @@ SyntheticVolume SynthesizeVolume(const Camera& camera, const VolumeSpec& spec, s
     }
     if (!view.observations.empty()) c.views.push_back(std::move(view));
   }
-  Require(NumObservations(c) > 0, "--camera-distance/--tilt-deg: no corner is visible; point the camera at the template");
+  Require(NumObservations(c) > 0, VSTCAL_OPT("camera_distance") "/" VSTCAL_OPT("tilt_deg") ": no corner is visible; point the camera at the template");
 
   const CounterRng test_rng(spec.seed, kTestPointStream);
   for (size_t i = 0; i < test_points.size(); ++i) {
@@ -134,7 +135,7 @@ SyntheticVolume SynthesizeVolume(const Camera& camera, const VolumeSpec& spec, s
     const bool visible = px && camera.InImage(*px + spec.noise_px * Eigen::Vector2d(noise[0], noise[1]));
     Require(visible, "test point \"" + t.name +
                          "\" is not visible (behind the camera or outside the image); widen the field of view, move "
-                         "the camera back, or use --no-test-points");
+                         "the camera back, or use " VSTCAL_OPT("no_test_points"));
     t.pixel = *px + spec.noise_px * Eigen::Vector2d(noise[0], noise[1]);
   }
   c.test_points = std::move(test_points);

@@ -9,6 +9,7 @@
 #include "vstcal/capture/target_pattern.h"
 #include "vstcal/core/error.h"
 #include "vstcal/json/json_writer.h"
+#include "vstcal/core/option_name.h"
 
 namespace vstcal {
 namespace {
@@ -98,14 +99,14 @@ std::string TargetSvg(const Target& t) {
 }
 
 GrayImage RasterizeTarget(const Target& t, double dpi) {
-  if (!(std::isfinite(dpi) && dpi > 0)) throw InputError("--dpi: must be a positive number of pixels per inch");
+  if (!(std::isfinite(dpi) && dpi > 0)) throw InputError(VSTCAL_OPT("dpi") ": must be a positive number of pixels per inch");
   const Pattern pattern = TargetPattern(t);
   const Rect& sheet = pattern.sheet();
   const double pitch = 25.4 / dpi / Millimetres(t.length_unit);  // one pixel in the target's unit
   const double cols = std::ceil(sheet.width() / pitch - 1e-9), rows = std::ceil(sheet.height() / pitch - 1e-9);
   if (cols * rows > kMaxMegapixels * 1e6) {
     char buf[200];
-    std::snprintf(buf, sizeof buf, "--dpi: %.0f dpi makes a %.0f × %.0f image (%.0f megapixels, more than %.0f); use a lower --dpi",
+    std::snprintf(buf, sizeof buf, VSTCAL_OPT("dpi") ": %.0f dpi makes a %.0f × %.0f image (%.0f megapixels, more than %.0f); use a lower " VSTCAL_OPT("dpi"),
                   dpi, cols, rows, cols * rows / 1e6, kMaxMegapixels);
     throw InputError(buf);
   }

@@ -5,6 +5,7 @@
 
 #include "vstcal/core/error.h"
 #include "vstcal/core/suggest.h"
+#include "vstcal/core/option_name.h"
 
 namespace vstcal {
 namespace {
@@ -26,7 +27,7 @@ AnyLensModel RefinedModel(const AnyLensModel& initial, const RefineOptions& opti
   const std::vector<std::string_view> known = AllDistortionTerms();
   for (const std::string& term : options.free_distortion) {
     if (std::find(known.begin(), known.end(), term) == known.end()) {
-      throw InputError("--distortion: unknown term \"" + term + "\"; " + SuggestKey(term, known) +
+      throw InputError(VSTCAL_OPT("distortion") ": unknown term \"" + term + "\"; " + SuggestKey(term, known) +
                        ", or none for no distortion");
     }
   }
@@ -148,10 +149,10 @@ std::vector<HeldIntrinsic> HeldIntrinsics(const AnyLensModel& model, const std::
     held.push_back({"cx", params[intrinsic::kCx], options.principal_point_held_because});
     held.push_back({"cy", params[intrinsic::kCy], options.principal_point_held_because});
   }
-  if (!options.free_skew) held.push_back({"s", params[intrinsic::kSkew], "not estimated (--skew frees it)"});
+  if (!options.free_skew) held.push_back({"s", params[intrinsic::kSkew], "not estimated (the skew is estimated only when asked)"});
   for (size_t i = kNumIntrinsicParams; i < all.size(); ++i) {
     if (!Named(options.free_distortion, all[i])) {
-      held.push_back({std::string(all[i]), params[i], "not named by --distortion"});
+      held.push_back({std::string(all[i]), params[i], "not among the distortion terms estimated"});
     }
   }
   return held;

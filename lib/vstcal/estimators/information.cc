@@ -105,9 +105,9 @@ std::string DescribeWeakest(const ArrowObservability& verdict, const FreeIntrins
     if (IsDistortion(n)) terms.push_back(n);
   }
   if (!terms.empty()) {
-    advice.push_back("estimate fewer distortion terms (leave " + Join(terms) + " out of --distortion) or add points nearer the image's edges");
+    advice.push_back("estimate fewer distortion terms (leave " + Join(terms) + " out) or add points nearer the image's edges");
   }
-  if (std::find(names.begin(), names.end(), "s") != names.end()) advice.push_back("estimate no skew (drop --skew)");
+  if (std::find(names.begin(), names.end(), "s") != names.end()) advice.push_back("estimate no skew");
   const bool geometry = std::any_of(names.begin(), names.end(), [](const std::string& n) {
     return n == "f" || n == "fx" || n == "fy" || n == "cx" || n == "cy";
   });

@@ -99,7 +99,7 @@ std::string OriginCell(const OrderedJson& row) {
 
 std::string Budget(const OrderedJson& r) {
   const OrderedJson& budget = r.at("budget");
-  if (budget.is_null()) return "<section><h2>Error budget</h2>\n<p>Not computed (--no-budget).</p></section>\n";
+  if (budget.is_null()) return "<section><h2>Error budget</h2>\n<p>Not computed: the run was asked for no budget.</p></section>\n";
   const std::string unit = r.at("length_unit").get<std::string>();
   std::string s = "<section><h2>Error budget</h2>\n<p>Each source alone and the whole chain with that source halved (" +
                   std::to_string(budget.at("samples").get<uint64_t>()) +
@@ -236,7 +236,7 @@ std::string ErrSimHtml(const OrderedJson& output) {
   if (format == "vstcal/err-sim-sweep@2") return ErrSimSweepHtml(output);
   if (format == "vstcal/err-sim-sobol@2") return ErrSimSobolHtml(output);
   if (format == "vstcal/err-sim-linear@2") return ErrSimLinearHtml(output);
-  VSTCAL_CHECK(format == "vstcal/err-sim-report@3", "--html is offered for run, merge, sweep, sobol and linear only");
+  VSTCAL_CHECK(format == "vstcal/err-sim-report@3", "an HTML page is offered for run, merge, sweep, sobol and linear only");
   return ErrSimReportHtml(output);
 }
 

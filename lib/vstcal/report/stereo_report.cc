@@ -9,6 +9,7 @@
 #include "vstcal/geometry/registration_error.h"
 #include "vstcal/estimators/pose_refine.h"
 #include "vstcal/scene/view_keys.h"
+#include "vstcal/core/option_name.h"
 
 namespace vstcal {
 namespace {
@@ -31,7 +32,7 @@ void CheckInputs(const StereoRig& rig, const Correspondences& left, const Corres
     std::set<std::string> names;
     for (const View& v : c.views) {
       if (!names.insert(v.name).second) {
-        throw InputError(file + ": views: the view key \"" + v.name + "\" is given twice (views are matched by name, or by --match-views' key): rename one");
+        throw InputError(file + ": views: the view key \"" + v.name + "\" is given twice (views are matched by name, or by " VSTCAL_OPT("match_views") "' key): rename one");
       }
     }
   };
@@ -283,7 +284,7 @@ StereoReport BuildStereoReport(const StereoRig& rig, Correspondences left, Corre
                      " is in both files; views are matched by name" + (pattern.empty() ? "" : " through \"" + pattern + "\"") +
                      ", as calib-stereo solve matches them: " +
                      (derived.suggestion.empty() ? std::string("give both cameras' views of the same target poses under the same names")
-                                                 : "pair them by the number in their names with --match-views '" + derived.suggestion + "'"));
+                                                 : "pair them by the number in their names with " VSTCAL_OPT("match_views") " '" + derived.suggestion + "'"));
   }
 
   // A volume has one world frame: one left pose from every common view's left pixels.

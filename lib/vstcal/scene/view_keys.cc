@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "vstcal/core/error.h"
+#include "vstcal/core/option_name.h"
 
 namespace vstcal {
 namespace {
@@ -70,13 +71,13 @@ void KeyViews(const std::string& pattern, const std::string& file, Correspondenc
   try {
     re = std::regex(pattern);
   } catch (const std::regex_error& e) {
-    throw InputError("--match-views: \"" + pattern + "\" is not a regular expression (" + e.what() + "); e.g. '([0-9]+)$'");
+    throw InputError(VSTCAL_OPT("match_views") ": \"" + pattern + "\" is not a regular expression (" + e.what() + "); e.g. '([0-9]+)$'");
   }
-  if (re.mark_count() < 1) throw InputError("--match-views: \"" + pattern + "\" has no group; put the key in parentheses, e.g. '([0-9]+)$'");
+  if (re.mark_count() < 1) throw InputError(VSTCAL_OPT("match_views") ": \"" + pattern + "\" has no group; put the key in parentheses, e.g. '([0-9]+)$'");
   for (View& v : c->views) {
     std::smatch m;
     if (!std::regex_search(v.name, m, re) || !m[1].matched) {
-      throw InputError(file + ": views: the name \"" + v.name + "\" does not match --match-views \"" + pattern +
+      throw InputError(file + ": views: the name \"" + v.name + "\" does not match " VSTCAL_OPT("match_views") " \"" + pattern +
                        "\"; change the pattern or the view's name");
     }
     v.name = m[1].str();

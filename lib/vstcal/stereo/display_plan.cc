@@ -6,6 +6,7 @@
 
 #include "vstcal/core/error.h"
 #include "vstcal/geometry/rotation.h"
+#include "vstcal/core/option_name.h"
 
 namespace vstcal {
 
@@ -44,36 +45,36 @@ void RequirePositive(double v, const char* flag) {
 }  // namespace
 
 DisplayPlan PlanDisplay(const DisplayPlanInput& in) {
-  RequirePositive(in.baseline, "--baseline");
-  if (in.z0) RequirePositive(*in.z0, "--z0");
-  if (in.display_width <= 0) throw InputError("--display-width: must be a positive number of pixels; give the display's width A > 0");
+  RequirePositive(in.baseline, VSTCAL_OPT("baseline"));
+  if (in.z0) RequirePositive(*in.z0, VSTCAL_OPT("z0"));
+  if (in.display_width <= 0) throw InputError(VSTCAL_OPT("display_width") ": must be a positive number of pixels; give the display's width A > 0");
   if (in.focal_px.has_value() == in.hfov_rad.has_value()) {
-    throw InputError("--focal-px, --hfov-deg: give exactly one: the capture's focal length in px or its horizontal field of view");
+    throw InputError(VSTCAL_OPT("focal_px") ", " VSTCAL_OPT("hfov_deg") ": give exactly one: the capture's focal length in px or its horizontal field of view");
   }
-  for (const double z : in.depths) RequirePositive(z, "--depths");
-  if (in.viewer != Viewer::kNone) RequirePositive(in.ipd, "--ipd");
+  for (const double z : in.depths) RequirePositive(z, VSTCAL_OPT("depths"));
+  if (in.viewer != Viewer::kNone) RequirePositive(in.ipd, VSTCAL_OPT("ipd"));
   if (in.viewer == Viewer::kScreen) {
-    RequirePositive(in.screen_width, "--screen-width");
-    RequirePositive(in.viewing_distance, "--viewing-distance");
+    RequirePositive(in.screen_width, VSTCAL_OPT("screen_width"));
+    RequirePositive(in.viewing_distance, VSTCAL_OPT("viewing_distance"));
   }
   DisplayPlan plan;
   const double A = in.display_width;
   if (in.focal_px) {
-    RequirePositive(*in.focal_px, "--focal-px");
+    RequirePositive(*in.focal_px, VSTCAL_OPT("focal_px"));
     plan.focal_px = *in.focal_px;
     plan.translation_px = in.z0 ? CrossedDisparityPx(plan.focal_px, in.baseline, *in.z0) : 0.0;
     plan.capture_width_needed = A + plan.translation_px;
   } else {
     const double theta = *in.hfov_rad;
     if (!(theta > 0 && theta < kPi)) {
-      throw InputError("--hfov-deg: must lie in (0°, 180°), got " + Number(RadToDeg(theta)) +
+      throw InputError(VSTCAL_OPT("hfov_deg") ": must lie in (0°, 180°), got " + Number(RadToDeg(theta)) +
                        "°; give the capture's horizontal field of view");
     }
     // Eq. 6 with f = A′/(2 tan(θ/2)): A′ = A + A′·b/(2 tan(θ/2) z0).
     const double overlap_depth = in.baseline / (2 * std::tan(theta / 2));
     const double fraction = in.z0 ? overlap_depth / *in.z0 : 0.0;
     if (!(fraction < 1)) {
-      throw InputError("--z0: " + Number(*in.z0) + " is not beyond " + Number(overlap_depth) +
+      throw InputError(VSTCAL_OPT("z0") ": " + Number(*in.z0) + " is not beyond " + Number(overlap_depth) +
                        ", the depth b/(2·tan(θ/2)) where the two fields of view begin to overlap: no capture width "
                        "holds the translation (seed 000 Eq. 6); choose a farther zero-parallax depth");
     }

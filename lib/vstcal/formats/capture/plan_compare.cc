@@ -4,6 +4,7 @@
 
 #include "vstcal/core/error.h"
 #include "vstcal/json/format_check.h"
+#include "vstcal/core/option_name.h"
 
 namespace vstcal {
 namespace {
@@ -44,7 +45,7 @@ void Check(const PlanPrediction& a, const PlanPrediction& b) {
   }
   if (a.pixel_sigma != b.pixel_sigma) {
     throw InputError(b.file + ": prediction.pixel_sigma: " + std::to_string(b.pixel_sigma) + " px differs from " + a.file +
-                     "'s " + std::to_string(a.pixel_sigma) + " px; plan both at the same --pixel-sigma");
+                     "'s " + std::to_string(a.pixel_sigma) + " px; plan both at the same " VSTCAL_OPT("pixel_sigma"));
   }
   if (Pair(a, b, false, false).empty()) {
     throw InputError(b.file + ": prediction.parameters: no parameter in common with " + a.file + "; compare plans of the same solve");

@@ -7,6 +7,7 @@
 #include "vstcal/formats/stereo/stereo_io.h"
 #include "vstcal/json/json_reader.h"
 #include "vstcal/json/reader_common.h"
+#include "vstcal/core/option_name.h"
 
 namespace vstcal {
 
@@ -57,7 +58,7 @@ FileConversion ConvertFile(const std::filesystem::path& input, CameraFileFormat 
     case CameraFileFormat::kMrcal:
       throw InputError(source + ": a stereo rig, and calib-convert writes a rig as stereo@1 (.json), Kalibr or ROS; "
                                 "write it for " + std::string(CameraFileFormatDescription(to)) +
-                       " with calib-stereo export (--opencv FILE or --mrcal LEFT RIGHT)");
+                       " with calib-stereo export (" VSTCAL_OPT("opencv") " FILE or " VSTCAL_OPT("mrcal") " LEFT RIGHT)");
   }
   out.texts.push_back(std::move(written.text));
   out.notes.insert(out.notes.end(), written.notes.begin(), written.notes.end());

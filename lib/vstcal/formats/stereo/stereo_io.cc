@@ -10,6 +10,7 @@
 #include "vstcal/formats/camera/residual_stats_json.h"
 #include "vstcal/json/fields.h"
 #include "vstcal/json/format_check.h"
+#include "vstcal/core/option_name.h"
 
 namespace vstcal {
 namespace {
@@ -83,19 +84,19 @@ void CheckRectification(const JsonNode& node, const Rectification& r, const Rigi
   const Eigen::Matrix3d relative = r.right_rect_from_right * right_from_left.R * r.left_rect_from_left.transpose();
   if ((relative - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff() > kAgreement) {
     node.Fail("its rotations do not align the cameras (right_rect_from_right · R · left_rect_fromleftᵀ ≠ I)",
-              "rectify this rig again (calib-stereo export --rectify), or delete \"rectification\"");
+              "rectify this rig again (calib-stereo export " VSTCAL_OPT("rectify") "), or delete \"rectification\"");
   }
   const Eigen::Vector3d t = r.right_rect_from_right * right_from_left.t;  // baseline in the rectified frame
   const int axis = std::abs(t.x()) >= std::abs(t.y()) ? 0 : 1;
   if (std::abs(t(1 - axis)) > kAgreement * t.norm() || std::abs(t.z()) > kAgreement * t.norm()) {
     node.Fail("its rotations do not put the baseline along an image axis",
-              "rectify this rig again (calib-stereo export --rectify), or delete \"rectification\"");
+              "rectify this rig again (calib-stereo export " VSTCAL_OPT("rectify") "), or delete \"rectification\"");
   }
   const Eigen::Vector3d expected_column = r.P_right.leftCols<3>() * t;
   const double scale = std::max(1.0, r.P_right.cwiseAbs().maxCoeff());
   if (!r.P_left.col(3).isZero(0) || (r.P_right.col(3) - expected_column).cwiseAbs().maxCoeff() > kAgreement * scale) {
     node.Fail("P_left or P_right disagrees with the rig (P_left = [K | 0], P_right = [K | K·right_rect_from_right·t])",
-              "rectify this rig again (calib-stereo export --rectify), or delete \"rectification\"");
+              "rectify this rig again (calib-stereo export " VSTCAL_OPT("rectify") "), or delete \"rectification\"");
   }
   // Q reprojects (u, v, disparity along the baseline's axis) to the point P_left and P_right saw.
   for (const Eigen::Vector3d& x : {Eigen::Vector3d(0.1, -0.2, 1.0), Eigen::Vector3d(-0.3, 0.1, 2.0)}) {
@@ -105,7 +106,7 @@ void CheckRectification(const JsonNode& node, const Rectification& r, const Rigi
     const Eigen::Vector4d h = r.Q * Eigen::Vector4d(q1.x(), q1.y(), q1(axis) - q2(axis), 1.0);
     if (!(std::abs(h(3)) > 0) || (h.head<3>() / h(3) - point).norm() > kAgreement * point.norm() * 10) {
       node.at("Q").Fail("does not reproject the rectified pixels of P_left and P_right to their point",
-                        "rectify this rig again (calib-stereo export --rectify), or delete \"rectification\"");
+                        "rectify this rig again (calib-stereo export " VSTCAL_OPT("rectify") "), or delete \"rectification\"");
     }
   }
 }
@@ -153,7 +154,7 @@ ViewPairing ReadViewPairing(const JsonNode& node) {
     KeyViews(pairing.match_views, "", &none);  // checks the expression only
   } catch (const InputError& e) {
     std::string why = e.what();
-    if (why.starts_with("--match-views: ")) why = why.substr(15);
+    if (const std::string_view prefix = VSTCAL_OPT("match_views") ": "; why.starts_with(prefix)) why = why.substr(prefix.size());
     pattern.Fail(why.substr(0, why.find("; ")), "give an expression whose first group is the key, e.g. \"([0-9]+)$\"");
   }
   if (const auto rule = node.find("rule")) pairing.rule = rule->String();
