@@ -4,6 +4,7 @@
 // raise the exception of the exit code the tool returns, with its one-line message.
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -102,13 +103,19 @@ py::object Calibrate(const py::object& source, const std::string& method, std::o
                      const std::string& distortion, bool skew, const std::string& loss, std::optional<double> loss_scale,
                      int max_iterations, const std::string& solver, const std::string& variant,
                      const std::optional<std::pair<double, double>>& principal_point, std::optional<double> sx,
-                     const std::string& free_principal_point) {
+                     const std::string& free_principal_point,
+                     const std::map<std::string, std::pair<double, double>>& priors,
+                     const std::vector<std::string>& hold) {
   if (method != "dlt" && method != "tsai") throw InputError("method: unknown method \"" + method + "\"; use dlt or tsai");
   const std::string input = SourceName(source);
   CalibrationOptions options;
   options.start = method == "dlt" ? CalibrationOptions::Start::kDlt : CalibrationOptions::Start::kTsai;
   options.refine = refine.value_or(method == "tsai");  // the tools' defaults: calib-dlt --refine, calib-tsai --no-refine
   options.refinement = RefineOptionsOf(distortion, skew, loss, loss_scale, max_iterations);
+  for (const auto& [name, prior] : priors) {
+    options.refinement.priors.push_back(StatedPrior(name, prior.first, prior.second));
+  }
+  HoldIntrinsics(hold, &options.refinement);
   options.dlt.exact_diagnostics = true;  // as calib-dlt: the camera file reports sigma_11
   options.dlt.solver = SolverNamed(solver);
   if (variant != "auto" && variant != "coplanar" && variant != "non-coplanar") {
@@ -220,11 +227,13 @@ void RegisterSolvers(py::module_& m) {
         py::arg("distortion") = "k1,k2,p1,p2", py::arg("skew") = false, py::arg("loss") = "none",
         py::arg("loss_scale") = py::none(), py::arg("max_iterations") = 100, py::arg("solver") = "normal-equations",
         py::arg("variant") = "auto", py::arg("principal_point") = py::none(), py::arg("sx") = py::none(),
-        py::arg("free_principal_point") = "prior",
+        py::arg("free_principal_point") = "prior", py::arg("priors") = std::map<std::string, std::pair<double, double>>{},
+        py::arg("hold") = std::vector<std::string>{},
         "A camera from a vstcal/correspondences@1 file (path) or document (dict), as calib-dlt (method \"dlt\", refine "
         "False by default) or calib-tsai (method \"tsai\": Tsai for a volume, Zhang for planar views; refined by "
         "default) write it: the vstcal/camera@1 document as a dict, with the covariance when refined; the tool's warnings "
-        "as Python UserWarnings.");
+        "as Python UserWarnings. priors={\"cx\": (value, sigma)}: Gaussian priors on lens parameters (calib-tsai --prior); "
+        "hold=[\"cx\", \"cy\"]: parameters held at the start's values (--hold).");
 
   m.def("solve_stereo", &SolveStereoRig, py::arg("left"), py::arg("right"), py::arg("left_camera") = py::none(),
         py::arg("right_camera") = py::none(), py::arg("hold_left") = false, py::arg("hold_right") = false,

@@ -37,6 +37,8 @@ def test_calibrate_is_calib_dlt_and_calib_tsai(vstcal, tmp_path):
         ("calib-dlt", "dlt", ["--refine", "--distortion", "k1,k2"], {"refine": True, "distortion": "k1,k2"}),
         ("calib-tsai", "tsai", [], {}),
         ("calib-tsai", "tsai", ["--no-refine"], {"refine": False}),
+        ("calib-tsai", "tsai", ["--prior", "cx=320,5", "--prior", "k2=0,0.01", "--hold", "p1,p2"],
+         {"priors": {"cx": (320, 5), "k2": (0, 0.01)}, "hold": ["p1", "p2"]}),
     ]:
         run_tool(tool, source, "-o", tmp_path / "camera.json", *flags)
         assert without_provenance(vstcal.calibrate(str(source), method=method, **kwargs)) == \
@@ -58,6 +60,16 @@ def test_failures_raise_the_tools_message_and_exit_code(vstcal, tmp_path):
     with pytest.raises(vstcal.DegenerateError) as e:
         vstcal.solve_dlt(points, pixels)
     assert str(e.value) in message  # the tool prefixes its input file
+    # Holds and priors: the tool's messages, with the keyword where the tool names its flag.
+    source = DATASETS / "seed000" / "distorted-noisy.json"
+    message = tool_error("calib-tsai", source, "-o", tmp_path / "camera.json", "--hold", "cx")
+    with pytest.raises(vstcal.InputError) as e:
+        vstcal.calibrate(str(source), hold=["cx"])
+    assert message.startswith("--hold: ") and str(e.value) == "hold: " + message[len("--hold: "):]
+    message = tool_error("calib-tsai", source, "-o", tmp_path / "camera.json", "--prior", "kx=0,1")
+    with pytest.raises(vstcal.InputError) as e:
+        vstcal.calibrate(str(source), priors={"kx": (0, 1)})
+    assert str(e.value) == message
 
     planar = DATASETS / "zedmini" / "planar-noisy.json"
     message = tool_error("calib-dlt", planar, "-o", tmp_path / "camera.json")

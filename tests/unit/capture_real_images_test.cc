@@ -78,7 +78,7 @@ TEST_P(RealImages, AgreesWithOpenCvsDetectorAndFitsBetter) {
     ASSERT_EQ(ours.corners.size(), 54u);
     const std::vector<Eigen::Vector2d> theirs = OpenCvCorners(loaded.image);
     ASSERT_EQ(theirs.size(), 54u) << input.image;
-    View a{input.image, "", std::nullopt, {}}, b = a;
+    View a{input.image, "", std::nullopt, {}, std::nullopt}, b = a;
     for (const DetectedCorner& c : ours.corners) {  // OpenCV numbers its own way: take the nearest of its corners
       const auto nearest = *std::min_element(theirs.begin(), theirs.end(), [&](const Eigen::Vector2d& p, const Eigen::Vector2d& q) {
         return (p - c.pixel).norm() < (q - c.pixel).norm();

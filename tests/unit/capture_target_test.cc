@@ -360,11 +360,11 @@ TEST(Paper, FitsAChessboardToA4AndLetter) {
 // (0.001 in steps): 210 mm / 25.4 / 7.75 = 1.06680… → 1.066 in.
 TEST(Paper, KeepsLengthsGivenOutrightAndFitsTagGrids) {
   Target t = Chessboard9x6();
-  const std::optional<PaperFit> fixed = FitToPaper(t, {.margin = 10}, *PaperFromName("a4"));
+  const std::optional<PaperFit> fixed = FitToPaper(t, {.margin = 10, .tag_gap = {}, .marker_size = {}}, *PaperFromName("a4"));
   ASSERT_TRUE(fixed);
   EXPECT_EQ(fixed->size, 27.1);
   EXPECT_TRUE(fixed->landscape);
-  EXPECT_FALSE(FitToPaper(t, {.margin = 60}, *PaperFromName("100x100")));
+  EXPECT_FALSE(FitToPaper(t, {.margin = 60, .tag_gap = {}, .marker_size = {}}, *PaperFromName("100x100")));
   Target grid = AprilGrid6x4();
   grid.rows = 6;
   const std::optional<PaperFit> tags = FitToPaper(grid, {}, *PaperFromName("A4"));

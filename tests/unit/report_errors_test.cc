@@ -200,7 +200,7 @@ TEST(ReprojReport, NormalizedResidualsOfARefinedCameraMatchItsCovariance) {
   const testing::Scene scene = testing::RandomVolumeScene(120, 0.5, 31);
   Correspondences c;
   c.image_size = scene.camera.image_size;
-  c.views.push_back({"all", "", std::nullopt, scene.observations});
+  c.views.push_back({"all", "", std::nullopt, scene.observations, std::nullopt});
   CalibrationOptions options;
   options.start = CalibrationOptions::Start::kDlt;
   const CalibrationResult result = Calibrate(c, options);

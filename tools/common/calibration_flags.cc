@@ -33,8 +33,7 @@ IntrinsicPrior ParsePrior(const std::string& text) {
   if (eq == std::string::npos || eq == 0 || comma == std::string::npos || comma < eq) {
     throw InputError("--prior: \"" + text + "\" is not NAME=VALUE,SIGMA; " + form);
   }
-  IntrinsicPrior prior;
-  prior.parameter = text.substr(0, eq);
+  IntrinsicPrior prior = StatedPrior(text.substr(0, eq), 0, 0);
   const auto number = [&](const std::string& part, const char* what) {
     char* end = nullptr;
     const double v = std::strtod(part.c_str(), &end);
@@ -49,9 +48,6 @@ IntrinsicPrior ParsePrior(const std::string& text) {
     throw InputError("--prior " + prior.parameter + ": the sigma must be > 0, got " + text.substr(comma + 1) +
                      "; give a positive sigma, or hold the parameter with --hold " + prior.parameter);
   }
-  char because[160];
-  std::snprintf(because, sizeof because, "the user's prior (--prior): %.10g, sigma %.10g", prior.value, prior.sigma);
-  prior.because = because;
   return prior;
 }
 
@@ -157,40 +153,8 @@ RefineOptions CalibrationFlags::Refinement() const {
   o.loss_scale_px = loss_scale_px;
   o.max_iterations = max_iterations;
   for (const std::string& text : priors) o.priors.push_back(ParsePrior(text));
-  ApplyHolds(&o);
+  HoldIntrinsics(holds, &o);
   return o;
-}
-
-void CalibrationFlags::ApplyHolds(RefineOptions* o) const {
-  const auto held = [&](const char* name) { return std::find(holds.begin(), holds.end(), name) != holds.end(); };
-  const std::string because = "held at the closed-form start's value (--hold): the sigmas are conditional on it";
-  for (const auto& [a, b] : {std::pair{"fx", "fy"}, std::pair{"cx", "cy"}}) {
-    if (held(a) != held(b)) {
-      throw InputError(std::string("--hold: ") + (held(a) ? a : b) + " is held only with " + (held(a) ? b : a) +
-                       " (the refinement moves them as a pair); give --hold " + a + "," + b);
-    }
-  }
-  for (const std::string& name : holds) {
-    if (name == "fx" || name == "fy") {
-      o->free_focal = false;
-      o->focal_held_because = because;
-    } else if (name == "cx" || name == "cy") {
-      o->free_principal_point = false;
-      o->principal_point_held_because = because;
-    } else if (name == "s") {
-      if (o->free_skew) throw InputError("--hold: s is held and --skew frees it; give one of the two");
-    } else {
-      const auto named = std::find(o->free_distortion.begin(), o->free_distortion.end(), name);
-      if (named == o->free_distortion.end()) {
-        throw InputError("--hold: \"" + name + "\" is not an estimated lens parameter (fx fy cx cy s, or a term --distortion \"" +
-                         distortion + "\" names); name one of those");
-      }
-      o->free_distortion.erase(named);
-    }
-    for (const IntrinsicPrior& p : o->priors) {
-      if (p.parameter == name) throw InputError("--hold: " + name + " is held and also has a --prior; give one of the two");
-    }
-  }
 }
 
 UncertaintyRequest CalibrationFlags::Uncertainty(const Correspondences& corners) const {

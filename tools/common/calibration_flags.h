@@ -54,7 +54,6 @@ struct CalibrationFlags {
   // --prior, or a --hold that contradicts another flag. The priors' parameters are checked against
   // the model by the refinement (ResolvePriors), before anything is written.
   RefineOptions Refinement() const;
-  void ApplyHolds(RefineOptions* options) const;  // --hold, into the refinement's options
   // The uncertainty flags checked against the data before any solve: throws InputError naming the
   // flag for malformed values, pixels outside the image, and world points for planar views.
   UncertaintyRequest Uncertainty(const Correspondences& corners) const;

@@ -135,6 +135,44 @@ std::vector<ResolvedPrior> ResolvePriors(const AnyLensModel& model, const FreeIn
   return resolved;
 }
 
+IntrinsicPrior StatedPrior(std::string parameter, double value, double sigma) {
+  return {std::move(parameter), value, sigma, "stated by the user"};
+}
+
+void HoldIntrinsics(const std::vector<std::string>& names, RefineOptions* o) {
+  const auto held = [&](const char* name) { return std::find(names.begin(), names.end(), name) != names.end(); };
+  const std::string because = "held at the start's value, as asked: the sigmas are conditional on it";
+  for (const auto& [a, b] : {std::pair{"fx", "fy"}, std::pair{"cx", "cy"}}) {
+    if (held(a) != held(b)) {
+      throw InputError(VSTCAL_OPT("hold") ": " + std::string(held(a) ? a : b) + " is held only with " + (held(a) ? b : a) +
+                       " (the refinement moves them as a pair); hold " + a + "," + b);
+    }
+  }
+  for (const std::string& name : names) {
+    if (name == "fx" || name == "fy") {
+      o->free_focal = false;
+      o->focal_held_because = because;
+    } else if (name == "cx" || name == "cy") {
+      o->free_principal_point = false;
+      o->principal_point_held_because = because;
+    } else if (name == "s") {
+      if (o->free_skew) throw InputError(VSTCAL_OPT("hold") ": s is held and " VSTCAL_OPT("skew") " frees it; give one of the two");
+    } else {
+      const auto named = std::find(o->free_distortion.begin(), o->free_distortion.end(), name);
+      if (named == o->free_distortion.end()) {
+        throw InputError(VSTCAL_OPT("hold") ": \"" + name + "\" is not an estimated lens parameter (fx fy cx cy s, or a "
+                         "distortion term being estimated); name one of those");
+      }
+      o->free_distortion.erase(named);
+    }
+    for (const IntrinsicPrior& p : o->priors) {
+      if (p.parameter == name) {
+        throw InputError(VSTCAL_OPT("hold") ": " + name + " is held and also has a " VSTCAL_OPT("prior") "; give one of the two");
+      }
+    }
+  }
+}
+
 std::vector<HeldIntrinsic> HeldIntrinsics(const AnyLensModel& model, const std::vector<double>& params,
                                           const RefineOptions& options) {
   const auto all = LensModelParamNames(model);

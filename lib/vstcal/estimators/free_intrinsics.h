@@ -63,6 +63,14 @@ struct HeldIntrinsic {
   std::string because;
 };
 
+// A prior the user stated (the option "prior"), its reason saying so for the camera file.
+IntrinsicPrior StatedPrior(std::string parameter, double value, double sigma);
+
+// Holds lens parameters by name at the start's values (the option "hold"): fx and fy together, cx
+// and cy together, s, or distortion terms (which leave options.free_distortion). Throws InputError
+// for half a pair, a name that is not estimated, s with free_skew, or a name that also has a prior.
+void HoldIntrinsics(const std::vector<std::string>& names, RefineOptions* options);
+
 // What `options` holds for a camera in `model`'s layout (`params`), in layout order.
 std::vector<HeldIntrinsic> HeldIntrinsics(const AnyLensModel& model, const std::vector<double>& params,
                                           const RefineOptions& options);
