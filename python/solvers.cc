@@ -63,20 +63,7 @@ DltSolution Solve(std::span<const Observation> observations, const DltOptions& o
 RefineOptions RefineOptionsOf(const std::string& distortion, bool skew, const std::string& loss,
                          const std::optional<double>& loss_scale, int max_iterations) {
   RefineOptions o;
-  o.free_distortion.clear();
-  if (distortion != "none") {
-    size_t start = 0;
-    while (start <= distortion.size()) {
-      const size_t comma = std::min(distortion.find(',', start), distortion.size());
-      const std::string term = distortion.substr(start, comma - start);
-      if (term.empty()) throw InputError("distortion: empty term in \"" + distortion + "\"; give names like k1,k2,p1,p2 or none");
-      if (std::find(o.free_distortion.begin(), o.free_distortion.end(), term) != o.free_distortion.end()) {
-        throw InputError("distortion: \"" + term + "\" is named twice in \"" + distortion + "\"; name each term once");
-      }
-      o.free_distortion.push_back(term);
-      start = comma + 1;
-    }
-  }
+  o.free_distortion = DistortionTermsFromList(distortion);
   o.free_skew = skew;
   if (loss != "none" && loss != "huber" && loss != "cauchy") {
     throw InputError("loss: unknown robust loss \"" + loss + "\"; use none, huber or cauchy");

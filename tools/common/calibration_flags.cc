@@ -135,16 +135,7 @@ ViewRejectionOptions CalibrationFlags::Rejection() const {
 
 RefineOptions CalibrationFlags::Refinement() const {
   RefineOptions o;
-  o.free_distortion.clear();
-  if (distortion != "none") {
-    for (const std::string& term : CLI::detail::split(distortion, ',')) {
-      if (term.empty()) throw InputError("--distortion: empty term in \"" + distortion + "\"; give names like k1,k2,p1,p2 or none");
-      if (std::find(o.free_distortion.begin(), o.free_distortion.end(), term) != o.free_distortion.end()) {
-        throw InputError("--distortion: \"" + term + "\" is named twice in \"" + distortion + "\"; name each term once");
-      }
-      o.free_distortion.push_back(term);
-    }
-  }
+  o.free_distortion = DistortionTermsFromList(distortion);
   o.free_skew = skew;
   o.loss = *FromName(RefineOptions::kLossNames, loss);
   if (o.loss == RefineOptions::Loss::kNone && loss_scale_option != nullptr && loss_scale_option->count() > 0) {

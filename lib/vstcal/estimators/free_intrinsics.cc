@@ -135,6 +135,22 @@ std::vector<ResolvedPrior> ResolvePriors(const AnyLensModel& model, const FreeIn
   return resolved;
 }
 
+std::vector<std::string> DistortionTermsFromList(const std::string& list) {
+  std::vector<std::string> terms;
+  if (list == "none") return terms;
+  for (size_t start = 0; start <= list.size();) {
+    const size_t comma = std::min(list.find(',', start), list.size());
+    const std::string term = list.substr(start, comma - start);
+    if (term.empty()) throw InputError(VSTCAL_OPT("distortion") ": empty term in \"" + list + "\"; give names like k1,k2,p1,p2 or none");
+    if (std::find(terms.begin(), terms.end(), term) != terms.end()) {
+      throw InputError(VSTCAL_OPT("distortion") ": \"" + term + "\" is named twice in \"" + list + "\"; name each term once");
+    }
+    terms.push_back(term);
+    start = comma + 1;
+  }
+  return terms;
+}
+
 IntrinsicPrior StatedPrior(std::string parameter, double value, double sigma) {
   return {std::move(parameter), value, sigma, "stated by the user"};
 }

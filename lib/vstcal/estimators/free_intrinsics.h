@@ -63,6 +63,11 @@ struct HeldIntrinsic {
   std::string because;
 };
 
+// The distortion terms named by a comma-separated list ("k1,k2,p1,p2"; "none": no term), as the
+// option "distortion" gives them. Throws InputError for an empty or repeated term; whether the
+// model has each term is checked where the model is known (FreeIntrinsics).
+std::vector<std::string> DistortionTermsFromList(const std::string& list);
+
 // A prior the user stated (the option "prior"), its reason saying so for the camera file.
 IntrinsicPrior StatedPrior(std::string parameter, double value, double sigma);
 
