@@ -280,6 +280,69 @@ TEST_F(ErrSimHandEye, BudgetSaysWhereEachDistributionCameFrom) {
   EXPECT_NE(r.text.find("; rotation: measured (noise.json)"), std::string::npos) << r.text;
 }
 
+// The tracker's noise estimated jointly by calib-handeye solve (handeye@1's tracker_noise, the
+// covariance then 15 × 15): "tracking": {"rotation_deg": "handeye", "translation": "handeye"} takes
+// its σ's, so that one file gives the whole chain; the report is the hand-written chain's with those
+// numbers (to the bit), and the budget marks all three tracking terms measured by the handeye file.
+TEST_F(ErrSimHandEye, TrackingNoiseFromTheHandEyeFileIsTheHandWrittenChain) {
+  HandEyeSolution joint = he_;
+  JointTrackerNoise noise;
+  noise.rotation = {4.1e-4, 3e-5, 3.5e-4, 4.7e-4};
+  noise.translation = {0.13, 0.01, 0.11, 0.15};
+  noise.corner_px = {0.21, 0.002, 0.206, 0.214};
+  noise.frames = 30;
+  noise.rounds = 2;
+  joint.tracker_noise = noise;
+  Eigen::MatrixXd covariance = Eigen::MatrixXd::Zero(15, 15);
+  covariance.topLeftCorner(13, 13) = he_.covariance;
+  covariance(13, 13) = noise.rotation.sigma_sigma * noise.rotation.sigma_sigma;
+  covariance(14, 14) = noise.translation.sigma_sigma * noise.translation.sigma_sigma;
+  joint.covariance = covariance;
+  joint.names.insert(joint.names.end(), HandEyeNoiseCovarianceNames().begin(), HandEyeNoiseCovarianceNames().end());
+  Write("handeye_joint.json", HandEyeToJson(joint, LengthUnit::kMillimetre, kProvenance));
+
+  OrderedJson measured = Measured();
+  measured.erase("tracker_noise");
+  measured["handeye"]["file"] = "handeye_joint.json";
+  measured["sources"]["tracking"]["rotation_deg"] = "handeye";
+  measured["sources"]["tracking"]["translation"] = "handeye";
+  OrderedJson by_hand = ByHand();
+  by_hand["sources"]["tracking"]["rotation_deg"] = Normal(RadToDeg(noise.rotation.sigma));
+  by_hand["sources"]["tracking"]["translation"] = Normal(noise.translation.sigma);
+
+  const ChainModel m = Build(measured), h = Build(by_hand);
+  EXPECT_EQ(ChainDigest(m), ChainDigest(h));
+  auto sigma = [&](Term term, int i) { return std::get<Distribution::Normal>(m.parameters[m.layout.Offset(term) + i].distribution.form()).sigma; };
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_EQ(sigma(Term::kTrackingRotation, i), 4.1e-4);  // the model's unit is the radian
+    EXPECT_EQ(sigma(Term::kTrackingTranslation, i), 0.13);
+  }
+  EXPECT_EQ(sigma(Term::kTrackingLatency, 0), std::sqrt(he_.covariance(12, 12)));
+  const RunReport a = ReportOf(m, true), b = ReportOf(h, true);
+  EXPECT_EQ(DumpJson(WithoutOrigins(a.json)), DumpJson(WithoutOrigins(b.json)));
+  const DistributionOrigin handeye{"handeye_joint.json", "vstcal/handeye@1"};
+  EXPECT_EQ(OriginsOf(m, {Term::kTrackingRotation, Term::kTrackingTranslation, Term::kTrackingLatency}), std::vector{handeye});
+  for (const auto& e : a.json.at("budget").at("entries")) {
+    if (e.at("source") != "tracking") continue;
+    EXPECT_EQ(e.at("origin"), OrderedJson::parse(R"([{"kind": "measured", "file": "handeye_joint.json", "format": "vstcal/handeye@1"}])"));
+  }
+  EXPECT_NE(a.text.find("    tracking: measured (handeye_joint.json), "), std::string::npos) << a.text;
+  // The words are kept when the chain is written.
+  const OrderedJson written = ChainSpecToJson(Spec(measured), kProvenance);
+  EXPECT_EQ(written.at("sources").at("tracking").at("rotation_deg"), "handeye");
+
+  // A handeye file whose tracker was taken as exact has no σ's to give.
+  measured["handeye"]["file"] = "handeye.json";
+  try {
+    Build(measured);
+    ADD_FAILURE() << "accepted a handeye file without tracker noise";
+  } catch (const InputError& e) {
+    const std::string m_text = e.what();
+    EXPECT_NE(m_text.find("sources.tracking.rotation_deg"), std::string::npos) << m_text;
+    EXPECT_NE(m_text.find("has no tracker noise"), std::string::npos) << m_text;
+  }
+}
+
 // A written chain reads back as the same spec, references and words kept (not their numbers).
 TEST_F(ErrSimHandEye, WrittenChainKeepsItsReferences) {
   const ChainSpec spec = Spec(Measured());

@@ -118,5 +118,32 @@ TEST(HandEyeTrackerNoise, PredictedSigmasApproachTheSpreadAndTheNoiseIsRecovered
   EXPECT_NEAR(mean_t, 1.0, 0.1);
 }
 
+// The cause of δ's understated σ (docs/math/handeye.md#tracker-noise, "Not yet within 10 %"): the
+// recordings above put every view on a tracker report (s = 0), where least squares on the
+// interpolated noisy poses pulls δ towards s = ½ (the interpolated error's variance w(s) is lowest
+// there, and the fit holds w fixed). With the views midway between reports (δ = 35 ms: s = ½, no
+// pull) the same solve's predicted σ of δ matches its spread: over 60 recordings RMS z 1.14
+// (against 5.2 at s = 0 and 3.5 at s = ¼), X's translation 1.17. The bound allows the sampling
+// error of an RMS over 60 (≈ 9 %).
+TEST(HandEyeTrackerNoise, DeltaSigmaHoldsWithViewsMidwayBetweenReports) {
+  VSTCAL_STATISTICAL_TEST_RELEASE_ONLY();
+  constexpr int kRuns = 60;
+  constexpr double kDelta = 0.035;
+  double zd = 0;
+  for (int run = 0; run < kRuns; ++run) {
+    HandEyeSpec spec = testing::HandEyeTestSpec(kDelta, 0.2, 1000 + static_cast<uint64_t>(run));
+    spec.tracker_noise_deg = kNoiseDeg;
+    spec.tracker_noise = kNoiseMm;
+    spec.views = 16;
+    const testing::HandEyeRecording r = testing::RecordHandEye(spec);
+    const HandEyeSolution s = SolveHandEye(r.camera, r.log, r.views);
+    ASSERT_TRUE(s.tracker_noise) << run;
+    zd += (s.time_offset - kDelta) * (s.time_offset - kDelta) / s.covariance(12, 12) / kRuns;
+  }
+  ::testing::Test::RecordProperty("delta_rms_z", ::testing::PrintToString(std::sqrt(zd)));
+  EXPECT_GT(std::sqrt(zd), 0.75);
+  EXPECT_LT(std::sqrt(zd), 1.3);
+}
+
 }  // namespace
 }  // namespace vstcal

@@ -154,29 +154,48 @@ double Inconsistency(const HandEyeStart& s, std::span<const HandEyeSample> sampl
 }
 
 
-// A dense copy of a Ceres Jacobian (rows: residuals, columns: x, z, δ).
-Eigen::MatrixXd DenseJacobian(const ceres::CRSMatrix& crs) {
-  Eigen::MatrixXd J = Eigen::MatrixXd::Zero(crs.num_rows, crs.num_cols);
-  for (int r = 0; r < crs.num_rows; ++r) {
-    for (int i = crs.rows[static_cast<size_t>(r)]; i < crs.rows[static_cast<size_t>(r) + 1]; ++i) {
-      J(r, crs.cols[static_cast<size_t>(i)]) = crs.values[static_cast<size_t>(i)];
-    }
-  }
-  return J;
+// A frame's corner residuals (px) and their Jacobians at the solution (references there, tangents
+// zero): J_g with respect to (x, z, δ), 2n × 13, and J_e with respect to the tracker pose's error,
+// 2n × 6 — the linearisation the tracker's noise model and the whitening hold.
+struct Linearisation {
+  Eigen::VectorXd r;
+  Eigen::MatrixXd J_g, J_e;
+};
+
+Linearisation Linearise(const Chain& chain, const Frame& frame, double delta) {
+  const double zero6[6] = {0, 0, 0, 0, 0, 0};
+  ceres::DynamicAutoDiffCostFunction<PoseErrorCost, 19> cost(new PoseErrorCost{&chain, &frame});
+  for (int size : {6, 6, 1, 6}) cost.AddParameterBlock(size);
+  const auto n = static_cast<Eigen::Index>(frame.Residuals());
+  cost.SetNumResiduals(static_cast<int>(n));
+  Linearisation out;
+  out.r.resize(n);
+  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> jx(n, 6), jz(n, 6), jd(n, 1), je(n, 6);
+  const double* parameters[] = {zero6, zero6, &delta, zero6};
+  double* jacobians[] = {jx.data(), jz.data(), jd.data(), je.data()};
+  VSTCAL_CHECK(cost.Evaluate(parameters, out.r.data(), jacobians), "a frame's residuals at the solution cannot be evaluated");
+  out.J_g.resize(n, 13);
+  out.J_g << jx, jz, jd;
+  out.J_e = je;
+  return out;
 }
 
 // One maximum-likelihood solve over `frames` from the given start: fills X, Z, δ, the fit and the
 // covariance of `out`, and returns each view's residuals (px) at the solution. With `whitening`
 // (one per frame) the frames are weighed by the tracker's noise and the covariance is (J̃ᵀJ̃)⁻¹ of
-// the whitened residuals; without, the tracker is exact and it is σ̂²(JᵀJ)⁻¹.
+// the whitened residuals; without, the tracker is exact and it is σ̂²(JᵀJ)⁻¹. With `linearisation`,
+// each frame's at the solution (for the next round of the noise estimate; one pass gives both it
+// and the covariance).
 std::vector<std::vector<Eigen::Vector2d>> Refine(Chain* chain, const std::vector<Frame>& frames, const std::vector<Whitening>* whitening,
                                                  const Rigid3d& x_start, const Rigid3d& z_start, double delta_start,
-                                                 const HandEyeOptions& options, HandEyeSolution* out) {
+                                                 const HandEyeOptions& options, HandEyeSolution* out,
+                                                 std::vector<Linearisation>* linearisation = nullptr) {
   // X, Z as left perturbations of their starts, δ absolute.
   chain->x0 = x_start;
   chain->z0 = z_start;
   double x[6] = {0, 0, 0, 0, 0, 0}, z[6] = {0, 0, 0, 0, 0, 0}, delta = delta_start;
   ceres::Problem problem;
+  std::vector<ceres::CostFunction*> costs;
   out->corners = out->views = out->right_views = out->right_corners = 0;
   for (size_t f = 0; f < frames.size(); ++f) {
     const Frame& frame = frames[f];
@@ -188,6 +207,7 @@ std::vector<std::vector<Eigen::Vector2d>> Refine(Chain* chain, const std::vector
     cost->AddParameterBlock(1);
     cost->SetNumResiduals(static_cast<int>(frame.Residuals() + (w ? 6 : 0)));
     problem.AddResidualBlock(cost, nullptr, {x, z, &delta});
+    costs.push_back(cost);
     for (const SolveView& v : frame.views) {
       ++out->views;
       out->corners += v.view->observations.size();
@@ -199,7 +219,9 @@ std::vector<std::vector<Eigen::Vector2d>> Refine(Chain* chain, const std::vector
   }
   ceres::Solver::Options solver;
   solver.max_num_iterations = options.max_iterations;
-  solver.linear_solver_type = ceres::DENSE_QR;
+  // 13 unknowns over ~10⁵ residuals: the 13 × 13 normal equations, not a QR of the tall Jacobian
+  // (which Ceres copies each iteration); the same minimum to the solver's tolerances.
+  solver.linear_solver_type = ceres::DENSE_NORMAL_CHOLESKY;
   solver.num_threads = 1;
   solver.function_tolerance = 1e-12;
   solver.parameter_tolerance = 1e-12;
@@ -210,25 +232,48 @@ std::vector<std::vector<Eigen::Vector2d>> Refine(Chain* chain, const std::vector
   out->tracker_from_board = PerturbLeft(chain->z0, Eigen::Vector3d(z[0], z[1], z[2]), Eigen::Vector3d(z[3], z[4], z[5]));
   out->time_offset = delta;
 
-  // The covariance at the solution: references moved there, tangents zero, J of all residuals.
+  // The covariance at the solution: references moved there, tangents zero, JᵀJ summed frame by
+  // frame (each frame's Jacobian is 13 columns of its own rows: no Jacobian of all residuals).
   chain->x0 = out->hmd_from_camera;
   chain->z0 = out->tracker_from_board;
   std::fill(std::begin(x), std::end(x), 0.0);
   std::fill(std::begin(z), std::end(z), 0.0);
-  double cost = 0;
-  ceres::CRSMatrix crs;
-  problem.Evaluate(ceres::Problem::EvaluateOptions{}, &cost, nullptr, nullptr, &crs);
-  const Eigen::MatrixXd J = DenseJacobian(crs);
-  const Eigen::MatrixXd information = J.transpose() * J;
-
+  Eigen::Matrix<double, 13, 13> information = Eigen::Matrix<double, 13, 13>::Zero();
+  if (linearisation) linearisation->clear();
   // Each view's residuals in px (unwhitened), and the fit from them.
   std::vector<std::vector<Eigen::Vector2d>> per_view;
   double sum = 0;
-  for (const Frame& frame : frames) {
-    std::vector<double> r(frame.Residuals());
-    const bool ok = FrameResiduals<double>(*chain, frame, x, z, delta, nullptr, r.data());
-    VSTCAL_CHECK(ok, "a frame's residuals at the solution cannot be evaluated");
-    size_t at = 0;
+  for (size_t f = 0; f < frames.size(); ++f) {
+    const Frame& frame = frames[f];
+    Eigen::VectorXd r;
+    if (linearisation) {
+      // Unwhitened residuals and Jacobians (J_e too); the whitening applied to J_g here.
+      Linearisation lin = Linearise(*chain, frame, delta);
+      if (whitening) {
+        const Whitening& w = (*whitening)[f];
+        const Eigen::Matrix<double, 6, 13> K = w.Q * lin.J_g;
+        const Eigen::MatrixXd P = (lin.J_g - w.JS * K) * w.inv_sqrt_c;
+        information.noalias() += P.transpose() * P + K.transpose() * K;
+      } else {
+        information.noalias() += lin.J_g.transpose() * lin.J_g;
+      }
+      r = lin.r;
+      linearisation->push_back(std::move(lin));
+    } else {
+      const auto rows = static_cast<Eigen::Index>(costs[f]->num_residuals());
+      Eigen::VectorXd rw(rows);
+      Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> jx(rows, 6), jz(rows, 6), jd(rows, 1);
+      const double* parameters[] = {x, z, &delta};
+      double* jacobians[] = {jx.data(), jz.data(), jd.data()};
+      VSTCAL_CHECK(costs[f]->Evaluate(parameters, rw.data(), jacobians), "a frame's residuals at the solution cannot be evaluated");
+      Eigen::MatrixXd J(rows, 13);
+      J << jx, jz, jd;
+      information.noalias() += J.transpose() * J;
+      r.resize(static_cast<Eigen::Index>(frame.Residuals()));
+      const bool ok = FrameResiduals<double>(*chain, frame, x, z, delta, nullptr, r.data());
+      VSTCAL_CHECK(ok, "a frame's residuals at the solution cannot be evaluated");
+    }
+    Eigen::Index at = 0;
     for (const SolveView& v : frame.views) {
       std::vector<Eigen::Vector2d> pixels;
       for (size_t i = 0; i < v.view->observations.size(); ++i, at += 2) {
@@ -242,7 +287,8 @@ std::vector<std::vector<Eigen::Vector2d>> Refine(Chain* chain, const std::vector
   out->rms_px = std::sqrt(sum / residuals);
   out->sigma_px = residuals > kHandEyeParameters ? std::sqrt(sum / (residuals - kHandEyeParameters)) : 0.0;
   // Whitened, the residuals are in units of their σ's (estimated): no σ̂² factor.
-  out->covariance = whitening ? information.inverse() : Eigen::MatrixXd(out->sigma_px * out->sigma_px * information.inverse());
+  const Eigen::MatrixXd inverse = information.inverse();
+  out->covariance = whitening ? inverse : Eigen::MatrixXd(out->sigma_px * out->sigma_px * inverse);
   return per_view;
 }
 
@@ -274,29 +320,17 @@ void EstimateTrackerNoiseJointly(Chain* chain, const std::vector<Frame>& frames,
   VarianceComponents components;
   JointTrackerNoise noise;
   noise.frames = frames.size();
+  // Every frame's residuals and Jacobians at the solution; after each weighted solve, that solve's.
+  chain->x0 = out->hmd_from_camera;
+  chain->z0 = out->tracker_from_board;
+  std::vector<Linearisation> linearisation;
+  for (const Frame& frame : frames) linearisation.push_back(Linearise(*chain, frame, out->time_offset));
   for (int round = 1; round <= 4; ++round) {
-    // Every frame's residuals and Jacobians at the solution (references there, tangents zero).
-    chain->x0 = out->hmd_from_camera;
-    chain->z0 = out->tracker_from_board;
-    const double zero6[6] = {0, 0, 0, 0, 0, 0};
-    const double delta = out->time_offset;
     std::vector<NoiseFrame> reduced;
-    std::vector<Eigen::MatrixXd> pose_jacobians;
-    for (const Frame& frame : frames) {
-      ceres::DynamicAutoDiffCostFunction<PoseErrorCost, 19> cost(new PoseErrorCost{chain, &frame});
-      for (int size : {6, 6, 1, 6}) cost.AddParameterBlock(size);
-      const auto n = static_cast<Eigen::Index>(frame.Residuals());
-      cost.SetNumResiduals(static_cast<int>(n));
-      Eigen::VectorXd r(n);
-      Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> jx(n, 6), jz(n, 6), jd(n, 1), je(n, 6);
-      const double* parameters[] = {zero6, zero6, &delta, zero6};
-      double* jacobians[] = {jx.data(), jz.data(), jd.data(), je.data()};
-      VSTCAL_CHECK(cost.Evaluate(parameters, r.data(), jacobians), "a frame's residuals at the solution cannot be evaluated");
-      Eigen::MatrixXd J_g(n, 13);
-      J_g << jx, jz, jd;
-      const double s = InterpolationFraction(chain->log, frame.time + delta);
-      reduced.push_back(ReduceNoiseFrame(je, J_g, r, (1 - s) * (1 - s) + s * s));
-      pose_jacobians.emplace_back(je);
+    for (size_t f = 0; f < frames.size(); ++f) {
+      const Linearisation& lin = linearisation[f];
+      const double s = InterpolationFraction(chain->log, frames[f].time + out->time_offset);
+      reduced.push_back(ReduceNoiseFrame(lin.J_e, lin.J_g, lin.r, (1 - s) * (1 - s) + s * s));
     }
     if (!have_theta) {
       // Start: c from the part of the residuals no pose error explains; a, b by moments.
@@ -334,14 +368,14 @@ void EstimateTrackerNoiseJointly(Chain* chain, const std::vector<Frame>& frames,
       Eigen::Matrix<double, 6, 1> S;
       S << Eigen::Vector3d::Constant(std::sqrt(nf.w * theta[1])), Eigen::Vector3d::Constant(std::sqrt(nf.w * theta[2]));
       Whitening w;
-      w.JS = pose_jacobians[f] * S.asDiagonal();
+      w.JS = linearisation[f].J_e * S.asDiagonal();
       Eigen::Matrix<double, 6, 6> B = w.JS.transpose() * w.JS;
       B.diagonal().array() += theta[0];
       w.Q = B.ldlt().solve(w.JS.transpose());
       w.inv_sqrt_c = 1 / std::sqrt(theta[0]);
       whitening.push_back(std::move(w));
     }
-    Refine(chain, frames, &whitening, out->hmd_from_camera, out->tracker_from_board, out->time_offset, options, out);
+    Refine(chain, frames, &whitening, out->hmd_from_camera, out->tracker_from_board, out->time_offset, options, out, &linearisation);
   }
   const Eigen::Vector3d se = components.covariance.diagonal().cwiseMax(0).cwiseSqrt();
   noise.corner_px = SigmaOf(theta[0], se[0]);

@@ -267,7 +267,8 @@ class SourcesReader {
 
   // A term given by the word of the measurement it comes from (docs/math/vst-chain.md#measured-chain):
   //  - tracking.rotation_deg, .translation: "tracker_noise", N(0, σ²) per axis with the
-  //    tracker-noise file's σ (the same in every frame: its three axes' RMS);
+  //    tracker-noise file's σ (the same in every frame: its three axes' RMS); "handeye", with the σ
+  //    the handeye file's joint solve estimated (its tracker_noise);
   //  - tracking.latency_s: "handeye", the residual N(0, σ_δ²) of a system that applies the measured
   //    offset δ̂; "handeye-uncorrected", N(δ̂, σ_δ²) for one that does not.
   TermSpec MeasuredTerm(const JsonNode& node, const TermDecl& d, const std::string& eye_key) {
@@ -276,12 +277,27 @@ class SourcesReader {
     t.distribution.kind = DistributionSpec::Kind::kNormal;
     t.distribution.first.assign(static_cast<size_t>(d.components), 0.0);
     if (d.term == Term::kTrackingRotation || d.term == Term::kTrackingTranslation) {
-      if (word != "tracker_noise") {
-        node.Fail("unknown value " + Quoted(word), "write \"tracker_noise\" (the tracker_noise file's σ) or a distribution object");
+      if (word != "tracker_noise" && word != "handeye") {
+        node.Fail("unknown value " + Quoted(word),
+                  "write \"tracker_noise\" (the tracker_noise file's σ), \"handeye\" (the σ calib-handeye solve estimated jointly) or a "
+                  "distribution object");
       }
-      if (!spec_->tracker_noise) node.Fail("the chain references no tracker noise", "add \"tracker_noise\": {\"file\": \"<tracker-noise@1 file>\"}, or give a distribution");
-      const TrackerNoise& n = spec_->tracker_noise->measured;
-      const double sigma = d.term == Term::kTrackingRotation ? RadToDeg(n.rotation.sigma) : n.translation.sigma;
+      double rotation_rad = 0, translation = 0;
+      if (word == "tracker_noise") {
+        if (!spec_->tracker_noise) node.Fail("the chain references no tracker noise", "add \"tracker_noise\": {\"file\": \"<tracker-noise@1 file>\"}, or give a distribution");
+        rotation_rad = spec_->tracker_noise->measured.rotation.sigma;
+        translation = spec_->tracker_noise->measured.translation.sigma;
+      } else {
+        if (!spec_->handeye) node.Fail("the chain references no hand-eye calibration", "add \"handeye\": {\"file\": \"<handeye@1 file>\"}, or give a distribution");
+        const std::optional<JointTrackerNoise>& n = spec_->handeye->measured.tracker_noise;
+        if (!n) {
+          node.Fail("the handeye file " + spec_->handeye->file + " has no tracker noise (its tracker was taken as exact)",
+                    "solve without --tracker-exact, reference a tracker-noise@1 file (\"tracker_noise\"), or give a distribution");
+        }
+        rotation_rad = n->rotation.sigma;
+        translation = n->translation.sigma;
+      }
+      const double sigma = d.term == Term::kTrackingRotation ? RadToDeg(rotation_rad) : translation;
       t.distribution.second.assign(static_cast<size_t>(d.components), sigma);
       return t;
     }

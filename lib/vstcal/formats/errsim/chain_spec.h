@@ -59,8 +59,9 @@ struct TermSpec {
   std::string key;      // the file key ("rotation_deg"; a lens parameter name for kLens)
   DistributionSpec distribution;
   // Empty: typed into the chain. Else the word written in its place, naming the measurement the
-  // distribution was made from (docs/formats.md#vst-chain-measured): "tracker_noise" (tracking's
-  // rotation_deg and translation), "handeye" or "handeye-uncorrected" (tracking's latency_s).
+  // distribution was made from (docs/formats.md#vst-chain-measured): "tracker_noise" or "handeye"
+  // (tracking's rotation_deg and translation: the tracker-noise file's σ's or those the handeye
+  // file's joint solve estimated), "handeye" or "handeye-uncorrected" (tracking's latency_s).
   std::string from;
 };
 

@@ -36,6 +36,19 @@ NoiseEstimate ReadNoise(const JsonNode& node) {
   return e;
 }
 
+// A σ estimated jointly: {sigma, sigma_sigma, ci95: [lower, upper]} (HandEyeToJson's).
+EstimatedSigma ReadEstimatedSigma(const JsonNode& node) {
+  ExpectKeys(node, {"sigma", "sigma_sigma", "ci95"}, "field of a jointly estimated σ");
+  EstimatedSigma e;
+  e.sigma = node.at("sigma").NonNegativeNumber();
+  e.sigma_sigma = node.at("sigma_sigma").NonNegativeNumber();
+  const JsonNode ci = node.at("ci95");
+  ci.ArraySize(2);
+  e.lower = ci.at(0).NonNegativeNumber();
+  e.upper = ci.at(1).NonNegativeNumber();
+  return e;
+}
+
 }  // namespace
 
 HandEyeMeasurement HandEyeFromJson(const JsonDocument& doc) {
@@ -72,6 +85,17 @@ HandEyeMeasurement HandEyeFromJson(const JsonDocument& doc) {
     for (Eigen::Index a = 0; a < n; ++a)
       for (Eigen::Index b = 0; b < n; ++b) out.solution.covariance(a, b) = c.matrix(*c.Find(expected[a]), *c.Find(expected[b]));
     out.solution.names = expected;
+  }
+  // The tracker's noise when it was estimated jointly (err-sim's tracking σ's may come from it);
+  // a file whose tracker was taken as exact says so in words and has no σ's.
+  if (const auto noise = root.find("tracker_noise"); noise && noise->json().is_object() && noise->json().contains("rotation_rad")) {
+    JointTrackerNoise n;
+    n.rotation = ReadEstimatedSigma(noise->at("rotation_rad"));
+    n.translation = ReadEstimatedSigma(noise->at("translation"));
+    if (const auto px = noise->find("corner_px")) n.corner_px = ReadEstimatedSigma(*px);
+    if (const auto frames = noise->find("frames")) n.frames = static_cast<size_t>(frames->NonNegativeNumber());
+    if (const auto rounds = noise->find("rounds")) n.rounds = static_cast<int>(rounds->NonNegativeNumber());
+    out.solution.tracker_noise = n;
   }
   return out;
 }
