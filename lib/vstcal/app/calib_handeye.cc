@@ -14,6 +14,7 @@
 #include "vstcal/geometry/rotation.h"
 #include "vstcal/handeye/refine.h"
 #include "vstcal/scene/view_keys.h"
+#include "vstcal/core/option_name.h"
 
 namespace vstcal::app {
 namespace {
@@ -87,9 +88,9 @@ std::string PairRightViews(const Correspondences& left, const std::string& left_
 
 Outcome MeasureTrackerNoise(const TrackerNoiseRequest& request, const Provenance& provenance) {
   const auto tum_unit = LengthUnitFromName(request.tum_unit);
-  if (!tum_unit) throw InputError("--tum-unit: \"" + request.tum_unit + "\" is not a length unit; use mm, cm, m or in");
-  if (!(request.to > request.from)) throw InputError("--to: must be after --from (the static segment, in the tracker's seconds)");
-  if (!(request.max_motion > 0)) throw InputError("--max-motion: give the largest drift (mm) a held headset may show, > 0");
+  if (!tum_unit) throw InputError(VSTCAL_OPT("tum_unit") ": \"" + request.tum_unit + "\" is not a length unit; use mm, cm, m or in");
+  if (!(request.to > request.from)) throw InputError(VSTCAL_OPT("to") ": must be after " VSTCAL_OPT("from") " (the static segment, in the tracker's seconds)");
+  if (!(request.max_motion > 0)) throw InputError(VSTCAL_OPT("max_motion") ": give the largest drift (mm) a held headset may show, > 0");
   // The σ's are reported in millimetres whatever the log's unit.
   const PoseLog log = InUnit(ReadPoseLog(request.poses, *tum_unit), LengthUnit::kMillimetre);
   const TrackerNoise n = [&] {
@@ -118,11 +119,11 @@ Outcome MeasureTrackerNoise(const TrackerNoiseRequest& request, const Provenance
 }
 
 Outcome SolveHandEyeFiles(const HandEyeRequest& request, const Provenance& provenance) {
-  if (request.output.empty()) throw InputError("-o/--output: give the handeye@1 file to write");
+  if (request.output.empty()) throw InputError(VSTCAL_OPT("output") ": give the handeye@1 file to write");
   const auto tum_unit = LengthUnitFromName(request.tum_unit);
-  if (!tum_unit) throw InputError("--tum-unit: \"" + request.tum_unit + "\" is not a length unit; use mm, cm, m or in");
+  if (!tum_unit) throw InputError(VSTCAL_OPT("tum_unit") ": \"" + request.tum_unit + "\" is not a length unit; use mm, cm, m or in");
   if (!(request.max_time_offset > 0 && request.max_time_offset <= 10)) {
-    throw InputError("--max-time-offset: " + MessageNumber(request.max_time_offset) + " s; give the largest offset to search, > 0 and ≤ 10 s");
+    throw InputError(VSTCAL_OPT("max_time_offset") ": " + MessageNumber(request.max_time_offset) + " s; give the largest offset to search, > 0 and ≤ 10 s");
   }
   if (request.rig.empty() != request.right_corners.empty()) {
     throw InputError(request.rig.empty() ? "rig: the right camera's views are given without the rig; give the stereo@1 file whose right_from_left joins them"

@@ -5,6 +5,7 @@
 
 #include "vstcal/core/error.h"
 #include "vstcal/errsim/engine.h"
+#include "vstcal/core/option_name.h"
 
 namespace vstcal {
 
@@ -243,7 +244,7 @@ SimulationResult RunSimulation(const std::vector<Scenario>& scenarios, const Sim
 
 void MergeSimulation(SimulationResult* into, const SimulationResult& other) {
   if (into->scenarios != other.scenarios) {
-    throw InputError("the shards ran different scenarios (different --only/--without or --no-budget); merge shards of one run");
+    throw InputError("the shards ran different scenarios (different " VSTCAL_OPT("only") "/" VSTCAL_OPT("without") " or " VSTCAL_OPT("no_budget") "); merge shards of one run");
   }
   for (size_t i = 0; i < into->summaries.size(); ++i) into->summaries[i].Merge(other.summaries[i]);
 }

@@ -5,6 +5,7 @@
 
 #include "vstcal/core/error.h"
 #include "vstcal/random/philox.h"
+#include "vstcal/core/option_name.h"
 
 namespace vstcal {
 namespace {
@@ -80,7 +81,7 @@ HandEyeRecording SynthesizeHandEye(const Camera& camera, const HandEyeSpec& s) {
       r.camera_from_board.push_back(camera_from_board);
     }
   }
-  if (r.views.size() < 2) throw InputError("handeye: fewer than 2 views see the board; move the camera farther (--distance) or use a smaller board");
+  if (r.views.size() < 2) throw InputError("handeye: fewer than 2 views see the board; move the camera farther (" VSTCAL_OPT("distance") ") or use a smaller board");
   return r;
 }
 

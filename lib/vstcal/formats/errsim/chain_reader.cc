@@ -15,6 +15,7 @@
 #include "vstcal/json/fields.h"
 #include "vstcal/json/format_check.h"
 #include "vstcal/json/json_writer.h"
+#include "vstcal/core/option_name.h"
 
 namespace vstcal {
 namespace {
@@ -292,7 +293,7 @@ class SourcesReader {
         const std::optional<JointTrackerNoise>& n = spec_->handeye->measured.tracker_noise;
         if (!n) {
           node.Fail("the handeye file " + spec_->handeye->file + " has no tracker noise (its tracker was taken as exact)",
-                    "solve without --tracker-exact, reference a tracker-noise@1 file (\"tracker_noise\"), or give a distribution");
+                    "solve without " VSTCAL_OPT("tracker_exact") ", reference a tracker-noise@1 file (\"tracker_noise\"), or give a distribution");
         }
         rotation_rad = n->rotation.sigma;
         translation = n->translation.sigma;
