@@ -245,11 +245,11 @@ TEST(KalibrAprilGrid, EveryTagOpenCvDecodesAndCornersMoreAccurateThanOpenCvs) {
               "  OpenCV aruco + cornerSubPix 2x2 (Kalibr) %3d / %d / %.3f\n",
               ours.n, ours.wrong, ours.rms(), raw.n, raw.wrong, raw.rms(), subpix.n, subpix.wrong, subpix.rms(), kalibr.n, kalibr.wrong,
               kalibr.rms());
-  // vstcal keeps every corner of every tag OpenCV's finder decodes (the same finder). With tags of
-  // about 34 px (cells of 3.4 px) and blur, OpenCV's detectMarkers decodes 94 of the 144 tags:
-  // not every tag is found at this scale (docs/experiments/corners.md#aprilgrid).
-  EXPECT_EQ(ours.n + ours.wrong, subpix.n + subpix.wrong);
-  EXPECT_GE(found_tags, 90);
+  // With tags of about 34 px (cells of 3.4 px) and blur, OpenCV's detectMarkers with its default
+  // sampling decodes 94 of the 144 tags; vstcal's (6 px a cell, the cells' middles: aruco_tags.cc)
+  // 105, and keeps at least every corner OpenCV's default finds (docs/experiments/corners.md#aprilgrid).
+  EXPECT_GE(ours.n + ours.wrong, subpix.n + subpix.wrong);
+  EXPECT_GE(found_tags, 100);
   EXPECT_EQ(ours.wrong, 0);
   EXPECT_LE(ours.rms(), std::min({raw.rms(), subpix.rms(), kalibr.rms()}));
   EXPECT_LT(ours.rms(), 0.05);

@@ -123,7 +123,7 @@ Detection DetectAprilGrid(const GrayImage& image, const Target& target, const De
                  "the board looks like an apriltag-grid: set the target's type to apriltag-grid";
     } else {
       d.reason = "no tag36h11 tag with the two-cell black border of Kalibr's aprilgrid";
-      if (std::string hint = MissHint(image, options, search.undecoded_sides_px, kAprilGridCells, "tag"); !hint.empty()) d.reason += "; " + hint;
+      if (std::string hint = MissHint(image, options, TooSmallMarkers(search.undecoded_sides_px, kAprilGridCells, "tag")); !hint.empty()) d.reason += "; " + hint;
     }
     return d;
   }

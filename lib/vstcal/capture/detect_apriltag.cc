@@ -111,7 +111,7 @@ Detection DetectAprilTagGrid(const GrayImage& image, const Target& target, const
     // OpenCV's candidates are the same quadrilaterals whatever the border it then decodes: the
     // tags, where they are too small for libapriltag too.
     const MarkerFamily* family = FindMarkerFamily(AprilTagFamilies(), target.family);
-    if (std::string hint = MissHint(image, options, two_cell_search.undecoded_sides_px, family->bits + 2, "tag"); !hint.empty()) {
+    if (std::string hint = MissHint(image, options, TooSmallMarkers(two_cell_search.undecoded_sides_px, family->bits + 2, "tag")); !hint.empty()) {
       d.reason += "; " + hint;
     }
     return d;

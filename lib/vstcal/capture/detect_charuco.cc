@@ -94,7 +94,7 @@ Detection DetectCharuco(const GrayImage& image, const Target& target, const Dete
                                         std::to_string(target.first_id) + " … " + std::to_string(target.first_id + static_cast<int>(quads.size()) - 1) +
                                         " (the target's first_id, rows and cols)";
     const MarkerFamily* family = FindMarkerFamily(ArucoDictionaries(), target.dictionary);
-    if (std::string hint = MissHint(image, options, search.undecoded_sides_px, family->bits + 2, "marker"); !hint.empty()) d.reason += "; " + hint;
+    if (std::string hint = MissHint(image, options, TooSmallMarkers(search.undecoded_sides_px, family->bits + 2, "marker")); !hint.empty()) d.reason += "; " + hint;
     return d;
   }
   const MarkerLayoutCheck layout = CheckMarkerLayout(quads, markers);

@@ -95,7 +95,7 @@ Detection DetectChessboard(const GrayImage& image, const Target& target, const D
       d.reason += " (a board-like pattern is in view, but not all its corners were found: the board is partly outside the image, "
                   "blurred, or its squares are too small)";
     }
-    if (std::string hint = MissHint(image, options, {}, 0, "square"); !hint.empty()) d.reason += "; " + hint;
+    if (std::string hint = MissHint(image, options, TooSmallSquares(image, s.factor)); !hint.empty()) d.reason += "; " + hint;
     return d;
   }
   std::vector<Eigen::Vector2d> grid;

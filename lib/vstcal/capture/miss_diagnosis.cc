@@ -7,6 +7,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "vstcal/capture/corner_refinement.h"
+#include "vstcal/capture/saddle_lattice.h"
 #include "vstcal/capture/search_image.h"
 
 namespace vstcal {
@@ -59,24 +60,39 @@ std::optional<EdgeSharpness> SharpestEdgeBlur(const GrayImage& image, double rea
   return EdgeSharpness{blur[blur.size() / 10], static_cast<int>(blur.size())};
 }
 
-std::string MissHint(const GrayImage& image, const DetectorOptions& options, std::vector<double> undecoded_sides_px, int cells,
-                     std::string_view what) {
+std::string TooSmallMarkers(std::vector<double> undecoded_sides_px, int cells, std::string_view what) {
+  if (cells <= 0 || undecoded_sides_px.size() < kMinUndecoded) return {};
+  std::nth_element(undecoded_sides_px.begin(), undecoded_sides_px.begin() + static_cast<long>(undecoded_sides_px.size() / 2),
+                   undecoded_sides_px.end());
+  const double median = undecoded_sides_px[undecoded_sides_px.size() / 2], needed = kMinPxPerCell * cells;
+  if (median >= needed) return {};
   char buf[320];
-  // Too small first: where the markers are a few pixels a cell their edges lie closer together than
-  // a blur profile reaches, and the sharpest edges would read as blurred.
-  if (cells > 0 && undecoded_sides_px.size() >= kMinUndecoded) {
-    std::nth_element(undecoded_sides_px.begin(), undecoded_sides_px.begin() + static_cast<long>(undecoded_sides_px.size() / 2),
-                     undecoded_sides_px.end());
-    const double median = undecoded_sides_px[undecoded_sides_px.size() / 2], needed = kMinPxPerCell * cells;
-    if (median < needed) {
-      std::snprintf(buf, sizeof buf,
-                    "the %ss look too small: %zu %s-like quadrilaterals were not decoded, of %.1f px a side (median), and a %s of %d "
-                    "cells needs about %.0f px (%.0f px a cell); move the camera closer, or print a larger board",
-                    std::string(what).c_str(), undecoded_sides_px.size(), std::string(what).c_str(), median, std::string(what).c_str(), cells,
-                    needed, kMinPxPerCell);
-      return buf;
-    }
-  }
+  std::snprintf(buf, sizeof buf,
+                "the %ss look too small: %zu %s-like quadrilaterals were not decoded, of %.1f px a side (median), and a %s of %d "
+                "cells needs about %.0f px (%.0f px a cell); move the camera closer, or print a larger board",
+                std::string(what).c_str(), undecoded_sides_px.size(), std::string(what).c_str(), median, std::string(what).c_str(), cells,
+                needed, kMinPxPerCell);
+  return buf;
+}
+
+std::string TooSmallSquares(const GrayImage& image, int search_factor) {
+  const double needed = kMinSquareSearchPx * search_factor;
+  // Links reach 1.5 × the squares read: the short axis of a board tilted 60° (foreshortened by
+  // half) links a board just under the limit; the cost grows with the reach squared.
+  const auto lattice = FindSaddleLattice(image, 1.5 * needed);
+  if (!lattice || lattice->spacing_px >= needed) return {};
+  char buf[320];
+  std::snprintf(buf, sizeof buf,
+                "the squares look too small: a lattice of %d chessboard corners, squares of about %.1f px, and the chessboard finders need "
+                "about %.0f px a square%s; move the camera closer, or print a larger board",
+                lattice->corners, lattice->spacing_px, needed,
+                search_factor > 1 ? (" in an image this large (searched reduced by " + std::to_string(search_factor) + ")").c_str() : "");
+  return buf;
+}
+
+std::string MissHint(const GrayImage& image, const DetectorOptions& options, std::string too_small) {
+  if (!too_small.empty()) return too_small;
+  char buf[320];
   // The profile reaches far enough to see a σ somewhat above the limit (2.563 σ is the 10–90 % rise).
   if (const auto sharp = SharpestEdgeBlur(image, std::clamp(4 * options.max_blur_px, 8.0, 24.0)); sharp && sharp->sigma_px > options.max_blur_px) {
     std::snprintf(buf, sizeof buf,
