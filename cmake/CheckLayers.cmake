@@ -110,7 +110,7 @@ endforeach()
 # front end's spelling of them: a string literal in lib/ that spells a flag ("--tilt-deg") breaks
 # the plan. A line that must (a file's header naming the command that wrote it) says
 # "house-plan: names a command" in its comment.
-set(flag_spelling_todo camera/ formats/camera/ capture/detect_run.cc capture/synthetic_camera.cc)
+set(flag_spelling_todo camera/ formats/camera/ capture/synthetic_camera.cc)
 foreach(f IN LISTS lib_files)
   if(NOT f MATCHES "\\.cc$")
     continue()

@@ -20,6 +20,7 @@
 #include "vstcal/image/image_io.h"
 #include "vstcal/core/error.h"
 #include "vstcal/core/parallel.h"
+#include "vstcal/core/option_name.h"
 
 namespace vstcal {
 namespace {
@@ -184,7 +185,7 @@ CaptureResult Finish(std::vector<ImageRecord> records, std::vector<Detection> de
   }
   if (static_cast<int>(c.views.size()) < request.min_views) {
     throw DegenerateError("too few usable images: " + counts + "; a calibration needs at least " + std::to_string(request.min_views) +
-                          " (--min-views): capture more views of the target");
+                          " (" VSTCAL_OPT("min_views") "): capture more views of the target");
   }
   if (request.rig == Rig::kVolume && planes.size() < 2) {
     char offset[32];
@@ -297,7 +298,7 @@ CaptureResult DetectInFiles(const std::vector<CaptureInput>& inputs, const Detec
     Slot& s = slots[k];
     if (!s.problem.empty()) {
       if (!request.skip_unreadable) {
-        throw InputError(inputs[k].image + ": " + s.problem + "; copy the image again or remove it (--skip-unreadable lists it as rejected)");
+        throw InputError(inputs[k].image + ": " + s.problem + "; copy the image again or remove it (" VSTCAL_OPT("skip_unreadable") " lists it as rejected)");
       }
       s.detection = Detection{DetectionStatus::kRejected, "unreadable: " + s.problem, {}, std::nan("")};
     } else {
@@ -323,11 +324,11 @@ CaptureResult DetectInFiles(const std::vector<CaptureInput>& inputs, const Detec
 
 CaptureResult DetectInVideo(const VideoRequest& video, const DetectRequest& request, const Progress& progress) {
   if (request.rig != Rig::kPlanarViews) {
-    throw InputError("--video/--camera-index: frames have no template positions; a volume needs images with --manifest or --offset-from-name");
+    throw InputError(VSTCAL_OPT("video") "/" VSTCAL_OPT("camera_index") ": frames have no template positions; a volume needs images with " VSTCAL_OPT("manifest") " or " VSTCAL_OPT("offset_from_name"));
   }
-  if (video.every < 1) throw InputError("--every: must be a whole number ≥ 1");
+  if (video.every < 1) throw InputError(VSTCAL_OPT("every") ": must be a whole number ≥ 1");
   const bool live = video.camera_index >= 0;
-  if (live && video.max_frames < 1) throw InputError("--frames: required with --camera-index (how many frames to keep)");
+  if (live && video.max_frames < 1) throw InputError(VSTCAL_OPT("frames") ": required with " VSTCAL_OPT("camera_index") " (how many frames to keep)");
   const std::string source = live ? "camera" + std::to_string(video.camera_index) : video.file;
   // OpenCV's video backends log their own failures (GStreamer, FFmpeg) on stderr; the tool's one
   // line says what went wrong instead. FFmpeg logs through av_log, which OpenCV's FFmpeg backend
