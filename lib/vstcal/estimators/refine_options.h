@@ -56,6 +56,12 @@ struct RefineOptions {
   // Priors on free lens parameters (IntrinsicPrior). Each must name a parameter the refinement
   // estimates, once, with a finite value and sigma > 0 (ResolvePriors, free_intrinsics.h).
   std::vector<IntrinsicPrior> priors;
+
+  // A lens model to solve by its file name ("kannala-brandt" for a fisheye), or empty for the
+  // Brown–Conrady model free_distortion calls for. The start camera is promoted to it (its layout
+  // must extend the start's: a pinhole start always does), then as above. RefinedModel refuses an
+  // unknown name.
+  std::string lens_model;
 };
 
 }  // namespace vstcal
