@@ -5,6 +5,7 @@
 #include <iostream>
 
 #include "common/validators.h"
+#include "vstcal/camera/camera.h"
 #include "vstcal/core/limits.h"
 #include "vstcal/app/calibration.h"
 
@@ -26,11 +27,18 @@ void ExpectThree(const std::vector<double>& numbers, const std::string& flag, co
 }  // namespace
 
 std::vector<CLI::Option*> CalibrationFlags::AddRefinement(CLI::App& app) {
-  std::vector<CLI::Option*> options = {
-      app.add_option("--distortion", distortion,
+  std::string models;
+  ForEachLensModel([&](auto model) { models += (models.empty() ? "" : ", ") + std::string(decltype(model)::kName); });
+  distortion_option = app.add_option("--distortion", distortion,
                      "distortion terms to estimate, comma-separated names (k1,k2,p1,p2,k3 radial-tangential; also "
-                     "k4,k5,k6: the rational model, OpenCV's CALIB_RATIONAL_MODEL) or \"none\"")
-          ->capture_default_str(),
+                     "k4,k5,k6: the rational model, OpenCV's CALIB_RATIONAL_MODEL; with --lens-model "
+                     "kannala-brandt its k1,k2,k3,k4, the default there) or \"none\"")
+          ->capture_default_str();
+  std::vector<CLI::Option*> options = {
+      distortion_option,
+      app.add_option("--lens-model", lens_model,
+                     "solve this lens model (" + models + "): kannala-brandt for a fisheye (OpenCV's cv::fisheye, "
+                     "Kalibr's equidistant); by default the Brown–Conrady model --distortion calls for"),
       app.add_flag("--skew", skew, "also estimate the skew s (K[0][1])"),
       app.add_option("--loss", loss, "robust loss: none, huber or cauchy")
           ->check(CLI::IsMember(NamesOf(RefineOptions::kLossNames)))
@@ -99,7 +107,16 @@ ViewRejectionOptions CalibrationFlags::Rejection() const {
 RefineOptions CalibrationFlags::Refinement() const {
   RefineOptions o;
   o.free_distortion.clear();
-  if (distortion != "none") {
+  o.lens_model = lens_model;
+  const auto model = lens_model.empty() ? std::nullopt : LensModelFromName(lens_model);
+  if (!lens_model.empty() && !model) {
+    throw InputError("--lens-model: unknown lens model \"" + lens_model + "\"; use one of " + KnownLensModelNames());
+  }
+  if (model && distortion_option && distortion_option->count() == 0) {
+    // A model of another family (the fisheye) estimates its own terms unless told otherwise.
+    const auto names = LensModelParamNames(*model);
+    for (auto it = names.begin() + kNumIntrinsicParams; it != names.end(); ++it) o.free_distortion.emplace_back(*it);
+  } else if (distortion != "none") {
     for (const std::string& term : CLI::detail::split(distortion, ',')) {
       if (term.empty()) throw InputError("--distortion: empty term in \"" + distortion + "\"; give names like k1,k2,p1,p2 or none");
       if (std::find(o.free_distortion.begin(), o.free_distortion.end(), term) != o.free_distortion.end()) {
