@@ -8,18 +8,13 @@
 #include "vstcal/geometry/rotation.h"
 
 namespace vstcal {
+namespace {
 
-ZhangResult EquidistantZhangStart(const Correspondences& c, const ZhangResult& pinhole) {
+// The rounds from K; !ok when the first fails (a view left with too few corners, Zhang refusing
+// the linearized corners), else the last round that succeeded.
+ZhangResult Rounds(const Correspondences& c, Eigen::Matrix3d K) {
   constexpr double kMaxAngle = 75 * kPi / 180;  // tan 75° = 3.7: a corner there still weighs like the others
-  // Without a pinhole start, OpenCV's fisheye guess: 180° across the longer side, centred.
-  Eigen::Matrix3d K;
-  if (pinhole.ok) {
-    K = pinhole.camera.K();
-  } else {
-    const double f = std::max(c.image_size.width, c.image_size.height) / kPi;
-    K << f, 0, 0.5 * c.image_size.width - 0.5, 0, f, 0.5 * c.image_size.height - 0.5, 0, 0, 1;
-  }
-  ZhangResult best = pinhole;
+  ZhangResult best;
   for (int round = 0; round < 50; ++round) {
     const Eigen::Matrix3d K_inverse = K.inverse();
     Correspondences linear = c;
@@ -44,6 +39,20 @@ ZhangResult EquidistantZhangStart(const Correspondences& c, const ZhangResult& p
     if (moved < 1e-9) break;
   }
   return best;
+}
+
+}  // namespace
+
+ZhangResult EquidistantZhangStart(const Correspondences& c, const ZhangResult& pinhole) {
+  // OpenCV's fisheye guess first (180° across the longer side, centred): a pinhole K from bent
+  // homographies can be tens of % off, too far for the linearized corners to be consistent.
+  const double f = std::max(c.image_size.width, c.image_size.height) / kPi;
+  Eigen::Matrix3d guess;
+  guess << f, 0, 0.5 * c.image_size.width - 0.5, 0, f, 0.5 * c.image_size.height - 0.5, 0, 0, 1;
+  ZhangResult r = Rounds(c, guess);
+  if (r.ok) return r;
+  if (pinhole.ok) r = Rounds(c, pinhole.camera.K());
+  return r.ok ? r : pinhole;
 }
 
 }  // namespace vstcal

@@ -13,10 +13,10 @@ namespace vstcal {
 // (θ = θd = |K⁻¹ pixel|: pixel' = K·(tan θd/θd)·x_d), leaving out corners with θd ≥ 75°, where tan
 // grows without bound, and solves Zhang again, until K moves by less than 1e-9 relative (at most
 // 50 rounds). The true K of equidistant data is a fixed point, so the start's error is what
-// k1…k4 add. `pinhole` is Zhang's result on the raw corners, its K the first round's; when it
-// failed (bent homographies can fail Zhang's positive-definiteness), OpenCV's fisheye guess
-// f = max(W, H)/π at the image centre. Returns the last round that succeeded, `pinhole` if none
-// (a view left with too few corners, a degenerate homography).
+// k1…k4 add. The first round's K is OpenCV's fisheye guess, f = max(W, H)/π at the image centre
+// (Zhang's K from the raw corners can be tens of % off, too far for the linearized corners to be
+// consistent: Zhang then refuses them); if those rounds fail, `pinhole`'s K (Zhang on the raw
+// corners). Returns the last round that succeeded, `pinhole` if none did.
 ZhangResult EquidistantZhangStart(const Correspondences& c, const ZhangResult& pinhole);
 
 }  // namespace vstcal
