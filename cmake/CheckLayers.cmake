@@ -108,21 +108,10 @@ endforeach()
 
 # Library messages name a request's options (core/option_name.h: VSTCAL_OPT("tilt_deg")), never one
 # front end's spelling of them: a string literal in lib/ that spells a flag ("--tilt-deg") breaks
-# the plan. A line that must (a file's header naming the command that wrote it) says
-# "house-plan: names a command" in its comment.
-set(flag_spelling_todo camera/ formats/camera/ capture/synthetic_camera.cc)
+# the plan. A line that must (a file's header naming the command that wrote it, a peer tool's own
+# command line) says "house-plan: names a command" in its comment.
 foreach(f IN LISTS lib_files)
-  if(NOT f MATCHES "\\.cc$")
-    continue()
-  endif()
-  set(todo FALSE)
-  foreach(prefix IN LISTS flag_spelling_todo)
-    string(FIND "${f}" "${prefix}" at)
-    if(at EQUAL 0)
-      set(todo TRUE)
-    endif()
-  endforeach()
-  if(todo)
+  if(NOT f MATCHES "\\.(cc|h)$")
     continue()
   endif()
   file(STRINGS "${ROOT}/lib/vstcal/${f}" spelled REGEX "\"[^\"]*--[a-z]")

@@ -26,7 +26,8 @@ def points_in_view(n=200, seed=1):
 
 def test_lens_models_list_every_model(vstcal):
     models = vstcal.lens_models()
-    assert list(models) == ["none", "radial-tangential", "rational"]
+    assert list(models) == ["none", "radial-tangential", "rational", "kannala-brandt"]
+    assert models["kannala-brandt"][5:] == ["k1", "k2", "k3", "k4"]
     assert models["rational"][-3:] == ["k4", "k5", "k6"]
     for name, d in DISTORTION.items():
         assert len(models[name]) == 5 + len(d)

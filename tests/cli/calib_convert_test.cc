@@ -108,6 +108,29 @@ TEST_F(CliCalibConvert, RationalCameraRoundTrips) {
   EXPECT_EQ(ReadJson("out/back.json").at("distortion"), truth.at("distortion"));
 }
 
+// A fisheye goes to OpenCV YAML (distortion_model: fisheye), ROS and Kalibr (equidistant) and back
+// exactly; mrcal, which has no Kannala–Brandt model, is refused in one line with nothing written.
+TEST_F(CliCalibConvert, FisheyeRoundTripsAndMrcalIsRefused) {
+  Json truth = SynthCamera();
+  truth.erase("camera_from_world");
+  truth.erase("P");
+  truth["distortion"] = {{"model", "kannala-brandt"}, {"k1", 0.021}, {"k2", -0.0043}, {"k3", 0.0011}, {"k4", -1.7e-4}};
+  WriteJson("in/fisheye.json", truth);
+  Convert({"in/fisheye.json", "-o", "out/cam.yaml"});
+  EXPECT_NE(ReadText("out/cam.yaml").find("distortion_model: fisheye"), std::string::npos);
+  Convert({"out/cam.yaml", "-o", "out/back.json"});
+  EXPECT_EQ(ReadJson("out/back.json").at("distortion"), truth.at("distortion"));
+  for (const std::string to : {"ros", "kalibr"}) {
+    Convert({"in/fisheye.json", "--to", to, "-o", "out/cam-" + to + ".yaml"});
+    EXPECT_NE(ReadText("out/cam-" + to + ".yaml").find("distortion_model: equidistant"), std::string::npos) << to;
+    Convert({"out/cam-" + to + ".yaml", "-o", "out/back-" + to + ".json"});
+    EXPECT_EQ(ReadJson("out/back-" + to + ".json").at("distortion"), truth.at("distortion")) << to;
+  }
+  EXPECT_TRUE(FailsWith(Run(kTool, {"in/fisheye.json", "-o", "out/cam.cameramodel"}), kTool, kBadInput,
+                        "in/fisheye.json: model: ", {"has no equivalent in mrcal 2.2, which has no Kannala–Brandt model"}));
+  EXPECT_FALSE(std::filesystem::exists("out/cam.cameramodel"));
+}
+
 TEST_F(CliCalibConvert, PoseIntoOpenCvIsANote) {
   SynthCamera();
   const CommandResult r = Convert({"in/volume.truth.json", "-o", "out/cam.yml"});

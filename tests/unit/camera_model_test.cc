@@ -189,7 +189,7 @@ TEST(CameraModel, NamesAndParameterLayout) {
   EXPECT_TRUE(std::holds_alternative<RadialTangentialModel>(*LensModelFromName("radial-tangential")));
   EXPECT_TRUE(std::holds_alternative<RationalModel>(*LensModelFromName("rational")));
   EXPECT_FALSE(LensModelFromName("opencv5").has_value());
-  EXPECT_EQ(KnownLensModelNames(), "\"none\", \"radial-tangential\", \"rational\"");
+  EXPECT_EQ(KnownLensModelNames(), "\"none\", \"radial-tangential\", \"rational\", \"kannala-brandt\"");
   EXPECT_EQ(LensModelNumParams(RadialTangentialModel{}), 10);
   const auto names = LensModelParamNames(RadialTangentialModel{});
   EXPECT_EQ(names[5], "k1");

@@ -210,6 +210,22 @@ TEST(MrcalCameramodel, RefusesSkew) {
             std::string::npos);
 }
 
+// mrcal 2.2 has no Kannala–Brandt model (its header lists none): a fisheye is refused in one line
+// that says so and names the nearest model, fitted rather than converted.
+TEST(MrcalCameramodel, RefusesAFisheyeNamingTheNearestModel) {
+  CalibratedCamera c = InteropCameras()[3];
+  const double d[4] = {0.02, -0.004, 0.001, -0.0002};
+  c.camera = Camera::FromK(c.camera.K(), c.camera.image_size, KannalaBrandtModel{}, d);
+  const std::string e = ErrorOf([&] { WriteText(c); });
+  EXPECT_EQ(e.rfind("cam.json: model: \"kannala-brandt\" (cv::fisheye's model) has no equivalent in mrcal 2.2, which has "
+                    "no Kannala–Brandt model; calibrate the same corners with mrcal-calibrate-cameras --lensmodel "
+                    "LENSMODEL_SPLINED_STEREOGRAPHIC",
+                    0),
+            0u)
+      << e;
+  EXPECT_EQ(e.find('\n'), std::string::npos);
+}
+
 // mrcal files carry no unit: the translation is written in the camera's unit unless asked
 // otherwise, and the unit goes in 'vstcal_length_unit', which libmrcal skips.
 TEST(MrcalCameramodel, LengthUnits) {

@@ -152,6 +152,59 @@ TEST(OpenCvYaml, ProvenanceIsAOneLineComment) {
   EXPECT_NE(text.find(R"("args":["--flag","a\nb"],"seed":null})"), std::string::npos) << text;
 }
 
+// A fisheye is written with cv::fisheye's four coefficients and `distortion_model: fisheye`, read
+// back bit for bit, and OpenCV reading the same file projects the same pixels with
+// cv::fisheye::projectPoints.
+TEST(OpenCvYaml, FisheyeRoundTripAndOpenCvFisheyeProjectsTheSame) {
+  CalibratedCamera c;
+  Eigen::Matrix3d K;
+  K << 285.7, 0, 421.3, 0, 285.8, 398.6, 0, 0, 1;
+  const double d[4] = {-0.0071, 0.0436, -0.0412, 0.0076};
+  c.camera = Camera::FromK(K, ImageSize{848, 800}, KannalaBrandtModel{}, d);
+  const std::string text = WriteText(c);
+  EXPECT_NE(text.find("distortion_model: fisheye"), std::string::npos) << text;
+  const ImportedCamera back = ReadText(text);
+  EXPECT_EQ(LensModelName(back.camera.camera.model), "kannala-brandt");
+  EXPECT_EQ(back.camera.camera.params, c.camera.params);
+  EXPECT_TRUE(back.notes.empty());
+  cv::FileStorage fs(text, cv::FileStorage::READ | cv::FileStorage::MEMORY);
+  cv::Mat cv_K, cv_d;
+  fs["camera_matrix"] >> cv_K;
+  fs["distortion_coefficients"] >> cv_d;
+  ASSERT_EQ(cv_d.total(), 4u);
+  std::vector<cv::Point3d> object;
+  for (const auto& p : PointsInFront(500, 22)) object.emplace_back(p.x(), p.y(), p.z());
+  std::vector<cv::Point2d> image;
+  cv::fisheye::projectPoints(object, image, cv::Vec3d(0, 0, 0), cv::Vec3d(0, 0, 0), cv_K, cv_d);
+  for (size_t i = 0; i < object.size(); ++i) {
+    const Eigen::Vector3d p(object[i].x, object[i].y, object[i].z);
+    EXPECT_LT((*c.camera.Project(p) - Eigen::Vector2d(image[i].x, image[i].y)).norm(), 1e-9);
+  }
+}
+
+// Four coefficients without the key are calibrateCamera's (k1, k2, p1, p2), never guessed to be
+// a fisheye's: a note says how a fisheye file says so. The key with another count or value is refused.
+TEST(OpenCvYaml, FourCoefficientsAreFisheyeOnlyWhenTheFileSaysSo) {
+  const cv::Mat K = (cv::Mat_<double>(3, 3) << 800, 0, 320, 0, 800, 240, 0, 0, 1);
+  const std::string four = SampleFile(K, (cv::Mat_<double>(4, 1) << -0.21, 0.05, 1e-4, -3e-4));
+  const ImportedCamera plumb = ReadText(four);
+  EXPECT_EQ(LensModelName(plumb.camera.camera.model), "radial-tangential");
+  ASSERT_EQ(plumb.notes.size(), 1u);
+  EXPECT_NE(plumb.notes[0].find("cam.yaml: distortion_coefficients: 4 coefficients without distortion_model: read as "
+                                "calibrateCamera's (k1, k2, p1, p2)"),
+            std::string::npos)
+      << plumb.notes[0];
+  const ImportedCamera fisheye = ReadText(four + "distortion_model: fisheye\n");
+  EXPECT_EQ(LensModelName(fisheye.camera.camera.model), "kannala-brandt");
+  EXPECT_EQ(fisheye.camera.camera.params[5], -0.21);
+  const std::string five = SampleFile(K, cv::Mat::zeros(5, 1, CV_64F)) + "distortion_model: fisheye\n";
+  EXPECT_NE(ErrorOf([&] { ReadText(five); }).find("cam.yaml: distortion_coefficients: distortion_model fisheye takes 4"),
+            std::string::npos);
+  EXPECT_NE(ErrorOf([&] { ReadText(four + "distortion_model: equidistant\n"); })
+                .find("cam.yaml: distortion_model: expected \"fisheye\", got the string \"equidistant\""),
+            std::string::npos);
+}
+
 // Thin-prism and tilted models are refused by name, not as a wrong length.
 TEST(OpenCvYaml, RefusesThinPrismAndTiltedModels) {
   const cv::Mat K = (cv::Mat_<double>(3, 3) << 800, 0, 320, 0, 800, 240, 0, 0, 1);

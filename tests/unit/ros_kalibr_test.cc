@@ -83,19 +83,26 @@ TEST(RosCameraInfo, ReadsTheStereoSamplesRectification) {
   EXPECT_EQ(right.camera.name, "right");
 }
 
-TEST(RosCameraInfo, ReadsRationalPolynomialAndRefusesEquidistant) {
+TEST(RosCameraInfo, ReadsRationalPolynomialAndEquidistant) {
   const RosCameraInfo r = Ros(Sample("ros/rational_polynomial.yaml"));
   EXPECT_EQ(LensModelName(r.camera.camera.model), "rational");
   EXPECT_EQ(std::vector<double>(r.camera.camera.distortion().begin(), r.camera.camera.distortion().end()),
             (std::vector<double>{0.25, -0.0625, 0.0001, -0.0002, 0.003, 0.6, -0.05, 0.012}));
-  const std::string e = ErrorOf([] { Ros(Sample("ros/equidistant.yaml")); });
-  EXPECT_NE(e.find("cam.yaml: distortion_model: ROS's \"equidistant\""), std::string::npos) << e;
+  // image_geometry projects "equidistant" with cv::fisheye: vstcal's "kannala-brandt", k1…k4 as written.
+  const RosCameraInfo f = Ros(Sample("ros/equidistant.yaml"));
+  EXPECT_EQ(LensModelName(f.camera.camera.model), "kannala-brandt");
+  EXPECT_EQ(std::vector<double>(f.camera.camera.distortion().begin(), f.camera.camera.distortion().end()),
+            (std::vector<double>{-0.0071, 0.0436, -0.0412, 0.0076}));
+  const std::string e = ErrorOf([] {
+    Ros(Sample("ros/equidistant.yaml").replace(Sample("ros/equidistant.yaml").find("cols: 4"), 7, "cols: 5"));
+  });
+  EXPECT_NE(e.find("cam.yaml: distortion_coefficients: expected 1×4, got 1×5"), std::string::npos) << e;
 }
 
 // Written, each sample reads back as the same camera, R and P, in the samples' field order, and a
 // second pass gives the same bytes.
 TEST(RosCameraInfo, WriterFollowsTheSamplesAndIsAFixedPoint) {
-  for (const std::string name : {"mono_plumb_bob", "stereo_left", "stereo_right", "rational_polynomial"}) {
+  for (const std::string name : {"mono_plumb_bob", "stereo_left", "stereo_right", "rational_polynomial", "equidistant"}) {
     const std::string sample = Sample("ros/" + name + ".yaml");
     const RosCameraInfo info = Ros(sample);
     const std::string once = RosCameraInfoText(info, name, kProvenance).text;
@@ -178,6 +185,24 @@ TEST(KalibrCamchain, OneCameraAndThree) {
   ASSERT_EQ(three.size(), 3u);
   const std::string e = ErrorOf([&] { RigFromKalibr(three, "t.yaml"); });
   EXPECT_EQ(e.rfind("t.yaml: cam2: a chain of 3 cameras, and a vstcal/stereo@1 rig holds two; ", 0), 0u) << e;
+}
+
+// Kalibr's pinhole-equidistant is cv::fisheye's model: read as "kannala-brandt", written back the same.
+TEST(KalibrCamchain, EquidistantRoundTrip) {
+  std::string sample = Sample("kalibr/camchain_mono.yaml");
+  sample.replace(sample.find("distortion_model: radtan"), 24, "distortion_model: equidistant");
+  std::vector<std::string> notes;
+  const auto chain = KalibrCamchainFromText(sample, "m.yaml", &notes);
+  ASSERT_EQ(chain.size(), 1u);
+  const Camera& c = chain[0].camera.camera;
+  EXPECT_EQ(LensModelName(c.model), "kannala-brandt");
+  EXPECT_EQ(std::vector<double>(c.distortion().begin(), c.distortion().end()),
+            (std::vector<double>{-0.28340811, 0.07395907, 0.00019359, 1.76187114e-05}));
+  const std::string once = KalibrCamchainText(chain, "m", kProvenance).text;
+  EXPECT_NE(once.find("  distortion_model: equidistant\n"), std::string::npos) << once;
+  const auto back = KalibrCamchainFromText(once, "m.yaml", &notes);
+  EXPECT_EQ(back[0].camera.camera.params, c.params);
+  EXPECT_EQ(KalibrCamchainText(back, "m", kProvenance).text, once);
 }
 
 TEST(KalibrCamchain, RadtanHasNoK3) {

@@ -8,6 +8,7 @@
 
 #include "common/run_tool.h"
 #include "common/validators.h"
+#include "vstcal/camera/camera.h"
 #include "vstcal/core/limits.h"
 #include "vstcal/app/calibration.h"
 
@@ -54,11 +55,18 @@ IntrinsicPrior ParsePrior(const std::string& text) {
 }  // namespace
 
 std::vector<CLI::Option*> CalibrationFlags::AddRefinement(CLI::App& app) {
-  std::vector<CLI::Option*> options = {
-      app.add_option("--distortion", distortion,
+  std::string models;
+  ForEachLensModel([&](auto model) { models += (models.empty() ? "" : ", ") + std::string(decltype(model)::kName); });
+  distortion_option = app.add_option("--distortion", distortion,
                      "distortion terms to estimate, comma-separated names (k1,k2,p1,p2,k3 radial-tangential; also "
-                     "k4,k5,k6: the rational model, OpenCV's CALIB_RATIONAL_MODEL) or \"none\"")
-          ->capture_default_str(),
+                     "k4,k5,k6: the rational model, OpenCV's CALIB_RATIONAL_MODEL; with --lens-model "
+                     "kannala-brandt its k1,k2,k3,k4, the default there) or \"none\"")
+          ->capture_default_str();
+  std::vector<CLI::Option*> options = {
+      distortion_option,
+      app.add_option("--lens-model", lens_model,
+                     "solve this lens model (" + models + "): kannala-brandt for a fisheye (OpenCV's cv::fisheye, "
+                     "Kalibr's equidistant); by default the Brown–Conrady model --distortion calls for"),
       app.add_flag("--skew", skew, "also estimate the skew s (K[0][1])"),
       app.add_option("--loss", loss, "robust loss: none, huber or cauchy")
           ->check(CLI::IsMember(NamesOf(RefineOptions::kLossNames)))
@@ -135,7 +143,19 @@ ViewRejectionOptions CalibrationFlags::Rejection() const {
 
 RefineOptions CalibrationFlags::Refinement() const {
   RefineOptions o;
-  o.free_distortion = DistortionTermsFromList(distortion);
+  o.lens_model = lens_model;
+  const auto model = lens_model.empty() ? std::nullopt : LensModelFromName(lens_model);
+  if (!lens_model.empty() && !model) {
+    throw InputError("--lens-model: unknown lens model \"" + lens_model + "\"; use one of " + KnownLensModelNames());
+  }
+  if (model && distortion_option && distortion_option->count() == 0) {
+    // A model of another family (the fisheye) estimates its own terms unless told otherwise.
+    o.free_distortion.clear();
+    const auto names = LensModelParamNames(*model);
+    for (auto it = names.begin() + kNumIntrinsicParams; it != names.end(); ++it) o.free_distortion.emplace_back(*it);
+  } else {
+    o.free_distortion = DistortionTermsFromList(distortion);
+  }
   o.free_skew = skew;
   o.loss = *FromName(RefineOptions::kLossNames, loss);
   if (o.loss == RefineOptions::Loss::kNone && loss_scale_option != nullptr && loss_scale_option->count() > 0) {

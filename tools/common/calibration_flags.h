@@ -40,6 +40,8 @@ struct CalibrationFlags {
   double corner_false_alarm = 0.01;
 
   CLI::Option* loss_scale_option = nullptr;  // set by AddRefinement: --loss-scale needs a robust --loss
+  std::string lens_model;                     // --lens-model: empty = the Brown–Conrady model --distortion calls for
+  CLI::Option* distortion_option = nullptr;   // set by AddRefinement: a fisheye's default terms are its own
 
   // Add the refinement and the uncertainty flags; return them so a tool can tie them to its own
   // switch (calib-dlt: they need --refine; calib-tsai: they exclude --no-refine).

@@ -7,6 +7,7 @@
 
 #include <Eigen/Geometry>
 
+#include "vstcal/calib/fisheye_start.h"
 #include "vstcal/estimators/information.h"
 #include "vstcal/estimators/principal_point_prior.h"
 #include "vstcal/core/option_name.h"
@@ -117,7 +118,7 @@ void StartVolume(CalibrationResult* r, const CalibrationOptions& options) {
   cam.fit = ComputeVolumeFit(cam.camera, *cam.camera_from_world, c);
 }
 
-void StartPlanar(CalibrationResult* r) {
+void StartPlanar(CalibrationResult* r, const CalibrationOptions& options) {
   Correspondences& c = r->used;
   const auto dropped = DropSparseViews(&c, kMinPointsPerPlanarView);
   r->warnings.insert(r->warnings.end(), dropped.begin(), dropped.end());
@@ -131,7 +132,12 @@ void StartPlanar(CalibrationResult* r) {
                  "; add views of the board at different orientations";
     return;
   }
-  const ZhangResult zhang = ZhangInitialization(c);
+  ZhangResult zhang = ZhangInitialization(c);
+  // A fisheye's refinement starts from Zhang's on pinhole-equivalent corners (fisheye_start.h).
+  const auto solved = LensModelFromName(options.refinement.lens_model);
+  if (solved && std::visit([](const auto& m) { return std::decay_t<decltype(m)>::kOnRay; }, *solved)) {
+    zhang = EquidistantZhangStart(c, zhang);
+  }
   if (!zhang.ok) {
     r->exit_code = ExitCode::kDegenerate;
     r->message = zhang.message;
@@ -362,7 +368,7 @@ CalibrationResult CalibrateOnce(Correspondences correspondences, const Calibrati
   if (r.used.rig == Rig::kVolume) {
     StartVolume(&r, options);
   } else {
-    StartPlanar(&r);
+    StartPlanar(&r, options);
   }
   if (r.exit_code != ExitCode::kOk || !options.refine) return r;
   RefineOptions refinement = options.refinement;
@@ -384,6 +390,10 @@ CalibrationResult CalibrateOnce(Correspondences correspondences, const Calibrati
     if (std::find(free.begin(), free.end(), names[i]) == free.end()) start.params[i] = 0;
   }
   if (free.empty()) start = Camera::FromK(start.K(), start.image_size);  // "none": a pinhole
+  // A lens model of another family (a fisheye after Tsai's radial start) starts from the pinhole.
+  if (const auto named = LensModelFromName(refinement.lens_model); named && !LensModelExtends(*named, start.model)) {
+    start = Camera::FromK(start.K(), start.image_size);
+  }
   std::vector<Rigid3d> poses;
   if (r.used.rig == Rig::kVolume) {
     poses.push_back(*r.camera.camera_from_world);

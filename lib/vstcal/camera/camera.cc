@@ -46,6 +46,11 @@ std::vector<std::string_view> LensModelParamNames(const AnyLensModel& model) {
       model);
 }
 
+bool LensModelExtends(const AnyLensModel& larger, const AnyLensModel& smaller) {
+  const auto big = LensModelParamNames(larger), small = LensModelParamNames(smaller);
+  return small.size() <= big.size() && std::equal(small.begin(), small.end(), big.begin());
+}
+
 std::optional<int> LensModelParamIndex(const AnyLensModel& model, std::string_view name) {
   const auto names = LensModelParamNames(model);
   const auto it = std::find(names.begin(), names.end(), name);
@@ -100,6 +105,11 @@ std::optional<Eigen::Vector3d> Camera::Unproject(const Eigen::Vector2d& px) cons
   return std::visit([&](const auto& m) { return m.Unproject(params.data(), px); }, model);
 }
 
+std::optional<Eigen::Vector3d> Camera::UnprojectRay(const Eigen::Vector2d& px) const {
+  VSTCAL_CHECK(static_cast<int>(params.size()) == LensModelNumParams(model), "parameter count mismatch");
+  return std::visit([&](const auto& m) { return m.UnprojectRay(params.data(), px); }, model);
+}
+
 bool Camera::InImage(const Eigen::Vector2d& px) const {
   return px.x() >= -0.5 && px.y() >= -0.5 && px.x() <= image_size.width - 0.5 && px.y() <= image_size.height - 0.5;
 }
@@ -122,7 +132,11 @@ double SearchValidRadiusSquared(const AnyLensModel& model, const std::vector<dou
   return std::visit(
       [&](const auto& m) -> double {
         using Model = std::decay_t<decltype(m)>;
-        if constexpr (Model::kNumParams == kNumIntrinsicParams) {
+        if constexpr (Model::kOnRay) {
+          const double max_theta = Model::MaxTheta(params.data() + kNumIntrinsicParams);
+          if (max_theta >= kPi / 2) return std::numeric_limits<double>::infinity();
+          return std::tan(max_theta) * std::tan(max_theta);
+        } else if constexpr (Model::kNumParams == kNumIntrinsicParams) {
           return std::numeric_limits<double>::infinity();
         } else {
           const double* distortion = params.data() + kNumIntrinsicParams;

@@ -21,9 +21,10 @@
 
 namespace vstcal {
 
-// Alternatives in increasing number of parameters: code that picks "the smallest model that can
-// hold n coefficients" relies on this order.
-using AnyLensModel = std::variant<PinholeModel, RadialTangentialModel, RationalModel>;
+// The Brown–Conrady chain first, in increasing number of parameters, each layout a prefix of the
+// next (code that picks "the smallest model that holds these terms" relies on this order), then
+// models of other families (their layouts extend only "none": LensModelExtends).
+using AnyLensModel = std::variant<PinholeModel, RadialTangentialModel, RationalModel, KannalaBrandtModel>;
 
 // Calls f(Model{}) for every alternative of AnyLensModel, in declaration order.
 template <typename F>
@@ -40,6 +41,10 @@ std::string KnownLensModelNames();
 std::string_view LensModelName(const AnyLensModel& model);
 int LensModelNumParams(const AnyLensModel& model);
 std::vector<std::string_view> LensModelParamNames(const AnyLensModel& model);
+// True when `larger`'s parameter names start with all of `smaller`'s (so its parameters, zeros
+// appended, are the same camera): "rational" extends "radial-tangential", "kannala-brandt"
+// extends only "none" and itself.
+bool LensModelExtends(const AnyLensModel& larger, const AnyLensModel& smaller);
 // Index of a parameter in the model's layout by its name ("fx", "k1", …); nullopt when the model
 // has no such parameter.
 std::optional<int> LensModelParamIndex(const AnyLensModel& model, std::string_view name);
@@ -59,10 +64,16 @@ struct Camera {
   double Param(std::string_view name) const;
   std::span<const double> distortion() const;
 
-  // Pixel of a camera-frame point; nullopt behind the camera (z ≤ 0).
+  // Pixel of a camera-frame point; nullopt outside the model's domain: behind the camera (z ≤ 0)
+  // for a plane model, past its valid angle off the axis for a ray model (lens_models.h).
   std::optional<Eigen::Vector2d> Project(const Eigen::Vector3d& p_cam) const;
-  // Ray (x, y, 1) in the camera frame through a pixel; nullopt outside the model's domain.
+  // Ray (x, y, 1) in the camera frame through a pixel; nullopt outside the model's domain, and for
+  // a fisheye pixel whose ray is 90° or more off the axis (it has no such form: UnprojectRay).
   std::optional<Eigen::Vector3d> Unproject(const Eigen::Vector2d& px) const;
+  // A direction of the ray through a pixel, for callers that take any direction: (x, y, 1) as
+  // Unproject for a plane model, a unit vector for a ray model (beyond 90° too); nullopt outside
+  // the model's domain.
+  std::optional<Eigen::Vector3d> UnprojectRay(const Eigen::Vector2d& px) const;
   // True when px lies on the sensor: u ∈ [−0.5, W − 0.5], v ∈ [−0.5, H − 0.5].
   bool InImage(const Eigen::Vector2d& px) const;
   // The lens's valid domain, as the squared normalized radius r² = x² + y² of the largest disc
@@ -70,14 +81,15 @@ struct Camera {
   // rays to pixels one to one and Unproject's Newton iteration finds the ray; beyond it the image
   // folds over (a ray far outside the field of view can land back inside the image). Checked
   // along 64 directions, found by bisection to 1e-9 relative; +∞ for a lens without distortion or
-  // one that does not fold within r = 100 (89.4° off axis).
+  // one that does not fold within r = 100 (89.4° off axis). A ray model's domain is an angle
+  // (MaxTheta): tan² of it below 90°, +∞ when every ray in front of the camera is inside it.
   double ValidRadiusSquared() const;
 };
 
 // Project through any lens model of the variant, templated on the scalar (double, ceres::Jet,
 // SimdDouble): the one projection, dispatched on the model. A switch of direct calls rather than
 // std::visit, so that the chosen Project inlines into the caller (the err-sim chain's AVX2 clone).
-// False when z ≤ 0 (lens_models.h).
+// False outside the model's domain (lens_models.h).
 template <typename T>
 bool ProjectWith(const AnyLensModel& model, const T* params, const T* p_cam, T* px) {
   return [&]<size_t... I>(std::index_sequence<I...>) {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <string>
 
 #include "vstcal/core/error.h"
@@ -14,13 +15,23 @@ bool IsOpenCvLength(int n) {
          std::end(kOpenCvDistortionLengths);
 }
 
+// Whether the model's distortion terms are OpenCV's first ones, in OpenCV's order.
+template <typename Model>
+bool InOpenCvOrder() {
+  constexpr int n = Model::kNumParams - kNumIntrinsicParams;
+  if (n > static_cast<int>(std::size(kOpenCvDistortionNames))) return false;
+  return std::equal(Model::kParamNames.begin() + kNumIntrinsicParams, Model::kParamNames.end(),
+                    std::begin(kOpenCvDistortionNames));
+}
+
 }  // namespace
 
 std::optional<AnyLensModel> LensModelForOpenCvLength(int n) {
   if (!IsOpenCvLength(n)) return std::nullopt;
   std::optional<AnyLensModel> found;
   ForEachLensModel([&](auto model) {
-    if (!found && decltype(model)::kNumParams - kNumIntrinsicParams >= n) found = model;
+    using Model = decltype(model);
+    if (!found && InOpenCvOrder<Model>() && Model::kNumParams - kNumIntrinsicParams >= n) found = model;
   });
   return found;
 }
@@ -33,7 +44,18 @@ Camera CameraFromOpenCv(const Eigen::Matrix3d& K, ImageSize image_size, std::spa
   return Camera::FromK(K, image_size, *model, distortion);
 }
 
+bool HasOpenCvDistortion(const Camera& camera) {
+  return std::visit([](const auto& m) { return InOpenCvOrder<std::decay_t<decltype(m)>>(); }, camera.model);
+}
+
+void RefuseNonOpenCvModel(const Camera& camera, std::string_view source, std::string_view peer, std::string_view fix) {
+  if (HasOpenCvDistortion(camera)) return;
+  throw InputError(std::string(source) + ": model: \"" + std::string(LensModelName(camera.model)) + "\" (cv::fisheye's model) has no equivalent in " +
+                   std::string(peer) + "; " + std::string(fix));
+}
+
 std::optional<int> FirstCoefficientBeyond(const Camera& camera, int n) {
+  VSTCAL_CHECK(HasOpenCvDistortion(camera), "a fisheye camera has no OpenCV distortion vector");
   const std::span<const double> d = camera.distortion();
   for (int i = n; i < static_cast<int>(d.size()); ++i) {
     if (d[i] != 0) return i;
@@ -42,6 +64,7 @@ std::optional<int> FirstCoefficientBeyond(const Camera& camera, int n) {
 }
 
 std::vector<double> OpenCvDistortion(const Camera& camera, int n) {
+  VSTCAL_CHECK(HasOpenCvDistortion(camera), "a fisheye camera has no OpenCV distortion vector");
   VSTCAL_CHECK(!FirstCoefficientBeyond(camera, n), "a non-zero coefficient does not fit in the OpenCV vector");
   const std::span<const double> d = camera.distortion();
   std::vector<double> v(d.begin(), d.begin() + std::min<size_t>(n, d.size()));

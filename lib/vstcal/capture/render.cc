@@ -43,7 +43,7 @@ PixelCornerRays::PixelCornerRays(const Camera& camera) : width_(camera.image_siz
   valid_.resize(rays_.size());
   for (int j = 0; j <= height_; ++j) {
     for (int i = 0; i <= width_; ++i) {
-      const auto ray = camera.Unproject(Eigen::Vector2d(i - 0.5, j - 0.5));
+      const auto ray = camera.UnprojectRay(Eigen::Vector2d(i - 0.5, j - 0.5));  // a fisheye sees past 90°
       valid_[Index(i, j)] = ray.has_value();
       rays_[Index(i, j)] = ray.value_or(Eigen::Vector3d::Zero());
     }

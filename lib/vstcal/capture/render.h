@@ -1,5 +1,5 @@
 // Renders a printed target seen by a camera: per-pixel inverse mapping through the one projection
-// (Camera::Unproject, any lens model) with exact area coverage as anti-aliasing, then optional
+// (Camera::UnprojectRay, any lens model, past 90° for a fisheye) with exact area coverage as anti-aliasing, then optional
 // uneven lighting, Gaussian blur and Gaussian noise (docs/math/rendering.md).
 //
 // Pixel (u, v) integrates the scene over its square [u − ½, u + ½] × [v − ½, v + ½] (a box

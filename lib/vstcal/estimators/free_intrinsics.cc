@@ -14,16 +14,32 @@ bool Named(const std::vector<std::string>& list, std::string_view name) {
   return std::find(list.begin(), list.end(), name) != list.end();
 }
 
-// Every distortion term any model has: the largest model's (layouts are prefixes of each other,
-// camera.h), in its order.
+// Every distortion term any model has, each once, in the order the models first name them.
 std::vector<std::string_view> AllDistortionTerms() {
-  using Largest = std::variant_alternative_t<std::variant_size_v<AnyLensModel> - 1, AnyLensModel>;
-  return {Largest::kParamNames.begin() + kNumIntrinsicParams, Largest::kParamNames.end()};
+  std::vector<std::string_view> terms;
+  ForEachLensModel([&](auto model) {
+    for (auto it = decltype(model)::kParamNames.begin() + kNumIntrinsicParams; it != decltype(model)::kParamNames.end(); ++it) {
+      if (std::find(terms.begin(), terms.end(), *it) == terms.end()) terms.push_back(*it);
+    }
+  });
+  return terms;
 }
 
 }  // namespace
 
-AnyLensModel RefinedModel(const AnyLensModel& initial, const RefineOptions& options) {
+AnyLensModel RefinedModel(const AnyLensModel& given, const RefineOptions& options) {
+  AnyLensModel initial = given;
+  if (!options.lens_model.empty()) {
+    const auto named = LensModelFromName(options.lens_model);
+    if (!named) {
+      throw InputError("lens_model: unknown lens model \"" + options.lens_model + "\"; use one of " + KnownLensModelNames());
+    }
+    if (!LensModelExtends(*named, initial)) {
+      throw InputError("lens_model: \"" + options.lens_model + "\" does not extend the start's model \"" +
+                       std::string(LensModelName(initial)) + "\"; start from a pinhole or from that model");
+    }
+    initial = *named;
+  }
   const std::vector<std::string_view> known = AllDistortionTerms();
   for (const std::string& term : options.free_distortion) {
     if (std::find(known.begin(), known.end(), term) == known.end()) {
@@ -33,21 +49,29 @@ AnyLensModel RefinedModel(const AnyLensModel& initial, const RefineOptions& opti
   }
   std::optional<AnyLensModel> chosen;
   ForEachLensModel([&](auto model) {
-    if (chosen || LensModelNumParams(model) < LensModelNumParams(initial)) return;
+    // Only a model that is the initial one with terms appended: a fisheye stays a fisheye.
+    if (chosen || !LensModelExtends(model, initial)) return;
     const auto names = LensModelParamNames(model);
     const bool has_all = std::all_of(options.free_distortion.begin(), options.free_distortion.end(), [&](const std::string& t) {
       return std::find(names.begin() + kNumIntrinsicParams, names.end(), t) != names.end();
     });
     if (has_all) chosen = model;
   });
-  VSTCAL_CHECK(chosen.has_value(), "the largest model has every known term");
+  if (!chosen) {
+    // Only a fisheye gets here: its k's are not the Brown–Conrady ones, and nothing extends it.
+    const auto names = LensModelParamNames(initial);
+    std::string own;
+    for (auto it = names.begin() + kNumIntrinsicParams; it != names.end(); ++it) own += (own.empty() ? "" : ", ") + std::string(*it);
+    throw InputError(VSTCAL_OPT("distortion") ": no lens model extends \"" + std::string(LensModelName(initial)) +
+                     "\" by the terms named; free only its own terms (" + own + ")");
+  }
   return *chosen;
 }
 
 std::vector<double> PromotedParams(const Camera& initial, const AnyLensModel& model) {
   // Layouts are prefixes of each other (lens_models.h): a larger model starts with a smaller one.
   std::vector<double> params(LensModelNumParams(model), 0.0);
-  VSTCAL_CHECK(initial.params.size() <= params.size(), "promotion never drops parameters");
+  VSTCAL_CHECK(LensModelExtends(model, initial.model), "promotion only appends parameters");
   std::copy(initial.params.begin(), initial.params.end(), params.begin());
   return params;
 }

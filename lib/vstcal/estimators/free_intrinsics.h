@@ -20,9 +20,11 @@
 
 namespace vstcal {
 
-// The model a refinement solves: `initial` promoted to the smallest model of AnyLensModel that has
-// every term of options.free_distortion (never a smaller one than `initial`). Throws InputError
-// naming an unknown term, with the closest known one.
+// The model a refinement solves: `initial` promoted to the smallest model of AnyLensModel that
+// extends it (LensModelExtends: never a smaller one, never another family) and has every term of
+// options.free_distortion. Throws InputError naming an unknown term, with the closest known one,
+// or when no model extends `initial` by the terms (a fisheye with a Brown–Conrady term).
+// options.lens_model, when set, replaces `initial` (which it must extend) before the promotion.
 AnyLensModel RefinedModel(const AnyLensModel& initial, const RefineOptions& options);
 
 // `initial`'s parameters in `model`'s layout (a larger model's extra terms 0).

@@ -59,6 +59,12 @@ struct RefineOptions {
 
   // Why fx and fy are held when free_focal is false (refinement.held in the camera file).
   std::string focal_held_because = "held by the caller (RefineOptions::free_focal)";
+
+  // A lens model to solve by its file name ("kannala-brandt" for a fisheye), or empty for the
+  // Brown–Conrady model free_distortion calls for. The start camera is promoted to it (its layout
+  // must extend the start's: a pinhole start always does), then as above. RefinedModel refuses an
+  // unknown name.
+  std::string lens_model;
 };
 
 }  // namespace vstcal

@@ -43,7 +43,7 @@ PointError MeasurePoint(const ReportCamera& rc, const Normalization& norm, const
     e.excluded = Exclusion::kBehindCamera;
     return e;
   }
-  const auto ray = rc.camera.camera.Unproject(measured);
+  const auto ray = rc.camera.camera.UnprojectRay(measured);  // a direction: a fisheye's may be past 90°
   e.depth = point_cam.norm();
   e.z = point_cam.z();
   const Eigen::Vector3d sight = point_cam / e.depth;

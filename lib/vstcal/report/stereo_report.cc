@@ -80,8 +80,8 @@ StereoPointError Measure(const StereoRig& rig, const Eigen::Vector3d& truth, con
                          const Eigen::Vector2d& right_px) {
   StereoPointError e;
   e.truth = truth;
-  const auto ray_left = rig.left.camera.Unproject(left_px);
-  const auto ray_right = rig.right.camera.Unproject(right_px);
+  const auto ray_left = rig.left.camera.UnprojectRay(left_px);  // directions (a fisheye's may be past 90°)
+  const auto ray_right = rig.right.camera.UnprojectRay(right_px);
   const Eigen::Matrix3d left_from_right_R = rig.right_from_left.R.transpose();
   const Eigen::Vector3d right_centre = -(left_from_right_R * rig.right_from_left.t);
   Eigen::Vector3d seen;

@@ -34,6 +34,10 @@ Rectification Rectify(const StereoRig& rig, const RectifyOptions& options, std::
   }
   RefuseSkew(rig.left.camera, std::string(source) + ": left", "OpenCV's stereoRectify");
   RefuseSkew(rig.right.camera, std::string(source) + ": right", "OpenCV's stereoRectify");
+  for (const auto& [camera, side] : {std::pair{&rig.left.camera, ": left"}, std::pair{&rig.right.camera, ": right"}}) {
+    RefuseNonOpenCvModel(*camera, std::string(source) + side, "OpenCV's stereoRectify (a fisheye rig needs cv::fisheye::stereoRectify)",
+                         "rectify the fisheye rig with cv::fisheye::stereoRectify from each camera's OpenCV YAML");
+  }
   cv::Mat R1, R2, P1, P2, Q;
   cv::Rect roi1, roi2;
   cv::stereoRectify(ToCvMat(rig.left.camera.K()), OpenCvDistortionMat(rig.left.camera), ToCvMat(rig.right.camera.K()),

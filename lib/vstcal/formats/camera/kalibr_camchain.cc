@@ -9,6 +9,7 @@
 #include "vstcal/geometry/rotation.h"
 #include "vstcal/json/json_writer.h"
 #include "vstcal/json/reader_common.h"
+#include "vstcal/core/option_name.h"
 
 namespace vstcal {
 namespace {
@@ -58,18 +59,22 @@ KalibrCamera ReadCamera(const YamlField& f, bool chained, std::vector<std::strin
   dm.Require("add distortion_model: radtan");
   const std::string dname = dm.String();
   int n = 0;
-  if (dname == "radtan") {
+  const bool equidistant = dname == "equidistant";  // Kannala–Brandt k1…k4: vstcal's "kannala-brandt"
+  if (dname == "radtan" || equidistant) {
     n = 4;
   } else if (dname == "none") {
     n = 0;
-  } else if (dname == "equidistant" || dname == "fov") {
-    dm.Fail("Kalibr's \"" + dname + "\" model has no vstcal lens model",
-            "calibrate with pinhole-radtan (vstcal's radial-tangential)");
+  } else if (dname == "fov") {
+    dm.Fail("Kalibr's \"fov\" model has no vstcal lens model",
+            "calibrate with pinhole-radtan or pinhole-equidistant (vstcal's radial-tangential and kannala-brandt)");
   } else {
-    dm.Fail("unknown distortion model \"" + dname + "\"", "write radtan (k1, k2, r1, r2), the Kalibr model vstcal has");
+    dm.Fail("unknown distortion model \"" + dname + "\"",
+            "write radtan (k1, k2, r1, r2) or equidistant (k1, k2, k3, k4), the Kalibr models vstcal has");
   }
-  const std::vector<double> d =
-      f.Member("distortion_coeffs").Numbers(n, n ? "write the four radtan coefficients [k1, k2, r1, r2]" : "write []");
+  const std::vector<double> d = f.Member("distortion_coeffs")
+                                    .Numbers(n, !n           ? "write []"
+                                                : equidistant ? "write the four equidistant coefficients [k1, k2, k3, k4]"
+                                                              : "write the four radtan coefficients [k1, k2, r1, r2]");
   const YamlField res = f.Member("resolution");
   const std::vector<double> wh = res.Numbers(2, "write [width, height] in pixels");
   for (int i = 0; i < 2; ++i) {
@@ -78,7 +83,8 @@ KalibrCamera ReadCamera(const YamlField& f, bool chained, std::vector<std::strin
   Eigen::Matrix3d K;
   K << in[0], 0, in[2], 0, in[1], in[3], 0, 0, 1;
   if (const auto problem = CameraMatrixProblem(K)) f.Member("intrinsics").Fail(problem->reason, problem->fix);
-  out.camera.camera = CameraFromOpenCv(K, {static_cast<int>(wh[0]), static_cast<int>(wh[1])}, d);
+  const ImageSize size{static_cast<int>(wh[0]), static_cast<int>(wh[1])};
+  out.camera.camera = equidistant ? Camera::FromK(K, size, KannalaBrandtModel{}, d) : CameraFromOpenCv(K, size, d);
   out.camera.length_unit = LengthUnit::kMetre;
   out.camera.method = "kalibr";
   if (const YamlField topic = f.Member("rostopic"); topic.present()) out.rostopic = topic.String();
@@ -142,12 +148,12 @@ ExportedCamera KalibrCamchainText(const std::vector<KalibrCamera>& cameras, std:
     const Camera& c = cc.camera;
     const std::string where = std::string(source) + (cameras.size() > 1 ? ": " + CamKey(i) : "");
     RefuseSkew(c, where, "Kalibr");
-    const bool none = c.distortion().empty();
-    if (!none && FirstCoefficientBeyond(c, 4)) {
+    const bool none = c.distortion().empty(), equidistant = !HasOpenCvDistortion(c);
+    if (!none && !equidistant && FirstCoefficientBeyond(c, 4)) {
       throw InputError(where + ": distortion: Kalibr's radtan holds k1, k2, r1, r2 only, and this " +
                        std::string(LensModelName(c.model)) + " camera has a non-zero coefficient beyond them (k3" +
                        (LensModelNumParams(c.model) > 10 ? ", k4, k5 or k6" : "") +
-                       "); calibrate with k3 fixed at 0, or write ROS camera_info (--to ros), which holds it");
+                       "); calibrate with k3 fixed at 0, or write ROS camera_info (" VSTCAL_OPT("to") " ros), which holds it");
     }
     t += CamKey(i) + ":\n";
     if (i > 0) {
@@ -161,8 +167,10 @@ ExportedCamera KalibrCamchainText(const std::vector<KalibrCamera>& cameras, std:
     }
     t += "  camera_model: pinhole\n";
     t += "  distortion_coeffs: ";
-    WriteNumbers(t, none ? std::vector<double>{} : OpenCvDistortion(c, 4));
-    t += std::string("  distortion_model: ") + (none ? "none" : "radtan") + "\n";
+    WriteNumbers(t, none          ? std::vector<double>{}
+                    : equidistant ? std::vector<double>(c.distortion().begin(), c.distortion().end())
+                                  : OpenCvDistortion(c, 4));
+    t += std::string("  distortion_model: ") + (none ? "none" : equidistant ? "equidistant" : "radtan") + "\n";
     const Eigen::Matrix3d K = c.K();
     t += "  intrinsics: ";
     WriteNumbers(t, {K(0, 0), K(1, 1), K(0, 2), K(1, 2)});

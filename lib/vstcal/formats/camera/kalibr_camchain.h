@@ -6,7 +6,8 @@
 //
 // camera_model "pinhole" only (omni, eucm, ds have no vstcal model). distortion_model "radtan"
 // (k1, k2, r1, r2) is vstcal's "radial-tangential" with k3 = 0, "none" (no coefficients) its
-// "none"; "equidistant" and "fov" have no vstcal lens model and are refused by name.
+// "none"; "equidistant" (k1…k4) its "kannala-brandt"; "fov" has no vstcal lens model and is
+// refused by name.
 #pragma once
 
 #include <optional>

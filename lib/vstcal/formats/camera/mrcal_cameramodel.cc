@@ -85,7 +85,7 @@ const MrcalLensModel& ReadLensModel(const PyNode& root, const std::string& name)
   if (!model) {
     node->Fail(
         "'" + lensmodel + "' is not a lens model vstcal reads (" + KnownLensModels() + ")",
-        "fit one of them with mrcal's own tool, e.g. mrcal-convert-lensmodel --sampled LENSMODEL_OPENCV8 " + name);
+        "fit one of them with mrcal's own tool, e.g. mrcal-convert-lensmodel --sampled LENSMODEL_OPENCV8 " + name);  // house-plan: names a command
   }
   return *model;
 }
@@ -184,6 +184,12 @@ ExportedCamera MrcalCameramodelText(const CalibratedCamera& camera, std::string_
                                     const MrcalWriteOptions& options, const Provenance& provenance) {
   const Camera& c = camera.camera;
   RefuseSkew(c, source, "mrcal");
+  // mrcal 2.2 has no Kannala–Brandt model (docs/tools/calib-convert.md#fisheye): the nearest,
+  // LENSMODEL_SPLINED_STEREOGRAPHIC, is a fit to the corners, not a conversion of the coefficients.
+  RefuseNonOpenCvModel(c, source, "mrcal 2.2, which has no Kannala–Brandt model",
+                       "calibrate the same corners with mrcal-calibrate-cameras --lensmodel "  // house-plan: names a command
+                       "LENSMODEL_SPLINED_STEREOGRAPHIC_order=3_Nx=16_Ny=12_fov_x_deg=<the lens's field>, its nearest "
+                       "model, or write it as OpenCV YAML (distortion_model: fisheye)");
   const MrcalLensModel* model = FindLensModelWithLength(ShortestOpenCvLength(c));
   VSTCAL_CHECK(model != nullptr, "no mrcal lens model for this camera's distortion");
   if (options.lensmodel) {

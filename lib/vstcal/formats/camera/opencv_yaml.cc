@@ -19,6 +19,10 @@ namespace {
 
 constexpr std::string_view kCameraMatrix = "camera_matrix";
 constexpr std::string_view kDistortion = "distortion_coefficients";
+// cv::FileStorage files have no standard key for the lens model: vstcal writes and reads
+// `distortion_model: fisheye` (ROS's key; OpenCV's own word for cv::fisheye) for a file of
+// cv::fisheye's four coefficients (docs/formats.md#opencv-yaml).
+constexpr std::string_view kDistortionModel = "distortion_model", kFisheye = "fisheye";
 
 // A FileNode and the field path it is reported under.
 struct Field {
@@ -287,6 +291,18 @@ Eigen::Matrix3d ReadCameraMatrix(const Field& f, std::vector<std::string>* notes
   return K;
 }
 
+// cv::fisheye's k1…k4 (distortion_model: fisheye): exactly four.
+std::vector<double> ReadFisheyeDistortion(const Field& f) {
+  if (f.node.isNone()) f.Fail("missing field", "add cv::fisheye's four coefficients k1, k2, k3, k4 (the D of cv::fisheye::calibrate)");
+  const Eigen::MatrixXd m = ReadMatrix(f);
+  if ((m.rows() > 1 && m.cols() > 1) || m.size() != 4) {
+    f.Fail("distortion_model fisheye takes 4 coefficients (k1, k2, k3, k4), got a " + std::to_string(m.rows()) + "×" +
+               std::to_string(m.cols()) + " matrix",
+           "write cv::fisheye's D as a 4×1 matrix, or delete distortion_model if these are calibrateCamera's coefficients");
+  }
+  return std::vector<double>(m.data(), m.data() + 4);
+}
+
 std::vector<double> ReadDistortion(const Field& f, std::vector<std::string>* notes) {
   if (f.node.isNone()) {
     notes->push_back(*f.file + ": " + f.path + ": absent, read as no distortion (model \"none\")");
@@ -307,6 +323,10 @@ std::vector<double> ReadDistortion(const Field& f, std::vector<std::string>* not
   if (!LensModelForOpenCvLength(n)) {
     f.Fail("expected 4, 5 or 8 coefficients (k1, k2, p1, p2[, k3[, k4, k5, k6]]), got " + std::to_string(n),
            "write the vector OpenCV's calibrateCamera returned");
+  }
+  if (n == 4) {
+    notes->push_back(*f.file + ": " + f.path + ": 4 coefficients without distortion_model: read as calibrateCamera's "
+                     "(k1, k2, p1, p2); a cv::fisheye file says distortion_model: fisheye");
   }
   return std::vector<double>(m.data(), m.data() + n);
 }
@@ -330,10 +350,22 @@ ImportedCamera OpenCvYamlFromText(const std::string& text, const std::string& na
   auto field = [&](std::string_view key) { return Field{root[std::string(key)], std::string(key), &name}; };
   ImportedCamera out;
   const Eigen::Matrix3d K = ReadCameraMatrix(field(kCameraMatrix), &out.notes);
-  const std::vector<double> distortion = ReadDistortion(field(kDistortion), &out.notes);
+  const Field model = field(kDistortionModel);
+  bool fisheye = false;
+  if (!model.node.isNone()) {
+    if (!model.node.isString() || model.node.string() != kFisheye) {
+      model.Fail("expected \"fisheye\", got " + model.Describe(),
+                 "write distortion_model: fisheye for cv::fisheye's k1, k2, k3, k4, or delete the key for calibrateCamera's "
+                 "coefficients");
+    }
+    fisheye = true;
+  }
+  const std::vector<double> distortion =
+      fisheye ? ReadFisheyeDistortion(field(kDistortion)) : ReadDistortion(field(kDistortion), &out.notes);
   const ImageSize size{ReadImageDimension(field("image_width"), "width"),
                        ReadImageDimension(field("image_height"), "height")};
-  out.camera.camera = CameraFromOpenCv(K, size, distortion);
+  out.camera.camera =
+      fisheye ? Camera::FromK(K, size, KannalaBrandtModel{}, distortion) : CameraFromOpenCv(K, size, distortion);
   out.camera.length_unit = length_unit;
   out.camera.method = "opencv";
   return out;
@@ -359,6 +391,7 @@ ExportedCamera OpenCvYamlText(const CalibratedCamera& camera, std::string_view s
   const std::vector<double> distortion(c.distortion().begin(), c.distortion().end());
   // An absent node reads as an empty vector, which every OpenCV function takes as no distortion.
   if (!distortion.empty()) fs << std::string(kDistortion) << cv::Mat(distortion, true);
+  if (!HasOpenCvDistortion(c)) fs << std::string(kDistortionModel) << std::string(kFisheye);  // cv::fisheye's D
   out.text = fs.releaseAndGetString();
   NoteUnwrittenName(camera, source, &out.notes);
   if (camera.camera_from_world) {

@@ -14,7 +14,7 @@ namespace vstcal {
 namespace {
 
 constexpr std::string_view kWhat = "a ROS camera_info file";
-constexpr std::string_view kPlumbBob = "plumb_bob", kRational = "rational_polynomial";
+constexpr std::string_view kPlumbBob = "plumb_bob", kRational = "rational_polynomial", kEquidistant = "equidistant";
 
 // A {rows, cols, data} matrix of `rows`×`cols` (`vector`: 1×n or n×1 with n = rows·cols).
 Eigen::MatrixXd ReadMatrix(const YamlField& f, int rows, int cols, bool vector, std::string_view what) {
@@ -65,19 +65,18 @@ RosCameraInfo RosCameraInfoFromText(const std::string& text, const std::string& 
   if (const auto problem = CameraMatrixProblem(K)) kf.Fail(problem->reason, problem->fix);
 
   const YamlField model = top.Member("distortion_model");
-  model.Require("add distortion_model: plumb_bob (5 coefficients) or rational_polynomial (8)");
+  model.Require("add distortion_model: plumb_bob (5 coefficients), rational_polynomial (8) or equidistant (4)");
   const std::string model_name = model.String();
   int n = 0;
   if (model_name == kPlumbBob) {
     n = 5;
   } else if (model_name == kRational) {
     n = 8;
-  } else if (model_name == "equidistant") {
-    model.Fail("ROS's \"equidistant\" (fisheye) model has no vstcal lens model",
-               "calibrate with plumb_bob or rational_polynomial (vstcal's radial-tangential and rational)");
+  } else if (model_name == kEquidistant) {
+    n = 4;  // image_geometry's cv::fisheye k1, k2, k3, k4: vstcal's "kannala-brandt"
   } else {
     model.Fail("unknown distortion model \"" + model_name + "\"",
-               "write plumb_bob (5 coefficients) or rational_polynomial (8), the ROS models vstcal has");
+               "write plumb_bob (5 coefficients), rational_polynomial (8) or equidistant (4), the ROS models vstcal has");
   }
   const YamlField df = top.Member("distortion_coefficients");
   const Eigen::MatrixXd D = ReadMatrix(df, 1, n, true, "the " + model_name + " coefficients");
@@ -92,7 +91,8 @@ RosCameraInfo RosCameraInfoFromText(const std::string& text, const std::string& 
   info.projection = ReadMatrix(top.Member("projection_matrix"), 3, 4, false,
                                "the 3×4 projection matrix P ([K | 0] for one camera)");
 
-  info.camera.camera = CameraFromOpenCv(K, size, coefficients);
+  info.camera.camera = model_name == kEquidistant ? Camera::FromK(K, size, KannalaBrandtModel{}, coefficients)
+                                                  : CameraFromOpenCv(K, size, coefficients);
   info.camera.length_unit = length_unit;
   info.camera.method = "ros";
   return info;
@@ -126,14 +126,17 @@ ExportedCamera RosCameraInfoText(const RosCameraInfo& info, std::string_view sou
   t += "image_height: " + std::to_string(c.image_size.height) + "\n";
   if (!info.camera.name.empty()) t += "camera_name: " + YamlString(info.camera.name) + "\n";
   WriteMatrix(t, "camera_matrix", c.K());
-  // plumb_bob holds "none" and "radial-tangential" (k3 included), rational_polynomial "rational".
-  const int n = LensModelNumParams(c.model) - kNumIntrinsicParams > 5 ? 8 : 5;
+  // plumb_bob holds "none" and "radial-tangential" (k3 included), rational_polynomial "rational",
+  // equidistant "kannala-brandt" (k1…k4 as they are).
+  const bool fisheye = !HasOpenCvDistortion(c);
+  const int n = fisheye ? 4 : LensModelNumParams(c.model) - kNumIntrinsicParams > 5 ? 8 : 5;
   if (c.distortion().empty()) {
     out.notes.push_back(std::string(source) + ": distortion: \"none\" is written as plumb_bob with five zeros: "
                                               "ROS has no model without distortion");
   }
-  t += "distortion_model: " + std::string(n == 5 ? kPlumbBob : kRational) + "\n";
-  const std::vector<double> d = OpenCvDistortion(c, n);
+  t += "distortion_model: " + std::string(fisheye ? kEquidistant : n == 5 ? kPlumbBob : kRational) + "\n";
+  const std::vector<double> d =
+      fisheye ? std::vector<double>(c.distortion().begin(), c.distortion().end()) : OpenCvDistortion(c, n);
   WriteMatrix(t, "distortion_coefficients", Eigen::Map<const Eigen::RowVectorXd>(d.data(), n));
   WriteMatrix(t, "rectification_matrix", info.rectification);
   WriteMatrix(t, "projection_matrix", info.projection);

@@ -4,8 +4,8 @@
 // projection_matrix (P), each matrix as {rows, cols, data}. docs/formats.md#ros-camera-info.
 //
 // distortion_model: "plumb_bob" (5: k1, k2, t1, t2, k3) is vstcal's "radial-tangential",
-// "rational_polynomial" (8: k1, k2, t1, t2, k3, k4, k5, k6) its "rational". ROS's "equidistant"
-// (the fisheye model) has no vstcal lens model and is refused by name. The file holds no lengths
+// "rational_polynomial" (8: k1, k2, t1, t2, k3, k4, k5, k6) its "rational", "equidistant" (4:
+// image_geometry's cv::fisheye k1, k2, k3, k4) its "kannala-brandt". The file holds no lengths
 // except a stereo right camera's P[0][3] = −fx'·B, B in metres (ROS's unit).
 #pragma once
 

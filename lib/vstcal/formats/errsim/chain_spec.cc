@@ -309,10 +309,15 @@ std::array<AnyLensModel, kNumEyes> ChainSpec::RendererLenses() const {
         if (it != names.end()) needed = std::max(needed, static_cast<int>(it - names.begin()) + 1);
       });
     }
-    // The smallest model with that many parameters (the variant lists models by size).
+    // The smallest model with that many parameters that extends the camera's (the variant lists
+    // a family's models by size; a fisheye's renderer stays a fisheye). None: the camera's own,
+    // whose names then refuse the term.
     bool found = false;
+    out[e] = cameras[e].camera.model;
     ForEachLensModel([&](auto model) {
-      if (!found && decltype(model)::kNumParams >= needed) out[e] = model, found = true;
+      if (!found && LensModelExtends(model, cameras[e].camera.model) && decltype(model)::kNumParams >= needed) {
+        out[e] = model, found = true;
+      }
     });
   }
   return out;

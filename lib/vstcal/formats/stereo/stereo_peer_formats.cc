@@ -30,6 +30,12 @@ ExportedCamera OpenCvStereoYamlText(const StereoRig& rig, std::string_view sourc
   }
   RefuseSkew(rig.left.camera, std::string(source) + ": left", "OpenCV");
   RefuseSkew(rig.right.camera, std::string(source) + ": right", "OpenCV");
+  // M1, D1, M2, D2 are calibrateCamera's and stereoCalibrate's; cv::fisheye::stereoCalibrate's
+  // file has no agreed layout.
+  for (const auto& [camera, side] : {std::pair{&rig.left.camera, ": left"}, std::pair{&rig.right.camera, ": right"}}) {
+    RefuseNonOpenCvModel(*camera, std::string(source) + side, "OpenCV's stereo YAML (M1, D1, M2, D2 are plumb-bob)",
+                         "write each camera as OpenCV YAML (distortion_model: fisheye)");
+  }
   cv::FileStorage fs(".yaml", cv::FileStorage::WRITE | cv::FileStorage::MEMORY | cv::FileStorage::FORMAT_YAML);
   fs.writeComment(ProvenanceComment(provenance));
   fs.writeComment("right_from_left: x_right = R x_left + T, T in " + std::string(LengthUnitName(rig.length_unit)));
