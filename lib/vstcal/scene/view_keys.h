@@ -18,7 +18,7 @@ struct ViewPairing {
 };
 
 // Renames each view of `c` to its key: the first group of `pattern`'s match (ECMAScript) in its
-// name, as StereoSolveOptions::view_key_pattern pairs views. Throws InputError ("--match-views: …",
+// name, as StereoSolveOptions::view_key_pattern pairs views. Throws InputError (naming the option match_views,
 // or `file` and the name) for a pattern that is no regular expression or has no group, and for a
 // name it does not match.
 void KeyViews(const std::string& pattern, const std::string& file, Correspondences* c);
