@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <numbers>
 #include <optional>
 #include <string_view>
 
@@ -97,11 +98,10 @@ struct LensModel {
 
  private:
   static double SearchMaxTheta(const double* distortion) {
-    constexpr double kPi = 3.14159265358979323846;
     constexpr int kSteps = 2000;
     double good = 0;
     for (int i = 1; i <= kSteps; ++i) {
-      const double theta = kPi * i / kSteps;
+      const double theta = std::numbers::pi * i / kSteps;
       if (!(Model::AngleSlope(distortion, theta) > 0)) {
         double bad = theta;
         while (bad - good > 1e-12) {
