@@ -112,7 +112,7 @@ struct LensModel {
       }
       good = theta;
     }
-    return kPi;
+    return std::numbers::pi;
   }
 
  public:
