@@ -21,7 +21,7 @@ const std::string& VolumeText(size_t n) {
     vstcal::Correspondences c;
     c.image_size = scene.camera.image_size;
     for (size_t i = 0; i < n; ++i) {
-      if (i % 100 == 0) c.views.push_back({"view-" + std::to_string(i / 100), "", std::nullopt, {}});
+      if (i % 100 == 0) c.views.push_back({"view-" + std::to_string(i / 100), "", std::nullopt, {}, std::nullopt});
       c.views.back().observations.push_back(scene.observations[i]);
     }
     text = vstcal::DumpJson(vstcal::CorrespondencesToJson(c, {"bench_io", {}, std::nullopt}));

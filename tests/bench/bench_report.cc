@@ -21,7 +21,7 @@ using vstcal::testing::Scene;
 vstcal::Correspondences CorrespondencesOf(const Scene& scene) {
   vstcal::Correspondences c;
   c.image_size = scene.camera.image_size;
-  c.views.push_back({"all", "", std::nullopt, scene.observations});
+  c.views.push_back({"all", "", std::nullopt, scene.observations, std::nullopt});
   return c;
 }
 

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "support/error_of.h"
+#include "vstcal/core/option_name.h"
 #include "vstcal/capture/synthetic_camera.h"
 #include "vstcal/capture/synthetic_volume.h"
 #include "vstcal/core/error.h"
@@ -47,7 +48,7 @@ TEST(SyntheticCamera, RefusesImpossibleAndOutOfScaleValues) {
   EXPECT_THROW(MakeSyntheticCamera(spec), InputError);  // neither fx nor hfov
   spec.fx = 1e300;
   const std::string e = testing::ErrorOf([&] { MakeSyntheticCamera(spec); });
-  EXPECT_NE(e.find("--fx: 1e+300 px is beyond ±1e+09"), std::string::npos) << e;
+  EXPECT_NE(e.find(VSTCAL_OPT("fx") ": 1e+300 px is beyond ±1e+09"), std::string::npos) << e;
   spec.fx = 500;
   spec.cx = NAN;
   EXPECT_THROW(MakeSyntheticCamera(spec), InputError);
