@@ -214,6 +214,17 @@ struct HardView {
   testing::RenderedView view;
 };
 
+// Hard view k's rendering: blur σ 0–1.5 px, noise σ 0–3, light falling by 0–60 % from a turning direction.
+RenderOptions HardViewRendering(int k) {
+  RenderOptions o;
+  o.blur_px = 0.3 * (k % 6);
+  o.noise = k % 4;
+  o.lighting = 0.2 * (k % 4);
+  o.lighting_direction_deg = 37 * k;
+  o.seed = static_cast<uint64_t>(k + 1);
+  return o;
+}
+
 // 60 hard views at 640×480 (f 600) or 1280×720 (f 1000): 30 of the 9×6 board, 30 of the 10×10.
 const std::vector<HardView>& HardViews(int width) {
   static std::map<int, std::vector<HardView>> sets;
@@ -224,15 +235,9 @@ const std::vector<HardView>& HardViews(int width) {
     for (int tb = 0; tb < 2; ++tb) {
       const Target board = tb == 0 ? testing::Chessboard9x6() : Board();
       for (int k = 0; k < 30; ++k) {
-        RenderOptions o;
-        o.blur_px = 0.3 * (k % 6);
-        o.noise = k % 4;
-        o.lighting = 0.2 * (k % 4);
-        o.lighting_direction_deg = 37 * k;
-        o.seed = static_cast<uint64_t>(k + 1);
         const double square_px = 12 + (k * 7) % 30;
         const Rigid3d pose = testing::HardViewPose(camera, board, square_px, k, static_cast<uint64_t>(11 + tb + (vga ? 0 : 2)));
-        s.push_back({board, testing::RenderTestView(camera, board, pose, o, static_cast<uint32_t>(k))});
+        s.push_back({board, testing::RenderTestView(camera, board, pose, HardViewRendering(k), static_cast<uint32_t>(k))});
       }
     }
   }
@@ -483,15 +488,9 @@ const std::vector<testing::RenderedView>& HardMarkerViews(int which, int width) 
     const Camera camera = testing::DistortedCamera(width, vga ? 480 : 720, vga ? 600 : 1000);
     const Target board = MarkerBoard(which);
     for (int k = 0; k < 30; ++k) {
-      RenderOptions o;
-      o.blur_px = 0.3 * (k % 6);
-      o.noise = k % 4;
-      o.lighting = 0.2 * (k % 4);
-      o.lighting_direction_deg = 37 * k;
-      o.seed = static_cast<uint64_t>(k + 1);
       const double square_px = 20 + (k * 7) % 30;
       const Rigid3d pose = testing::HardViewPose(camera, board, square_px, k, static_cast<uint64_t>(21 + which + (vga ? 0 : 4)));
-      s.push_back(testing::RenderTestView(camera, board, pose, o, static_cast<uint32_t>(k)));
+      s.push_back(testing::RenderTestView(camera, board, pose, HardViewRendering(k), static_cast<uint32_t>(k)));
     }
   }
   return s;
