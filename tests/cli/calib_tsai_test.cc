@@ -307,6 +307,15 @@ TEST_F(CliCalibTsai, HoldKeepsParametersAndSaysTheSigmasAreConditional) {
   EXPECT_TRUE(CovarianceIndex(camera, "fx").has_value());
 }
 
+// --lens-model names a model of the variant; an unknown name is refused before anything is
+// written. (Solving kannala-brandt is tested in tests/unit/fisheye_calibration_test.cc.)
+TEST_F(CliCalibTsai, UnknownLensModelIsRefused) {
+  Synth("in/views.json", PlanarArgs());
+  EXPECT_TRUE(FailsWith(Run(kTool, {"in/views.json", "-o", "out/camera.json", "--lens-model", "fisheye9"}), kTool,
+                        kBadInput, "--lens-model: ", {"unknown lens model \"fisheye9\"", "kannala-brandt"}));
+  EXPECT_TRUE(OutDirEmpty());
+}
+
 TEST_F(CliCalibTsai, BadPriorsAndHoldsAreRefusedBeforeAnythingIsWritten) {
   Synth("in/plane.json", PlaneArgs());
   const auto fails = [&](std::vector<std::string> extra, const std::string& start, std::vector<std::string> parts) {
