@@ -6,17 +6,17 @@
 
 namespace {
 
-std::string Pass(const std::string& text) {
+std::string CameraPass(const std::string& text) {
   using namespace vstcal;
   return DumpJson(CameraToJson(CameraFromJson(JsonDocument::Parse(text, "fuzz.json")), fuzz::kProvenance));
 }
 
 }  // namespace
 
-VSTCAL_FUZZ_TARGET(text) {
+VSTCAL_FUZZ_TARGET(camera, text) {
   using namespace vstcal;
   const CalibratedCamera c = CameraFromJson(JsonDocument::Parse(text, "fuzz.json"));
-  fuzz::RequireFixedPoint(text, Pass);
+  fuzz::RequireFixedPoint(text, CameraPass);
   if (c.covariance) {
     UncertaintyRequest request;
     if (c.camera_from_world) request.world_points.emplace_back(0.0, 0.0, 0.0);

@@ -3,7 +3,7 @@
 #include "harness.h"
 #include "vstcal/formats/camera/mrcal_cameramodel.h"
 
-VSTCAL_FUZZ_TARGET(text) {
+VSTCAL_FUZZ_TARGET(cameramodel, text) {
   using namespace vstcal;
   MrcalCameramodelFromText(text, "fuzz.cameramodel", std::nullopt);
   fuzz::RequireFixedPoint(text, [](const std::string& s) {

@@ -4,7 +4,7 @@
 #include "vstcal/formats/capture/plan_compare.h"
 #include "vstcal/json/json_writer.h"
 
-VSTCAL_FUZZ_TARGET(text) {
+VSTCAL_FUZZ_TARGET(capture_plan, text) {
   using namespace vstcal;
   const PlanPrediction p = PlanPredictionFromJson(JsonDocument::Parse(text, "fuzz.json"));
   (void)DumpJson(ComparePlansToJson(p, p, fuzz::kProvenance));

@@ -28,24 +28,24 @@ const std::filesystem::path& Directory() {
   return dir;
 }
 
-vstcal::ChainSpec Read(const std::string& chain_text) {
+vstcal::ChainSpec ChainRead(const std::string& chain_text) {
   return vstcal::ChainSpecFromJson(vstcal::JsonDocument::Parse(chain_text, "fuzz.json"), Directory());
 }
 
-std::string Pass(const std::string& chain_text) {
-  return vstcal::DumpJson(vstcal::ChainSpecToJson(Read(chain_text), vstcal::fuzz::kProvenance));
+std::string ChainPass(const std::string& chain_text) {
+  return vstcal::DumpJson(vstcal::ChainSpecToJson(ChainRead(chain_text), vstcal::fuzz::kProvenance));
 }
 
 }  // namespace
 
-VSTCAL_FUZZ_TARGET(text) {
+VSTCAL_FUZZ_TARGET(chain, text) {
   using namespace vstcal;
   const size_t split = text.find("\n%%\n");
   std::ofstream(Directory() / "camera.json", std::ios::binary | std::ios::trunc)
       << (split == std::string::npos ? std::string() : text.substr(split + 4));
   const std::string chain_text = text.substr(0, split);
-  ChainModel model = BuildChainModel(Read(chain_text));
-  fuzz::RequireFixedPoint(chain_text, Pass);
+  ChainModel model = BuildChainModel(ChainRead(chain_text));
+  fuzz::RequireFixedPoint(chain_text, ChainPass);
   SimulationOptions options;
   options.samples = 8;
   options.seed = model.seed;

@@ -6,7 +6,7 @@
 
 namespace {
 
-std::string Pass(const std::string& text) {
+std::string CorrespondencesPass(const std::string& text) {
   using namespace vstcal;
   const Correspondences c = CorrespondencesFromJson(JsonDocument::Parse(text, "fuzz.json"));
   return DumpJson(CorrespondencesToJson(c, fuzz::kProvenance));
@@ -14,10 +14,10 @@ std::string Pass(const std::string& text) {
 
 }  // namespace
 
-VSTCAL_FUZZ_TARGET(text) {
+VSTCAL_FUZZ_TARGET(correspondences, text) {
   using namespace vstcal;
   const Correspondences c = CorrespondencesFromJson(JsonDocument::Parse(text, "fuzz.json"));
-  fuzz::RequireFixedPoint(text, Pass);
+  fuzz::RequireFixedPoint(text, CorrespondencesPass);
   if (c.rig == Rig::kVolume) {
     DltOptions options;
     options.exact_diagnostics = true;

@@ -3,7 +3,7 @@
 #include "harness.h"
 #include "vstcal/formats/handeye/handeye_io.h"
 
-VSTCAL_FUZZ_TARGET(text) {
+VSTCAL_FUZZ_TARGET(handeye, text) {
   using namespace vstcal;
   const auto write = [](const HandEyeMeasurement& m) { return DumpJson(HandEyeToJson(m.solution, m.length_unit, fuzz::kProvenance)); };
   const std::string json = write(HandEyeFromJson(JsonDocument::Parse(text, "fuzz.json")));

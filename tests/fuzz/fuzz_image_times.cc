@@ -6,7 +6,7 @@
 #include "vstcal/core/error.h"
 #include "vstcal/formats/capture/image_times.h"
 
-VSTCAL_FUZZ_TARGET(text) {
+VSTCAL_FUZZ_TARGET(image_times, text) {
   using namespace vstcal;
   const std::vector<std::string> names = {"a.png", "b.jpg", "1403636579763555584.png"};
   for (const TimeUnit unit : {TimeUnit::kSecond, TimeUnit::kNanosecond}) {

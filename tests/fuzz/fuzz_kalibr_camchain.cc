@@ -4,7 +4,7 @@
 #include "vstcal/formats/camera/kalibr_camchain.h"
 #include "vstcal/formats/stereo/rig_interop.h"
 
-VSTCAL_FUZZ_TARGET(text) {
+VSTCAL_FUZZ_TARGET(kalibr_camchain, text) {
   using namespace vstcal;
   std::vector<std::string> notes;
   const std::vector<KalibrCamera> chain = KalibrCamchainFromText(text, "fuzz.yaml", &notes);

@@ -7,19 +7,19 @@
 
 namespace {
 
-std::string Pass(const std::string& text) {
+std::string KalibrTargetPass(const std::string& text) {
   using namespace vstcal;
   return DumpJson(TargetToJson(TargetFromJson(JsonDocument::Parse(text, "fuzz.json")), fuzz::kProvenance));
 }
 
 }  // namespace
 
-VSTCAL_FUZZ_TARGET(text) {
+VSTCAL_FUZZ_TARGET(kalibr_target, text) {
   using namespace vstcal;
   const Target t = KalibrTargetFromText(text, "fuzz.yaml");
   fuzz::Require(!CheckTarget(t), "a target read is a checked target");
   const std::string json = DumpJson(TargetToJson(t, fuzz::kProvenance));
-  fuzz::RequireFixedPoint(json, Pass);
+  fuzz::RequireFixedPoint(json, KalibrTargetPass);
   const Target back = TargetFromJson(JsonDocument::Parse(json, "fuzz.json"));
   for (int id = 0; id < NumCorners(t); ++id) fuzz::Require(CornerPosition(back, id) == CornerPosition(t, id), "corners kept");
 }

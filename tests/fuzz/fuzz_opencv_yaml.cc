@@ -3,7 +3,7 @@
 #include "harness.h"
 #include "vstcal/formats/camera/opencv_yaml.h"
 
-VSTCAL_FUZZ_TARGET(text) {
+VSTCAL_FUZZ_TARGET(opencv_yaml, text) {
   using namespace vstcal;
   OpenCvYamlFromText(text, "fuzz.yaml", LengthUnit::kMillimetre);
   fuzz::RequireFixedPoint(text, [](const std::string& s) {

@@ -3,7 +3,7 @@
 #include "harness.h"
 #include "vstcal/formats/handeye/pose_log_io.h"
 
-VSTCAL_FUZZ_TARGET(text) {
+VSTCAL_FUZZ_TARGET(poses, text) {
   using namespace vstcal;
   PoseLogFromJson(JsonDocument::Parse(text, "fuzz.json"));
   fuzz::RequireFixedPoint(text, [](const std::string& s) {

@@ -4,6 +4,6 @@
 #include "harness.h"
 #include "vstcal/formats/errsim/report_reader.h"
 
-VSTCAL_FUZZ_TARGET(text) {
+VSTCAL_FUZZ_TARGET(report_check, text) {
   (void)vstcal::ReadReportForCheck(vstcal::JsonDocument::Parse(text, "fuzz.json"));
 }

@@ -3,7 +3,7 @@
 #include "harness.h"
 #include "vstcal/formats/camera/ros_camera_info.h"
 
-VSTCAL_FUZZ_TARGET(text) {
+VSTCAL_FUZZ_TARGET(ros_camera_info, text) {
   using namespace vstcal;
   RosCameraInfoFromText(text, "fuzz.yaml", LengthUnit::kMillimetre);
   fuzz::RequireFixedPoint(text, [](const std::string& s) {

@@ -5,7 +5,7 @@
 
 namespace {
 
-std::string Pass(const std::string& text) {
+std::string ShardPass(const std::string& text) {
   using namespace vstcal;
   RunDescription run;
   const SimulationResult result = ShardFromJson(JsonDocument::Parse(text, "fuzz.json"), &run);
@@ -14,7 +14,7 @@ std::string Pass(const std::string& text) {
 
 }  // namespace
 
-VSTCAL_FUZZ_TARGET(text) {
-  Pass(text);
-  vstcal::fuzz::RequireFixedPoint(text, Pass);
+VSTCAL_FUZZ_TARGET(shard, text) {
+  ShardPass(text);
+  vstcal::fuzz::RequireFixedPoint(text, ShardPass);
 }

@@ -10,16 +10,16 @@
 
 namespace {
 
-std::string Pass(const std::string& text) {
+std::string StereoPass(const std::string& text) {
   using namespace vstcal;
   return DumpJson(StereoRigToJson(StereoRigFromJson(JsonDocument::Parse(text, "fuzz.json")), fuzz::kProvenance));
 }
 
 }  // namespace
 
-VSTCAL_FUZZ_TARGET(text) {
+VSTCAL_FUZZ_TARGET(stereo, text) {
   using namespace vstcal;
   const StereoRig rig = StereoRigFromJson(JsonDocument::Parse(text, "fuzz.json"));
-  fuzz::RequireFixedPoint(text, Pass);
+  fuzz::RequireFixedPoint(text, StereoPass);
   if (const auto sigma = BaselineSigma(rig)) VSTCAL_CHECK(std::isfinite(*sigma), "a non-finite baseline sigma");
 }

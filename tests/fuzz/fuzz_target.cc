@@ -6,17 +6,17 @@
 
 namespace {
 
-std::string Pass(const std::string& text) {
+std::string TargetPass(const std::string& text) {
   using namespace vstcal;
   return DumpJson(TargetToJson(TargetFromJson(JsonDocument::Parse(text, "fuzz.json")), fuzz::kProvenance));
 }
 
 }  // namespace
 
-VSTCAL_FUZZ_TARGET(text) {
+VSTCAL_FUZZ_TARGET(target, text) {
   using namespace vstcal;
   const Target t = TargetFromJson(JsonDocument::Parse(text, "fuzz.json"));
-  fuzz::RequireFixedPoint(text, Pass);
+  fuzz::RequireFixedPoint(text, TargetPass);
   fuzz::Require(static_cast<int>(TargetCorners(t).size()) == NumCorners(t), "corner count");
   (void)MarkerQuads(t);
 }

@@ -3,7 +3,7 @@
 #include "harness.h"
 #include "vstcal/formats/handeye/handeye_io.h"
 
-VSTCAL_FUZZ_TARGET(text) {
+VSTCAL_FUZZ_TARGET(tracker_noise, text) {
   using namespace vstcal;
   const auto write = [](const TrackerNoiseMeasurement& m) { return DumpJson(TrackerNoiseToJson(m.noise, m.length_unit, fuzz::kProvenance)); };
   const std::string json = write(TrackerNoiseFromJson(JsonDocument::Parse(text, "fuzz.json")));

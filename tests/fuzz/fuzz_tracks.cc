@@ -3,7 +3,7 @@
 #include "harness.h"
 #include "vstcal/formats/stereo/registration_io.h"
 
-VSTCAL_FUZZ_TARGET(text) {
+VSTCAL_FUZZ_TARGET(tracks, text) {
   using namespace vstcal;
   TracksFromJson(JsonDocument::Parse(text, "fuzz.json"));
   fuzz::RequireFixedPoint(text, [](const std::string& s) {

@@ -3,7 +3,7 @@
 #include "harness.h"
 #include "vstcal/formats/handeye/pose_log_io.h"
 
-VSTCAL_FUZZ_TARGET(text) {
+VSTCAL_FUZZ_TARGET(tum_poses, text) {
   using namespace vstcal;
   const PoseLog log = PoseLogFromTum(text, "fuzz.txt", LengthUnit::kMetre);
   const std::string json = DumpJson(PoseLogToJson(log, fuzz::kProvenance));

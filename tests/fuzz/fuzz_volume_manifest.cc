@@ -31,19 +31,19 @@ const std::filesystem::path& Folder() {
   return folder.path;
 }
 
-vstcal::VolumeManifest Read(const std::string& text) {
+vstcal::VolumeManifest VolumeManifestRead(const std::string& text) {
   using namespace vstcal;
   return VolumeManifestFromJson(JsonDocument::Parse(text, "fuzz.json"), Folder());
 }
 
-std::string Pass(const std::string& text) {
-  return vstcal::DumpJson(vstcal::VolumeManifestToJson(Read(text), vstcal::fuzz::kProvenance));
+std::string VolumeManifestPass(const std::string& text) {
+  return vstcal::DumpJson(vstcal::VolumeManifestToJson(VolumeManifestRead(text), vstcal::fuzz::kProvenance));
 }
 
 }  // namespace
 
-VSTCAL_FUZZ_TARGET(text) {
-  const vstcal::VolumeManifest manifest = Read(text);
+VSTCAL_FUZZ_TARGET(volume_manifest, text) {
+  const vstcal::VolumeManifest manifest = VolumeManifestRead(text);
   vstcal::fuzz::Require(!manifest.images.empty(), "a manifest read has images");
-  vstcal::fuzz::RequireFixedPoint(text, Pass);
+  vstcal::fuzz::RequireFixedPoint(text, VolumeManifestPass);
 }

@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
+#include <map>
 
 #include "vstcal/core/error.h"
 
@@ -22,6 +23,34 @@ void RunOne(const uint8_t* data, size_t size, void (*body)(const std::string&)) 
     std::fprintf(stderr, "fuzz: unexpected exception (a bug): %s\n", e.what());
     std::abort();
   }
+}
+
+namespace {
+
+std::map<std::string, Body>& Registry() {
+  static std::map<std::string, Body> registry;  // built during static initialisation
+  return registry;
+}
+
+}  // namespace
+
+bool Register(const char* name, Body body) {
+  if (!Registry().emplace(name, body).second) {
+    std::fprintf(stderr, "fuzz: two harnesses are named %s\n", name);
+    std::abort();
+  }
+  return true;
+}
+
+Body Find(const std::string& name) {
+  const auto it = Registry().find(name);
+  return it == Registry().end() ? nullptr : it->second;
+}
+
+std::vector<std::string> Names() {
+  std::vector<std::string> names;
+  for (const auto& [name, body] : Registry()) names.push_back(name);
+  return names;
 }
 
 void Require(bool ok, const char* what) {
