@@ -390,13 +390,18 @@ StereoSolveResult SolveStereo(Correspondences left, Correspondences right, const
 
   // The joint problem: every board pose in the first elimination group, the globals last, so the
   // reduced system is the intrinsics' and right_from_left's alone, whatever the number of views.
+  // Each global has a group of its own: Ceres orders the blocks of one group by their addresses,
+  // and these three are separate allocations, so in one group the reduced system's block order —
+  // and the last digits of the solution — followed the heap's layout (an input path one character
+  // longer changed fx in its 16th digit). The board poses are one array, in view order.
   ceres::Problem problem;
   AddSide(&problem, &sl, &x, false);
   AddSide(&problem, &sr, &x, true);
   ceres::Solver::Options solver;
   auto ordering = std::make_shared<ceres::ParameterBlockOrdering>();
   for (auto& d : x.delta_pose) ordering->AddElementToGroup(d.data(), 0);
-  for (double* global : {sl.params.data(), sr.params.data(), x.delta_rl.data()}) ordering->AddElementToGroup(global, 1);
+  int group = 1;
+  for (double* global : {sl.params.data(), sr.params.data(), x.delta_rl.data()}) ordering->AddElementToGroup(global, group++);
   solver.linear_solver_type = ceres::DENSE_SCHUR;
   solver.linear_solver_ordering = ordering;
   solver.max_num_iterations = refinement.max_iterations;
