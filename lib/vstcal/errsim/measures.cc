@@ -17,7 +17,7 @@ ErrorOutputs::ErrorOutputs(const ChainModel& model, OutputSet set) : set_(set) {
         // Built by appending: GCC 12's -Wrestrict misfires on std::string + "literal".
         names_.push_back(std::string(tp.name).append(".").append(MeasureName(d.measure, e)));
         point_of_.push_back(k);
-        percentiles_.push_back(set == OutputSet::kFull && d.percentiles);
+        headline_.push_back(set == OutputSet::kFull && d.headline);
       }
     }
     VSTCAL_CHECK(names_.size() - offsets_.back() == static_cast<size_t>(PointMeasures(set, surface)),

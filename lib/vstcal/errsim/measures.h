@@ -99,8 +99,9 @@ class ErrorOutputs {
     VSTCAL_CHECK(slot_[static_cast<int>(m)][eye] >= 0, "the output set keeps the measure");
     return offsets_[k] + static_cast<size_t>(slot_[static_cast<int>(m)][eye]);
   }
-  // Whether output k gets percentiles (a histogram): kMeasures' percentiles, under kFull only.
-  bool wants_percentiles(size_t output) const { return percentiles_[output]; }
+  // Whether output k is a headline magnitude (kMeasures' headline, under kFull only): it gets
+  // percentiles (a histogram) in Monte Carlo and a row in sobol's summary.
+  bool is_headline(size_t output) const { return headline_[output]; }
 
  private:
   OutputSet set_;
@@ -108,7 +109,7 @@ class ErrorOutputs {
   std::array<std::array<int, kNumEyes>, kNumMeasures> slot_{};
   std::vector<std::string> names_;
   std::vector<size_t> offsets_, point_of_;
-  std::vector<bool> surface_, percentiles_;
+  std::vector<bool> surface_, headline_;
 };
 
 template <typename T>

@@ -3,6 +3,8 @@
 //  - kMeasures: the scalar error measures of a sample (ErrorOutputs, measures.h) that Monte Carlo,
 //    Sobol and the budget summarise — each eye's image misregistration, Holloway's terms of the
 //    misregistration and of the misperception, each eye's occlusion decision;
+//  - kTotals: their aggregates over the test points that the report's totals, the budget and the
+//    sweep show;
 //  - kVectorOutputs: the signed vector errors (ChainEvaluator::operator(), chain.h) that linear
 //    propagation and the sweep differentiate.
 // Everything else is derived from them: each output's slot within its test point's block
@@ -57,7 +59,7 @@ struct MeasureDecl {
   OutputScope scope;
   OutputUnit unit;
   bool in_totals;      // kept by OutputSet::kTotals: what the budget's totals need
-  bool percentiles;    // a histogram under kFull: the magnitudes the report ranks by
+  bool headline;       // a magnitude the report ranks by: a histogram (percentiles) under kFull, a row of sobol's summary
   bool needs_surface;  // only at test points with a surface_behind (the occlusion decisions)
   std::string_view description;
 };
@@ -122,13 +124,50 @@ constexpr bool MeasuresInOrder() {
     // every test point.
     if (i > 0 && kMeasures[i - 1].needs_surface && !kMeasures[i].needs_surface) return false;
     // A decision is summarised as a rate, never a histogram.
-    if (kMeasures[i].unit == OutputUnit::kDecision && kMeasures[i].percentiles) return false;
+    if (kMeasures[i].unit == OutputUnit::kDecision && kMeasures[i].headline) return false;
   }
   return true;
 }
 }  // namespace detail
 static_assert(detail::MeasuresInOrder(),
               "kMeasures must list every ErrorMeasure in order, those that need a surface last, no percentiles of a decision");
+
+// The whole chain's aggregates of a scenario over its test points (errsim/budget.h,
+// ScenarioTotals): the report's totals, the budget's columns, the sweep's curves.
+enum class Total : int { kImage, kMisregistration, kMisperception, kWrongOcclusion, kCount };
+inline constexpr int kNumTotals = static_cast<int>(Total::kCount);
+
+struct TotalDecl {
+  Total total;
+  std::string_view key;      // in files: under "totals", a budget row's "alone" and "halved", a sweep's parameter
+  // The budget's name of the measure it totals ("image"): share_of_<measure>_ms, the ranking and the
+  // whole by it; empty when the budget does not rank by it.
+  std::string_view measure;
+  ErrorMeasure of;           // the per-point measure it aggregates
+  OutputUnit unit;
+  std::string_view description;
+};
+
+// clang-format off
+inline constexpr std::array<TotalDecl, kNumTotals> kTotals = {{
+    {Total::kImage,           "image_rms_px",         "image",           ErrorMeasure::kImagePixel,            OutputUnit::kPixel,    "√(mean over test points and eyes of RMS(|q̂ − q|)²)"},
+    {Total::kMisregistration, "misregistration_rms",  "misregistration", ErrorMeasure::kMisregistrationLinear, OutputUnit::kLength,   "√(mean over test points of RMS(misregistration linear)²)"},
+    {Total::kMisperception,   "misperception_rms",    "misperception",   ErrorMeasure::kMisperceptionLinear,   OutputUnit::kLength,   "the same for the misperception, beyond the systematic one"},
+    {Total::kWrongOcclusion,  "wrong_occlusion_rate", "",                ErrorMeasure::kWrongOcclusion,        OutputUnit::kDecision, "mean over occlusion points and eyes"},
+}};
+// clang-format on
+
+constexpr const TotalDecl& Declaration(Total t) { return kTotals[static_cast<int>(t)]; }
+
+namespace detail {
+constexpr bool TotalsInOrder() {
+  for (int i = 0; i < kNumTotals; ++i) {
+    if (static_cast<int>(kTotals[i].total) != i) return false;
+  }
+  return true;
+}
+}  // namespace detail
+static_assert(detail::TotalsInOrder(), "kTotals must list every Total in order");
 
 // The signed vector errors of a test point, for linear propagation and the sweep's slopes.
 enum class VectorOutput : int { kPixelError, kMisregistration, kMisperception, kCount };
@@ -154,6 +193,14 @@ inline constexpr std::array<VectorOutputDecl, kNumVectorOutputs> kVectorOutputs 
 // clang-format on
 
 constexpr const VectorOutputDecl& Declaration(VectorOutput v) { return kVectorOutputs[static_cast<int>(v)]; }
+// "[<group>.][<eye>.]<component>": a component's output name below its test point.
+inline std::string VectorOutputName(VectorOutput v, int eye, int component) {
+  const VectorOutputDecl& d = Declaration(v);
+  std::string name;
+  if (!d.group.empty()) name.append(d.group).append(".");
+  if (d.scope == OutputScope::kPerEye) name.append(kEyeNames[eye]).append(".");
+  return name.append(d.components[component]);
+}
 // The size of a vector output over all its eyes.
 constexpr int VectorSize(VectorOutput v) { return Declaration(v).size * SlotsOf(Declaration(v).scope); }
 // The first slot of output v (of `eye` for a per-eye one) within a test point's block.

@@ -41,10 +41,10 @@ OrderedJson RateToJson(ErrorMeasure m, const OutputStatistics& s) {
 }
 
 OrderedJson TotalsToJson(const ScenarioTotals& t) {
-  return {{"image_rms_px", NumberOrNull(t.image_rms_px)},
-          {"misregistration_rms", NumberOrNull(t.misregistration_rms)},
-          {"misperception_rms", NumberOrNull(t.misperception_rms)},
-          {"wrong_occlusion_rate", NumberOrNull(t.wrong_occlusion_rate)}};
+  return {{TotalKey(Total::kImage), NumberOrNull(t.image_rms_px)},
+          {TotalKey(Total::kMisregistration), NumberOrNull(t.misregistration_rms)},
+          {TotalKey(Total::kMisperception), NumberOrNull(t.misperception_rms)},
+          {TotalKey(Total::kWrongOcclusion), NumberOrNull(t.wrong_occlusion_rate)}};
 }
 
 // Test point k's measures, in kMeasures' order, at their MeasurePointer under `point`. A group
@@ -62,7 +62,7 @@ void MeasuresToJson(const ErrorOutputs& outputs, const std::vector<OutputStatist
     if (!point->contains(group)) (*point)[group] = start(d.measure);
     for (int e = 0; e < SlotsOf(d.scope); ++e) {
       const OutputStatistics& s = stats[outputs.at(k, d.measure, e)];
-      (*point)[OrderedJson::json_pointer("/" + MeasurePointer(d.measure, e))] =
+      (*point)[OrderedJson::json_pointer(std::string("/").append(MeasurePointer(d.measure, e)))] =
           d.unit == OutputUnit::kDecision ? RateToJson(d.measure, s) : StatsToJson(s);
     }
   }
@@ -202,7 +202,7 @@ OrderedJson ReportToJson(const ChainEvaluator& chain, const SimulationResult& re
   }
   j["test_points"] = std::move(points);
   OrderedJson totals = TotalsToJson(Totals(model, all, OutputSet::kFull));
-  totals["systematic_misperception_rms"] = SystematicMisperceptionRms(chain);
+  totals[std::string(kSystematicMisperceptionKey)] = SystematicMisperceptionRms(chain);
   j["totals"] = std::move(totals);
 
   if (run.options.budget) {
@@ -211,25 +211,25 @@ OrderedJson ReportToJson(const ChainEvaluator& chain, const SimulationResult& re
     for (const BudgetEntry& e : budget.entries) {
       OrderedJson b;
       b["source"] = SourceKey(e.source);
-      b["share_of_misregistration_ms"] = NumberOrNull(e.share_of_misregistration_ms);
-      b["share_of_image_ms"] = NumberOrNull(e.share_of_image_ms);
-      b["share_of_misperception_ms"] = NumberOrNull(e.share_of_misperception_ms);
+      b[ShareKey(Total::kMisregistration)] = NumberOrNull(e.share_of_misregistration_ms);
+      b[ShareKey(Total::kImage)] = NumberOrNull(e.share_of_image_ms);
+      b[ShareKey(Total::kMisperception)] = NumberOrNull(e.share_of_misperception_ms);
       b["alone"] = TotalsToJson(e.alone);
       b["halved"] = TotalsToJson(e.halved);
       b["correction"] = SourceCorrection(e.source);
       OrderedJson terms = OrderedJson::array();
       for (const TermPart& t : e.terms) {
         terms.push_back({{"term", t.name},
-                         {"share_of_misregistration_ms", NumberOrNull(t.share_of_misregistration_ms)},
-                         {"share_of_image_ms", NumberOrNull(t.share_of_image_ms)},
-                         {"share_of_misperception_ms", NumberOrNull(t.share_of_misperception_ms)},
+                         {ShareKey(Total::kMisregistration), NumberOrNull(t.share_of_misregistration_ms)},
+                         {ShareKey(Total::kImage), NumberOrNull(t.share_of_image_ms)},
+                         {ShareKey(Total::kMisperception), NumberOrNull(t.share_of_misperception_ms)},
                          {"alone", TotalsToJson(t.alone)},
                          {"origin", OriginsToJson(t.origins)}});
       }
       b["terms"] = std::move(terms);
-      b["dominant_term"] = {{"image", e.terms[DominantTerm(e, &TermPart::share_of_image_ms)].name},
-                            {"misregistration", e.terms[DominantTerm(e, &TermPart::share_of_misregistration_ms)].name},
-                            {"misperception", e.terms[DominantTerm(e, &TermPart::share_of_misperception_ms)].name}};
+      b["dominant_term"] = {{BudgetMeasureKey(Total::kImage), e.terms[DominantTerm(e, &TermPart::share_of_image_ms)].name},
+                            {BudgetMeasureKey(Total::kMisregistration), e.terms[DominantTerm(e, &TermPart::share_of_misregistration_ms)].name},
+                            {BudgetMeasureKey(Total::kMisperception), e.terms[DominantTerm(e, &TermPart::share_of_misperception_ms)].name}};
       b["origin"] = OriginsToJson(e.origins);
       entries.push_back(std::move(b));
     }
@@ -239,14 +239,14 @@ OrderedJson ReportToJson(const ChainEvaluator& chain, const SimulationResult& re
       return list;
     };
     j["budget"] = {{"samples", run.options.budget_samples},
-                   {"whole", {{"image", WholeToJson(budget.image)},
-                              {"misregistration", WholeToJson(budget.misregistration)},
-                              {"misperception", WholeToJson(budget.misperception)}}},
+                   {"whole", {{BudgetMeasureKey(Total::kImage), WholeToJson(budget.image)},
+                              {BudgetMeasureKey(Total::kMisregistration), WholeToJson(budget.misregistration)},
+                              {BudgetMeasureKey(Total::kMisperception), WholeToJson(budget.misperception)}}},
                    // The default ranking is by what the user sees (issue 21 item 3); the others beside it.
-                   {"ranked_by", "image"},
-                   {"ranking", {{"image", ranking(budget.by_image)},
-                                {"misregistration", ranking(budget.by_misregistration)},
-                                {"misperception", ranking(budget.by_misperception)}}},
+                   {"ranked_by", BudgetMeasureKey(Total::kImage)},
+                   {"ranking", {{BudgetMeasureKey(Total::kImage), ranking(budget.by_image)},
+                                {BudgetMeasureKey(Total::kMisregistration), ranking(budget.by_misregistration)},
+                                {BudgetMeasureKey(Total::kMisperception), ranking(budget.by_misperception)}}},
                    {"entries", std::move(entries)}};
   } else {
     j["budget"] = nullptr;

@@ -1,9 +1,11 @@
-// Where err-sim's per-point measures (errsim/outputs.h, kMeasures) sit in a vstcal/err-sim-report@3
-// file (docs/formats.md#err-sim-report), derived from the table: the writer (report_format.cc)
-// puts them there and the pages (pages/errsim_*.cc) read them there, so no key is spelled twice.
+// Where err-sim's outputs (errsim/outputs.h: kMeasures, kTotals) sit in its files
+// (docs/formats.md#err-sim-report, #err-sim-sweep), derived from the tables: the writers
+// (report_format.cc, sensitivity_format.cc) put them there and the pages (pages/errsim_*.cc) read
+// them there, so no key is spelled twice.
 #pragma once
 
 #include <string>
+#include <string_view>
 
 #include "vstcal/errsim/outputs.h"
 
@@ -22,5 +24,14 @@ inline std::string MeasurePointer(ErrorMeasure m, int eye = 0) {
 
 // The key of a decision's rate in its rate object: "<name>_rate" ("wrong_rate").
 inline std::string RateKey(ErrorMeasure m) { return std::string(Declaration(m).name).append("_rate"); }
+
+// A total's key ("image_rms_px"), and the key of a budget row's share of its measure's mean square
+// ("share_of_image_ms").
+inline std::string TotalKey(Total t) { return std::string(Declaration(t).key); }
+inline std::string ShareKey(Total t) { return std::string("share_of_").append(Declaration(t).measure).append("_ms"); }
+// The budget's name of a total's measure ("image"): its key under "whole", "ranking", "dominant_term".
+inline std::string BudgetMeasureKey(Total t) { return std::string(Declaration(t).measure); }
+// Under "totals" beside kTotals: the error-free chain's misperception (errsim/budget.h).
+inline constexpr std::string_view kSystematicMisperceptionKey = "systematic_misperception_rms";
 
 }  // namespace vstcal
