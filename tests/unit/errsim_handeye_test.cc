@@ -240,7 +240,8 @@ TEST_F(ErrSimHandEye, MeasuredCovariancesPerturbTheChainAsTheHandEyeTangent) {
       const auto q0 = m.geometry.cameras[e].Project(m.geometry.camera_from_hmd[e] * (HmdFromTracker() * (he_.tracker_from_board * p)));
       ASSERT_TRUE(q && q0);
       const Eigen::Vector2d expected = *q - *q0;
-      const Eigen::Vector2d got(y[ChainEvaluator::kOutputsPerPoint * k + 2 * e], y[ChainEvaluator::kOutputsPerPoint * k + 2 * e + 1]);
+      const Eigen::Vector2d got(y[kVectorOutputsPerPoint * k + VectorOffset(VectorOutput::kPixelError, e)],
+                                y[kVectorOutputsPerPoint * k + VectorOffset(VectorOutput::kPixelError, e) + 1]);
       EXPECT_LT((got - expected).norm(), 2e-3 * expected.norm() + 1e-9) << "point " << k << " eye " << e << ": " << got.transpose()
                                                                          << " vs " << expected.transpose();
       largest = std::max(largest, expected.norm());

@@ -303,7 +303,7 @@ ErrSimDocument LinearErrSim(const ChainRequest& request, const Provenance& given
   if (outputs > kMaxLinearOutputs) {
     throw InputError(request.chain + ": linear propagation keeps an outputs² covariance: " + std::to_string(outputs) +
                      " outputs are more than " + std::to_string(kMaxLinearOutputs) + "; give at most " +
-                     std::to_string(kMaxLinearOutputs / ChainEvaluator::kOutputsPerPoint) + " test points");
+                     std::to_string(kMaxLinearOutputs / kVectorOutputsPerPoint) + " test points");
   }
   const Provenance provenance = WithSeed(given, model.seed);
   const ParameterSpace space = MakeParameterSpace(model);

@@ -42,13 +42,12 @@ ScenarioTotals Totals(const ChainModel& model, const MonteCarloSummary& summary,
     return s.count > 0 ? s.rms * s.rms : kNaN;
   };
   for (size_t k = 0; k < points; ++k) {
-    const size_t o = outputs.offset(k);
-    image += ms(o + ErrorOutputs::kPixel) + ms(o + ErrorOutputs::kPixel + 1);
-    misregistration += ms(o + outputs.misregistration() + ErrorOutputs::kLinear);
-    misperception += ms(o + outputs.misperception() + ErrorOutputs::kLinear);
-    if (outputs.has_occlusion(k)) {
+    image += ms(outputs.at(k, ErrorMeasure::kImagePixel, 0)) + ms(outputs.at(k, ErrorMeasure::kImagePixel, 1));
+    misregistration += ms(outputs.at(k, ErrorMeasure::kMisregistrationLinear));
+    misperception += ms(outputs.at(k, ErrorMeasure::kMisperceptionLinear));
+    if (outputs.has_surface(k)) {
       for (int e = 0; e < kNumEyes; ++e) {
-        const auto s = summary.Statistics(o + outputs.occlusion() + e);
+        const auto s = summary.Statistics(outputs.at(k, ErrorMeasure::kWrongOcclusion, e));
         wrong += s.count > 0 ? s.mean : kNaN;
         ++n_wrong;
       }

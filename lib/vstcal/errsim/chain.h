@@ -28,6 +28,7 @@
 #include <Eigen/Core>
 
 #include "vstcal/errsim/chain_model.h"
+#include "vstcal/errsim/outputs.h"
 #include "vstcal/geometry/point_registration.h"
 #include "vstcal/geometry/fixed_order.h"
 #include "vstcal/geometry/rigid3.h"
@@ -102,11 +103,10 @@ class ChainEvaluator {
   template <typename T>
   void Evaluate(const T* theta, ChainSample<T>* out) const;
 
-  // Vector outputs for linear propagation (Model::Templated): per test point
-  // [du_left, dv_left, du_right, dv_right] (px), the misregistration P̂' − P' (3) and the
-  // misperception relative to the systematic one (3), hmd frame. False when a point is undefined.
-  static constexpr int kOutputsPerPoint = 10;
-  size_t num_vector_outputs() const { return kOutputsPerPoint * num_points(); }
+  // Vector outputs for linear propagation (Model::Templated): per test point kVectorOutputs
+  // (outputs.h) — each eye's q̂ − q (px), the misregistration P̂' − P' and the misperception
+  // relative to the systematic one (hmd frame). False when a point is undefined.
+  size_t num_vector_outputs() const { return kVectorOutputsPerPoint * num_points(); }
   template <typename T>
   bool operator()(const T* theta, T* y) const;
 
@@ -352,16 +352,17 @@ bool ChainEvaluator::operator()(const T* theta, T* y) const {
   for (size_t k = 0; k < sample.points.size(); ++k) {
     const PointSample<T>& s = sample.points[k];
     if (!s.valid()) return false;
-    T* out = y + kOutputsPerPoint * k;
-    out[0] = s.pixel_error[0](0);
-    out[1] = s.pixel_error[0](1);
-    out[2] = s.pixel_error[1](0);
-    out[3] = s.pixel_error[1](1);
+    T* out = y + kVectorOutputsPerPoint * k;
+    for (int e = 0; e < kNumEyes; ++e) {
+      for (int i = 0; i < 2; ++i) out[VectorOffset(VectorOutput::kPixelError, e) + i] = s.pixel_error[e](i);
+    }
     const Vec3<T> misregistration = s.overlay - s.seen;
     const Vec3<T> misperception = s.seen - s.truth - systematic_[k].offset.cast<T>();
+    constexpr int kMisregistration = VectorOffset(VectorOutput::kMisregistration);
+    constexpr int kMisperception = VectorOffset(VectorOutput::kMisperception);
     for (int i = 0; i < 3; ++i) {
-      out[4 + i] = misregistration(i);
-      out[7 + i] = misperception(i);
+      out[kMisregistration + i] = misregistration(i);
+      out[kMisperception + i] = misperception(i);
     }
   }
   return true;

@@ -17,7 +17,7 @@ SummaryPlan ChainPlan(const ChainModel& model, const ChainMonteCarloOptions& opt
   plan.all_percentiles = false;
   plan.higher_moments = false;  // the report gives no standard error of σ
   for (size_t k = 0; k < outputs.size(); ++k) {
-    if (outputs.wants_percentiles(k)) plan.percentile_outputs.push_back(k);
+    if (outputs.is_headline(k)) plan.percentile_outputs.push_back(k);
   }
   plan.total_samples = options.samples;
   plan.block_size = options.block_size;

@@ -15,8 +15,10 @@
 #include <string>
 #include <vector>
 
+#include "vstcal/core/error.h"
 #include "vstcal/core/simd_double.h"
 #include "vstcal/errsim/chain.h"
+#include "vstcal/errsim/outputs.h"
 
 namespace vstcal {
 
@@ -73,17 +75,9 @@ PointErrorsOf<T> MeasurePoint(const ChainEvaluator& chain, const ChainSample<T>&
   return e;
 }
 
-// Which outputs a Monte Carlo run keeps: every measure (the report's "all" scenario, Sobol), or
-// only those the budget's totals need.
-enum class OutputSet { kFull, kTotals };
-
-// The scalar outputs of one sample, per test point "<name>." followed by (kFull)
-//   image.left.pixel_px, image.right.pixel_px,
-//   misregistration.{linear, lateral, depth, depth_abs, angular_deg},
-//   misperception.{linear, lateral, depth, depth_abs, angular_deg},
-// or (kTotals) image.left.pixel_px, image.right.pixel_px, misregistration.linear,
-// misperception.linear; then, for points with surface_behind, occlusion.left.wrong,
-// occlusion.right.wrong (1 wrong, 0 right).
+// The scalar outputs of one sample: per test point, kMeasures' rows (outputs.h) that `set` keeps,
+// named "<point>.<group>[.<eye>].<name>" (misregistration.linear, image.left.pixel_px); the rows
+// that need a surface only at test points with surface_behind.
 class ErrorOutputs {
  public:
   ErrorOutputs(const ChainModel& model, OutputSet set = OutputSet::kFull);
@@ -95,55 +89,61 @@ class ErrorOutputs {
   template <typename T>
   void Measure(const ChainEvaluator& chain, const ChainSample<T>& sample, const T* theta, T* y, bool* defined) const;
 
-  // Where test point k's outputs start, the offsets of its measures within them, and whether it
-  // has occlusion outputs.
+  // Where test point k's outputs start, and whether it has the outputs that need a surface.
   size_t offset(size_t k) const { return offsets_[k]; }
-  bool has_occlusion(size_t k) const { return occlusion_[k]; }
+  bool has_surface(size_t k) const { return surface_[k]; }
   size_t num_points() const { return offsets_.size(); }
   size_t point_of(size_t output) const { return point_of_[output]; }
-  // Whether output k gets percentiles (a histogram): the magnitudes the report ranks by, each
-  // eye's pixel error and the two measures' linear terms (kFull only).
-  bool wants_percentiles(size_t output) const { return percentiles_[output]; }
-  static constexpr size_t kPixel = 0;  // + eye
-  size_t misregistration() const { return 2; }
-  size_t misperception() const { return set_ == OutputSet::kFull ? 7 : 3; }
-  size_t occlusion() const { return set_ == OutputSet::kFull ? 12 : 4; }  // + eye
-  // Per measure (kFull): linear, lateral, depth, depth_abs, angular_deg.
-  static constexpr size_t kLinear = 0, kLateral = 1, kDepth = 2, kDepthAbs = 3, kAngular = 4;
+  // The output of measure m (of `eye`) at test point k; the set must keep m.
+  size_t at(size_t k, ErrorMeasure m, int eye = 0) const {
+    VSTCAL_CHECK(slot_[static_cast<int>(m)][eye] >= 0, "the output set keeps the measure");
+    return offsets_[k] + static_cast<size_t>(slot_[static_cast<int>(m)][eye]);
+  }
+  // Whether output k is a headline magnitude (kMeasures' headline, under kFull only): it gets
+  // percentiles (a histogram) in Monte Carlo and a row in sobol's summary.
+  bool is_headline(size_t output) const { return headline_[output]; }
 
  private:
   OutputSet set_;
+  // MeasureOffset(set_, m, eye), looked up once: the sample loop reads it for every output.
+  std::array<std::array<int, kNumEyes>, kNumMeasures> slot_{};
   std::vector<std::string> names_;
   std::vector<size_t> offsets_, point_of_;
-  std::vector<bool> occlusion_, percentiles_;
+  std::vector<bool> surface_, headline_;
 };
 
 template <typename T>
 void ErrorOutputs::Measure(const ChainEvaluator& chain, const ChainSample<T>& sample, const T* theta, T* y,
                            bool* defined) const {
   using std::abs;
+  using M = ErrorMeasure;
   constexpr double kDeg = 180.0 / kPi;
   const bool full = set_ == OutputSet::kFull;
-  auto put = [&](T* out, const RegistrationErrorOf<T>& r) {
-    out[kLinear] = r.linear;
-    if (!full) return;
-    out[kLateral] = r.lateral;
-    out[kDepth] = r.depth;
-    out[kDepthAbs] = abs(r.depth);
-    out[kAngular] = kDeg * r.angular;
-  };
   for (size_t k = 0; k < offsets_.size(); ++k) {
     defined[k] = sample.points[k].valid();
     if (!defined[k]) continue;
     const PointErrorsOf<T> e = MeasurePoint(chain, sample, theta, k, full);
     T* out = y + offsets_[k];
-    out[kPixel] = e.pixel_px[0];
-    out[kPixel + 1] = e.pixel_px[1];
-    put(out + misregistration(), e.misregistration);
-    put(out + misperception(), e.misperception);
-    if (occlusion_[k]) {
-      out[occlusion()] = e.wrong_occlusion[0];
-      out[occlusion() + 1] = e.wrong_occlusion[1];
+    // Each measure into its slot, where the set keeps it.
+    auto put = [&](M m, int eye, const T& value) {
+      const int slot = slot_[static_cast<int>(m)][eye];
+      if (slot >= 0) out[slot] = value;
+    };
+    for (int i = 0; i < kNumEyes; ++i) put(M::kImagePixel, i, e.pixel_px[i]);
+    put(M::kMisregistrationLinear, 0, e.misregistration.linear);
+    put(M::kMisperceptionLinear, 0, e.misperception.linear);
+    if (full) {
+      put(M::kMisregistrationLateral, 0, e.misregistration.lateral);
+      put(M::kMisregistrationDepth, 0, e.misregistration.depth);
+      put(M::kMisregistrationDepthAbs, 0, abs(e.misregistration.depth));
+      put(M::kMisregistrationAngular, 0, kDeg * e.misregistration.angular);
+      put(M::kMisperceptionLateral, 0, e.misperception.lateral);
+      put(M::kMisperceptionDepth, 0, e.misperception.depth);
+      put(M::kMisperceptionDepthAbs, 0, abs(e.misperception.depth));
+      put(M::kMisperceptionAngular, 0, kDeg * e.misperception.angular);
+    }
+    if (surface_[k]) {
+      for (int i = 0; i < kNumEyes; ++i) put(M::kWrongOcclusion, i, e.wrong_occlusion[i]);
     }
   }
 }

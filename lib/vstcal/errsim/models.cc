@@ -41,10 +41,10 @@ Model VectorModel(const ChainModel& model) {
 std::vector<std::string> VectorOutputNames(const ChainModel& model) {
   std::vector<std::string> names;
   for (const ChainTestPoint& tp : model.geometry.test_points) {
-    for (const char* n : {".left.du_px", ".left.dv_px", ".right.du_px", ".right.dv_px", ".misregistration.dx",
-                          ".misregistration.dy", ".misregistration.dz", ".misperception.dx", ".misperception.dy",
-                          ".misperception.dz"}) {
-      names.push_back(tp.name + n);
+    for (const VectorOutputDecl& d : kVectorOutputs) {
+      for (int e = 0; e < SlotsOf(d.scope); ++e) {
+        for (int c = 0; c < d.size; ++c) names.push_back(std::string(tp.name).append(".").append(VectorOutputName(d.output, e, c)));
+      }
     }
   }
   return names;

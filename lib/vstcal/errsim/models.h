@@ -20,9 +20,9 @@ ParameterSpace MakeParameterSpace(const ChainModel& model);
 Model ErrorModel(const ChainModel& model);
 Model VectorModel(const ChainModel& model);
 
-// Names of VectorModel's outputs, per test point "<point>." followed by left.du_px, left.dv_px,
-// right.du_px, right.dv_px, misregistration.{dx,dy,dz}, misperception.{dx,dy,dz} (hmd frame; the
-// misperception relative to the systematic one).
+// Names of VectorModel's outputs, per test point "<point>." followed by kVectorOutputs' components
+// (outputs.h): left.du_px, left.dv_px, right.du_px, right.dv_px, misregistration.{dx,dy,dz},
+// misperception.{dx,dy,dz} (hmd frame; the misperception relative to the systematic one).
 std::vector<std::string> VectorOutputNames(const ChainModel& model);
 
 }  // namespace vstcal

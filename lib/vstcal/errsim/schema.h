@@ -18,12 +18,10 @@
 
 #include "vstcal/camera/camera.h"
 #include "vstcal/core/units.h"
+#include "vstcal/errsim/eyes.h"
 #include "vstcal/errsim/sources.h"
 
 namespace vstcal {
-
-inline constexpr int kNumEyes = 2;
-inline constexpr std::array<std::string_view, kNumEyes> kEyeNames = {"left", "right"};
 
 enum class Term : int {
   kTrackerAlignmentRotation,

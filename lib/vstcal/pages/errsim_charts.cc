@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "vstcal/formats/errsim/report_keys.h"
 #include "vstcal/pages/gnuplot.h"
 
 namespace vstcal {
@@ -38,12 +39,12 @@ std::string QuantileBarsScript(const std::vector<QuantileBar>& bars, const std::
   return s;
 }
 
-std::string BudgetScript(const OrderedJson& report, const std::string& measure) {
+std::string BudgetScript(const OrderedJson& report, Total total) {
   const OrderedJson& budget = report.at("budget");
   if (budget.is_null()) return "";
   // The image misregistration is in px, the 3-D measures in the length unit.
-  const bool image = measure == "image";
-  const std::string rms = image ? std::string("image_rms_px") : measure + "_rms";
+  const bool image = Declaration(total).unit == OutputUnit::kPixel;
+  const std::string measure = BudgetMeasureKey(total), rms = TotalKey(total);
   std::string s = SvgChartHeader(900, 380);
   s += "$b << EOD\n";
   bool any = false;
@@ -65,15 +66,14 @@ std::string BudgetScript(const OrderedJson& report, const std::string& measure) 
   return s;
 }
 
-std::string SweepCurvesScript(const OrderedJson& sweep, const std::string& source, const std::string& measure,
-                              const std::string& ylabel) {
+std::string SweepCurvesScript(const OrderedJson& sweep, const std::string& source, Total total, const std::string& ylabel) {
   std::string data, plot;
   size_t lines = 0;
   bool any = false;
   for (const auto& p : sweep.at("parameters")) {
     if (p.at("source") != source) continue;
     const auto& values = p.at("values");
-    const auto& ys = p.at(measure);
+    const auto& ys = p.at(TotalKey(total));
     const double lo = values.front().get<double>(), hi = values.back().get<double>();
     const std::string block = "$s" + std::to_string(lines);
     data += block + " << EOD\n";

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "vstcal/errsim/outputs.h"
 #include "vstcal/json/json_writer.h"
 
 namespace vstcal {
@@ -22,17 +23,17 @@ struct QuantileBar {
 // Empty when no distribution has a value (as every script below when it would draw nothing).
 std::string QuantileBarsScript(const std::vector<QuantileBar>& bars, const std::string& ylabel);
 
-// The error budget of `measure` ("image", "misregistration" or "misperception"): the sources in the report's
-// ranking for that measure, each with two bars, the RMS with that source alone and the RMS of the
-// whole chain with that source halved, and the whole chain's RMS as a line. Empty without a budget.
-std::string BudgetScript(const OrderedJson& report, const std::string& measure);
+// The error budget of the measure of `total` (one the budget ranks by: image, misregistration or
+// misperception): the sources in the report's ranking for that measure, each with two bars, the
+// RMS with that source alone and the RMS of the whole chain with that source halved, and the whole
+// chain's RMS as a line. Empty without a budget.
+std::string BudgetScript(const OrderedJson& report, Total total);
 
-// A sweep report's (vstcal/err-sim-sweep@2) curves of the parameters of one `source`: `measure`
-// ("misregistration_rms", "image_rms_px" …) against each parameter's position in its swept range,
+// A sweep report's (vstcal/err-sim-sweep@2) curves of the parameters of one `source`: `total`
+// (its key: "misregistration_rms", "image_rms_px" …) against each parameter's position in its swept range,
 // −1 at its lo end, +1 at its hi end (the parameters have different units), one line each.
 // Empty when the sweep has no parameter of that source.
-std::string SweepCurvesScript(const OrderedJson& sweep, const std::string& source, const std::string& measure,
-                              const std::string& ylabel);
+std::string SweepCurvesScript(const OrderedJson& sweep, const std::string& source, Total total, const std::string& ylabel);
 
 }  // namespace vstcal
 

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "vstcal/core/error.h"
+#include "vstcal/formats/errsim/report_keys.h"
 
 #include "vstcal/pages/errsim_charts.h"
 #include "vstcal/pages/errsim_page_parts.h"
@@ -13,8 +14,6 @@
 namespace vstcal {
 namespace {
 
-
-constexpr std::array<const char*, 2> kEyes = {"left", "right"};
 
 // Cells of one statistics object (mean, rms, p50, p95, p99, max), dashes when it is null.
 std::string StatsCells(const OrderedJson& report, const std::string& pointer) {
@@ -33,12 +32,12 @@ std::string Summary(const OrderedJson& r) {
                   std::to_string(r.at("test_points").size()) + " test points. Active sources: " + Escape(active) +
                   ". Definitions: docs/math/vst-chain.md and docs/math/registration-error.md.</p>\n";
   std::string rows;
-  const std::pair<const char*, std::string> totals[] = {{"image_rms_px", "image misregistration RMS (px)"},
-                                                        {"misregistration_rms", "3-D misregistration RMS (" + unit + ")"},
-                                                        {"misperception_rms", "misperception RMS (" + unit + ")"},
-                                                        {"systematic_misperception_rms", "systematic misperception RMS (" + unit + ")"},
-                                                        {"wrong_occlusion_rate", "wrong occlusion rate"}};
-  for (const auto& [key, label] : totals) rows += "<tr><th>" + Escape(label) + "</th>" + ValueCell(r, std::string("/totals/") + key) + "</tr>\n";
+  const std::pair<std::string, std::string> totals[] = {{TotalKey(Total::kImage), "image misregistration RMS (px)"},
+                                                        {TotalKey(Total::kMisregistration), "3-D misregistration RMS (" + unit + ")"},
+                                                        {TotalKey(Total::kMisperception), "misperception RMS (" + unit + ")"},
+                                                        {std::string(kSystematicMisperceptionKey), "systematic misperception RMS (" + unit + ")"},
+                                                        {TotalKey(Total::kWrongOcclusion), "wrong occlusion rate"}};
+  for (const auto& [key, label] : totals) rows += "<tr><th>" + Escape(label) + "</th>" + ValueCell(r, "/totals/" + key) + "</tr>\n";
   rows += "<tr><th>samples with some test point undefined</th>" + ValueCell(r, "/undefined_samples") + "</tr>\n";
   return s + Table("whole chain", "<th></th><th>value</th>", rows);
 }
@@ -51,17 +50,23 @@ std::string Distributions(const OrderedJson& r) {
   for (size_t k = 0; k < points.size(); ++k) {
     const OrderedJson& p = points[k];
     const std::string name = p.at("name").get<std::string>(), key = "/test_points/" + std::to_string(k);
-    for (size_t e = 0; e < kEyes.size(); ++e) {
-      image.push_back({name + " " + kEyes[e], &p.at("image").at(kEyes[e]).at("pixel_px"), e});
-      const std::string pk = key + "/image/" + kEyes[e] + "/pixel_px";
-      image_rows += "<tr><th>" + Escape(name) + "</th><th>" + kEyes[e] + "</th>" + StatsCells(r, pk) + "</tr>\n";
+    auto at = [&](ErrorMeasure m, int eye = 0) { return &p.at(OrderedJson::json_pointer(std::string("/").append(MeasurePointer(m, eye)))); };
+    for (int e = 0; e < kNumEyes; ++e) {
+      const std::string eye(kEyeNames[e]);
+      image.push_back({name + " " + eye, at(ErrorMeasure::kImagePixel, e), static_cast<size_t>(e)});
+      const std::string pk = key + "/" + MeasurePointer(ErrorMeasure::kImagePixel, e);
+      image_rows += "<tr><th>" + Escape(name) + "</th><th>" + eye + "</th>" + StatsCells(r, pk) + "</tr>\n";
     }
-    misregistration.push_back({name, &p.at("misregistration").at("linear"), 2});
-    misperception.push_back({name, &p.at("misperception").at("linear"), 3});
+    misregistration.push_back({name, at(ErrorMeasure::kMisregistrationLinear), 2});
+    misperception.push_back({name, at(ErrorMeasure::kMisperceptionLinear), 3});
+    // The systematic part's terms are named as the sampled ones (report_format.cc).
+    const MeasureDecl& misperception_linear = Declaration(ErrorMeasure::kMisperceptionLinear);
+    const std::string systematic =
+        key + "/" + std::string(misperception_linear.group) + "/systematic/" + std::string(misperception_linear.name);
     misregistration_rows += "<tr><th>" + Escape(name) + "</th>" + ValueCell(r, key + "/undefined/rate") +
-                            StatsCells(r, key + "/misregistration/linear") + "</tr>\n";
-    misperception_rows += "<tr><th>" + Escape(name) + "</th>" + ValueCell(r, key + "/misperception/systematic/linear") +
-                          StatsCells(r, key + "/misperception/linear") + "</tr>\n";
+                            StatsCells(r, key + "/" + MeasurePointer(ErrorMeasure::kMisregistrationLinear)) + "</tr>\n";
+    misperception_rows += "<tr><th>" + Escape(name) + "</th>" + ValueCell(r, systematic) +
+                          StatsCells(r, key + "/" + MeasurePointer(ErrorMeasure::kMisperceptionLinear)) + "</tr>\n";
   }
   std::string s = "<section><h2>Error distributions</h2>\n";
   s += ChartOrNote(QuantileBarsScript(image, "image misregistration |overlay - video| (px)"), "image misregistration per test point and eye",
@@ -110,18 +115,18 @@ std::string Budget(const OrderedJson& r) {
                   "to 1 (docs/math/sensitivity.md#shares-of-the-whole).</p>\n";
   // Each ranked measure with another beside it: the image's RMS is in px, the others' in the length unit.
   struct Ranked {
-    std::string measure, beside;
+    Total measure, beside;
   };
-  auto rms_of = [](const std::string& m) { return m == "image" ? std::string("image_rms_px") : m + "_rms"; };
-  auto unit_of = [&](const std::string& m) { return m == "image" ? std::string("px") : unit; };
-  auto title_of = [](const std::string& m) { return m == "image" ? std::string("image misregistration") : m; };
-  auto short_of = [](const std::string& m) { return m == "misregistration" ? std::string("3-D") : m; };  // narrow column heads
-  for (const Ranked& ranked : {Ranked{"image", "misregistration"}, Ranked{"misregistration", "image"}, Ranked{"misperception", "image"}}) {
-    const std::string& measure = ranked.measure;
+  auto unit_of = [&](Total t) { return Declaration(t).unit == OutputUnit::kPixel ? std::string("px") : unit; };
+  auto title_of = [](Total t) { return t == Total::kImage ? std::string("image misregistration") : BudgetMeasureKey(t); };
+  auto short_of = [](Total t) { return t == Total::kMisregistration ? std::string("3-D") : BudgetMeasureKey(t); };  // narrow column heads
+  for (const Ranked& ranked : {Ranked{Total::kImage, Total::kMisregistration}, Ranked{Total::kMisregistration, Total::kImage},
+                               Ranked{Total::kMisperception, Total::kImage}}) {
+    const std::string measure = BudgetMeasureKey(ranked.measure), beside = BudgetMeasureKey(ranked.beside);
     if (!budget.at("ranking").contains(measure)) continue;  // a report written before the image ranking
-    const std::string rms = rms_of(measure), beside_rms = rms_of(ranked.beside);
-    s += ChartOrNote(BudgetScript(r, measure), "error budget, " + title_of(measure),
-                     "Error budget of the " + title_of(measure) + " (" + unit_of(measure) + "), sources ranked largest share first.");
+    const std::string rms = TotalKey(ranked.measure), beside_rms = TotalKey(ranked.beside);
+    s += ChartOrNote(BudgetScript(r, ranked.measure), "error budget, " + title_of(ranked.measure),
+                     "Error budget of the " + title_of(ranked.measure) + " (" + unit_of(ranked.measure) + "), sources ranked largest share first.");
     std::string rows;
     size_t rank = 0;
     for (const auto& source : budget.at("ranking").at(measure)) {
@@ -130,8 +135,8 @@ std::string Budget(const OrderedJson& r) {
         if (entries[i].at("source") != source) continue;
         const std::string key = "/budget/entries/" + std::to_string(i);
         rows += "<tr><th>" + std::to_string(++rank) + ". " + Escape(source.get<std::string>()) + "</th>" +
-                ValueCell(r, key + "/share_of_" + measure + "_ms") + ValueCell(r, key + "/alone/" + rms) +
-                ValueCell(r, key + "/halved/" + rms) + ValueCell(r, key + "/share_of_" + ranked.beside + "_ms") +
+                ValueCell(r, key + "/" + ShareKey(ranked.measure)) + ValueCell(r, key + "/alone/" + rms) +
+                ValueCell(r, key + "/halved/" + rms) + ValueCell(r, key + "/" + ShareKey(ranked.beside)) +
                 ValueCell(r, key + "/halved/" + beside_rms) + "<td style=\"text-align:left\">" +
                 Escape(entries[i].at("correction").get<std::string>()) + "</td>" + OriginCell(entries[i]) + "</tr>\n";
         // The source's terms alone, largest share first (the tree source → term).
@@ -139,14 +144,14 @@ std::string Budget(const OrderedJson& r) {
         if (terms.size() < 2) continue;
         std::vector<size_t> order(terms.size());
         for (size_t t = 0; t < order.size(); ++t) order[t] = t;
-        const std::string share = "share_of_" + measure + "_ms";
+        const std::string share = ShareKey(ranked.measure);
         auto value = [&](size_t t) { return terms[t].at(share).is_number() ? terms[t].at(share).get<double>() : -1.0; };
         std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return value(a) > value(b); });
         for (const size_t t : order) {
           const std::string term_key = key + "/terms/" + std::to_string(t);
           rows += "<tr><th style=\"padding-left:2em\">" + Name(terms[t].at("term").get<std::string>()) + "</th>" +
                   ValueCell(r, term_key + "/" + share) + ValueCell(r, term_key + "/alone/" + rms) + EmptyCells(1) +
-                  ValueCell(r, term_key + "/share_of_" + ranked.beside + "_ms") + EmptyCells(1) + "<td></td>" + OriginCell(terms[t]) +
+                  ValueCell(r, term_key + "/" + ShareKey(ranked.beside)) + EmptyCells(1) + "<td></td>" + OriginCell(terms[t]) +
                   "</tr>\n";
         }
       }
@@ -155,14 +160,15 @@ std::string Budget(const OrderedJson& r) {
     const std::string whole = "/budget/whole/" + measure;
     const bool none = budget.at("whole").at(measure).at("none").get<bool>();
     rows += "<tr><th>interactions and means in common</th>" + ValueCell(r, whole + "/remainder_share") + EmptyCells(2) +
-            ValueCell(r, "/budget/whole/" + ranked.beside + "/remainder_share") + EmptyCells(1) +
+            ValueCell(r, "/budget/whole/" + beside + "/remainder_share") + EmptyCells(1) +
             "<td style=\"text-align:left\">" + std::string(none ? "none: the whole chain's mean square is 0 to rounding" : "") +
             "</td><td></td></tr>\n";
     rows += "<tr><th>whole chain (RMS)</th>" + EmptyCells(1) + ValueCell(r, "/totals/" + rms) + EmptyCells(2) +
             ValueCell(r, "/totals/" + beside_rms) + EmptyCells(2) + "</tr>\n";
-    s += Table("ranked by " + title_of(measure) + (measure == "image" ? " (what the user sees: the default ranking)" : ""),
-               "<th>source</th><th>share of mean square</th><th>alone RMS (" + unit_of(measure) + ")</th><th>whole chain, halved (" +
-                   unit_of(measure) + ")</th><th>share of " + short_of(ranked.beside) + " mean square</th><th>" +
+    s += Table("ranked by " + title_of(ranked.measure) +
+                   (ranked.measure == Total::kImage ? " (what the user sees: the default ranking)" : ""),
+               "<th>source</th><th>share of mean square</th><th>alone RMS (" + unit_of(ranked.measure) + ")</th><th>whole chain, halved (" +
+                   unit_of(ranked.measure) + ")</th><th>share of " + short_of(ranked.beside) + " mean square</th><th>" +
                    short_of(ranked.beside) + " RMS halved (" + unit_of(ranked.beside) + ")</th><th>correction</th>"
                    "<th title=\"measured: from a calibration's file; assumed: typed into the chain\">distributions</th>",
                rows);
@@ -195,10 +201,10 @@ std::string ErrSimSweepHtml(const OrderedJson& r) {
   }
   for (const std::string& source : sources) {
     s += "<section><h2>" + Escape(source) + "</h2>\n";
-    s += ChartOrNote(SweepCurvesScript(r, source, "image_rms_px", "image misregistration RMS (px)"),
+    s += ChartOrNote(SweepCurvesScript(r, source, Total::kImage, "image misregistration RMS (px)"),
                      "image misregistration along the sweeps of " + source,
                      "Image misregistration RMS over the test points and eyes along each parameter's sweep.");
-    s += ChartOrNote(SweepCurvesScript(r, source, "misregistration_rms", "3-D misregistration RMS (" + unit + ")"),
+    s += ChartOrNote(SweepCurvesScript(r, source, Total::kMisregistration, "3-D misregistration RMS (" + unit + ")"),
                      "3-D misregistration along the sweeps of " + source,
                      "3-D misregistration RMS over the test points along each parameter's sweep.");
     std::string rows;
@@ -216,8 +222,9 @@ std::string ErrSimSweepHtml(const OrderedJson& r) {
       }
       rows += "<tr><th>" + Name(p.at("name").get<std::string>()) + "</th><td>" + Escape(p.at("unit").get<std::string>()) +
               "</td>" + ValueCell(r, key + "/values/0") + ValueCell(r, key + "/values/" + last) +
-              ValueCell(r, key + "/image_rms_px/0") + ValueCell(r, key + "/image_rms_px/" + last) +
-              ValueCell(r, key + "/misregistration_rms/0") + ValueCell(r, key + "/misregistration_rms/" + last) +
+              ValueCell(r, key + "/" + TotalKey(Total::kImage) + "/0") + ValueCell(r, key + "/" + TotalKey(Total::kImage) + "/" + last) +
+              ValueCell(r, key + "/" + TotalKey(Total::kMisregistration) + "/0") +
+              ValueCell(r, key + "/" + TotalKey(Total::kMisregistration) + "/" + last) +
               (slopes.empty() ? EmptyCells(1) : ValueCell(r, key + "/slope_per_unit/" + std::to_string(steepest))) +
               "<td style=\"text-align:left\">" + (slopes.empty() ? "" : Name(r.at("outputs").at(steepest).get<std::string>())) +
               "</td></tr>\n";

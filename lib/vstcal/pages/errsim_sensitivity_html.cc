@@ -3,6 +3,7 @@
 #include <string>
 #include <vector>
 
+#include "vstcal/errsim/outputs.h"
 #include "vstcal/pages/errsim_charts.h"
 #include "vstcal/pages/errsim_html.h"
 #include "vstcal/pages/errsim_page_parts.h"
@@ -12,10 +13,29 @@ namespace vstcal {
 namespace {
 
 
-// The outputs a Sobol page charts, as err-sim's summary lists them: each test point's image error
-// per eye and its linear misregistration and misperception.
+// The outputs a Sobol page charts, as err-sim's summary lists them: each test point's headline
+// measures (kMeasures: its image error per eye, its linear misregistration and misperception).
 bool Charted(const std::string& name) {
-  return name.ends_with(".pixel_px") || name.ends_with(".misregistration.linear") || name.ends_with(".misperception.linear");
+  for (const MeasureDecl& d : kMeasures) {
+    if (!d.headline) continue;
+    for (int e = 0; e < SlotsOf(d.scope); ++e) {
+      if (name.ends_with(std::string(".").append(MeasureName(d.measure, e)))) return true;
+    }
+  }
+  return false;
+}
+
+// Whether a linear file's output (a component of kVectorOutputs below its test point) is in px.
+bool InPixels(const std::string& name) {
+  for (const VectorOutputDecl& d : kVectorOutputs) {
+    if (d.unit != OutputUnit::kPixel) continue;
+    for (int e = 0; e < SlotsOf(d.scope); ++e) {
+      for (int c = 0; c < d.size; ++c) {
+        if (name.ends_with(std::string(".").append(VectorOutputName(d.output, e, c)))) return true;
+      }
+    }
+  }
+  return false;
 }
 
 std::string Filters(const OrderedJson& r) {
@@ -114,7 +134,7 @@ std::string ErrSimLinearHtml(const OrderedJson& r) {
                  "</tr>\n<tr><th>outputs that differ</th>" + ValueCell(r, "/disagreements") + "</tr>\n");
   std::vector<size_t> pixels, lengths, all;
   for (size_t k = 0; k < outputs.size(); ++k) {
-    (outputs[k].at("name").get<std::string>().ends_with("_px") ? pixels : lengths).push_back(k);
+    (InPixels(outputs[k].at("name").get<std::string>()) ? pixels : lengths).push_back(k);
     all.push_back(k);
   }
   s += "<section><h2>Linear against Monte Carlo</h2>\n";

@@ -9,6 +9,7 @@
 #include "vstcal/core/error.h"
 #include "vstcal/errsim/budget.h"
 #include "vstcal/errsim/measures.h"
+#include "vstcal/formats/errsim/report_keys.h"
 
 namespace vstcal {
 namespace {
@@ -33,28 +34,48 @@ OrderedJson StatsToJson(const OutputStatistics& s) {
   return j;
 }
 
-OrderedJson RateToJson(const OutputStatistics& s) {
+OrderedJson RateToJson(ErrorMeasure m, const OutputStatistics& s) {
   if (s.count == 0) return nullptr;
   // A rate p from N decisions: standard error √(p(1 − p)/N).
-  return {{"wrong_rate", s.mean}, {"standard_error", std::sqrt(s.mean * (1 - s.mean) / static_cast<double>(s.count))}};
+  return {{RateKey(m), s.mean}, {"standard_error", std::sqrt(s.mean * (1 - s.mean) / static_cast<double>(s.count))}};
 }
 
 OrderedJson TotalsToJson(const ScenarioTotals& t) {
-  return {{"image_rms_px", NumberOrNull(t.image_rms_px)},
-          {"misregistration_rms", NumberOrNull(t.misregistration_rms)},
-          {"misperception_rms", NumberOrNull(t.misperception_rms)},
-          {"wrong_occlusion_rate", NumberOrNull(t.wrong_occlusion_rate)}};
+  return {{TotalKey(Total::kImage), NumberOrNull(t.image_rms_px)},
+          {TotalKey(Total::kMisregistration), NumberOrNull(t.misregistration_rms)},
+          {TotalKey(Total::kMisperception), NumberOrNull(t.misperception_rms)},
+          {TotalKey(Total::kWrongOcclusion), NumberOrNull(t.wrong_occlusion_rate)}};
 }
 
-OrderedJson MeasureToJson(const std::vector<OutputStatistics>& stats, size_t first) {
-  OrderedJson j;
-  j["linear"] = StatsToJson(stats[first + ErrorOutputs::kLinear]);
-  j["lateral"] = StatsToJson(stats[first + ErrorOutputs::kLateral]);
-  j["depth"] = StatsToJson(stats[first + ErrorOutputs::kDepth]);
-  j["depth_abs"] = StatsToJson(stats[first + ErrorOutputs::kDepthAbs]);
-  j["angular_deg"] = StatsToJson(stats[first + ErrorOutputs::kAngular]);
-  return j;
+// Test point k's measures, in kMeasures' order, at their MeasurePointer under `point`. A group
+// starts with what `start` puts first (the misperception's systematic part, the occlusion's
+// surface); a group that needs a surface the point lacks is null.
+template <typename Start>
+void MeasuresToJson(const ErrorOutputs& outputs, const std::vector<OutputStatistics>& stats, size_t k, const Start& start,
+                    OrderedJson* point) {
+  for (const MeasureDecl& d : kMeasures) {
+    const std::string group(d.group);
+    if (d.needs_surface && !outputs.has_surface(k)) {
+      if (!point->contains(group)) (*point)[group] = nullptr;
+      continue;
+    }
+    if (!point->contains(group)) (*point)[group] = start(d.measure);
+    for (int e = 0; e < SlotsOf(d.scope); ++e) {
+      const OutputStatistics& s = stats[outputs.at(k, d.measure, e)];
+      (*point)[OrderedJson::json_pointer(std::string("/").append(MeasurePointer(d.measure, e)))] =
+          d.unit == OutputUnit::kDecision ? RateToJson(d.measure, s) : StatsToJson(s);
+    }
+  }
 }
+
+// Holloway's terms of a 3-D measure, as the text summary's columns show them.
+struct HollowayColumns {
+  ErrorMeasure linear, lateral, depth, angular;
+};
+constexpr HollowayColumns kMisregistrationColumns{ErrorMeasure::kMisregistrationLinear, ErrorMeasure::kMisregistrationLateral,
+                                                  ErrorMeasure::kMisregistrationDepth, ErrorMeasure::kMisregistrationAngular};
+constexpr HollowayColumns kMisperceptionColumns{ErrorMeasure::kMisperceptionLinear, ErrorMeasure::kMisperceptionLateral,
+                                                ErrorMeasure::kMisperceptionDepth, ErrorMeasure::kMisperceptionAngular};
 
 const MonteCarloSummary& AllScenario(const SimulationResult& result) {
   VSTCAL_CHECK(!result.scenarios.empty() && result.scenarios[0] == "all", "the first scenario is \"all\"");
@@ -154,34 +175,34 @@ OrderedJson ReportToJson(const ChainEvaluator& chain, const SimulationResult& re
   OrderedJson points = OrderedJson::array();
   for (size_t k = 0; k < outputs.num_points(); ++k) {
     const ChainTestPoint& tp = model.geometry.test_points[k];
-    const size_t o = outputs.offset(k);
-    const uint64_t defined = stats[o].count;
+    const uint64_t defined = stats[outputs.offset(k)].count;
     OrderedJson p;
     p["name"] = tp.name;
     p["world"] = MatrixToJson(tp.point_in_world);
     p["undefined"] = {{"samples", run.options.samples - defined},
                       {"rate", static_cast<double>(run.options.samples - defined) / static_cast<double>(run.options.samples)}};
-    p["image"] = {{"left", {{"pixel_px", StatsToJson(stats[o + ErrorOutputs::kPixel])}}},
-                  {"right", {{"pixel_px", StatsToJson(stats[o + ErrorOutputs::kPixel + 1])}}}};
-    p["misregistration"] = MeasureToJson(stats, o + outputs.misregistration());
-    const Systematic& systematic = chain.systematic(k);
-    OrderedJson misperception;
-    misperception["systematic"] = {{"offset", MatrixToJson(systematic.offset)},
-                                   {"linear", systematic.error.linear},
-                                   {"lateral", systematic.error.lateral},
-                                   {"depth", systematic.error.depth},
-                                   {"angular_deg", kDeg * systematic.error.angular}};
-    misperception.update(MeasureToJson(stats, o + outputs.misperception()));
-    p["misperception"] = std::move(misperception);
-    p["occlusion"] = outputs.has_occlusion(k) ? OrderedJson{{"surface_behind", *tp.surface_behind},
-                                                             {"left", RateToJson(stats[o + outputs.occlusion()])},
-                                                             {"right", RateToJson(stats[o + outputs.occlusion() + 1])}}
-                                               : OrderedJson(nullptr);
+    // The misperception's group starts with the error-free chain's systematic part, named as the
+    // sampled terms; the occlusion's with the surface behind the point.
+    auto start = [&](ErrorMeasure m) {
+      OrderedJson group = OrderedJson::object();
+      const auto name = [](ErrorMeasure term) { return std::string(Declaration(term).name); };
+      if (Declaration(m).group == Declaration(ErrorMeasure::kMisperceptionLinear).group) {
+        const Systematic& systematic = chain.systematic(k);
+        group["systematic"] = {{"offset", MatrixToJson(systematic.offset)},
+                               {name(ErrorMeasure::kMisperceptionLinear), systematic.error.linear},
+                               {name(ErrorMeasure::kMisperceptionLateral), systematic.error.lateral},
+                               {name(ErrorMeasure::kMisperceptionDepth), systematic.error.depth},
+                               {name(ErrorMeasure::kMisperceptionAngular), kDeg * systematic.error.angular}};
+      }
+      if (Declaration(m).needs_surface) group["surface_behind"] = *tp.surface_behind;
+      return group;
+    };
+    MeasuresToJson(outputs, stats, k, start, &p);
     points.push_back(std::move(p));
   }
   j["test_points"] = std::move(points);
   OrderedJson totals = TotalsToJson(Totals(model, all, OutputSet::kFull));
-  totals["systematic_misperception_rms"] = SystematicMisperceptionRms(chain);
+  totals[std::string(kSystematicMisperceptionKey)] = SystematicMisperceptionRms(chain);
   j["totals"] = std::move(totals);
 
   if (run.options.budget) {
@@ -190,25 +211,25 @@ OrderedJson ReportToJson(const ChainEvaluator& chain, const SimulationResult& re
     for (const BudgetEntry& e : budget.entries) {
       OrderedJson b;
       b["source"] = SourceKey(e.source);
-      b["share_of_misregistration_ms"] = NumberOrNull(e.share_of_misregistration_ms);
-      b["share_of_image_ms"] = NumberOrNull(e.share_of_image_ms);
-      b["share_of_misperception_ms"] = NumberOrNull(e.share_of_misperception_ms);
+      b[ShareKey(Total::kMisregistration)] = NumberOrNull(e.share_of_misregistration_ms);
+      b[ShareKey(Total::kImage)] = NumberOrNull(e.share_of_image_ms);
+      b[ShareKey(Total::kMisperception)] = NumberOrNull(e.share_of_misperception_ms);
       b["alone"] = TotalsToJson(e.alone);
       b["halved"] = TotalsToJson(e.halved);
       b["correction"] = SourceCorrection(e.source);
       OrderedJson terms = OrderedJson::array();
       for (const TermPart& t : e.terms) {
         terms.push_back({{"term", t.name},
-                         {"share_of_misregistration_ms", NumberOrNull(t.share_of_misregistration_ms)},
-                         {"share_of_image_ms", NumberOrNull(t.share_of_image_ms)},
-                         {"share_of_misperception_ms", NumberOrNull(t.share_of_misperception_ms)},
+                         {ShareKey(Total::kMisregistration), NumberOrNull(t.share_of_misregistration_ms)},
+                         {ShareKey(Total::kImage), NumberOrNull(t.share_of_image_ms)},
+                         {ShareKey(Total::kMisperception), NumberOrNull(t.share_of_misperception_ms)},
                          {"alone", TotalsToJson(t.alone)},
                          {"origin", OriginsToJson(t.origins)}});
       }
       b["terms"] = std::move(terms);
-      b["dominant_term"] = {{"image", e.terms[DominantTerm(e, &TermPart::share_of_image_ms)].name},
-                            {"misregistration", e.terms[DominantTerm(e, &TermPart::share_of_misregistration_ms)].name},
-                            {"misperception", e.terms[DominantTerm(e, &TermPart::share_of_misperception_ms)].name}};
+      b["dominant_term"] = {{BudgetMeasureKey(Total::kImage), e.terms[DominantTerm(e, &TermPart::share_of_image_ms)].name},
+                            {BudgetMeasureKey(Total::kMisregistration), e.terms[DominantTerm(e, &TermPart::share_of_misregistration_ms)].name},
+                            {BudgetMeasureKey(Total::kMisperception), e.terms[DominantTerm(e, &TermPart::share_of_misperception_ms)].name}};
       b["origin"] = OriginsToJson(e.origins);
       entries.push_back(std::move(b));
     }
@@ -218,14 +239,14 @@ OrderedJson ReportToJson(const ChainEvaluator& chain, const SimulationResult& re
       return list;
     };
     j["budget"] = {{"samples", run.options.budget_samples},
-                   {"whole", {{"image", WholeToJson(budget.image)},
-                              {"misregistration", WholeToJson(budget.misregistration)},
-                              {"misperception", WholeToJson(budget.misperception)}}},
+                   {"whole", {{BudgetMeasureKey(Total::kImage), WholeToJson(budget.image)},
+                              {BudgetMeasureKey(Total::kMisregistration), WholeToJson(budget.misregistration)},
+                              {BudgetMeasureKey(Total::kMisperception), WholeToJson(budget.misperception)}}},
                    // The default ranking is by what the user sees (issue 21 item 3); the others beside it.
-                   {"ranked_by", "image"},
-                   {"ranking", {{"image", ranking(budget.by_image)},
-                                {"misregistration", ranking(budget.by_misregistration)},
-                                {"misperception", ranking(budget.by_misperception)}}},
+                   {"ranked_by", BudgetMeasureKey(Total::kImage)},
+                   {"ranking", {{BudgetMeasureKey(Total::kImage), ranking(budget.by_image)},
+                                {BudgetMeasureKey(Total::kMisregistration), ranking(budget.by_misregistration)},
+                                {BudgetMeasureKey(Total::kMisperception), ranking(budget.by_misperception)}}},
                    {"entries", std::move(entries)}};
   } else {
     j["budget"] = nullptr;
@@ -251,7 +272,7 @@ std::string ReportText(const ChainEvaluator& chain, const SimulationResult& resu
       << Pad("max", 9) << "undefined\n";
   for (size_t k = 0; k < outputs.num_points(); ++k) {
     for (int e = 0; e < kNumEyes; ++e) {
-      const OutputStatistics& s = stats[outputs.offset(k) + ErrorOutputs::kPixel + e];
+      const OutputStatistics& s = stats[outputs.at(k, ErrorMeasure::kImagePixel, e)];
       const double undefined = 1 - static_cast<double>(s.count) / static_cast<double>(run.options.samples);
       out << "    " << Pad(model.geometry.test_points[k].name, point_width) << Pad(std::string(kEyeNames[e]), 7)
           << Pad(Fixed(s.count ? s.mean : NAN, 2), 9) << Pad(Fixed(s.count ? s.rms : NAN, 2), 9)
@@ -259,7 +280,7 @@ std::string ReportText(const ChainEvaluator& chain, const SimulationResult& resu
           << Pad(Fixed(s.count ? s.max : NAN, 2), 9) << Fixed(100 * undefined, 2) << " %\n";
     }
   }
-  auto measure_table = [&](const char* title, size_t first, bool systematic) {
+  auto measure_table = [&](const char* title, const HollowayColumns& c, bool systematic) {
     out << "  " << title << " (" << unit << "; Holloway's terms seen from the cyclopean eye, degrees):\n";
     out << "    " << Pad("test point", point_width);
     // The systematic offset's size and the visual angle it subtends from the cyclopean eye: the
@@ -268,24 +289,27 @@ std::string ReportText(const ChainEvaluator& chain, const SimulationResult& resu
     out << Pad("linear rms", 12) << Pad("p95", 9) << Pad("lateral rms", 13) << Pad("depth mean", 12) << Pad("depth rms", 11)
         << "angular rms\n";
     for (size_t k = 0; k < outputs.num_points(); ++k) {
-      const size_t o = outputs.offset(k) + first;
-      auto v = [&](size_t i, double OutputStatistics::*field) { return stats[o + i].count ? stats[o + i].*field : NAN; };
+      auto v = [&](ErrorMeasure m, double OutputStatistics::*field) {
+        const OutputStatistics& s = stats[outputs.at(k, m)];
+        return s.count ? s.*field : NAN;
+      };
+      const OutputStatistics& linear = stats[outputs.at(k, c.linear)];
       out << "    " << Pad(model.geometry.test_points[k].name, point_width);
       if (systematic) {
         out << Pad(Fixed(chain.systematic(k).error.linear, 2), 12) << Pad(Fixed(kDeg * chain.systematic(k).error.angular, 3), 11);
       }
-      out << Pad(Fixed(v(ErrorOutputs::kLinear, &OutputStatistics::rms), 2), 12)
-          << Pad(Fixed(stats[o].count ? stats[o].p95.value : NAN, 2), 9)
-          << Pad(Fixed(v(ErrorOutputs::kLateral, &OutputStatistics::rms), 2), 13)
-          << Pad(Fixed(v(ErrorOutputs::kDepth, &OutputStatistics::mean), 2), 12)
-          << Pad(Fixed(v(ErrorOutputs::kDepth, &OutputStatistics::rms), 2), 11)
-          << Fixed(v(ErrorOutputs::kAngular, &OutputStatistics::rms), 3) << "\n";
+      out << Pad(Fixed(v(c.linear, &OutputStatistics::rms), 2), 12)
+          << Pad(Fixed(linear.count ? linear.p95.value : NAN, 2), 9)
+          << Pad(Fixed(v(c.lateral, &OutputStatistics::rms), 2), 13)
+          << Pad(Fixed(v(c.depth, &OutputStatistics::mean), 2), 12)
+          << Pad(Fixed(v(c.depth, &OutputStatistics::rms), 2), 11)
+          << Fixed(v(c.angular, &OutputStatistics::rms), 3) << "\n";
     }
   };
   measure_table("misregistration, the overlay against the video image of the point as the eyes see both",
-                outputs.misregistration(), false);
+                kMisregistrationColumns, false);
   measure_table("misperception, where the eyes see the point against where it is: systematic, then from the errors",
-                outputs.misperception(), true);
+                kMisperceptionColumns, true);
   const ScenarioTotals t = Totals(model, all, OutputSet::kFull);
   out << "  totals: image " << Fixed(t.image_rms_px, 2) << " px rms, misregistration " << Fixed(t.misregistration_rms, 2)
       << " " << unit << " rms, misperception " << Fixed(t.misperception_rms, 2) << " " << unit << " rms (systematic "

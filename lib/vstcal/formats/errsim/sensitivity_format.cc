@@ -4,8 +4,11 @@
 #include <cmath>
 #include <cstdio>
 
+#include "vstcal/core/error.h"
 #include "vstcal/errsim/chain.h"
+#include "vstcal/errsim/measures.h"
 #include "vstcal/errsim/models.h"
+#include "vstcal/formats/errsim/report_keys.h"
 
 namespace vstcal {
 namespace {
@@ -23,17 +26,19 @@ OrderedJson Header(std::string_view format, const RunDescription& run, const Cha
 }
 
 // RMS over test points (and eyes) of a row of VectorModel outputs: pixels, misregistration,
-// misperception (ChainEvaluator::kOutputsPerPoint per point).
+// misperception (kVectorOutputs, errsim/outputs.h).
 struct RowRms {
   double image_px, misregistration, misperception;
 };
 RowRms Rms(const Eigen::Ref<const Eigen::VectorXd>& row, size_t points) {
-  constexpr int kPer = ChainEvaluator::kOutputsPerPoint;
+  auto sum_of_squares = [&](VectorOutput v, size_t t) {
+    return row.segment(kVectorOutputsPerPoint * t + VectorOffset(v), VectorSize(v)).squaredNorm();
+  };
   double px = 0, reg = 0, per = 0;
   for (size_t t = 0; t < points; ++t) {
-    px += row.segment(kPer * t, 4).squaredNorm();
-    reg += row.segment(kPer * t + 4, 3).squaredNorm();
-    per += row.segment(kPer * t + 7, 3).squaredNorm();
+    px += sum_of_squares(VectorOutput::kPixelError, t);
+    reg += sum_of_squares(VectorOutput::kMisregistration, t);
+    per += sum_of_squares(VectorOutput::kMisperception, t);
   }
   return {std::sqrt(px / (2.0 * points)), std::sqrt(reg / points), std::sqrt(per / points)};
 }
@@ -81,9 +86,9 @@ TextAndJson SweepOutput(const ChainModel& model, const RunDescription& run, cons
     e["source"] = SourceKey(p.source);
     e["unit"] = p.slot.file_unit;
     e["values"] = std::move(values);
-    e["image_rms_px"] = std::move(image);
-    e["misregistration_rms"] = std::move(reg);
-    e["misperception_rms"] = std::move(perc);
+    e[TotalKey(Total::kImage)] = std::move(image);
+    e[TotalKey(Total::kMisregistration)] = std::move(reg);
+    e[TotalKey(Total::kMisperception)] = std::move(perc);
     OrderedJson slope = nullptr;
     if (r.slope_defined) {
       slope = OrderedJson::array();
@@ -129,13 +134,17 @@ TextAndJson SobolOutput(const ChainModel& model, const RunDescription& run, cons
     text += r.group_names[g] + std::string(g + 1 < r.group_names.size() ? group_width[g] - r.group_names[g].size() : 0, ' ');
   }
   text += "\n";
-  for (const OutputSensitivity& o : r.outputs) {
+  // Sobol's outputs are ErrorModel's: the summary shows the headline magnitudes (kMeasures).
+  const ErrorOutputs measured(model);
+  VSTCAL_CHECK(r.outputs.size() == measured.size(), "Sobol's outputs are ErrorModel's");
+  for (size_t i = 0; i < r.outputs.size(); ++i) {
+    const OutputSensitivity& o = r.outputs[i];
     OrderedJson groups;
     for (size_t g = 0; g < r.group_names.size(); ++g) {
       groups[r.group_names[g]] = {{"first", estimate(o.groups[g].first_order)}, {"total", estimate(o.groups[g].total)}};
     }
     outputs.push_back({{"name", o.name}, {"mean", NumberOrNull(o.mean)}, {"variance", NumberOrNull(o.variance)}, {"indices", groups}});
-    if (o.name.find("pixel_px") != std::string::npos || o.name.ends_with(".linear")) {
+    if (measured.is_headline(i)) {
       text += "  " + o.name + std::string(name_width - o.name.size(), ' ');
       for (size_t g = 0; g < o.groups.size(); ++g) {
         char line[64];
