@@ -60,10 +60,23 @@ DltSolution Solve(std::span<const Observation> observations, const DltOptions& o
 }
 
 // The refinement options as calib-dlt and calib-tsai read their flags (tools/common/calibration_flags.cc).
-RefineOptions RefineOptionsOf(const std::string& distortion, bool skew, const std::string& loss,
-                         const std::optional<double>& loss_scale, int max_iterations) {
+// distortion None: k1,k2,p1,p2, or a lens model of another family's own terms (calib-tsai --lens-model
+// without --distortion).
+RefineOptions RefineOptionsOf(const std::optional<std::string>& distortion, bool skew, const std::string& loss,
+                         const std::optional<double>& loss_scale, int max_iterations, const std::string& lens_model = "") {
   RefineOptions o;
-  o.free_distortion = DistortionTermsFromList(distortion);
+  o.lens_model = lens_model;
+  const auto model = lens_model.empty() ? std::nullopt : LensModelFromName(lens_model);
+  if (!lens_model.empty() && !model) {
+    throw InputError("lens_model: unknown lens model \"" + lens_model + "\"; use one of " + KnownLensModelNames());
+  }
+  if (model && !distortion) {
+    o.free_distortion.clear();
+    const auto names = LensModelParamNames(*model);
+    for (auto it = names.begin() + kNumIntrinsicParams; it != names.end(); ++it) o.free_distortion.emplace_back(*it);
+  } else {
+    o.free_distortion = DistortionTermsFromList(distortion.value_or("k1,k2,p1,p2"));
+  }
   o.free_skew = skew;
   if (loss != "none" && loss != "huber" && loss != "cauchy") {
     throw InputError("loss: unknown robust loss \"" + loss + "\"; use none, huber or cauchy");
@@ -87,18 +100,18 @@ std::string SourceName(const py::handle& source) {
 }
 
 py::object Calibrate(const py::object& source, const std::string& method, std::optional<bool> refine,
-                     const std::string& distortion, bool skew, const std::string& loss, std::optional<double> loss_scale,
+                     const std::optional<std::string>& distortion, bool skew, const std::string& loss, std::optional<double> loss_scale,
                      int max_iterations, const std::string& solver, const std::string& variant,
                      const std::optional<std::pair<double, double>>& principal_point, std::optional<double> sx,
                      const std::string& free_principal_point,
                      const std::map<std::string, std::pair<double, double>>& priors,
-                     const std::vector<std::string>& hold) {
+                     const std::vector<std::string>& hold, const std::string& lens_model) {
   if (method != "dlt" && method != "tsai") throw InputError("method: unknown method \"" + method + "\"; use dlt or tsai");
   const std::string input = SourceName(source);
   CalibrationOptions options;
   options.start = method == "dlt" ? CalibrationOptions::Start::kDlt : CalibrationOptions::Start::kTsai;
   options.refine = refine.value_or(method == "tsai");  // the tools' defaults: calib-dlt --refine, calib-tsai --no-refine
-  options.refinement = RefineOptionsOf(distortion, skew, loss, loss_scale, max_iterations);
+  options.refinement = RefineOptionsOf(distortion, skew, loss, loss_scale, max_iterations, lens_model);
   for (const auto& [name, prior] : priors) {
     options.refinement.priors.push_back(StatedPrior(name, prior.first, prior.second));
   }
@@ -147,7 +160,7 @@ py::object Calibrate(const py::object& source, const std::string& method, std::o
 
 py::object SolveStereoRig(const py::object& left, const py::object& right, const py::object& left_camera,
                           const py::object& right_camera, bool hold_left, bool hold_right, const std::string& match_views,
-                          size_t min_common_views, const std::string& distortion, bool skew, int max_iterations,
+                          size_t min_common_views, const std::optional<std::string>& distortion, bool skew, int max_iterations,
                           const std::optional<double>& rectify_alpha) {
   app::SolveRequest r;
   r.left = PathOf(left, "left");
@@ -211,20 +224,22 @@ void RegisterSolvers(py::module_& m) {
       "(docs/math/dlt.md). Raises vstcal.DegenerateError (coplanar, collinear, ill-conditioned) or InputError.");
 
   m.def("calibrate", &Calibrate, py::arg("correspondences"), py::arg("method") = "tsai", py::arg("refine") = py::none(),
-        py::arg("distortion") = "k1,k2,p1,p2", py::arg("skew") = false, py::arg("loss") = "none",
+        py::arg("distortion") = py::none(), py::arg("skew") = false, py::arg("loss") = "none",
         py::arg("loss_scale") = py::none(), py::arg("max_iterations") = 100, py::arg("solver") = "normal-equations",
         py::arg("variant") = "auto", py::arg("principal_point") = py::none(), py::arg("sx") = py::none(),
         py::arg("free_principal_point") = "prior", py::arg("priors") = std::map<std::string, std::pair<double, double>>{},
-        py::arg("hold") = std::vector<std::string>{},
+        py::arg("hold") = std::vector<std::string>{}, py::arg("lens_model") = "",
         "A camera from a vstcal/correspondences@1 file (path) or document (dict), as calib-dlt (method \"dlt\", refine "
         "False by default) or calib-tsai (method \"tsai\": Tsai for a volume, Zhang for planar views; refined by "
         "default) write it: the vstcal/camera@1 document as a dict, with the covariance when refined; the tool's warnings "
         "as Python UserWarnings. priors={\"cx\": (value, sigma)}: Gaussian priors on lens parameters (calib-tsai --prior); "
-        "hold=[\"cx\", \"cy\"]: parameters held at the start's values (--hold).");
+        "hold=[\"cx\", \"cy\"]: parameters held at the start's values (--hold). lens_model=\"kannala-brandt\": solve a "
+        "fisheye (--lens-model), its terms k1..k4 unless distortion names fewer; distortion None: k1,k2,p1,p2 or the lens "
+        "model's own terms.");
 
   m.def("solve_stereo", &SolveStereoRig, py::arg("left"), py::arg("right"), py::arg("left_camera") = py::none(),
         py::arg("right_camera") = py::none(), py::arg("hold_left") = false, py::arg("hold_right") = false,
-        py::arg("match_views") = "", py::arg("min_common_views") = 3, py::arg("distortion") = "k1,k2,p1,p2",
+        py::arg("match_views") = "", py::arg("min_common_views") = 3, py::arg("distortion") = py::none(),
         py::arg("skew") = false, py::arg("max_iterations") = 100, py::arg("rectify_alpha") = py::none(),
         "calib-stereo solve: a rig from the left and right correspondences@1 files; the vstcal/stereo@1 document "
         "(right_from_left with its covariance) as a dict.");

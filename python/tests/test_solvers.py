@@ -48,6 +48,26 @@ def test_calibrate_is_calib_dlt_and_calib_tsai(vstcal, tmp_path):
     assert refined["covariance"]["parameters"][:4] == ["fx", "fy", "cx", "cy"]
 
 
+def test_calibrate_fisheye_is_calib_tsai_lens_model(vstcal, tmp_path):
+    """lens_model="kannala-brandt" is calib-tsai --lens-model kannala-brandt on the same file (k1..k4 by
+    default, fewer when distortion names them); an unknown model is the tool's refusal."""
+    source = tmp_path / "views.json"
+    run_tool("calib-synth", "--image-size", "1280x720", "--fx", "700", "--rig", "planar-views", "--seed", "4",
+             "--noise", "0.3", "-o", source)
+    for flags, kwargs in [([], {}), (["--distortion", "k1,k2"], {"distortion": "k1,k2"})]:
+        run_tool("calib-tsai", source, "--lens-model", "kannala-brandt", "-o", tmp_path / "camera.json", *flags)
+        camera = vstcal.calibrate(str(source), lens_model="kannala-brandt", **kwargs)
+        assert without_provenance(camera) == without_provenance(load(tmp_path / "camera.json")), flags
+        assert camera["distortion"]["model"] == "kannala-brandt"
+        if not flags:  # k1..k4 stand for a rectilinear lens's tan θ; k1, k2 alone leave a bias
+            truth = load(tmp_path / "views.truth.json")
+            assert abs(camera["K"][0][0] - truth["K"][0][0]) < 5 * np.sqrt(camera["covariance"]["matrix"][0][0])
+    message = tool_error("calib-tsai", source, "-o", tmp_path / "camera.json", "--lens-model", "fisheye9")
+    with pytest.raises(vstcal.InputError) as e:
+        vstcal.calibrate(str(source), lens_model="fisheye9")
+    assert message.startswith("--lens-model: ") and str(e.value) == "lens_model: " + message[len("--lens-model: "):]
+
+
 def test_failures_raise_the_tools_message_and_exit_code(vstcal, tmp_path):
     corners = vstcal.read(DATASETS / "seed000" / "clean.json")
     corners["views"] = corners["views"][:1]  # one plane: coplanar for DLT

@@ -326,6 +326,47 @@ TEST_F(CliCalibStereo, SolveWritesTheRigWithItsCovarianceAndFit) {
   EXPECT_EQ(e.err.find("\nnote: "), std::string::npos) << e.err;
 }
 
+// Fisheye cameras: given as --left-camera/--right-camera ("kannala-brandt") with neither --lens-model
+// nor --distortion, their model chooses the lens model and its terms k1…k4 (said in a note), as
+// --lens-model kannala-brandt does; cameras of two different families are refused in one line.
+TEST_F(CliCalibStereo, FisheyeCamerasChooseTheLensModel) {
+  StereoRig truth = testing::ZedLikeRig(false);
+  const double kl[4] = {0.021, -0.0043, 0.0011, -0.00017}, kr[4] = {0.019, -0.0039, 0.0009, -0.00015};
+  truth.left.camera = Camera::FromK(truth.left.camera.K(), {1280, 720}, KannalaBrandtModel{}, kl);
+  truth.right.camera = Camera::FromK(truth.right.camera.K(), {1280, 720}, KannalaBrandtModel{}, kr);
+  WriteStereoViews(testing::SyntheticStereoViews(truth, 10, 11));
+  const Provenance p{"test", {}, std::nullopt};
+  WriteText("in/left.json", DumpJson(CameraToJson(truth.left, p)));
+  WriteText("in/right.json", DumpJson(CameraToJson(truth.right, p)));
+
+  const CommandResult r = Ok({"solve", "in/l.json", "in/r.json", "--left-camera", "in/left.json", "--right-camera",
+                              "in/right.json", "-o", "out/rig.json"});
+  EXPECT_NE(r.err.find("note: lens model \"kannala-brandt\" (terms k1,k2,k3,k4) from in/left.json, as neither "
+                       "--lens-model nor --distortion was given"),
+            std::string::npos)
+      << r.err;
+  const StereoRig rig = ReadStereoRig(Path("out/rig.json"));
+  for (const CalibratedCamera* c : {&rig.left, &rig.right}) {
+    EXPECT_TRUE(std::holds_alternative<KannalaBrandtModel>(c->camera.model)) << c->name;
+  }
+  ASSERT_TRUE(rig.covariance);
+  const double sigma = *BaselineSigma(rig);
+  EXPECT_LT(std::abs(rig.baseline() - truth.baseline()), 5 * sigma) << "σ " << sigma;
+  // The same rig from the flag, without the cameras' start.
+  Ok({"solve", "in/l.json", "in/r.json", "--lens-model", "kannala-brandt", "-o", "out/rig-flag.json"});
+  const StereoRig flagged = ReadStereoRig(Path("out/rig-flag.json"));
+  EXPECT_TRUE(std::holds_alternative<KannalaBrandtModel>(flagged.left.camera.model));
+  EXPECT_LT(std::abs(flagged.baseline() - rig.baseline()), 0.1 * sigma);
+
+  StereoRig mixed = testing::ZedLikeRig();
+  WriteText("in/brown.json", DumpJson(CameraToJson(mixed.right, p)));
+  WriteText("in/other.json", DumpJson(CameraToJson(truth.left, p)));
+  EXPECT_TRUE(Fails({"solve", "in/l.json", "in/r.json", "--left-camera", "in/other.json", "--right-camera", "in/brown.json",
+                     "-o", "out/rig2.json"},
+                    kBadInput, "in/brown.json: ",
+                    {"lens model \"radial-tangential\", but in/other.json is \"kannala-brandt\"", "--lens-model"}));
+}
+
 // The summary shows both cameras' lens parameters ± σ and right_from_left's σ, each equal to the
 // square root of the written covariance's diagonal.
 TEST_F(CliCalibStereo, SolveSummaryShowsEachEstimateWithItsSigma) {

@@ -72,6 +72,7 @@ Subcommand AddSolve(CLI::App& parent) {
   return {app, [f, app](const Provenance& provenance) {
             app::SolveRequest r = f->request;
             r.options.calibration.refinement = f->calibration.Refinement();
+            r.lens_model_from_cameras = f->calibration.lens_model.empty() && f->calibration.distortion_option->count() == 0;
             r.rectify = f->rectify.Get(app);
             return app::Solve(r, provenance);
           }};

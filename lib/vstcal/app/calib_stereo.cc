@@ -19,6 +19,7 @@
 #include "vstcal/formats/stereo/registration_io.h"
 #include "vstcal/formats/stereo/stereo_io.h"
 #include "vstcal/formats/stereo/stereo_peer_formats.h"
+#include "vstcal/estimators/free_intrinsics.h"
 #include "vstcal/estimators/uncertainty.h"
 #include "vstcal/report/fit_summary.h"
 #include "vstcal/core/option_name.h"
@@ -151,6 +152,44 @@ std::string AddRectifiedPairs(const StereoRig& rig, Correspondences left, Corres
          request.undistort_folder + (rig.rectification ? "" : " (OpenCV's default rectification; " VSTCAL_OPT("rectify") " keeps it in the rig)") + "\n";
 }
 
+// Neither a lens model nor terms were asked for: a given camera of another family than the default
+// terms' model (a fisheye beside Brown–Conrady's k1, k2, p1, p2) chooses the lens model, and its
+// own terms are estimated — rather than refusing the terms nobody asked for.
+void ChooseLensModelFromCameras(const SolveRequest& request, StereoSolveOptions* options, Outcome* out) {
+  RefineOptions& refinement = options->calibration.refinement;
+  const AnyLensModel by_default = RefinedModel(PinholeModel{}, refinement);
+  const std::pair<const std::string*, const std::optional<Camera>*> given[2] = {{&request.left_camera, &options->left_camera},
+                                                                              {&request.right_camera, &options->right_camera}};
+  const std::string* chosen_from = nullptr;
+  const Camera* chosen = nullptr;
+  for (const auto& [file, camera] : given) {
+    if (!*camera) continue;
+    const AnyLensModel& m = (**camera).model;
+    if (chosen || LensModelExtends(by_default, m) || LensModelExtends(m, by_default)) continue;
+    chosen = &**camera;
+    chosen_from = file;
+  }
+  if (!chosen) return;
+  // One lens model solves both cameras: two given cameras must agree on it.
+  for (const auto& [file, camera] : given) {
+    if (!*camera || (**camera).model.index() == chosen->model.index()) continue;
+    throw InputError(*file + ": lens model \"" + std::string(LensModelName((**camera).model)) + "\", but " + *chosen_from +
+                     " is \"" + std::string(LensModelName(chosen->model)) + "\"; give cameras of one lens model, or " +
+                     VSTCAL_OPT("lens_model") " and " VSTCAL_OPT("distortion") " without the other camera");
+  }
+  if (!chosen) return;
+  refinement.lens_model = std::string(LensModelName(chosen->model));
+  refinement.free_distortion.clear();
+  std::string terms;
+  const auto names = LensModelParamNames(chosen->model);
+  for (auto it = names.begin() + kNumIntrinsicParams; it != names.end(); ++it) {
+    refinement.free_distortion.emplace_back(*it);
+    terms += (terms.empty() ? "" : ",") + std::string(*it);
+  }
+  out->summary += "note: lens model \"" + refinement.lens_model + "\" (terms " + terms + ") from " + *chosen_from +
+                  ", as neither " VSTCAL_OPT("lens_model") " nor " VSTCAL_OPT("distortion") " was given\n";
+}
+
 }  // namespace
 
 Outcome Solve(const SolveRequest& request, const Provenance& provenance) {
@@ -168,6 +207,7 @@ Outcome Solve(const SolveRequest& request, const Provenance& provenance) {
     *camera = in.camera.camera;
     for (const auto& note : in.notes) out.summary += "note: " + note + "\n";
   }
+  if (request.lens_model_from_cameras) ChooseLensModelFromCameras(request, &options, &out);
   if ((options.hold_left && !options.left_camera) || (options.hold_right && !options.right_camera)) {
     out.summary += "note: a held camera without " VSTCAL_OPT("left_camera") "/" VSTCAL_OPT("right_camera") " is held at its own calibration from its file\n";
   }

@@ -43,6 +43,10 @@ struct SolveRequest {
   // epipolar lines (RectifiedPairImage; the rig's rectification, else OpenCV's default one), as
   // FOLDER/<view key>.rectified.png; empty: none.
   std::string undistort_folder;
+  // Neither options.calibration.refinement's lens model nor its terms were chosen by the user: a
+  // given camera (left_camera, right_camera) of another family than the default terms' model (a
+  // fisheye) then sets both, its own terms estimated (docs/tools/calib-stereo.md).
+  bool lens_model_from_cameras = false;
 };
 Outcome Solve(const SolveRequest& request, const Provenance& provenance);
 

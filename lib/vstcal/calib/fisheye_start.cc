@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include <Eigen/LU>
+#include <Eigen/QR>
 
 #include "vstcal/geometry/rotation.h"
 
@@ -41,18 +43,87 @@ ZhangResult Rounds(const Correspondences& c, Eigen::Matrix3d K) {
   return best;
 }
 
+// Sum of squared reprojection errors, px², of every corner through `camera` at the poses; a corner
+// the camera cannot project costs the image diagonal squared (a start that loses corners is worse
+// than any that keeps them inside the image).
+double ReprojectionCost(const Correspondences& c, const Camera& camera, const std::vector<Rigid3d>& poses) {
+  const double lost = std::pow(std::hypot(c.image_size.width, c.image_size.height), 2);
+  double cost = 0;
+  for (size_t v = 0; v < c.views.size(); ++v) {
+    for (const Observation& o : c.views[v].observations) {
+      const auto px = camera.Project(poses[v] * o.point);
+      const double e = px ? (*px - o.pixel).squaredNorm() : lost;
+      cost += std::isfinite(e) ? std::min(e, lost) : lost;
+    }
+  }
+  return cost;
+}
+
+// k1…k4 by linear least squares with K and the poses fixed: the Kannala–Brandt radius is linear in
+// them, θd = θ + k1 θ³ + k2 θ⁵ + k3 θ⁷ + k4 θ⁹, with θ the angle of the board corner off the axis at
+// its pose and θd = |K⁻¹ pixel| the normalized radius it was seen at. nullopt when the angles do
+// not determine four coefficients (too few corners off the axis).
+std::optional<Camera> FitCoefficients(const Correspondences& c, const Eigen::Matrix3d& K, const std::vector<Rigid3d>& poses) {
+  const Eigen::Matrix3d K_inverse = K.inverse();
+  size_t n = 0;
+  for (const View& v : c.views) n += v.observations.size();
+  Eigen::MatrixXd A(n, 4);
+  Eigen::VectorXd b(n);
+  size_t row = 0;
+  for (size_t v = 0; v < c.views.size(); ++v) {
+    for (const Observation& o : c.views[v].observations) {
+      const Eigen::Vector3d p = poses[v] * o.point;
+      const double theta = std::atan2(p.head<2>().norm(), p.z());
+      const double theta_d = (K_inverse * o.pixel.homogeneous()).head<2>().norm();
+      double power = theta * theta * theta;
+      for (int j = 0; j < 4; ++j, power *= theta * theta) A(row, j) = power;
+      b(row++) = theta_d - theta;
+    }
+  }
+  const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(A);
+  if (qr.rank() < 4) return std::nullopt;
+  const Eigen::Vector4d k = qr.solve(b);
+  if (!k.allFinite()) return std::nullopt;
+  return Camera::FromK(K, c.image_size, KannalaBrandtModel{}, std::span<const double>(k.data(), 4));
+}
+
 }  // namespace
 
-ZhangResult EquidistantZhangStart(const Correspondences& c, const ZhangResult& pinhole) {
-  // OpenCV's fisheye guess first (180° across the longer side, centred): a pinhole K from bent
-  // homographies can be tens of % off, too far for the linearized corners to be consistent.
+FisheyeStart ChooseFisheyeStart(const Correspondences& c, const ZhangResult& pinhole) {
+  // OpenCV's fisheye guess (180° across the longer side, centred): a pinhole K from a wide lens's
+  // bent homographies can be tens of % off, too far for the linearized corners to be consistent.
   const double f = std::max(c.image_size.width, c.image_size.height) / kPi;
   Eigen::Matrix3d guess;
   guess << f, 0, 0.5 * c.image_size.width - 0.5, 0, f, 0.5 * c.image_size.height - 0.5, 0, 0, 1;
-  ZhangResult r = Rounds(c, guess);
-  if (r.ok) return r;
-  if (pinhole.ok) r = Rounds(c, pinhole.camera.K());
-  return r.ok ? r : pinhole;
+
+  std::vector<std::pair<const char*, ZhangResult>> candidates;
+  candidates.emplace_back("equidistant rounds from the fisheye guess", Rounds(c, guess));
+  if (pinhole.ok) {
+    candidates.emplace_back("equidistant rounds from the pinhole start", Rounds(c, pinhole.camera.K()));
+    candidates.emplace_back("the pinhole start", pinhole);
+  }
+  FisheyeStart best;
+  best.cost = std::numeric_limits<double>::infinity();
+  for (auto& [name, start] : candidates) {
+    if (!start.ok) continue;
+    const Eigen::Matrix3d K = start.camera.K();
+    std::vector<Camera> cameras = {Camera::FromK(K, c.image_size, KannalaBrandtModel{})};
+    if (auto fitted = FitCoefficients(c, K, start.camera_from_board)) cameras.push_back(std::move(*fitted));
+    for (Camera& camera : cameras) {
+      const double cost = ReprojectionCost(c, camera, start.camera_from_board);
+      if (!(cost < best.cost)) continue;
+      best.cost = cost;
+      best.chosen = name;
+      best.start = start;
+      best.start.camera = camera;
+    }
+  }
+  if (!std::isfinite(best.cost)) {
+    best.start = pinhole;
+    best.cost = 0;
+    best.chosen = "";
+  }
+  return best;
 }
 
 }  // namespace vstcal
