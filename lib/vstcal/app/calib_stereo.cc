@@ -186,8 +186,10 @@ void ChooseLensModelFromCameras(const SolveRequest& request, StereoSolveOptions*
     refinement.free_distortion.emplace_back(*it);
     terms += (terms.empty() ? "" : ",") + std::string(*it);
   }
-  out->summary += "note: lens model \"" + refinement.lens_model + "\" (terms " + terms + ") from " + *chosen_from +
-                  ", as neither " VSTCAL_OPT("lens_model") " nor " VSTCAL_OPT("distortion") " was given\n";
+  // Appended, not "literal" + std::string: GCC 12's -Wrestrict misfires on that.
+  out->summary.append("note: lens model \"").append(refinement.lens_model).append("\" (terms ").append(terms);
+  out->summary.append(") from ").append(*chosen_from);
+  out->summary.append(", as neither " VSTCAL_OPT("lens_model") " nor " VSTCAL_OPT("distortion") " was given\n");
 }
 
 }  // namespace
