@@ -184,7 +184,7 @@ void ChooseLensModelFromCameras(const SolveRequest& request, StereoSolveOptions*
   const auto names = LensModelParamNames(chosen->model);
   for (auto it = names.begin() + kNumIntrinsicParams; it != names.end(); ++it) {
     refinement.free_distortion.emplace_back(*it);
-    terms += (terms.empty() ? "" : ",") + std::string(*it);
+    terms.append(terms.empty() ? "" : ",").append(*it);
   }
   // Appended, not "literal" + std::string: GCC 12's -Wrestrict misfires on that.
   out->summary.append("note: lens model \"").append(refinement.lens_model).append("\" (terms ").append(terms);
