@@ -1,5 +1,6 @@
 #include "vstcal/handeye/noise_components.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
@@ -91,6 +92,21 @@ NoiseFrame ReduceNoiseFrame(const Eigen::MatrixXd& J_e, const Eigen::MatrixXd& J
   f.n_perp = static_cast<double>(r.size()) - 6;
   f.w = w;
   return f;
+}
+
+Eigen::Vector3d MomentStart(std::span<const NoiseFrame> frames) {
+  double s_perp = 0, n_perp = 0, a = 0, b = 0, w = 0;
+  for (const NoiseFrame& f : frames) {
+    s_perp += f.s_perp;
+    n_perp += f.n_perp;
+  }
+  const double c = std::max(s_perp / n_perp, 1e-12);
+  for (const NoiseFrame& f : frames) {
+    a += f.d.head<3>().squaredNorm() - c * f.M_inv.topLeftCorner<3, 3>().trace();
+    b += f.d.tail<3>().squaredNorm() - c * f.M_inv.bottomRightCorner<3, 3>().trace();
+    w += 3 * f.w;
+  }
+  return {c, std::max(a / w, 0.0), std::max(b / w, 0.0)};
 }
 
 VarianceComponents EstimateVarianceComponents(std::span<const NoiseFrame> frames, const Eigen::Vector3d& start) {

@@ -49,6 +49,10 @@ struct VarianceComponents {
   bool converged = false;
 };
 
+// The start of the estimate: c from the part of the residuals no pose error explains, a and b by
+// moments (E[d dᵀ] = c M⁻¹ + w D).
+Eigen::Vector3d MomentStart(std::span<const NoiseFrame> frames);
+
 // REML over the frames, from `start` (c > 0; a, b ≥ 0).
 VarianceComponents EstimateVarianceComponents(std::span<const NoiseFrame> frames, const Eigen::Vector3d& start);
 

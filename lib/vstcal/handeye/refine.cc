@@ -1,10 +1,13 @@
 #include "vstcal/handeye/refine.h"
 
+#include "vstcal/handeye/frame_test.h"
 #include "vstcal/handeye/noise_components.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <type_traits>
+#include <variant>
 
 #include <Eigen/Dense>
 #include <ceres/ceres.h>
@@ -47,6 +50,12 @@ struct Chain {
   Rigid3d x0, z0;
 };
 
+// A corner's pixel and its Jacobian ∂pixel/∂p_cam (2 × 3, row-major) through the one projection.
+bool ProjectWithPointJacobian(const Camera& camera, const double* p_cam, double* px, double* d_px_d_p) {
+  return std::visit([&](const auto& model) { return std::decay_t<decltype(model)>::ProjectWithJacobians(camera.params.data(), p_cam, px, nullptr, d_px_d_p); },
+                    camera.model);
+}
+
 // A frame's corner residuals (px) at the left perturbations x, z of the references, δ, and the
 // tracker pose's error e = (ω, ρ): H → (Exp(ω) R_H, t_H + ρ) (null: none). The pose chain
 // X⁻¹ · H(t + δ)⁻¹ · Z is differentiated once a frame, not once a corner (4× faster at 54 corners a
@@ -63,14 +72,32 @@ bool FrameResiduals(const Chain& chain, const Frame& frame, const T* x, const T*
   const Rigid3<T> left_from_board = X.inverse() * H->inverse() * Z;
   for (const SolveView& v : frame.views) {
     const Rigid3<T> camera_from_board = v.right_from_left ? v.right_from_left->cast<T>() * left_from_board : left_from_board;
-    T params[kMaxLensParams];
-    for (size_t i = 0; i < v.camera->params.size(); ++i) params[i] = T(v.camera->params[i]);
-    for (const Observation& o : v.view->observations) {
-      const Vec3<T> p = camera_from_board * o.point.cast<T>();
-      T q[2];
-      if (!ProjectWith(v.camera->model, params, p.data(), q)) return false;
-      *r++ = q[0] - T(o.pixel.x());
-      *r++ = q[1] - T(o.pixel.y());
+    if constexpr (std::is_same_v<T, double>) {
+      for (const Observation& o : v.view->observations) {
+        const Eigen::Vector3d p = camera_from_board * o.point;
+        double q[2];
+        if (!ProjectWith(v.camera->model, v.camera->params.data(), p.data(), q)) return false;
+        *r++ = q[0] - o.pixel.x();
+        *r++ = q[1] - o.pixel.y();
+      }
+    } else {
+      // The chain rule at the point: the point's Jets (the pose's derivatives, R·P + t with P a
+      // constant) times the projection's 2 × 3 Jacobian in double — rather than projecting with
+      // Jets of every parameter (a third of the Jet operations; the same values and derivatives).
+      const Mat3<T>& R = camera_from_board.R;
+      const Vec3<T>& t = camera_from_board.t;
+      for (const Observation& o : v.view->observations) {
+        const Eigen::Vector3d& P = o.point;
+        T p[3];
+        for (int i = 0; i < 3; ++i) p[i] = R(i, 0) * P.x() + R(i, 1) * P.y() + R(i, 2) * P.z() + t[i];
+        const double p_value[3] = {p[0].a, p[1].a, p[2].a};
+        double q[2], d_q_d_p[6];
+        if (!ProjectWithPointJacobian(*v.camera, p_value, q, d_q_d_p)) return false;
+        for (int k = 0; k < 2; ++k, ++r) {
+          r->a = q[k] - o.pixel[k];
+          r->v = d_q_d_p[3 * k] * p[0].v + d_q_d_p[3 * k + 1] * p[1].v + d_q_d_p[3 * k + 2] * p[2].v;
+        }
+      }
     }
   }
   return true;
@@ -314,7 +341,8 @@ EstimatedSigma SigmaOf(double v, double se) {
 // The tracker's noise estimated with X, Z and δ (docs/math/handeye.md#tracker-noise): at the
 // current solution each frame's Jacobians give the variance components' REML estimate; the frames
 // are then weighed by it (Whitening) and solved again, until the σ's settle (1 %).
-void EstimateTrackerNoiseJointly(Chain* chain, const std::vector<Frame>& frames, const HandEyeOptions& options, HandEyeSolution* out) {
+void EstimateTrackerNoiseJointly(Chain* chain, const std::vector<Frame>& frames, const HandEyeOptions& options, HandEyeSolution* out,
+                                 std::vector<Linearisation> linearisation) {
   Eigen::Vector3d theta(out->sigma_px * out->sigma_px, 0, 0);
   bool have_theta = false;
   VarianceComponents components;
@@ -323,8 +351,9 @@ void EstimateTrackerNoiseJointly(Chain* chain, const std::vector<Frame>& frames,
   // Every frame's residuals and Jacobians at the solution; after each weighted solve, that solve's.
   chain->x0 = out->hmd_from_camera;
   chain->z0 = out->tracker_from_board;
-  std::vector<Linearisation> linearisation;
-  for (const Frame& frame : frames) linearisation.push_back(Linearise(*chain, frame, out->time_offset));
+  if (linearisation.empty()) {
+    for (const Frame& frame : frames) linearisation.push_back(Linearise(*chain, frame, out->time_offset));
+  }
   for (int round = 1; round <= 4; ++round) {
     std::vector<NoiseFrame> reduced;
     for (size_t f = 0; f < frames.size(); ++f) {
@@ -332,22 +361,7 @@ void EstimateTrackerNoiseJointly(Chain* chain, const std::vector<Frame>& frames,
       const double s = InterpolationFraction(chain->log, frames[f].time + out->time_offset);
       reduced.push_back(ReduceNoiseFrame(lin.J_e, lin.J_g, lin.r, (1 - s) * (1 - s) + s * s));
     }
-    if (!have_theta) {
-      // Start: c from the part of the residuals no pose error explains; a, b by moments.
-      double s_perp = 0, n_perp = 0, a = 0, b = 0, w = 0;
-      for (const NoiseFrame& f : reduced) {
-        s_perp += f.s_perp;
-        n_perp += f.n_perp;
-      }
-      theta[0] = std::max(s_perp / n_perp, 1e-12);
-      for (const NoiseFrame& f : reduced) {
-        a += f.d.head<3>().squaredNorm() - theta[0] * f.M_inv.topLeftCorner<3, 3>().trace();
-        b += f.d.tail<3>().squaredNorm() - theta[0] * f.M_inv.bottomRightCorner<3, 3>().trace();
-        w += 3 * f.w;
-      }
-      theta[1] = std::max(a / w, 0.0);
-      theta[2] = std::max(b / w, 0.0);
-    }
+    if (!have_theta) theta = MomentStart(reduced);
     const Eigen::Vector3d previous = theta;
     components = EstimateVarianceComponents(reduced, theta);
     if (!components.converged) {
@@ -391,6 +405,56 @@ void EstimateTrackerNoiseJointly(Chain* chain, const std::vector<Frame>& frames,
   covariance(13, 14) = covariance(14, 13) = ja * jb * components.covariance(1, 2);
   out->covariance = std::move(covariance);
   out->tracker_noise = noise;
+}
+
+// The bad-frame test with the tracker exact: every view against the others' corner noise
+// (estimators/view_rejection.h; each view's dof less its share of the 13 parameters).
+RejectionTest TestViewsExactTracker(const std::vector<SolveView>& active, const std::vector<std::vector<Eigen::Vector2d>>& residuals,
+                                    const HandEyeOptions& options) {
+  Correspondences c;
+  Fit fit;
+  for (size_t k = 0; k < active.size(); ++k) {
+    c.views.push_back(View{active[k].view->name, "", std::nullopt, active[k].view->observations, std::nullopt});
+    fit.views.push_back(ViewFit{active[k].view->name, {}, residuals[k]});
+  }
+  return TestResiduals(c, fit, kHandEyeParameters, 0, options.rejection);
+}
+
+// The bad-frame test under the full noise model (frame_test.h): every view alone, its residuals
+// against the corners' noise and the tracker's at its time, the noise estimated from the views that
+// pass. Falls back to the exact-tracker test when the noise cannot be estimated. Fills each view's
+// linearisation (for the noise estimate that follows when no view is dropped).
+RejectionTest TestViewsAgainstNoise(const Chain& chain, double delta, const std::vector<Frame>& views_alone,
+                                    const std::vector<std::vector<Eigen::Vector2d>>& residuals, const HandEyeOptions& options,
+                                    std::vector<Linearisation>* linearisation) {
+  RejectionTest t;
+  std::vector<NoiseFrame> reduced;
+  for (const Frame& frame : views_alone) {
+    linearisation->push_back(Linearise(chain, frame, delta));
+    const Linearisation& lin = linearisation->back();
+    const double s = InterpolationFraction(chain.log, frame.time + delta);
+    reduced.push_back(ReduceNoiseFrame(lin.J_e, lin.J_g, lin.r, (1 - s) * (1 - s) + s * s));
+  }
+  if (views_alone.size() < kMinViewsToTest) return t;
+  const FrameNoiseTest test = TestFramesAgainstNoise(reduced, options.rejection.view_false_alarm);
+  if (!test.ok) {
+    std::vector<SolveView> active;
+    for (const Frame& f : views_alone) active.push_back(f.views.front());
+    return TestViewsExactTracker(active, residuals, options);
+  }
+  t.sigma_px = std::sqrt(test.theta[0]);
+  double worst = 1;
+  for (size_t v = 0; v < views_alone.size(); ++v) {
+    double sum = 0;
+    for (const Eigen::Vector2d& r : residuals[v]) sum += r.squaredNorm();
+    const double rms = std::sqrt(sum / static_cast<double>(std::max<size_t>(1, residuals[v].size())));
+    t.view_rms_px.push_back(rms);
+    // The statistics are quadratic in the residuals: the RMS at which this view would sit on its
+    // threshold.
+    t.view_threshold_px.push_back(rms / std::sqrt(std::max(test.excess[v], 1e-300)));
+    if (test.excess[v] > worst) worst = test.excess[v], t.worst_view = v;
+  }
+  return t;
 }
 
 }  // namespace
@@ -469,17 +533,16 @@ HandEyeSolution SolveHandEye(const Camera& camera, std::span<const TrackedPose> 
     for (const SolveView& v : active) frames.push_back({v.view->time, {v}});
     return frames;
   };
+  // Each view's linearisation at the last solve, when the noise test took it: the noise estimate
+  // below starts from it when its frames are the views.
+  std::vector<Linearisation> view_linearisation;
   for (int round = 1;; ++round) {
-    const std::vector<std::vector<Eigen::Vector2d>> residuals =
-        Refine(&chain, one_frame_a_view(), nullptr, x_start, z_start, delta_start, options, &out);
+    view_linearisation.clear();
+    const std::vector<Frame> views_alone = one_frame_a_view();
+    const std::vector<std::vector<Eigen::Vector2d>> residuals = Refine(&chain, views_alone, nullptr, x_start, z_start, delta_start, options, &out);
     if (!options.rejection.enabled || round > options.rejection.max_rounds) break;
-    Correspondences c;
-    Fit fit;
-    for (size_t k = 0; k < active.size(); ++k) {
-      c.views.push_back(View{active[k].view->name, "", std::nullopt, active[k].view->observations, std::nullopt});
-      fit.views.push_back(ViewFit{active[k].view->name, {}, residuals[k]});
-    }
-    const RejectionTest test = TestResiduals(c, fit, kHandEyeParameters, 0, options.rejection);
+    const RejectionTest test = options.estimate_tracker_noise ? TestViewsAgainstNoise(chain, out.time_offset, views_alone, residuals, options, &view_linearisation)
+                                                              : TestViewsExactTracker(active, residuals, options);
     if (!test.worst_view) break;
     std::vector<double> rms = test.view_rms_px;
     std::nth_element(rms.begin(), rms.begin() + static_cast<long>(rms.size() / 2), rms.end());
@@ -499,8 +562,11 @@ HandEyeSolution SolveHandEye(const Camera& camera, std::span<const TrackedPose> 
     r.view_name = active[worst].view->name;
     r.rms_px = test.view_rms_px[worst];
     r.threshold_px = test.view_threshold_px[worst];
-    r.because = "its corners are inconsistent with the other views' noise (σ̂ " + MessageNumber(test.sigma_px) +
-                " px): a tracker glitch, a smeared or mislabelled board, or a pose log out of step at that time";
+    r.because = options.estimate_tracker_noise
+                    ? "its corners are inconsistent with the noise of the corners (σ̂ " + MessageNumber(test.sigma_px) +
+                          " px) and of the tracker the other views show: a tracker glitch, a smeared or mislabelled board, or a pose log out of step at that time"
+                    : "its corners are inconsistent with the other views' noise (σ̂ " + MessageNumber(test.sigma_px) +
+                          " px): a tracker glitch, a smeared or mislabelled board, or a pose log out of step at that time";
     out.rejected.push_back(std::move(r));
     active.erase(active.begin() + static_cast<long>(worst));
     x_start = out.hmd_from_camera;
@@ -521,7 +587,11 @@ HandEyeSolution SolveHandEye(const Camera& camera, std::span<const TrackedPose> 
         frames.push_back({v.view->time, {v}});
       }
     }
-    EstimateTrackerNoiseJointly(&chain, frames, options, &out);
+    // The views' linearisation from the last test serves when the frames are the views, in order.
+    bool same = !view_linearisation.empty() && frames.size() == active.size();
+    for (size_t f = 0; same && f < frames.size(); ++f) same = frames[f].views.size() == 1 && frames[f].views[0].index == active[f].index;
+    if (!same) view_linearisation.clear();
+    EstimateTrackerNoiseJointly(&chain, frames, options, &out, std::move(view_linearisation));
     if (out.tracker_noise) {
       out.names.insert(out.names.end(), HandEyeNoiseCovarianceNames().begin(), HandEyeNoiseCovarianceNames().end());
     }
