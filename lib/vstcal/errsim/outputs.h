@@ -160,14 +160,17 @@ inline constexpr std::array<TotalDecl, kNumTotals> kTotals = {{
 constexpr const TotalDecl& Declaration(Total t) { return kTotals[static_cast<int>(t)]; }
 
 namespace detail {
-constexpr bool TotalsInOrder() {
-  for (int i = 0; i < kNumTotals; ++i) {
-    if (static_cast<int>(kTotals[i].total) != i) return false;
+// True when row i of `table` declares the enumerator i (its field `key`): Declaration(e) indexes
+// the table by the enumerator.
+template <typename Decl, size_t N, typename Key>
+constexpr bool ListedInOrder(const std::array<Decl, N>& table, Key Decl::*key) {
+  for (size_t i = 0; i < N; ++i) {
+    if (static_cast<size_t>(table[i].*key) != i) return false;
   }
   return true;
 }
 }  // namespace detail
-static_assert(detail::TotalsInOrder(), "kTotals must list every Total in order");
+static_assert(detail::ListedInOrder(kTotals, &TotalDecl::total), "kTotals must list every Total in order");
 
 // The signed vector errors of a test point, for linear propagation and the sweep's slopes.
 enum class VectorOutput : int { kPixelError, kMisregistration, kMisperception, kCount };
@@ -216,14 +219,6 @@ constexpr int VectorOutputsPerPoint() {
 }
 inline constexpr int kVectorOutputsPerPoint = VectorOutputsPerPoint();
 
-namespace detail {
-constexpr bool VectorOutputsInOrder() {
-  for (int i = 0; i < kNumVectorOutputs; ++i) {
-    if (static_cast<int>(kVectorOutputs[i].output) != i) return false;
-  }
-  return true;
-}
-}  // namespace detail
-static_assert(detail::VectorOutputsInOrder(), "kVectorOutputs must list every VectorOutput in order");
+static_assert(detail::ListedInOrder(kVectorOutputs, &VectorOutputDecl::output), "kVectorOutputs must list every VectorOutput in order");
 
 }  // namespace vstcal
