@@ -155,6 +155,18 @@ TEST(CheckMetrics, UnknownOrRepeatedNamesAreRefused) {
   EXPECT_THROW(CheckMetrics(Metrics(1, 2), Metrics(1, 2), RiseAllowance{}, twice, 3), InputError);
 }
 
+TEST(CheckMetrics, TheMeasuresAreTheStatisticsDocumentedWithAStandardError) {
+  // docs/tools/err-sim.md#check's table, spelled here from the format's documentation: the list
+  // itself is derived from errsim/outputs.h's kMeasures.
+  const std::vector<std::string> documented = {
+      "image.left.pixel_px",       "image.right.pixel_px",        "misregistration.linear",    "misregistration.lateral",
+      "misregistration.depth_abs", "misregistration.angular_deg", "misperception.linear",      "misperception.lateral",
+      "misperception.depth_abs",   "misperception.angular_deg",   "occlusion.left.wrong_rate", "occlusion.right.wrong_rate"};
+  std::vector<std::string> derived;
+  for (const CheckedMeasure& m : CheckedMeasures()) derived.push_back(m.name);
+  EXPECT_EQ(derived, documented);
+}
+
 // --- JUnit XML --------------------------------------------------------------------------------------
 
 TEST(XmlEscape, MarkupControlCharactersAndBadUtf8) {

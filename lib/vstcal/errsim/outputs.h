@@ -61,28 +61,31 @@ struct MeasureDecl {
   bool in_totals;      // kept by OutputSet::kTotals: what the budget's totals need
   bool headline;       // a magnitude the report ranks by: a histogram (percentiles) under kFull, a row of sobol's summary
   bool needs_surface;  // only at test points with a surface_behind (the occlusion decisions)
+  // A rise is worse and the report gives the statistic's standard error, so err-sim check judges it
+  // (errsim/report_check.h). Not the signed depth parts: a bias of either sign (depth_abs is checked).
+  bool checked;
   std::string_view description;
 };
 
 // clang-format off
 inline constexpr std::array<MeasureDecl, kNumMeasures> kMeasures = {{
     // |q̂ − q| in each eye's image: the overlay against the video.
-    {ErrorMeasure::kImagePixel,               "image",           "pixel_px",    OutputScope::kPerEye, OutputUnit::kPixel,    true,  true,  false, "image misregistration |q̂ − q|"},
+    {ErrorMeasure::kImagePixel,               "image",           "pixel_px",    OutputScope::kPerEye, OutputUnit::kPixel,    true,  true,  false, true,  "image misregistration |q̂ − q|"},
     // Holloway's terms of P̂' − P' seen from the cyclopean eye (geometry/registration_error.h).
-    {ErrorMeasure::kMisregistrationLinear,    "misregistration", "linear",      OutputScope::kOnce,   OutputUnit::kLength,   true,  true,  false, "3-D misregistration |P̂' − P'|"},
-    {ErrorMeasure::kMisregistrationLateral,   "misregistration", "lateral",     OutputScope::kOnce,   OutputUnit::kLength,   false, false, false, "its part across the line of sight"},
-    {ErrorMeasure::kMisregistrationDepth,     "misregistration", "depth",       OutputScope::kOnce,   OutputUnit::kLength,   false, false, false, "its signed part along the line of sight"},
-    {ErrorMeasure::kMisregistrationDepthAbs,  "misregistration", "depth_abs",   OutputScope::kOnce,   OutputUnit::kLength,   false, false, false, "the magnitude of the depth part"},
-    {ErrorMeasure::kMisregistrationAngular,   "misregistration", "angular_deg", OutputScope::kOnce,   OutputUnit::kDegree,   false, false, false, "the visual angle it subtends"},
+    {ErrorMeasure::kMisregistrationLinear,    "misregistration", "linear",      OutputScope::kOnce,   OutputUnit::kLength,   true,  true,  false, true,  "3-D misregistration |P̂' − P'|"},
+    {ErrorMeasure::kMisregistrationLateral,   "misregistration", "lateral",     OutputScope::kOnce,   OutputUnit::kLength,   false, false, false, true,  "its part across the line of sight"},
+    {ErrorMeasure::kMisregistrationDepth,     "misregistration", "depth",       OutputScope::kOnce,   OutputUnit::kLength,   false, false, false, false, "its signed part along the line of sight"},
+    {ErrorMeasure::kMisregistrationDepthAbs,  "misregistration", "depth_abs",   OutputScope::kOnce,   OutputUnit::kLength,   false, false, false, true,  "the magnitude of the depth part"},
+    {ErrorMeasure::kMisregistrationAngular,   "misregistration", "angular_deg", OutputScope::kOnce,   OutputUnit::kDegree,   false, false, false, true,  "the visual angle it subtends"},
     // Holloway's terms of P' − (P + o₀): where the eyes see the point against where it is, beyond
     // the error-free chain's systematic misperception o₀.
-    {ErrorMeasure::kMisperceptionLinear,      "misperception",   "linear",      OutputScope::kOnce,   OutputUnit::kLength,   true,  true,  false, "misperception |P' − (P + o₀)|"},
-    {ErrorMeasure::kMisperceptionLateral,     "misperception",   "lateral",     OutputScope::kOnce,   OutputUnit::kLength,   false, false, false, "its part across the line of sight"},
-    {ErrorMeasure::kMisperceptionDepth,       "misperception",   "depth",       OutputScope::kOnce,   OutputUnit::kLength,   false, false, false, "its signed part along the line of sight"},
-    {ErrorMeasure::kMisperceptionDepthAbs,    "misperception",   "depth_abs",   OutputScope::kOnce,   OutputUnit::kLength,   false, false, false, "the magnitude of the depth part"},
-    {ErrorMeasure::kMisperceptionAngular,     "misperception",   "angular_deg", OutputScope::kOnce,   OutputUnit::kDegree,   false, false, false, "the visual angle it subtends"},
+    {ErrorMeasure::kMisperceptionLinear,      "misperception",   "linear",      OutputScope::kOnce,   OutputUnit::kLength,   true,  true,  false, true,  "misperception |P' − (P + o₀)|"},
+    {ErrorMeasure::kMisperceptionLateral,     "misperception",   "lateral",     OutputScope::kOnce,   OutputUnit::kLength,   false, false, false, true,  "its part across the line of sight"},
+    {ErrorMeasure::kMisperceptionDepth,       "misperception",   "depth",       OutputScope::kOnce,   OutputUnit::kLength,   false, false, false, false, "its signed part along the line of sight"},
+    {ErrorMeasure::kMisperceptionDepthAbs,    "misperception",   "depth_abs",   OutputScope::kOnce,   OutputUnit::kLength,   false, false, false, true,  "the magnitude of the depth part"},
+    {ErrorMeasure::kMisperceptionAngular,     "misperception",   "angular_deg", OutputScope::kOnce,   OutputUnit::kDegree,   false, false, false, true,  "the visual angle it subtends"},
     // The compositor's depth test at the overlay's pixel drew the wrong layer (§4.5).
-    {ErrorMeasure::kWrongOcclusion,           "occlusion",       "wrong",       OutputScope::kPerEye, OutputUnit::kDecision, true,  false, true,  "wrong occlusion decision"},
+    {ErrorMeasure::kWrongOcclusion,           "occlusion",       "wrong",       OutputScope::kPerEye, OutputUnit::kDecision, true,  false, true,  true,  "wrong occlusion decision"},
 }};
 // clang-format on
 
@@ -93,6 +96,15 @@ inline std::string MeasureName(ErrorMeasure m, int eye = 0) {
   std::string name(d.group);
   if (d.scope == OutputScope::kPerEye) name.append(".").append(kEyeNames[eye]);
   return name.append(".").append(d.name);
+}
+// A decision is summarised by its rate, named "<name>_rate" in the report and in err-sim check.
+inline constexpr std::string_view kRateSuffix = "_rate";
+// The name of measure m's summary statistic below its test point: its output name, or its rate's
+// for a decision ("occlusion.left.wrong_rate").
+inline std::string SummaryName(ErrorMeasure m, int eye = 0) {
+  std::string name = MeasureName(m, eye);
+  if (Declaration(m).unit == OutputUnit::kDecision) name.append(kRateSuffix);
+  return name;
 }
 constexpr int SlotsOf(OutputScope scope) { return scope == OutputScope::kPerEye ? kNumEyes : 1; }
 constexpr bool InSet(const MeasureDecl& d, OutputSet set) { return set == OutputSet::kFull || d.in_totals; }

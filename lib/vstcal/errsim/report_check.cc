@@ -27,10 +27,23 @@ std::string Describe(const MetricCheck& c, const RiseAllowance& allowance, doubl
 
 }  // namespace
 
+const std::vector<CheckedMeasure>& CheckedMeasures() {
+  static const std::vector<CheckedMeasure> checked = [] {
+    std::vector<CheckedMeasure> list;
+    for (const MeasureDecl& d : kMeasures) {
+      if (!d.checked) continue;
+      for (int eye = 0; eye < SlotsOf(d.scope); ++eye) list.push_back({d.measure, eye, SummaryName(d.measure, eye)});
+    }
+    return list;
+  }();
+  return checked;
+}
+
 std::vector<MetricCheck> CheckMetrics(std::span<const MonteCarloMetric> accepted, std::span<const MonteCarloMetric> fresh,
                                       const RiseAllowance& by_default, std::span<const RiseRule> rules, double z) {
   std::vector<std::string> names;
-  std::vector<std::string_view> known(kCheckedMeasures.begin(), kCheckedMeasures.end());
+  std::vector<std::string_view> known;
+  for (const CheckedMeasure& m : CheckedMeasures()) known.push_back(m.name);
   for (const MonteCarloMetric& m : accepted) names.push_back(m.name());
   for (const std::string& n : names) known.push_back(n);
   std::map<std::string, RiseAllowance> by_name;
@@ -39,7 +52,7 @@ std::vector<MetricCheck> CheckMetrics(std::span<const MonteCarloMetric> accepted
     for (const std::string_view k : known) found = found || k == rule.name;
     if (!found) {
       std::string measures;
-      for (const std::string_view m : kCheckedMeasures) measures += (measures.empty() ? "" : ", ") + std::string(m);
+      for (const CheckedMeasure& m : CheckedMeasures()) measures.append(measures.empty() ? "" : ", ").append(m.name);
       const auto close = ClosestMatch(rule.name, known);
       throw InputError("\"" + rule.name + "\": no such metric in the accepted report, nor a measure; " +
                        (close ? "did you mean \"" + std::string(*close) + "\"? " : std::string()) + "give a measure (" +

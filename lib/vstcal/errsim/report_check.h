@@ -3,31 +3,33 @@
 // two reports' standard errors (sensitivity/rise_check.h) so that sampling noise fails no build.
 #pragma once
 
-#include <array>
 #include <span>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "vstcal/core/check.h"
+#include "vstcal/errsim/outputs.h"
 #include "vstcal/sensitivity/rise_check.h"
 
 namespace vstcal {
 
-// The measures checked at every test point: those of vstcal/err-sim-report@3 (@2 alike) that carry a standard
-// error — each stats object's mean (with mean_standard_error) and each eye's wrong-occlusion rate
-// (with standard_error). Left out: the signed depth means (a bias of either sign; depth_abs is
-// checked), and RMS, percentiles, maxima and the totals, which the report gives without one.
-inline constexpr std::array<std::string_view, 12> kCheckedMeasures = {
-    "image.left.pixel_px",         "image.right.pixel_px",      "misregistration.linear",
-    "misregistration.lateral",     "misregistration.depth_abs", "misregistration.angular_deg",
-    "misperception.linear",        "misperception.lateral",     "misperception.depth_abs",
-    "misperception.angular_deg",   "occlusion.left.wrong_rate", "occlusion.right.wrong_rate"};
+// The measures checked at every test point, in kMeasures' order (its `checked` column): those of
+// vstcal/err-sim-report@3 (@2 alike) that carry a standard error and for which a rise is worse —
+// each stats object's mean (with mean_standard_error) and each eye's wrong-occlusion rate (with
+// standard_error). Left out: the signed depth means (a bias of either sign; depth_abs is checked),
+// and RMS, percentiles, maxima and the totals, which the report gives without one.
+struct CheckedMeasure {
+  ErrorMeasure measure;
+  int eye = 0;       // of a per-eye measure
+  std::string name;  // SummaryName: "image.left.pixel_px", "occlusion.left.wrong_rate"
+};
+const std::vector<CheckedMeasure>& CheckedMeasures();
 
 // One metric of a report: a test point's measure, the estimate and its Monte Carlo standard error.
 struct MonteCarloMetric {
   std::string point;
-  std::string measure;  // one of kCheckedMeasures
+  std::string measure;  // a CheckedMeasures() name
   double value = 0;
   double standard_error = 0;
   std::string name() const { return point + "." + measure; }

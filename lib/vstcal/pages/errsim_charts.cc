@@ -23,9 +23,9 @@ std::string QuantileBarsScript(const std::vector<QuantileBar>& bars, const std::
   bool any = false;
   for (size_t i = 0; i < bars.size(); ++i) {
     const OrderedJson& st = *bars[i].stats;
-    any = any || Datum(st, "max") != "NaN";
-    s += std::to_string(i) + " " + GnuplotQuoted(bars[i].label) + " " + Datum(st, "p50") + " " + Datum(st, "p95") + " " +
-         Datum(st, "p99") + " " + Datum(st, "mean") + " " + Datum(st, "max") + " " +
+    any = any || Datum(st, report_key::kMax) != "NaN";
+    s += std::to_string(i) + " " + GnuplotQuoted(bars[i].label) + " " + Datum(st, report_key::kP50) + " " + Datum(st, report_key::kP95) + " " +
+         Datum(st, report_key::kP99) + " " + Datum(st, report_key::kMean) + " " + Datum(st, report_key::kMax) + " " +
          std::to_string(std::stoul(ChartColour(bars[i].colour) + 1, nullptr, 16)) + "\n";  // "#rrggbb" as 0xrrggbb
   }
   if (!any) return "";  // gnuplot refuses a plot of no point
@@ -40,7 +40,7 @@ std::string QuantileBarsScript(const std::vector<QuantileBar>& bars, const std::
 }
 
 std::string BudgetScript(const OrderedJson& report, Total total) {
-  const OrderedJson& budget = report.at("budget");
+  const OrderedJson& budget = report.at(report_key::kBudget);
   if (budget.is_null()) return "";
   // The image misregistration is in px, the 3-D measures in the length unit.
   const bool image = Declaration(total).unit == OutputUnit::kPixel;
@@ -48,21 +48,21 @@ std::string BudgetScript(const OrderedJson& report, Total total) {
   std::string s = SvgChartHeader(900, 380);
   s += "$b << EOD\n";
   bool any = false;
-  for (const auto& source : budget.at("ranking").at(measure)) {
-    for (const auto& e : budget.at("entries")) {
-      if (e.at("source") != source) continue;
-      any = any || Datum(e.at("alone"), rms.c_str()) != "NaN" || Datum(e.at("halved"), rms.c_str()) != "NaN";
-      s += GnuplotQuoted(source.get<std::string>()) + " " + Datum(e.at("alone"), rms.c_str()) + " " +
-           Datum(e.at("halved"), rms.c_str()) + "\n";
+  for (const auto& source : budget.at(report_key::kRanking).at(measure)) {
+    for (const auto& e : budget.at(report_key::kEntries)) {
+      if (e.at(report_key::kSource) != source) continue;
+      any = any || Datum(e.at(report_key::kAlone), rms.c_str()) != "NaN" || Datum(e.at(report_key::kHalved), rms.c_str()) != "NaN";
+      s += GnuplotQuoted(source.get<std::string>()) + " " + Datum(e.at(report_key::kAlone), rms.c_str()) + " " +
+           Datum(e.at(report_key::kHalved), rms.c_str()) + "\n";
     }
   }
   if (!any) return "";
-  const std::string unit = image ? std::string("px") : report.at("length_unit").get<std::string>();
+  const std::string unit = image ? std::string("px") : report.at(report_key::kLengthUnit).get<std::string>();
   s += "EOD\nset style data histograms\nset style histogram clustered gap 1\nset style fill solid 0.85 border -1\n"
        "set ylabel " + GnuplotQuoted((image ? std::string("image misregistration") : measure) + " RMS (" + unit + ")") + "\nset yrange [0:*]\nset xtics rotate by -30 noenhanced\n";
   s += "plot $b using 2:xtic(1) lc rgb \"" + std::string(ChartColour(0)) + "\" title \"this source alone\", "
        "$b using 3 lc rgb \"" + ChartColour(4) + "\" title \"whole chain, this source halved\", " +
-       Datum(report.at("totals"), rms.c_str()) + " with lines lw 2 dt 2 lc rgb \"black\" title \"whole chain\"\n";
+       Datum(report.at(report_key::kTotals), rms.c_str()) + " with lines lw 2 dt 2 lc rgb \"black\" title \"whole chain\"\n";
   return s;
 }
 

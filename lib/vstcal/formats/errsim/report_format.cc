@@ -20,16 +20,16 @@ constexpr double kDeg = 180.0 / kPi;
 OrderedJson StatsToJson(const OutputStatistics& s) {
   if (s.count == 0) return nullptr;
   OrderedJson j;
-  j["mean"] = NumberOrNull(s.mean);
-  j["rms"] = NumberOrNull(s.rms);
-  j["standard_deviation"] = NumberOrNull(s.standard_deviation);
-  j["mean_standard_error"] = NumberOrNull(s.mean_standard_error);
-  j["max"] = NumberOrNull(s.max);
+  j[report_key::kMean] = NumberOrNull(s.mean);
+  j[report_key::kRms] = NumberOrNull(s.rms);
+  j[report_key::kStandardDeviation] = NumberOrNull(s.standard_deviation);
+  j[report_key::kMeanStandardError] = NumberOrNull(s.mean_standard_error);
+  j[report_key::kMax] = NumberOrNull(s.max);
   if (s.has_percentiles) {
-    j["p50"] = NumberOrNull(s.p50.value);
-    j["p95"] = NumberOrNull(s.p95.value);
-    j["p99"] = NumberOrNull(s.p99.value);
-    if (!s.p50.in_range || !s.p95.in_range || !s.p99.in_range) j["percentiles_out_of_range"] = true;
+    j[report_key::kP50] = NumberOrNull(s.p50.value);
+    j[report_key::kP95] = NumberOrNull(s.p95.value);
+    j[report_key::kP99] = NumberOrNull(s.p99.value);
+    if (!s.p50.in_range || !s.p95.in_range || !s.p99.in_range) j[report_key::kPercentilesOutOfRange] = true;
   }
   return j;
 }
@@ -37,7 +37,7 @@ OrderedJson StatsToJson(const OutputStatistics& s) {
 OrderedJson RateToJson(ErrorMeasure m, const OutputStatistics& s) {
   if (s.count == 0) return nullptr;
   // A rate p from N decisions: standard error √(p(1 − p)/N).
-  return {{RateKey(m), s.mean}, {"standard_error", std::sqrt(s.mean * (1 - s.mean) / static_cast<double>(s.count))}};
+  return {{RateKey(m), s.mean}, {report_key::kStandardError, std::sqrt(s.mean * (1 - s.mean) / static_cast<double>(s.count))}};
 }
 
 OrderedJson TotalsToJson(const ScenarioTotals& t) {
@@ -118,11 +118,11 @@ std::vector<std::string> PercentsAddingUp(const std::vector<double>& shares) {
 }
 
 OrderedJson WholeToJson(const WholeOfMeasure& w) {
-  return {{"mean_square", NumberOrNull(w.mean_square)},
-          {"parts_mean_square", NumberOrNull(w.parts_mean_square)},
-          {"remainder_mean_square", NumberOrNull(w.remainder_mean_square)},
-          {"remainder_share", NumberOrNull(w.remainder_share)},
-          {"none", w.none}};
+  return {{report_key::kMeanSquare, NumberOrNull(w.mean_square)},
+          {report_key::kPartsMeanSquare, NumberOrNull(w.parts_mean_square)},
+          {report_key::kRemainderMeanSquare, NumberOrNull(w.remainder_mean_square)},
+          {report_key::kRemainderShare, NumberOrNull(w.remainder_share)},
+          {report_key::kNone, w.none}};
 }
 
 // [{"kind": "measured", "file", "format"} | {"kind": "assumed"}, …] (docs/formats.md#err-sim-report).
@@ -130,9 +130,9 @@ OrderedJson OriginsToJson(const std::vector<DistributionOrigin>& origins) {
   OrderedJson list = OrderedJson::array();
   for (const DistributionOrigin& o : origins) {
     if (o.measured()) {
-      list.push_back({{"kind", "measured"}, {"file", o.file}, {"format", o.format}});
+      list.push_back({{report_key::kKind, report_key::kMeasured}, {report_key::kFile, o.file}, {report_key::kOriginFormat, o.format}});
     } else {
-      list.push_back({{"kind", "assumed"}});
+      list.push_back({{report_key::kKind, report_key::kAssumed}});
     }
   }
   return list;
@@ -158,29 +158,29 @@ OrderedJson ReportToJson(const ChainEvaluator& chain, const SimulationResult& re
   const ErrorOutputs outputs(model);
   const auto stats = all.AllStatistics();
   OrderedJson j;
-  j["format"] = kReportFormat;
-  j["chain"] = run.chain_path;
-  j["chain_digest"] = run.digest;
-  j["length_unit"] = LengthUnitName(model.geometry.length_unit);
-  j["samples"] = run.options.samples;
-  j["budget_samples"] = run.options.budget ? OrderedJson(run.options.budget_samples) : OrderedJson(nullptr);
-  j["seed"] = run.options.seed;
+  j[report_key::kFormat] = kReportFormat;
+  j[report_key::kChain] = run.chain_path;
+  j[report_key::kChainDigest] = run.digest;
+  j[report_key::kLengthUnit] = LengthUnitName(model.geometry.length_unit);
+  j[report_key::kSamples] = run.options.samples;
+  j[report_key::kBudgetSamples] = run.options.budget ? OrderedJson(run.options.budget_samples) : OrderedJson(nullptr);
+  j[report_key::kSeed] = run.options.seed;
   OrderedJson active = OrderedJson::array();
   for (int s = 0; s < kNumSources; ++s) {
     if (model.SourceActive(static_cast<Source>(s))) active.push_back(kSourceKeys[s]);
   }
-  j["sources"] = {{"active", active}, {"only", run.only}, {"without", run.without}};
-  j["undefined_samples"] = all.undefined_samples();
+  j[report_key::kSources] = {{report_key::kActive, active}, {report_key::kOnly, run.only}, {report_key::kWithout, run.without}};
+  j[report_key::kUndefinedSamples] = all.undefined_samples();
 
   OrderedJson points = OrderedJson::array();
   for (size_t k = 0; k < outputs.num_points(); ++k) {
     const ChainTestPoint& tp = model.geometry.test_points[k];
     const uint64_t defined = stats[outputs.offset(k)].count;
     OrderedJson p;
-    p["name"] = tp.name;
-    p["world"] = MatrixToJson(tp.point_in_world);
-    p["undefined"] = {{"samples", run.options.samples - defined},
-                      {"rate", static_cast<double>(run.options.samples - defined) / static_cast<double>(run.options.samples)}};
+    p[report_key::kName] = tp.name;
+    p[report_key::kWorld] = MatrixToJson(tp.point_in_world);
+    p[report_key::kUndefined] = {{report_key::kSamples, run.options.samples - defined},
+                      {report_key::kRate, static_cast<double>(run.options.samples - defined) / static_cast<double>(run.options.samples)}};
     // The misperception's group starts with the error-free chain's systematic part, named as the
     // sampled terms; the occlusion's with the surface behind the point.
     auto start = [&](ErrorMeasure m) {
@@ -188,49 +188,49 @@ OrderedJson ReportToJson(const ChainEvaluator& chain, const SimulationResult& re
       const auto name = [](ErrorMeasure term) { return std::string(Declaration(term).name); };
       if (Declaration(m).group == Declaration(ErrorMeasure::kMisperceptionLinear).group) {
         const Systematic& systematic = chain.systematic(k);
-        group["systematic"] = {{"offset", MatrixToJson(systematic.offset)},
+        group[report_key::kSystematic] = {{report_key::kOffset, MatrixToJson(systematic.offset)},
                                {name(ErrorMeasure::kMisperceptionLinear), systematic.error.linear},
                                {name(ErrorMeasure::kMisperceptionLateral), systematic.error.lateral},
                                {name(ErrorMeasure::kMisperceptionDepth), systematic.error.depth},
                                {name(ErrorMeasure::kMisperceptionAngular), kDeg * systematic.error.angular}};
       }
-      if (Declaration(m).needs_surface) group["surface_behind"] = *tp.surface_behind;
+      if (Declaration(m).needs_surface) group[report_key::kSurfaceBehind] = *tp.surface_behind;
       return group;
     };
     MeasuresToJson(outputs, stats, k, start, &p);
     points.push_back(std::move(p));
   }
-  j["test_points"] = std::move(points);
+  j[report_key::kTestPoints] = std::move(points);
   OrderedJson totals = TotalsToJson(Totals(model, all, OutputSet::kFull));
   totals[std::string(kSystematicMisperceptionKey)] = SystematicMisperceptionRms(chain);
-  j["totals"] = std::move(totals);
+  j[report_key::kTotals] = std::move(totals);
 
   if (run.options.budget) {
     const ErrorBudget budget = Budget(model, result);
     OrderedJson entries = OrderedJson::array();
     for (const BudgetEntry& e : budget.entries) {
       OrderedJson b;
-      b["source"] = SourceKey(e.source);
+      b[report_key::kSource] = SourceKey(e.source);
       b[ShareKey(Total::kMisregistration)] = NumberOrNull(e.share_of_misregistration_ms);
       b[ShareKey(Total::kImage)] = NumberOrNull(e.share_of_image_ms);
       b[ShareKey(Total::kMisperception)] = NumberOrNull(e.share_of_misperception_ms);
-      b["alone"] = TotalsToJson(e.alone);
-      b["halved"] = TotalsToJson(e.halved);
-      b["correction"] = SourceCorrection(e.source);
+      b[report_key::kAlone] = TotalsToJson(e.alone);
+      b[report_key::kHalved] = TotalsToJson(e.halved);
+      b[report_key::kCorrection] = SourceCorrection(e.source);
       OrderedJson terms = OrderedJson::array();
       for (const TermPart& t : e.terms) {
-        terms.push_back({{"term", t.name},
+        terms.push_back({{report_key::kTerm, t.name},
                          {ShareKey(Total::kMisregistration), NumberOrNull(t.share_of_misregistration_ms)},
                          {ShareKey(Total::kImage), NumberOrNull(t.share_of_image_ms)},
                          {ShareKey(Total::kMisperception), NumberOrNull(t.share_of_misperception_ms)},
-                         {"alone", TotalsToJson(t.alone)},
-                         {"origin", OriginsToJson(t.origins)}});
+                         {report_key::kAlone, TotalsToJson(t.alone)},
+                         {report_key::kOrigin, OriginsToJson(t.origins)}});
       }
-      b["terms"] = std::move(terms);
-      b["dominant_term"] = {{BudgetMeasureKey(Total::kImage), e.terms[DominantTerm(e, &TermPart::share_of_image_ms)].name},
+      b[report_key::kTerms] = std::move(terms);
+      b[report_key::kDominantTerm] = {{BudgetMeasureKey(Total::kImage), e.terms[DominantTerm(e, &TermPart::share_of_image_ms)].name},
                             {BudgetMeasureKey(Total::kMisregistration), e.terms[DominantTerm(e, &TermPart::share_of_misregistration_ms)].name},
                             {BudgetMeasureKey(Total::kMisperception), e.terms[DominantTerm(e, &TermPart::share_of_misperception_ms)].name}};
-      b["origin"] = OriginsToJson(e.origins);
+      b[report_key::kOrigin] = OriginsToJson(e.origins);
       entries.push_back(std::move(b));
     }
     auto ranking = [&](const std::vector<size_t>& order) {
@@ -238,20 +238,20 @@ OrderedJson ReportToJson(const ChainEvaluator& chain, const SimulationResult& re
       for (const size_t i : order) list.push_back(SourceKey(budget.entries[i].source));
       return list;
     };
-    j["budget"] = {{"samples", run.options.budget_samples},
-                   {"whole", {{BudgetMeasureKey(Total::kImage), WholeToJson(budget.image)},
+    j[report_key::kBudget] = {{report_key::kSamples, run.options.budget_samples},
+                   {report_key::kWhole, {{BudgetMeasureKey(Total::kImage), WholeToJson(budget.image)},
                               {BudgetMeasureKey(Total::kMisregistration), WholeToJson(budget.misregistration)},
                               {BudgetMeasureKey(Total::kMisperception), WholeToJson(budget.misperception)}}},
                    // The default ranking is by what the user sees (issue 21 item 3); the others beside it.
-                   {"ranked_by", BudgetMeasureKey(Total::kImage)},
-                   {"ranking", {{BudgetMeasureKey(Total::kImage), ranking(budget.by_image)},
+                   {report_key::kRankedBy, BudgetMeasureKey(Total::kImage)},
+                   {report_key::kRanking, {{BudgetMeasureKey(Total::kImage), ranking(budget.by_image)},
                                 {BudgetMeasureKey(Total::kMisregistration), ranking(budget.by_misregistration)},
                                 {BudgetMeasureKey(Total::kMisperception), ranking(budget.by_misperception)}}},
-                   {"entries", std::move(entries)}};
+                   {report_key::kEntries, std::move(entries)}};
   } else {
-    j["budget"] = nullptr;
+    j[report_key::kBudget] = nullptr;
   }
-  j["provenance"] = ProvenanceToJson(provenance);
+  j[report_key::kProvenance] = ProvenanceToJson(provenance);
   return j;
 }
 

@@ -4,6 +4,7 @@
 // them there, so no key is spelled twice.
 #pragma once
 
+#include <initializer_list>
 #include <string>
 #include <string_view>
 
@@ -23,7 +24,7 @@ inline std::string MeasurePointer(ErrorMeasure m, int eye = 0) {
 }
 
 // The key of a decision's rate in its rate object: "<name>_rate" ("wrong_rate").
-inline std::string RateKey(ErrorMeasure m) { return std::string(Declaration(m).name).append("_rate"); }
+inline std::string RateKey(ErrorMeasure m) { return std::string(Declaration(m).name).append(kRateSuffix); }
 
 // A total's key ("image_rms_px"), and the key of a budget row's share of its measure's mean square
 // ("share_of_image_ms").
@@ -33,5 +34,83 @@ inline std::string ShareKey(Total t) { return std::string("share_of_").append(De
 inline std::string BudgetMeasureKey(Total t) { return std::string(Declaration(t).measure); }
 // Under "totals" beside kTotals: the error-free chain's misperception (errsim/budget.h).
 inline constexpr std::string_view kSystematicMisperceptionKey = "systematic_misperception_rms";
+
+// The report's own keys, beside the outputs' above (docs/formats.md#err-sim-report): the writer
+// (report_format.cc) puts them there and the readers (report_reader.cc, pages/errsim_*.cc) find
+// them there.
+namespace report_key {
+// The document.
+inline constexpr char kFormat[] = "format";
+inline constexpr char kChain[] = "chain";
+inline constexpr char kChainDigest[] = "chain_digest";
+inline constexpr char kLengthUnit[] = "length_unit";
+inline constexpr char kSamples[] = "samples";  // also the budget's samples a scenario, and a point's undefined samples
+inline constexpr char kBudgetSamples[] = "budget_samples";
+inline constexpr char kSeed[] = "seed";
+inline constexpr char kSources[] = "sources";  // {active, only, without}: source keys
+inline constexpr char kActive[] = "active";
+inline constexpr char kOnly[] = "only";
+inline constexpr char kWithout[] = "without";
+inline constexpr char kUndefinedSamples[] = "undefined_samples";
+inline constexpr char kTestPoints[] = "test_points";
+inline constexpr char kTotals[] = "totals";  // kTotals' keys and kSystematicMisperceptionKey
+inline constexpr char kBudget[] = "budget";  // null when no budget was asked for
+inline constexpr char kProvenance[] = "provenance";
+// A test point: its name, where it is, its undefined samples {samples, rate}, and its measures at
+// MeasurePointer; the misperception's group starts with the systematic part {offset, <terms>},
+// the occlusion's with its surface_behind.
+inline constexpr char kName[] = "name";
+inline constexpr char kWorld[] = "world";
+inline constexpr char kUndefined[] = "undefined";
+inline constexpr char kRate[] = "rate";
+inline constexpr char kSystematic[] = "systematic";
+inline constexpr char kOffset[] = "offset";
+inline constexpr char kSurfaceBehind[] = "surface_behind";
+// A measure's statistics object (null with no defined sample); the percentiles only for a headline
+// measure. A decision's rate object is {RateKey, standard_error}.
+inline constexpr char kMean[] = "mean";
+inline constexpr char kRms[] = "rms";
+inline constexpr char kStandardDeviation[] = "standard_deviation";
+inline constexpr char kMeanStandardError[] = "mean_standard_error";
+inline constexpr char kMax[] = "max";
+inline constexpr char kP50[] = "p50";
+inline constexpr char kP95[] = "p95";
+inline constexpr char kP99[] = "p99";
+inline constexpr char kPercentilesOutOfRange[] = "percentiles_out_of_range";
+inline constexpr char kStandardError[] = "standard_error";
+// The budget: {samples, whole, ranked_by, ranking, entries}. whole and ranking are keyed by
+// BudgetMeasureKey; an entry is {source, ShareKey…, alone, halved, correction, terms, dominant_term,
+// origin}, a term {term, ShareKey…, alone, origin}; alone and halved hold kTotals' keys.
+inline constexpr char kWhole[] = "whole";
+inline constexpr char kMeanSquare[] = "mean_square";
+inline constexpr char kPartsMeanSquare[] = "parts_mean_square";
+inline constexpr char kRemainderMeanSquare[] = "remainder_mean_square";
+inline constexpr char kRemainderShare[] = "remainder_share";
+inline constexpr char kNone[] = "none";
+inline constexpr char kRankedBy[] = "ranked_by";
+inline constexpr char kRanking[] = "ranking";
+inline constexpr char kEntries[] = "entries";
+inline constexpr char kSource[] = "source";
+inline constexpr char kAlone[] = "alone";
+inline constexpr char kHalved[] = "halved";
+inline constexpr char kCorrection[] = "correction";
+inline constexpr char kTerms[] = "terms";
+inline constexpr char kTerm[] = "term";
+inline constexpr char kDominantTerm[] = "dominant_term";
+// Where a distribution came from: [{kind: "measured", file, format} | {kind: "assumed"}, …].
+inline constexpr char kOrigin[] = "origin";
+inline constexpr char kKind[] = "kind";
+inline constexpr char kMeasured[] = "measured";
+inline constexpr char kAssumed[] = "assumed";
+inline constexpr char kFile[] = "file";
+inline constexpr char kOriginFormat[] = "format";
+}  // namespace report_key
+
+// "/a/b/3": a JSON pointer into the report from its keys (and array indices as text).
+inline std::string ReportPointer(std::initializer_list<std::string_view> parts) {
+  std::string pointer;
+  for (const std::string_view part : parts) pointer.append("/").append(part);
+  return pointer;
+}
 
 }  // namespace vstcal

@@ -2,6 +2,7 @@
 
 #include "vstcal/errsim/sources.h"
 #include "vstcal/formats/errsim/report_format.h"
+#include "vstcal/formats/errsim/report_keys.h"
 #include "vstcal/json/format_check.h"
 
 namespace vstcal {
@@ -14,12 +15,13 @@ uint64_t Count(const JsonNode& n) {
   return n.json().get<uint64_t>();
 }
 
-// Follows a dotted measure ("image.left.pixel_px") from a test point; nullopt at a null on the way.
-std::optional<JsonNode> Follow(JsonNode node, std::string_view path) {
-  while (!path.empty()) {
-    const size_t dot = path.find('.');
-    const std::string key(path.substr(0, dot));
-    path = dot == std::string_view::npos ? std::string_view() : path.substr(dot + 1);
+// Follows a JSON pointer relative to a test point ("image/left/pixel_px"); nullopt at a null on
+// the way (a statistic with no defined sample, or an occlusion at a point without a surface).
+std::optional<JsonNode> Follow(JsonNode node, std::string_view pointer) {
+  while (!pointer.empty()) {
+    const size_t slash = pointer.find('/');
+    const std::string key(pointer.substr(0, slash));
+    pointer = slash == std::string_view::npos ? std::string_view() : pointer.substr(slash + 1);
     if (node.json().is_null()) return std::nullopt;
     node = node.at(key);
   }
@@ -39,40 +41,37 @@ ReportForCheck ReadReportForCheck(const JsonDocument& document) {
   root.ExpectObject();
   // Version 2 differs only in its budget, which check does not read: an accepted report kept
   // in a repository stays usable.
-  if (root.at("format").json() != kReportFormatV2) CheckFormat(root, kReportFormat);
+  if (root.at(report_key::kFormat).json() != kReportFormatV2) CheckFormat(root, kReportFormat);
   ReportForCheck r;
-  r.chain = root.at("chain").String();
-  r.chain_digest = root.at("chain_digest").String();
-  r.length_unit = root.at("length_unit").String();
-  r.samples = Count(root.at("samples"));
-  if (r.samples == 0) root.at("samples").Fail("is 0", kRegenerate);
-  r.seed = Count(root.at("seed"));
-  const JsonNode sources = root.at("sources");
-  for (const char* key : {"only", "without"}) {
+  r.chain = root.at(report_key::kChain).String();
+  r.chain_digest = root.at(report_key::kChainDigest).String();
+  r.length_unit = root.at(report_key::kLengthUnit).String();
+  r.samples = Count(root.at(report_key::kSamples));
+  if (r.samples == 0) root.at(report_key::kSamples).Fail("is 0", kRegenerate);
+  r.seed = Count(root.at(report_key::kSeed));
+  const JsonNode sources = root.at(report_key::kSources);
+  for (const char* key : {report_key::kOnly, report_key::kWithout}) {
     const JsonNode list = sources.at(key);
-    std::vector<std::string>& out = std::string_view(key) == "only" ? r.only : r.without;
+    std::vector<std::string>& out = std::string_view(key) == report_key::kOnly ? r.only : r.without;
     for (size_t i = 0; i < list.ArraySize(); ++i) {
       out.push_back(list.at(i).String());
       if (!SourceFromKey(out.back())) list.at(i).Fail("unknown error source \"" + out.back() + "\"", kRegenerate);
     }
   }
-  const JsonNode points = root.at("test_points");
+  const JsonNode points = root.at(report_key::kTestPoints);
   for (size_t k = 0; k < points.ArraySize(); ++k) {
     const JsonNode point = points.at(k);
-    const std::string name = point.at("name").String();
-    for (const std::string_view measure : kCheckedMeasures) {
-      const bool rate = measure.starts_with("occlusion.");
-      // "occlusion.left.wrong_rate" is {wrong_rate, standard_error} under occlusion.left.
-      const std::string_view object = rate ? measure.substr(0, measure.rfind('.')) : measure;
-      const std::optional<JsonNode> stats = Follow(point, object);
+    const std::string name = point.at(report_key::kName).String();
+    for (const CheckedMeasure& checked : CheckedMeasures()) {
+      const std::optional<JsonNode> stats = Follow(point, MeasurePointer(checked.measure, checked.eye));
       if (!stats) continue;
-      MonteCarloMetric m{name, std::string(measure), 0, 0};
-      if (rate) {
-        m.value = stats->at("wrong_rate").NonNegativeNumber();
-        m.standard_error = StandardError(stats->at("standard_error"));
+      MonteCarloMetric m{name, checked.name, 0, 0};
+      if (Declaration(checked.measure).unit == OutputUnit::kDecision) {
+        m.value = stats->at(RateKey(checked.measure)).NonNegativeNumber();
+        m.standard_error = StandardError(stats->at(report_key::kStandardError));
       } else {
-        m.value = stats->at("mean").Number();
-        m.standard_error = StandardError(stats->at("mean_standard_error"));
+        m.value = stats->at(report_key::kMean).Number();
+        m.standard_error = StandardError(stats->at(report_key::kMeanStandardError));
       }
       r.metrics.push_back(std::move(m));
     }
