@@ -23,9 +23,9 @@ std::string QuantileBarsScript(const std::vector<QuantileBar>& bars, const std::
   bool any = false;
   for (size_t i = 0; i < bars.size(); ++i) {
     const OrderedJson& st = *bars[i].stats;
-    any = any || Datum(st, report_key::kMax) != "NaN";
-    s += std::to_string(i) + " " + GnuplotQuoted(bars[i].label) + " " + Datum(st, report_key::kP50) + " " + Datum(st, report_key::kP95) + " " +
-         Datum(st, report_key::kP99) + " " + Datum(st, report_key::kMean) + " " + Datum(st, report_key::kMax) + " " +
+    any = any || Datum(st, errsim_key::kMax) != "NaN";
+    s += std::to_string(i) + " " + GnuplotQuoted(bars[i].label) + " " + Datum(st, errsim_key::kP50) + " " + Datum(st, errsim_key::kP95) + " " +
+         Datum(st, errsim_key::kP99) + " " + Datum(st, errsim_key::kMean) + " " + Datum(st, errsim_key::kMax) + " " +
          std::to_string(std::stoul(ChartColour(bars[i].colour) + 1, nullptr, 16)) + "\n";  // "#rrggbb" as 0xrrggbb
   }
   if (!any) return "";  // gnuplot refuses a plot of no point
@@ -40,7 +40,7 @@ std::string QuantileBarsScript(const std::vector<QuantileBar>& bars, const std::
 }
 
 std::string BudgetScript(const OrderedJson& report, Total total) {
-  const OrderedJson& budget = report.at(report_key::kBudget);
+  const OrderedJson& budget = report.at(errsim_key::kBudget);
   if (budget.is_null()) return "";
   // The image misregistration is in px, the 3-D measures in the length unit.
   const bool image = Declaration(total).unit == OutputUnit::kPixel;
@@ -48,21 +48,21 @@ std::string BudgetScript(const OrderedJson& report, Total total) {
   std::string s = SvgChartHeader(900, 380);
   s += "$b << EOD\n";
   bool any = false;
-  for (const auto& source : budget.at(report_key::kRanking).at(measure)) {
-    for (const auto& e : budget.at(report_key::kEntries)) {
-      if (e.at(report_key::kSource) != source) continue;
-      any = any || Datum(e.at(report_key::kAlone), rms.c_str()) != "NaN" || Datum(e.at(report_key::kHalved), rms.c_str()) != "NaN";
-      s += GnuplotQuoted(source.get<std::string>()) + " " + Datum(e.at(report_key::kAlone), rms.c_str()) + " " +
-           Datum(e.at(report_key::kHalved), rms.c_str()) + "\n";
+  for (const auto& source : budget.at(errsim_key::kRanking).at(measure)) {
+    for (const auto& e : budget.at(errsim_key::kEntries)) {
+      if (e.at(errsim_key::kSource) != source) continue;
+      any = any || Datum(e.at(errsim_key::kAlone), rms.c_str()) != "NaN" || Datum(e.at(errsim_key::kHalved), rms.c_str()) != "NaN";
+      s += GnuplotQuoted(source.get<std::string>()) + " " + Datum(e.at(errsim_key::kAlone), rms.c_str()) + " " +
+           Datum(e.at(errsim_key::kHalved), rms.c_str()) + "\n";
     }
   }
   if (!any) return "";
-  const std::string unit = image ? std::string("px") : report.at(report_key::kLengthUnit).get<std::string>();
+  const std::string unit = image ? std::string("px") : report.at(errsim_key::kLengthUnit).get<std::string>();
   s += "EOD\nset style data histograms\nset style histogram clustered gap 1\nset style fill solid 0.85 border -1\n"
        "set ylabel " + GnuplotQuoted((image ? std::string("image misregistration") : measure) + " RMS (" + unit + ")") + "\nset yrange [0:*]\nset xtics rotate by -30 noenhanced\n";
   s += "plot $b using 2:xtic(1) lc rgb \"" + std::string(ChartColour(0)) + "\" title \"this source alone\", "
        "$b using 3 lc rgb \"" + ChartColour(4) + "\" title \"whole chain, this source halved\", " +
-       Datum(report.at(report_key::kTotals), rms.c_str()) + " with lines lw 2 dt 2 lc rgb \"black\" title \"whole chain\"\n";
+       Datum(report.at(errsim_key::kTotals), rms.c_str()) + " with lines lw 2 dt 2 lc rgb \"black\" title \"whole chain\"\n";
   return s;
 }
 
@@ -70,9 +70,9 @@ std::string SweepCurvesScript(const OrderedJson& sweep, const std::string& sourc
   std::string data, plot;
   size_t lines = 0;
   bool any = false;
-  for (const auto& p : sweep.at("parameters")) {
-    if (p.at("source") != source) continue;
-    const auto& values = p.at("values");
+  for (const auto& p : sweep.at(errsim_key::kParameters)) {
+    if (p.at(errsim_key::kSource) != source) continue;
+    const auto& values = p.at(errsim_key::kValues);
     const auto& ys = p.at(TotalKey(total));
     const double lo = values.front().get<double>(), hi = values.back().get<double>();
     const std::string block = "$s" + std::to_string(lines);
@@ -84,7 +84,7 @@ std::string SweepCurvesScript(const OrderedJson& sweep, const std::string& sourc
     }
     data += "EOD\n";
     plot += std::string(lines ? ", " : "plot ") + block + " using 1:2 with linespoints pt 7 ps 0.4 lw 1.5 lc rgb \"" +
-            ChartColour(lines) + "\" dt " + std::to_string(1 + lines / 6) + " title " + GnuplotQuoted(p.at("name").get<std::string>());
+            ChartColour(lines) + "\" dt " + std::to_string(1 + lines / 6) + " title " + GnuplotQuoted(p.at(errsim_key::kName).get<std::string>());
     ++lines;
   }
   if (!any) return "";  // no parameter of the source, or no defined value: gnuplot refuses a plot of no point
@@ -100,9 +100,9 @@ namespace {
 
 // `value` of the index object {value, interval: [lo, hi]} as "value lo hi", NaN where null.
 std::string IndexColumns(const OrderedJson& index) {
-  const auto& interval = index.at("interval");
+  const auto& interval = index.at(errsim_key::kInterval);
   auto number = [](const OrderedJson& v) { return v.is_number() ? ShortestDecimal(v.get<double>()) : std::string("NaN"); };
-  return number(index.at("value")) + " " + number(interval.at(0)) + " " + number(interval.at(1));
+  return number(index.at(errsim_key::kValue)) + " " + number(interval.at(0)) + " " + number(interval.at(1));
 }
 
 // Rotated output names on the x axis, thinned past 40 labels (as QuantileBarsScript).
@@ -116,10 +116,10 @@ std::string SobolIndicesScript(const OrderedJson& sobol_output, const OrderedJso
   std::string data = "$i << EOD\n";
   bool any = false;
   for (const auto& group : groups) {
-    const auto& indices = sobol_output.at("indices").at(group.get<std::string>());
-    any = any || indices.at("first").at("value").is_number() || indices.at("total").at("value").is_number();
-    data += GnuplotQuoted(group.get<std::string>()) + " " + IndexColumns(indices.at("first")) + " " +
-            IndexColumns(indices.at("total")) + "\n";
+    const auto& indices = sobol_output.at(errsim_key::kIndices).at(group.get<std::string>());
+    any = any || indices.at(errsim_key::kFirst).at(errsim_key::kValue).is_number() || indices.at(errsim_key::kTotal).at(errsim_key::kValue).is_number();
+    data += GnuplotQuoted(group.get<std::string>()) + " " + IndexColumns(indices.at(errsim_key::kFirst)) + " " +
+            IndexColumns(indices.at(errsim_key::kTotal)) + "\n";
   }
   if (!any) return "";
   return SvgChartHeader(900, 340) + data +
@@ -130,15 +130,15 @@ std::string SobolIndicesScript(const OrderedJson& sobol_output, const OrderedJso
 }
 
 std::string LinearScatterScript(const OrderedJson& linear, const std::vector<size_t>& indices, const std::string& unit) {
-  const auto& outputs = linear.at("outputs");
+  const auto& outputs = linear.at(errsim_key::kOutputs);
   std::string data = "$p << EOD\n";
   double top = 0;
   for (size_t k : indices) {
     const auto& o = outputs.at(k);
-    if (!o.at("linear_sigma").is_number() || !o.at("monte_carlo_sigma").is_number()) continue;
-    const double x = o.at("linear_sigma").get<double>(), y = o.at("monte_carlo_sigma").get<double>();
+    if (!o.at(errsim_key::kLinearSigma).is_number() || !o.at(errsim_key::kMonteCarloSigma).is_number()) continue;
+    const double x = o.at(errsim_key::kLinearSigma).get<double>(), y = o.at(errsim_key::kMonteCarloSigma).get<double>();
     top = std::max({top, x, y});
-    const bool disagrees = o.at("mean_disagrees").get<bool>() || o.at("sigma_disagrees").get<bool>();
+    const bool disagrees = o.at(errsim_key::kMeanDisagrees).get<bool>() || o.at(errsim_key::kSigmaDisagrees).get<bool>();
     data += ShortestDecimal(x) + " " + ShortestDecimal(y) + " " + (disagrees ? "1" : "0") + "\n";
   }
   if (!(top > 0)) return "";
@@ -153,17 +153,17 @@ std::string LinearScatterScript(const OrderedJson& linear, const std::vector<siz
 }
 
 std::string LinearRelativeDifferenceScript(const OrderedJson& linear, const std::vector<size_t>& indices) {
-  const auto& outputs = linear.at("outputs");
+  const auto& outputs = linear.at(errsim_key::kOutputs);
   std::string data = "$d << EOD\n";
   bool any = false;
   for (size_t i = 0; i < indices.size(); ++i) {
     const auto& o = outputs.at(indices[i]);
-    const auto& d = o.at("sigma_relative_difference");
-    const auto& se = o.at("sigma_standard_error");
-    const auto& mc = o.at("monte_carlo_sigma");
+    const auto& d = o.at(errsim_key::kSigmaRelativeDifference);
+    const auto& se = o.at(errsim_key::kSigmaStandardError);
+    const auto& mc = o.at(errsim_key::kMonteCarloSigma);
     const bool band = se.is_number() && mc.is_number() && mc.get<double>() > 0;
     any = any || d.is_number();
-    data += std::to_string(i) + " " + GnuplotQuoted(o.at("name").get<std::string>()) + " " +
+    data += std::to_string(i) + " " + GnuplotQuoted(o.at(errsim_key::kName).get<std::string>()) + " " +
             (d.is_number() ? ShortestDecimal(100 * d.get<double>()) : "NaN") + " " +
             (band ? ShortestDecimal(300 * se.get<double>() / mc.get<double>()) : "NaN") + "\n";
   }

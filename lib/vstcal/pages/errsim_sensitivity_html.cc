@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "vstcal/errsim/outputs.h"
+#include "vstcal/formats/errsim/report_keys.h"
 #include "vstcal/pages/errsim_charts.h"
 #include "vstcal/pages/errsim_html.h"
 #include "vstcal/pages/errsim_page_parts.h"
@@ -40,7 +41,7 @@ bool InPixels(const std::string& name) {
 
 std::string Filters(const OrderedJson& r) {
   std::string s;
-  for (const char* key : {"only", "without"}) {
+  for (const char* key : {errsim_key::kOnly, errsim_key::kWithout}) {
     if (!r.contains(key) || !r.at(key).is_array() || r.at(key).empty()) continue;
     std::string list;
     for (const auto& v : r.at(key)) list += (list.empty() ? "" : ", ") + v.get<std::string>();
@@ -52,21 +53,21 @@ std::string Filters(const OrderedJson& r) {
 }  // namespace
 
 std::string ErrSimSobolHtml(const OrderedJson& r) {
-  const OrderedJson& groups = r.at("groups");
-  const OrderedJson& outputs = r.at("outputs");
-  std::string s = PageStart("err-sim sobol: " + r.at("chain").get<std::string>());
-  s += "<h1>err-sim sobol: " + Escape(r.at("chain").get<std::string>()) + "</h1>\n<p>Sobol indices of each source (" +
-       Escape(r.at("sampling").get<std::string>()) + " sampling): the first-order index S<sub>i</sub> is the share of an "
+  const OrderedJson& groups = r.at(errsim_key::kGroups);
+  const OrderedJson& outputs = r.at(errsim_key::kOutputs);
+  std::string s = PageStart("err-sim sobol: " + r.at(errsim_key::kChain).get<std::string>());
+  s += "<h1>err-sim sobol: " + Escape(r.at(errsim_key::kChain).get<std::string>()) + "</h1>\n<p>Sobol indices of each source (" +
+       Escape(r.at(errsim_key::kSampling).get<std::string>()) + " sampling): the first-order index S<sub>i</sub> is the share of an "
        "output's variance that source causes alone, the total index S<sub>Ti</sub> its share including its interactions "
        "with the others (docs/tools/err-sim.md). Error bars and intervals: bootstrap over the samples." +
        Filters(r) + "</p>\n";
   s += Table("run", "<th></th><th>value</th>",
-             "<tr><th>samples N</th>" + ValueCell(r, "/samples") + "</tr>\n<tr><th>seed</th>" + ValueCell(r, "/seed") +
-                 "</tr>\n<tr><th>chain evaluations</th>" + ValueCell(r, "/evaluations") + "</tr>\n");
+             "<tr><th>samples N</th>" + ValueCell(r, ReportPointer({errsim_key::kSamples})) + "</tr>\n<tr><th>seed</th>" + ValueCell(r, ReportPointer({errsim_key::kSeed})) +
+                 "</tr>\n<tr><th>chain evaluations</th>" + ValueCell(r, ReportPointer({errsim_key::kEvaluations})) + "</tr>\n");
 
   std::vector<size_t> charted;
   for (size_t k = 0; k < outputs.size(); ++k) {
-    if (Charted(outputs[k].at("name").get<std::string>())) charted.push_back(k);
+    if (Charted(outputs[k].at(errsim_key::kName).get<std::string>())) charted.push_back(k);
   }
   s += "<section><h2>Indices with their bootstrap intervals</h2>\n";
   const size_t drawn = std::min(charted.size(), kMaxSobolCharts);
@@ -75,20 +76,21 @@ std::string ErrSimSobolHtml(const OrderedJson& r) {
          " outputs listed below; the tables hold every one.</p>\n";
   }
   for (size_t i = 0; i < drawn; ++i) {
-    const std::string name = outputs[charted[i]].at("name").get<std::string>();
+    const std::string name = outputs[charted[i]].at(errsim_key::kName).get<std::string>();
     s += ChartOrNote(SobolIndicesScript(outputs[charted[i]], groups), "Sobol indices of " + name,
                      "Sobol indices of " + name + " per source: first order (blue) and total (red), error bars the "
                      "bootstrap intervals.");
   }
   std::string interval_rows;
   for (size_t k : charted) {
-    const std::string name = outputs[k].at("name").get<std::string>();
+    const std::string name = outputs[k].at(errsim_key::kName).get<std::string>();
     for (const auto& group : groups) {
-      const std::string key = "/outputs/" + std::to_string(k) + "/indices/" + group.get<std::string>();
+      const std::string key = ReportPointer({errsim_key::kOutputs, std::to_string(k), errsim_key::kIndices, group.get<std::string>()});
       interval_rows += "<tr><th>" + Name(name) + "</th><th>" + Name(group.get<std::string>()) + "</th>";
-      for (const char* order : {"/first", "/total"}) {
-        interval_rows += ValueCell(r, key + order + "/value") + ValueCell(r, key + order + "/interval/0") +
-                         ValueCell(r, key + order + "/interval/1");
+      for (const char* order : {errsim_key::kFirst, errsim_key::kTotal}) {
+        interval_rows += ValueCell(r, key + ReportPointer({order, errsim_key::kValue})) +
+                         ValueCell(r, key + ReportPointer({order, errsim_key::kInterval, "0"})) +
+                         ValueCell(r, key + ReportPointer({order, errsim_key::kInterval, "1"}));
       }
       interval_rows += "</tr>\n";
     }
@@ -102,13 +104,14 @@ std::string ErrSimSobolHtml(const OrderedJson& r) {
   for (const auto& group : groups) source_heads += "<th>" + Name(group.get<std::string>()) + "</th>";
   std::string first_rows, total_rows;
   for (size_t k = 0; k < outputs.size(); ++k) {
-    const std::string key = "/outputs/" + std::to_string(k), name = "<tr><th>" + Name(outputs[k].at("name").get<std::string>()) + "</th>";
-    first_rows += name + ValueCell(r, key + "/mean") + ValueCell(r, key + "/variance");
+    const std::string key = ReportPointer({errsim_key::kOutputs, std::to_string(k)});
+    const std::string name = "<tr><th>" + Name(outputs[k].at(errsim_key::kName).get<std::string>()) + "</th>";
+    first_rows += name + ValueCell(r, key + ReportPointer({errsim_key::kMean})) + ValueCell(r, key + ReportPointer({errsim_key::kVariance}));
     total_rows += name;
     for (const auto& group : groups) {
-      const std::string index = key + "/indices/" + group.get<std::string>();
-      first_rows += ValueCell(r, index + "/first/value");
-      total_rows += ValueCell(r, index + "/total/value");
+      const std::string index = key + ReportPointer({errsim_key::kIndices, group.get<std::string>()});
+      first_rows += ValueCell(r, index + ReportPointer({errsim_key::kFirst, errsim_key::kValue}));
+      total_rows += ValueCell(r, index + ReportPointer({errsim_key::kTotal, errsim_key::kValue}));
     }
     first_rows += "</tr>\n";
     total_rows += "</tr>\n";
@@ -120,21 +123,21 @@ std::string ErrSimSobolHtml(const OrderedJson& r) {
 }
 
 std::string ErrSimLinearHtml(const OrderedJson& r) {
-  const OrderedJson& outputs = r.at("outputs");
-  const std::string unit = r.at("length_unit").get<std::string>();
-  std::string s = PageStart("err-sim linear: " + r.at("chain").get<std::string>());
-  s += "<h1>err-sim linear: " + Escape(r.at("chain").get<std::string>()) + "</h1>\n<p>First-order propagation "
-       "(σ² = J Σ<sub>θ</sub> J<sup>T</sup>, J by " + Escape(r.at("derivatives").get<std::string>()) +
+  const OrderedJson& outputs = r.at(errsim_key::kOutputs);
+  const std::string unit = r.at(errsim_key::kLengthUnit).get<std::string>();
+  std::string s = PageStart("err-sim linear: " + r.at(errsim_key::kChain).get<std::string>());
+  s += "<h1>err-sim linear: " + Escape(r.at(errsim_key::kChain).get<std::string>()) + "</h1>\n<p>First-order propagation "
+       "(σ² = J Σ<sub>θ</sub> J<sup>T</sup>, J by " + Escape(r.at(errsim_key::kDerivatives).get<std::string>()) +
        ") against Monte Carlo on the same chain, per vector output (pixel errors per eye; misregistration and "
        "misperception in the hmd frame, " + Escape(unit) + "). Where they differ beyond 3 standard errors of the "
        "Monte Carlo estimate, the error is not linear in the sources there." + Filters(r) + "</p>\n";
   s += Table("run", "<th></th><th>value</th>",
-             "<tr><th>Monte Carlo samples</th>" + ValueCell(r, "/samples") + "</tr>\n<tr><th>seed</th>" +
-                 ValueCell(r, "/seed") + "</tr>\n<tr><th>undefined samples</th>" + ValueCell(r, "/undefined_samples") +
-                 "</tr>\n<tr><th>outputs that differ</th>" + ValueCell(r, "/disagreements") + "</tr>\n");
+             "<tr><th>Monte Carlo samples</th>" + ValueCell(r, ReportPointer({errsim_key::kSamples})) + "</tr>\n<tr><th>seed</th>" +
+                 ValueCell(r, ReportPointer({errsim_key::kSeed})) + "</tr>\n<tr><th>undefined samples</th>" + ValueCell(r, ReportPointer({errsim_key::kUndefinedSamples})) +
+                 "</tr>\n<tr><th>outputs that differ</th>" + ValueCell(r, ReportPointer({errsim_key::kDisagreements})) + "</tr>\n");
   std::vector<size_t> pixels, lengths, all;
   for (size_t k = 0; k < outputs.size(); ++k) {
-    (InPixels(outputs[k].at("name").get<std::string>()) ? pixels : lengths).push_back(k);
+    (InPixels(outputs[k].at(errsim_key::kName).get<std::string>()) ? pixels : lengths).push_back(k);
     all.push_back(k);
   }
   s += "<section><h2>Linear against Monte Carlo</h2>\n";
@@ -146,22 +149,24 @@ std::string ErrSimLinearHtml(const OrderedJson& r) {
                    "(linear σ − Monte Carlo σ) / Monte Carlo σ of each output, with ±3 standard errors of the Monte "
                    "Carlo σ: linear σ / MC σ is 1 + this.");
   // The comparison and the σ from each source as two tables, each of which fits the page.
-  const OrderedJson& groups = outputs.empty() ? OrderedJson::object() : outputs[0].at("linear_sigma_by_source");
+  const OrderedJson& groups = outputs.empty() ? OrderedJson::object() : outputs[0].at(errsim_key::kLinearSigmaBySource);
   std::string source_heads = "<th>output</th>";
   for (const auto& [group, value] : groups.items()) source_heads += "<th>" + Name(group) + "</th>";
   std::string rows, source_rows;
   for (size_t k = 0; k < outputs.size(); ++k) {
     const OrderedJson& o = outputs[k];
-    const std::string key = "/outputs/" + std::to_string(k), name = "<tr><th>" + Name(o.at("name").get<std::string>()) + "</th>";
+    const std::string key = ReportPointer({errsim_key::kOutputs, std::to_string(k)});
+    const std::string name = "<tr><th>" + Name(o.at(errsim_key::kName).get<std::string>()) + "</th>";
     rows += name;
-    for (const char* field : {"linear_mean", "monte_carlo_mean", "mean_standard_error", "linear_sigma", "monte_carlo_sigma",
-                              "sigma_standard_error", "sigma_relative_difference"}) {
-      rows += ValueCell(r, key + "/" + field);
+    for (const char* field : {errsim_key::kLinearMean, errsim_key::kMonteCarloMean, errsim_key::kMeanStandardError,
+                              errsim_key::kLinearSigma, errsim_key::kMonteCarloSigma, errsim_key::kSigmaStandardError,
+                              errsim_key::kSigmaRelativeDifference}) {
+      rows += ValueCell(r, key + ReportPointer({field}));
     }
-    const bool mean = o.at("mean_disagrees").get<bool>(), sigma = o.at("sigma_disagrees").get<bool>();
+    const bool mean = o.at(errsim_key::kMeanDisagrees).get<bool>(), sigma = o.at(errsim_key::kSigmaDisagrees).get<bool>();
     rows += std::string("<td>") + (mean && sigma ? "mean, σ" : mean ? "mean" : sigma ? "σ" : "") + "</td></tr>\n";
     source_rows += name;
-    for (const auto& [group, value] : groups.items()) source_rows += ValueCell(r, key + "/linear_sigma_by_source/" + group);
+    for (const auto& [group, value] : groups.items()) source_rows += ValueCell(r, key + ReportPointer({errsim_key::kLinearSigmaBySource, group}));
     source_rows += "</tr>\n";
   }
   const std::string units = "pixel outputs in px, the others in " + unit;

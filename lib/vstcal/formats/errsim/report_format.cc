@@ -20,16 +20,16 @@ constexpr double kDeg = 180.0 / kPi;
 OrderedJson StatsToJson(const OutputStatistics& s) {
   if (s.count == 0) return nullptr;
   OrderedJson j;
-  j[report_key::kMean] = NumberOrNull(s.mean);
-  j[report_key::kRms] = NumberOrNull(s.rms);
-  j[report_key::kStandardDeviation] = NumberOrNull(s.standard_deviation);
-  j[report_key::kMeanStandardError] = NumberOrNull(s.mean_standard_error);
-  j[report_key::kMax] = NumberOrNull(s.max);
+  j[errsim_key::kMean] = NumberOrNull(s.mean);
+  j[errsim_key::kRms] = NumberOrNull(s.rms);
+  j[errsim_key::kStandardDeviation] = NumberOrNull(s.standard_deviation);
+  j[errsim_key::kMeanStandardError] = NumberOrNull(s.mean_standard_error);
+  j[errsim_key::kMax] = NumberOrNull(s.max);
   if (s.has_percentiles) {
-    j[report_key::kP50] = NumberOrNull(s.p50.value);
-    j[report_key::kP95] = NumberOrNull(s.p95.value);
-    j[report_key::kP99] = NumberOrNull(s.p99.value);
-    if (!s.p50.in_range || !s.p95.in_range || !s.p99.in_range) j[report_key::kPercentilesOutOfRange] = true;
+    j[errsim_key::kP50] = NumberOrNull(s.p50.value);
+    j[errsim_key::kP95] = NumberOrNull(s.p95.value);
+    j[errsim_key::kP99] = NumberOrNull(s.p99.value);
+    if (!s.p50.in_range || !s.p95.in_range || !s.p99.in_range) j[errsim_key::kPercentilesOutOfRange] = true;
   }
   return j;
 }
@@ -37,7 +37,7 @@ OrderedJson StatsToJson(const OutputStatistics& s) {
 OrderedJson RateToJson(ErrorMeasure m, const OutputStatistics& s) {
   if (s.count == 0) return nullptr;
   // A rate p from N decisions: standard error √(p(1 − p)/N).
-  return {{RateKey(m), s.mean}, {report_key::kStandardError, std::sqrt(s.mean * (1 - s.mean) / static_cast<double>(s.count))}};
+  return {{RateKey(m), s.mean}, {errsim_key::kStandardError, std::sqrt(s.mean * (1 - s.mean) / static_cast<double>(s.count))}};
 }
 
 OrderedJson TotalsToJson(const ScenarioTotals& t) {
@@ -118,11 +118,11 @@ std::vector<std::string> PercentsAddingUp(const std::vector<double>& shares) {
 }
 
 OrderedJson WholeToJson(const WholeOfMeasure& w) {
-  return {{report_key::kMeanSquare, NumberOrNull(w.mean_square)},
-          {report_key::kPartsMeanSquare, NumberOrNull(w.parts_mean_square)},
-          {report_key::kRemainderMeanSquare, NumberOrNull(w.remainder_mean_square)},
-          {report_key::kRemainderShare, NumberOrNull(w.remainder_share)},
-          {report_key::kNone, w.none}};
+  return {{errsim_key::kMeanSquare, NumberOrNull(w.mean_square)},
+          {errsim_key::kPartsMeanSquare, NumberOrNull(w.parts_mean_square)},
+          {errsim_key::kRemainderMeanSquare, NumberOrNull(w.remainder_mean_square)},
+          {errsim_key::kRemainderShare, NumberOrNull(w.remainder_share)},
+          {errsim_key::kNone, w.none}};
 }
 
 // [{"kind": "measured", "file", "format"} | {"kind": "assumed"}, …] (docs/formats.md#err-sim-report).
@@ -130,9 +130,9 @@ OrderedJson OriginsToJson(const std::vector<DistributionOrigin>& origins) {
   OrderedJson list = OrderedJson::array();
   for (const DistributionOrigin& o : origins) {
     if (o.measured()) {
-      list.push_back({{report_key::kKind, report_key::kMeasured}, {report_key::kFile, o.file}, {report_key::kOriginFormat, o.format}});
+      list.push_back({{errsim_key::kKind, errsim_key::kMeasured}, {errsim_key::kFile, o.file}, {errsim_key::kOriginFormat, o.format}});
     } else {
-      list.push_back({{report_key::kKind, report_key::kAssumed}});
+      list.push_back({{errsim_key::kKind, errsim_key::kAssumed}});
     }
   }
   return list;
@@ -158,29 +158,29 @@ OrderedJson ReportToJson(const ChainEvaluator& chain, const SimulationResult& re
   const ErrorOutputs outputs(model);
   const auto stats = all.AllStatistics();
   OrderedJson j;
-  j[report_key::kFormat] = kReportFormat;
-  j[report_key::kChain] = run.chain_path;
-  j[report_key::kChainDigest] = run.digest;
-  j[report_key::kLengthUnit] = LengthUnitName(model.geometry.length_unit);
-  j[report_key::kSamples] = run.options.samples;
-  j[report_key::kBudgetSamples] = run.options.budget ? OrderedJson(run.options.budget_samples) : OrderedJson(nullptr);
-  j[report_key::kSeed] = run.options.seed;
+  j[errsim_key::kFormat] = kReportFormat;
+  j[errsim_key::kChain] = run.chain_path;
+  j[errsim_key::kChainDigest] = run.digest;
+  j[errsim_key::kLengthUnit] = LengthUnitName(model.geometry.length_unit);
+  j[errsim_key::kSamples] = run.options.samples;
+  j[errsim_key::kBudgetSamples] = run.options.budget ? OrderedJson(run.options.budget_samples) : OrderedJson(nullptr);
+  j[errsim_key::kSeed] = run.options.seed;
   OrderedJson active = OrderedJson::array();
   for (int s = 0; s < kNumSources; ++s) {
     if (model.SourceActive(static_cast<Source>(s))) active.push_back(kSourceKeys[s]);
   }
-  j[report_key::kSources] = {{report_key::kActive, active}, {report_key::kOnly, run.only}, {report_key::kWithout, run.without}};
-  j[report_key::kUndefinedSamples] = all.undefined_samples();
+  j[errsim_key::kSources] = {{errsim_key::kActive, active}, {errsim_key::kOnly, run.only}, {errsim_key::kWithout, run.without}};
+  j[errsim_key::kUndefinedSamples] = all.undefined_samples();
 
   OrderedJson points = OrderedJson::array();
   for (size_t k = 0; k < outputs.num_points(); ++k) {
     const ChainTestPoint& tp = model.geometry.test_points[k];
     const uint64_t defined = stats[outputs.offset(k)].count;
     OrderedJson p;
-    p[report_key::kName] = tp.name;
-    p[report_key::kWorld] = MatrixToJson(tp.point_in_world);
-    p[report_key::kUndefined] = {{report_key::kSamples, run.options.samples - defined},
-                      {report_key::kRate, static_cast<double>(run.options.samples - defined) / static_cast<double>(run.options.samples)}};
+    p[errsim_key::kName] = tp.name;
+    p[errsim_key::kWorld] = MatrixToJson(tp.point_in_world);
+    p[errsim_key::kUndefined] = {{errsim_key::kSamples, run.options.samples - defined},
+                      {errsim_key::kRate, static_cast<double>(run.options.samples - defined) / static_cast<double>(run.options.samples)}};
     // The misperception's group starts with the error-free chain's systematic part, named as the
     // sampled terms; the occlusion's with the surface behind the point.
     auto start = [&](ErrorMeasure m) {
@@ -188,49 +188,49 @@ OrderedJson ReportToJson(const ChainEvaluator& chain, const SimulationResult& re
       const auto name = [](ErrorMeasure term) { return std::string(Declaration(term).name); };
       if (Declaration(m).group == Declaration(ErrorMeasure::kMisperceptionLinear).group) {
         const Systematic& systematic = chain.systematic(k);
-        group[report_key::kSystematic] = {{report_key::kOffset, MatrixToJson(systematic.offset)},
+        group[errsim_key::kSystematic] = {{errsim_key::kOffset, MatrixToJson(systematic.offset)},
                                {name(ErrorMeasure::kMisperceptionLinear), systematic.error.linear},
                                {name(ErrorMeasure::kMisperceptionLateral), systematic.error.lateral},
                                {name(ErrorMeasure::kMisperceptionDepth), systematic.error.depth},
                                {name(ErrorMeasure::kMisperceptionAngular), kDeg * systematic.error.angular}};
       }
-      if (Declaration(m).needs_surface) group[report_key::kSurfaceBehind] = *tp.surface_behind;
+      if (Declaration(m).needs_surface) group[errsim_key::kSurfaceBehind] = *tp.surface_behind;
       return group;
     };
     MeasuresToJson(outputs, stats, k, start, &p);
     points.push_back(std::move(p));
   }
-  j[report_key::kTestPoints] = std::move(points);
+  j[errsim_key::kTestPoints] = std::move(points);
   OrderedJson totals = TotalsToJson(Totals(model, all, OutputSet::kFull));
   totals[std::string(kSystematicMisperceptionKey)] = SystematicMisperceptionRms(chain);
-  j[report_key::kTotals] = std::move(totals);
+  j[errsim_key::kTotals] = std::move(totals);
 
   if (run.options.budget) {
     const ErrorBudget budget = Budget(model, result);
     OrderedJson entries = OrderedJson::array();
     for (const BudgetEntry& e : budget.entries) {
       OrderedJson b;
-      b[report_key::kSource] = SourceKey(e.source);
+      b[errsim_key::kSource] = SourceKey(e.source);
       b[ShareKey(Total::kMisregistration)] = NumberOrNull(e.share_of_misregistration_ms);
       b[ShareKey(Total::kImage)] = NumberOrNull(e.share_of_image_ms);
       b[ShareKey(Total::kMisperception)] = NumberOrNull(e.share_of_misperception_ms);
-      b[report_key::kAlone] = TotalsToJson(e.alone);
-      b[report_key::kHalved] = TotalsToJson(e.halved);
-      b[report_key::kCorrection] = SourceCorrection(e.source);
+      b[errsim_key::kAlone] = TotalsToJson(e.alone);
+      b[errsim_key::kHalved] = TotalsToJson(e.halved);
+      b[errsim_key::kCorrection] = SourceCorrection(e.source);
       OrderedJson terms = OrderedJson::array();
       for (const TermPart& t : e.terms) {
-        terms.push_back({{report_key::kTerm, t.name},
+        terms.push_back({{errsim_key::kTerm, t.name},
                          {ShareKey(Total::kMisregistration), NumberOrNull(t.share_of_misregistration_ms)},
                          {ShareKey(Total::kImage), NumberOrNull(t.share_of_image_ms)},
                          {ShareKey(Total::kMisperception), NumberOrNull(t.share_of_misperception_ms)},
-                         {report_key::kAlone, TotalsToJson(t.alone)},
-                         {report_key::kOrigin, OriginsToJson(t.origins)}});
+                         {errsim_key::kAlone, TotalsToJson(t.alone)},
+                         {errsim_key::kOrigin, OriginsToJson(t.origins)}});
       }
-      b[report_key::kTerms] = std::move(terms);
-      b[report_key::kDominantTerm] = {{BudgetMeasureKey(Total::kImage), e.terms[DominantTerm(e, &TermPart::share_of_image_ms)].name},
+      b[errsim_key::kTerms] = std::move(terms);
+      b[errsim_key::kDominantTerm] = {{BudgetMeasureKey(Total::kImage), e.terms[DominantTerm(e, &TermPart::share_of_image_ms)].name},
                             {BudgetMeasureKey(Total::kMisregistration), e.terms[DominantTerm(e, &TermPart::share_of_misregistration_ms)].name},
                             {BudgetMeasureKey(Total::kMisperception), e.terms[DominantTerm(e, &TermPart::share_of_misperception_ms)].name}};
-      b[report_key::kOrigin] = OriginsToJson(e.origins);
+      b[errsim_key::kOrigin] = OriginsToJson(e.origins);
       entries.push_back(std::move(b));
     }
     auto ranking = [&](const std::vector<size_t>& order) {
@@ -238,20 +238,20 @@ OrderedJson ReportToJson(const ChainEvaluator& chain, const SimulationResult& re
       for (const size_t i : order) list.push_back(SourceKey(budget.entries[i].source));
       return list;
     };
-    j[report_key::kBudget] = {{report_key::kSamples, run.options.budget_samples},
-                   {report_key::kWhole, {{BudgetMeasureKey(Total::kImage), WholeToJson(budget.image)},
+    j[errsim_key::kBudget] = {{errsim_key::kSamples, run.options.budget_samples},
+                   {errsim_key::kWhole, {{BudgetMeasureKey(Total::kImage), WholeToJson(budget.image)},
                               {BudgetMeasureKey(Total::kMisregistration), WholeToJson(budget.misregistration)},
                               {BudgetMeasureKey(Total::kMisperception), WholeToJson(budget.misperception)}}},
                    // The default ranking is by what the user sees (issue 21 item 3); the others beside it.
-                   {report_key::kRankedBy, BudgetMeasureKey(Total::kImage)},
-                   {report_key::kRanking, {{BudgetMeasureKey(Total::kImage), ranking(budget.by_image)},
+                   {errsim_key::kRankedBy, BudgetMeasureKey(Total::kImage)},
+                   {errsim_key::kRanking, {{BudgetMeasureKey(Total::kImage), ranking(budget.by_image)},
                                 {BudgetMeasureKey(Total::kMisregistration), ranking(budget.by_misregistration)},
                                 {BudgetMeasureKey(Total::kMisperception), ranking(budget.by_misperception)}}},
-                   {report_key::kEntries, std::move(entries)}};
+                   {errsim_key::kEntries, std::move(entries)}};
   } else {
-    j[report_key::kBudget] = nullptr;
+    j[errsim_key::kBudget] = nullptr;
   }
-  j[report_key::kProvenance] = ProvenanceToJson(provenance);
+  j[errsim_key::kProvenance] = ProvenanceToJson(provenance);
   return j;
 }
 

@@ -10,15 +10,12 @@
 
 #include "vstcal/errsim/chain.h"
 #include "vstcal/errsim/simulation.h"
+#include "vstcal/formats/errsim/report_keys.h"
 #include "vstcal/json/json_writer.h"
 #include "vstcal/json/provenance.h"
 
 namespace vstcal {
 
-inline constexpr std::string_view kReportFormat = "vstcal/err-sim-report@3";
-// The version before the budget's shares became shares of the whole: its per-point statistics,
-// all err-sim check reads, are the same.
-inline constexpr std::string_view kReportFormatV2 = "vstcal/err-sim-report@2";
 
 OrderedJson ReportToJson(const ChainEvaluator& chain, const SimulationResult& result, const RunDescription& run,
                              const Provenance& provenance);

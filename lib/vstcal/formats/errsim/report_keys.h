@@ -12,6 +12,16 @@
 
 namespace vstcal {
 
+// The formats of err-sim's files: run and merge write the report, sweep, sobol and linear the
+// sensitivity files (formats/errsim/sensitivity_format.h).
+inline constexpr std::string_view kReportFormat = "vstcal/err-sim-report@3";
+// The version before the budget's shares became shares of the whole: its per-point statistics,
+// all err-sim check reads, are the same.
+inline constexpr std::string_view kReportFormatV2 = "vstcal/err-sim-report@2";
+inline constexpr std::string_view kSweepFormat = "vstcal/err-sim-sweep@2";
+inline constexpr std::string_view kSobolFormat = "vstcal/err-sim-sobol@2";
+inline constexpr std::string_view kLinearFormat = "vstcal/err-sim-linear@2";
+
 // The JSON pointer, relative to a test point (no leading '/'), of measure m's statistics (of
 // `eye`): <group>[/<eye>]/<name> — "image/left/pixel_px", "misregistration/linear". A decision's
 // statistic is a rate object {<name>_rate, standard_error} at <group>[/<eye>] — "occlusion/left".
@@ -35,11 +45,12 @@ inline std::string BudgetMeasureKey(Total t) { return std::string(Declaration(t)
 // Under "totals" beside kTotals: the error-free chain's misperception (errsim/budget.h).
 inline constexpr std::string_view kSystematicMisperceptionKey = "systematic_misperception_rms";
 
-// The report's own keys, beside the outputs' above (docs/formats.md#err-sim-report): the writer
-// (report_format.cc) puts them there and the readers (report_reader.cc, pages/errsim_*.cc) find
-// them there.
-namespace report_key {
-// The document.
+// err-sim's files' own keys, beside the outputs' above (docs/formats.md#err-sim-report,
+// #err-sim-sensitivity): the writers (report_format.cc, sensitivity_format.cc) put them there and
+// the readers (report_reader.cc, pages/errsim_*.cc) find them there.
+namespace errsim_key {
+// Every file's header (format, chain, chain_digest, length_unit; the run report keeps only and
+// without under sources, the sensitivity files at the top) and the run report's document.
 inline constexpr char kFormat[] = "format";
 inline constexpr char kChain[] = "chain";
 inline constexpr char kChainDigest[] = "chain_digest";
@@ -104,7 +115,37 @@ inline constexpr char kMeasured[] = "measured";
 inline constexpr char kAssumed[] = "assumed";
 inline constexpr char kFile[] = "file";
 inline constexpr char kOriginFormat[] = "format";
-}  // namespace report_key
+// The sensitivity files. sweep: outputs (the vector outputs' names), parameters [{name, source,
+// unit, values, kTotals' keys…, slope_per_unit}]. sobol: samples, sampling, seed, evaluations,
+// groups, outputs [{name, mean, variance, indices {<group>: {first, total}}}], an index
+// {value, standard_error, interval [lo, hi]}. linear: samples, seed, derivatives,
+// undefined_samples, outputs [{name, linear_mean, …, linear_sigma_by_source}], disagreements.
+inline constexpr char kOutputs[] = "outputs";
+inline constexpr char kParameters[] = "parameters";
+inline constexpr char kUnit[] = "unit";
+inline constexpr char kValues[] = "values";
+inline constexpr char kSlopePerUnit[] = "slope_per_unit";
+inline constexpr char kSampling[] = "sampling";
+inline constexpr char kEvaluations[] = "evaluations";
+inline constexpr char kGroups[] = "groups";
+inline constexpr char kVariance[] = "variance";
+inline constexpr char kIndices[] = "indices";
+inline constexpr char kFirst[] = "first";
+inline constexpr char kTotal[] = "total";
+inline constexpr char kValue[] = "value";
+inline constexpr char kInterval[] = "interval";
+inline constexpr char kDerivatives[] = "derivatives";
+inline constexpr char kLinearMean[] = "linear_mean";
+inline constexpr char kMonteCarloMean[] = "monte_carlo_mean";
+inline constexpr char kLinearSigma[] = "linear_sigma";
+inline constexpr char kMonteCarloSigma[] = "monte_carlo_sigma";
+inline constexpr char kSigmaStandardError[] = "sigma_standard_error";
+inline constexpr char kSigmaRelativeDifference[] = "sigma_relative_difference";
+inline constexpr char kMeanDisagrees[] = "mean_disagrees";
+inline constexpr char kSigmaDisagrees[] = "sigma_disagrees";
+inline constexpr char kLinearSigmaBySource[] = "linear_sigma_by_source";
+inline constexpr char kDisagreements[] = "disagreements";
+}  // namespace errsim_key
 
 // "/a/b/3": a JSON pointer into the report from its keys (and array indices as text).
 inline std::string ReportPointer(std::initializer_list<std::string_view> parts) {

@@ -41,37 +41,37 @@ ReportForCheck ReadReportForCheck(const JsonDocument& document) {
   root.ExpectObject();
   // Version 2 differs only in its budget, which check does not read: an accepted report kept
   // in a repository stays usable.
-  if (root.at(report_key::kFormat).json() != kReportFormatV2) CheckFormat(root, kReportFormat);
+  if (root.at(errsim_key::kFormat).json() != kReportFormatV2) CheckFormat(root, kReportFormat);
   ReportForCheck r;
-  r.chain = root.at(report_key::kChain).String();
-  r.chain_digest = root.at(report_key::kChainDigest).String();
-  r.length_unit = root.at(report_key::kLengthUnit).String();
-  r.samples = Count(root.at(report_key::kSamples));
-  if (r.samples == 0) root.at(report_key::kSamples).Fail("is 0", kRegenerate);
-  r.seed = Count(root.at(report_key::kSeed));
-  const JsonNode sources = root.at(report_key::kSources);
-  for (const char* key : {report_key::kOnly, report_key::kWithout}) {
+  r.chain = root.at(errsim_key::kChain).String();
+  r.chain_digest = root.at(errsim_key::kChainDigest).String();
+  r.length_unit = root.at(errsim_key::kLengthUnit).String();
+  r.samples = Count(root.at(errsim_key::kSamples));
+  if (r.samples == 0) root.at(errsim_key::kSamples).Fail("is 0", kRegenerate);
+  r.seed = Count(root.at(errsim_key::kSeed));
+  const JsonNode sources = root.at(errsim_key::kSources);
+  for (const char* key : {errsim_key::kOnly, errsim_key::kWithout}) {
     const JsonNode list = sources.at(key);
-    std::vector<std::string>& out = std::string_view(key) == report_key::kOnly ? r.only : r.without;
+    std::vector<std::string>& out = std::string_view(key) == errsim_key::kOnly ? r.only : r.without;
     for (size_t i = 0; i < list.ArraySize(); ++i) {
       out.push_back(list.at(i).String());
       if (!SourceFromKey(out.back())) list.at(i).Fail("unknown error source \"" + out.back() + "\"", kRegenerate);
     }
   }
-  const JsonNode points = root.at(report_key::kTestPoints);
+  const JsonNode points = root.at(errsim_key::kTestPoints);
   for (size_t k = 0; k < points.ArraySize(); ++k) {
     const JsonNode point = points.at(k);
-    const std::string name = point.at(report_key::kName).String();
+    const std::string name = point.at(errsim_key::kName).String();
     for (const CheckedMeasure& checked : CheckedMeasures()) {
       const std::optional<JsonNode> stats = Follow(point, MeasurePointer(checked.measure, checked.eye));
       if (!stats) continue;
       MonteCarloMetric m{name, checked.name, 0, 0};
       if (Declaration(checked.measure).unit == OutputUnit::kDecision) {
         m.value = stats->at(RateKey(checked.measure)).NonNegativeNumber();
-        m.standard_error = StandardError(stats->at(report_key::kStandardError));
+        m.standard_error = StandardError(stats->at(errsim_key::kStandardError));
       } else {
-        m.value = stats->at(report_key::kMean).Number();
-        m.standard_error = StandardError(stats->at(report_key::kMeanStandardError));
+        m.value = stats->at(errsim_key::kMean).Number();
+        m.standard_error = StandardError(stats->at(errsim_key::kMeanStandardError));
       }
       r.metrics.push_back(std::move(m));
     }

@@ -16,12 +16,12 @@ namespace {
 
 OrderedJson Header(std::string_view format, const RunDescription& run, const ChainModel& model) {
   OrderedJson j;
-  j["format"] = format;
-  j["chain"] = run.chain_path;
-  j["chain_digest"] = run.digest;
-  j["length_unit"] = LengthUnitName(model.geometry.length_unit);
-  j["only"] = run.only;
-  j["without"] = run.without;
+  j[errsim_key::kFormat] = format;
+  j[errsim_key::kChain] = run.chain_path;
+  j[errsim_key::kChainDigest] = run.digest;
+  j[errsim_key::kLengthUnit] = LengthUnitName(model.geometry.length_unit);
+  j[errsim_key::kOnly] = run.only;
+  j[errsim_key::kWithout] = run.without;
   return j;
 }
 
@@ -49,8 +49,8 @@ TextAndJson SweepOutput(const ChainModel& model, const RunDescription& run, cons
                         const Provenance& provenance) {
   const size_t points = model.geometry.test_points.size();
   const std::string unit(LengthUnitName(model.geometry.length_unit));
-  OrderedJson j = Header("vstcal/err-sim-sweep@2", run, model);
-  j["outputs"] = VectorOutputNames(model);
+  OrderedJson j = Header(kSweepFormat, run, model);
+  j[errsim_key::kOutputs] = VectorOutputNames(model);
   OrderedJson list = OrderedJson::array();
   // One word per quantity: a parameter's "gain" on a measure is the RMS over test points (and eyes)
   // of |∂e/∂θ|, e the measure's error vector; a "slope" is one output's ∂y/∂θ (slope_per_unit, and
@@ -82,10 +82,10 @@ TextAndJson SweepOutput(const ChainModel& model, const RunDescription& run, cons
       perc.push_back(NumberOrNull(rms.misperception));
     }
     OrderedJson e;
-    e["name"] = p.name();
-    e["source"] = SourceKey(p.source);
-    e["unit"] = p.slot.file_unit;
-    e["values"] = std::move(values);
+    e[errsim_key::kName] = p.name();
+    e[errsim_key::kSource] = SourceKey(p.source);
+    e[errsim_key::kUnit] = p.slot.file_unit;
+    e[errsim_key::kValues] = std::move(values);
     e[TotalKey(Total::kImage)] = std::move(image);
     e[TotalKey(Total::kMisregistration)] = std::move(reg);
     e[TotalKey(Total::kMisperception)] = std::move(perc);
@@ -100,26 +100,26 @@ TextAndJson SweepOutput(const ChainModel& model, const RunDescription& run, cons
                     p.slot.file_unit.c_str(), rms.misperception / per, unit.c_str(), p.slot.file_unit.c_str());
       text += line;
     }
-    e["slope_per_unit"] = std::move(slope);
+    e[errsim_key::kSlopePerUnit] = std::move(slope);
     list.push_back(std::move(e));
   }
-  j["parameters"] = std::move(list);
-  j["provenance"] = ProvenanceToJson(provenance);
+  j[errsim_key::kParameters] = std::move(list);
+  j[errsim_key::kProvenance] = ProvenanceToJson(provenance);
   return {std::move(j), std::move(text)};
 }
 
 TextAndJson SobolOutput(const ChainModel& model, const RunDescription& run, const std::string& sampling,
                         const SobolResult& r, const Provenance& provenance) {
-  OrderedJson j = Header("vstcal/err-sim-sobol@2", run, model);
-  j["samples"] = run.options.samples;
-  j["sampling"] = sampling;
-  j["seed"] = run.options.seed;
-  j["evaluations"] = r.evaluations;
-  j["groups"] = r.group_names;
+  OrderedJson j = Header(kSobolFormat, run, model);
+  j[errsim_key::kSamples] = run.options.samples;
+  j[errsim_key::kSampling] = sampling;
+  j[errsim_key::kSeed] = run.options.seed;
+  j[errsim_key::kEvaluations] = r.evaluations;
+  j[errsim_key::kGroups] = r.group_names;
   auto estimate = [](const Estimate& e) {
-    return OrderedJson{{"value", NumberOrNull(e.value)},
-                       {"standard_error", NumberOrNull(e.standard_error)},
-                       {"interval", {NumberOrNull(e.interval.lo), NumberOrNull(e.interval.hi)}}};
+    return OrderedJson{{errsim_key::kValue, NumberOrNull(e.value)},
+                       {errsim_key::kStandardError, NumberOrNull(e.standard_error)},
+                       {errsim_key::kInterval, {NumberOrNull(e.interval.lo), NumberOrNull(e.interval.hi)}}};
   };
   OrderedJson outputs = OrderedJson::array();
   std::string text = "err-sim sobol: " + run.chain_path + ": N = " + std::to_string(run.options.samples) + " (" + sampling +
@@ -141,9 +141,9 @@ TextAndJson SobolOutput(const ChainModel& model, const RunDescription& run, cons
     const OutputSensitivity& o = r.outputs[i];
     OrderedJson groups;
     for (size_t g = 0; g < r.group_names.size(); ++g) {
-      groups[r.group_names[g]] = {{"first", estimate(o.groups[g].first_order)}, {"total", estimate(o.groups[g].total)}};
+      groups[r.group_names[g]] = {{errsim_key::kFirst, estimate(o.groups[g].first_order)}, {errsim_key::kTotal, estimate(o.groups[g].total)}};
     }
-    outputs.push_back({{"name", o.name}, {"mean", NumberOrNull(o.mean)}, {"variance", NumberOrNull(o.variance)}, {"indices", groups}});
+    outputs.push_back({{errsim_key::kName, o.name}, {errsim_key::kMean, NumberOrNull(o.mean)}, {errsim_key::kVariance, NumberOrNull(o.variance)}, {errsim_key::kIndices, groups}});
     if (measured.is_headline(i)) {
       text += "  " + o.name + std::string(name_width - o.name.size(), ' ');
       for (size_t g = 0; g < o.groups.size(); ++g) {
@@ -155,19 +155,19 @@ TextAndJson SobolOutput(const ChainModel& model, const RunDescription& run, cons
       text += "\n";
     }
   }
-  j["outputs"] = std::move(outputs);
-  j["provenance"] = ProvenanceToJson(provenance);
+  j[errsim_key::kOutputs] = std::move(outputs);
+  j[errsim_key::kProvenance] = ProvenanceToJson(provenance);
   return {std::move(j), std::move(text)};
 }
 
 TextAndJson LinearOutput(const ChainModel& model, const RunDescription& run, const LinearPropagation& linear,
                          const MonteCarloSummary& monte_carlo, const Provenance& provenance) {
   const auto comparison = CompareLinearWithMonteCarlo(linear, monte_carlo);
-  OrderedJson j = Header("vstcal/err-sim-linear@2", run, model);
-  j["samples"] = run.options.samples;
-  j["seed"] = run.options.seed;
-  j["derivatives"] = DerivativeMethodName(linear.method);
-  j["undefined_samples"] = monte_carlo.undefined_samples();
+  OrderedJson j = Header(kLinearFormat, run, model);
+  j[errsim_key::kSamples] = run.options.samples;
+  j[errsim_key::kSeed] = run.options.seed;
+  j[errsim_key::kDerivatives] = DerivativeMethodName(linear.method);
+  j[errsim_key::kUndefinedSamples] = monte_carlo.undefined_samples();
   OrderedJson outputs = OrderedJson::array();
   int disagreements = 0;
   std::string text = "err-sim linear: " + run.chain_path + ": first-order σ (J Σ Jᵀ, autodiff) vs Monte Carlo (" +
@@ -176,17 +176,17 @@ TextAndJson LinearOutput(const ChainModel& model, const RunDescription& run, con
     const auto& c = comparison[k];
     OrderedJson groups;
     for (size_t g = 0; g < linear.group_names.size(); ++g) groups[linear.group_names[g]] = NumberOrNull(std::sqrt(linear.group_variance(k, g)));
-    outputs.push_back({{"name", c.name},
-                       {"linear_mean", NumberOrNull(c.linear_mean)},
-                       {"monte_carlo_mean", NumberOrNull(c.monte_carlo_mean)},
-                       {"mean_standard_error", NumberOrNull(c.mean_standard_error)},
-                       {"linear_sigma", NumberOrNull(c.linear_sigma)},
-                       {"monte_carlo_sigma", NumberOrNull(c.monte_carlo_sigma)},
-                       {"sigma_standard_error", NumberOrNull(c.sigma_standard_error)},
-                       {"sigma_relative_difference", NumberOrNull(c.sigma_relative_difference)},
-                       {"mean_disagrees", c.mean_disagrees},
-                       {"sigma_disagrees", c.sigma_disagrees},
-                       {"linear_sigma_by_source", groups}});
+    outputs.push_back({{errsim_key::kName, c.name},
+                       {errsim_key::kLinearMean, NumberOrNull(c.linear_mean)},
+                       {errsim_key::kMonteCarloMean, NumberOrNull(c.monte_carlo_mean)},
+                       {errsim_key::kMeanStandardError, NumberOrNull(c.mean_standard_error)},
+                       {errsim_key::kLinearSigma, NumberOrNull(c.linear_sigma)},
+                       {errsim_key::kMonteCarloSigma, NumberOrNull(c.monte_carlo_sigma)},
+                       {errsim_key::kSigmaStandardError, NumberOrNull(c.sigma_standard_error)},
+                       {errsim_key::kSigmaRelativeDifference, NumberOrNull(c.sigma_relative_difference)},
+                       {errsim_key::kMeanDisagrees, c.mean_disagrees},
+                       {errsim_key::kSigmaDisagrees, c.sigma_disagrees},
+                       {errsim_key::kLinearSigmaBySource, groups}});
     disagreements += c.mean_disagrees || c.sigma_disagrees;
     char line[200];
     std::snprintf(line, sizeof line, "  %-38s %-12.4g %-12.4g %+8.2f %%%s\n", c.name.substr(0, 38).c_str(), c.linear_sigma,
@@ -196,9 +196,9 @@ TextAndJson LinearOutput(const ChainModel& model, const RunDescription& run, con
   }
   text += "  " + std::to_string(disagreements) + " of " + std::to_string(comparison.size()) +
           " outputs differ by more than the Monte Carlo error explains (3 standard errors)\n";
-  j["outputs"] = std::move(outputs);
-  j["disagreements"] = disagreements;
-  j["provenance"] = ProvenanceToJson(provenance);
+  j[errsim_key::kOutputs] = std::move(outputs);
+  j[errsim_key::kDisagreements] = disagreements;
+  j[errsim_key::kProvenance] = ProvenanceToJson(provenance);
   return {std::move(j), std::move(text)};
 }
 
