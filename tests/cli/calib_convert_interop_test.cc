@@ -210,11 +210,11 @@ std::vector<BadInput> BadUsage() {
 }
 
 INSTANTIATE_TEST_SUITE_P(Ros, CliCalibConvertBad, ::testing::ValuesIn(BadRos()),
-                         [](const auto& info) { return info.param.name; });
+                         [](const auto& instance) { return instance.param.name; });
 INSTANTIATE_TEST_SUITE_P(Kalibr, CliCalibConvertBad, ::testing::ValuesIn(BadKalibr()),
-                         [](const auto& info) { return info.param.name; });
+                         [](const auto& instance) { return instance.param.name; });
 INSTANTIATE_TEST_SUITE_P(InteropUsage, CliCalibConvertBad, ::testing::ValuesIn(BadUsage()),
-                         [](const auto& info) { return info.param.name; });
+                         [](const auto& instance) { return instance.param.name; });
 
 }  // namespace
 }  // namespace vstcal::cli_test

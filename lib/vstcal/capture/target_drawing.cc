@@ -62,7 +62,8 @@ std::string ScaleBar(const Rect& sheet, const Rect& pattern, double mm) {
   std::string ticks;
   for (int k = 0; k <= 10; ++k) {
     const double x = x0 + length * k / 10;
-    ticks += "M" + Mm(x) + " " + Mm(k % 5 == 0 ? top : top + 0.2 * u) + "V" + Mm(line);
+    // Appended: GCC 12's -Wrestrict misfires on "literal" + std::string.
+    ticks.append("M").append(Mm(x)).append(" ").append(Mm(k % 5 == 0 ? top : top + 0.2 * u)).append("V").append(Mm(line));
   }
   const std::string label = Mm(length) + " mm";
   return "<g id=\"scale-bar\" data-length-mm=\"" + Mm(length) + "\" stroke=\"#000\" stroke-width=\"" + Mm(stroke) +
@@ -89,8 +90,8 @@ std::string TargetSvg(const Target& t) {
   svg += "<path fill=\"#000\" shape-rendering=\"crispEdges\" d=\"";
   for (const Rect& r : pattern.black()) {
     const double x0 = (r.x0 - sheet.x0) * mm, y0 = (r.y0 - sheet.y0) * mm;
-    svg += "M" + Mm(x0) + " " + Mm(y0) + "H" + Mm((r.x1 - sheet.x0) * mm) + "V" + Mm((r.y1 - sheet.y0) * mm) + "H" +
-           Mm(x0) + "Z";
+    svg.append("M").append(Mm(x0)).append(" ").append(Mm(y0)).append("H").append(Mm((r.x1 - sheet.x0) * mm));
+    svg.append("V").append(Mm((r.y1 - sheet.y0) * mm)).append("H").append(Mm(x0)).append("Z");
   }
   svg += "\"/>\n";
   svg += ScaleBar(sheet, PatternExtent(t), mm);
