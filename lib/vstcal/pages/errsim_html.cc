@@ -19,7 +19,7 @@ namespace {
 std::string StatsCells(const OrderedJson& report, const std::string& pointer) {
   std::string s;
   for (const char* field : {errsim_key::kMean, errsim_key::kRms, errsim_key::kP50, errsim_key::kP95, errsim_key::kP99, errsim_key::kMax}) {
-    s += ValueCell(report, pointer + ReportPointer({field}));
+    s += ValueCell(report, pointer + JsonPointer({field}));
   }
   return s;
 }
@@ -41,8 +41,8 @@ std::string Summary(const OrderedJson& r) {
                                                         {TotalKey(Total::kMisperception), "misperception RMS (" + unit + ")"},
                                                         {std::string(kSystematicMisperceptionKey), "systematic misperception RMS (" + unit + ")"},
                                                         {TotalKey(Total::kWrongOcclusion), "wrong occlusion rate"}};
-  for (const auto& [key, label] : totals) rows += "<tr><th>" + Escape(label) + "</th>" + ValueCell(r, ReportPointer({errsim_key::kTotals, key})) + "</tr>\n";
-  rows += "<tr><th>samples with some test point undefined</th>" + ValueCell(r, ReportPointer({errsim_key::kUndefinedSamples})) + "</tr>\n";
+  for (const auto& [key, label] : totals) rows += "<tr><th>" + Escape(label) + "</th>" + ValueCell(r, JsonPointer({errsim_key::kTotals, key})) + "</tr>\n";
+  rows += "<tr><th>samples with some test point undefined</th>" + ValueCell(r, JsonPointer({errsim_key::kUndefinedSamples})) + "</tr>\n";
   return s + Table("whole chain", "<th></th><th>value</th>", rows);
 }
 
@@ -53,7 +53,7 @@ std::string Distributions(const OrderedJson& r) {
   std::string image_rows, misregistration_rows, misperception_rows;
   for (size_t k = 0; k < points.size(); ++k) {
     const OrderedJson& p = points[k];
-    const std::string name = p.at(errsim_key::kName).get<std::string>(), key = ReportPointer({errsim_key::kTestPoints, std::to_string(k)});
+    const std::string name = p.at(errsim_key::kName).get<std::string>(), key = JsonPointer({errsim_key::kTestPoints, std::to_string(k)});
     auto at = [&](ErrorMeasure m, int eye = 0) { return &p.at(OrderedJson::json_pointer(std::string("/").append(MeasurePointer(m, eye)))); };
     for (int e = 0; e < kNumEyes; ++e) {
       const std::string eye(kEyeNames[e]);
@@ -66,8 +66,8 @@ std::string Distributions(const OrderedJson& r) {
     // The systematic part's terms are named as the sampled ones (report_format.cc).
     const MeasureDecl& misperception_linear = Declaration(ErrorMeasure::kMisperceptionLinear);
     const std::string systematic =
-        key + ReportPointer({misperception_linear.group, errsim_key::kSystematic, misperception_linear.name});
-    misregistration_rows += "<tr><th>" + Escape(name) + "</th>" + ValueCell(r, key + ReportPointer({errsim_key::kUndefined, errsim_key::kRate})) +
+        key + JsonPointer({misperception_linear.group, errsim_key::kSystematic, misperception_linear.name});
+    misregistration_rows += "<tr><th>" + Escape(name) + "</th>" + ValueCell(r, key + JsonPointer({errsim_key::kUndefined, errsim_key::kRate})) +
                             StatsCells(r, key + "/" + MeasurePointer(ErrorMeasure::kMisregistrationLinear)) + "</tr>\n";
     misperception_rows += "<tr><th>" + Escape(name) + "</th>" + ValueCell(r, systematic) +
                           StatsCells(r, key + "/" + MeasurePointer(ErrorMeasure::kMisperceptionLinear)) + "</tr>\n";
@@ -137,11 +137,11 @@ std::string Budget(const OrderedJson& r) {
       const OrderedJson& entries = budget.at(errsim_key::kEntries);
       for (size_t i = 0; i < entries.size(); ++i) {
         if (entries[i].at(errsim_key::kSource) != source) continue;
-        const std::string key = ReportPointer({errsim_key::kBudget, errsim_key::kEntries, std::to_string(i)});
+        const std::string key = JsonPointer({errsim_key::kBudget, errsim_key::kEntries, std::to_string(i)});
         rows += "<tr><th>" + std::to_string(++rank) + ". " + Escape(source.get<std::string>()) + "</th>" +
-                ValueCell(r, key + ReportPointer({ShareKey(ranked.measure)})) + ValueCell(r, key + ReportPointer({errsim_key::kAlone, rms})) +
-                ValueCell(r, key + ReportPointer({errsim_key::kHalved, rms})) + ValueCell(r, key + ReportPointer({ShareKey(ranked.beside)})) +
-                ValueCell(r, key + ReportPointer({errsim_key::kHalved, beside_rms})) + "<td style=\"text-align:left\">" +
+                ValueCell(r, key + JsonPointer({ShareKey(ranked.measure)})) + ValueCell(r, key + JsonPointer({errsim_key::kAlone, rms})) +
+                ValueCell(r, key + JsonPointer({errsim_key::kHalved, rms})) + ValueCell(r, key + JsonPointer({ShareKey(ranked.beside)})) +
+                ValueCell(r, key + JsonPointer({errsim_key::kHalved, beside_rms})) + "<td style=\"text-align:left\">" +
                 Escape(entries[i].at(errsim_key::kCorrection).get<std::string>()) + "</td>" + OriginCell(entries[i]) + "</tr>\n";
         // The source's terms alone, largest share first (the tree source → term).
         const OrderedJson& terms = entries[i].at(errsim_key::kTerms);
@@ -152,23 +152,23 @@ std::string Budget(const OrderedJson& r) {
         auto value = [&](size_t t) { return terms[t].at(share).is_number() ? terms[t].at(share).get<double>() : -1.0; };
         std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return value(a) > value(b); });
         for (const size_t t : order) {
-          const std::string term_key = key + ReportPointer({errsim_key::kTerms, std::to_string(t)});
+          const std::string term_key = key + JsonPointer({errsim_key::kTerms, std::to_string(t)});
           rows += "<tr><th style=\"padding-left:2em\">" + Name(terms[t].at(errsim_key::kTerm).get<std::string>()) + "</th>" +
-                  ValueCell(r, term_key + ReportPointer({share})) + ValueCell(r, term_key + ReportPointer({errsim_key::kAlone, rms})) + EmptyCells(1) +
-                  ValueCell(r, term_key + ReportPointer({ShareKey(ranked.beside)})) + EmptyCells(1) + "<td></td>" + OriginCell(terms[t]) +
+                  ValueCell(r, term_key + JsonPointer({share})) + ValueCell(r, term_key + JsonPointer({errsim_key::kAlone, rms})) + EmptyCells(1) +
+                  ValueCell(r, term_key + JsonPointer({ShareKey(ranked.beside)})) + EmptyCells(1) + "<td></td>" + OriginCell(terms[t]) +
                   "</tr>\n";
         }
       }
     }
     // What the sources' parts leave out, and the whole they are shares of: the share column adds to 1.
-    const std::string whole = ReportPointer({errsim_key::kBudget, errsim_key::kWhole, measure});
+    const std::string whole = JsonPointer({errsim_key::kBudget, errsim_key::kWhole, measure});
     const bool none = budget.at(errsim_key::kWhole).at(measure).at(errsim_key::kNone).get<bool>();
-    rows += "<tr><th>interactions and means in common</th>" + ValueCell(r, whole + ReportPointer({errsim_key::kRemainderShare})) + EmptyCells(2) +
-            ValueCell(r, ReportPointer({errsim_key::kBudget, errsim_key::kWhole, beside, errsim_key::kRemainderShare})) + EmptyCells(1) +
+    rows += "<tr><th>interactions and means in common</th>" + ValueCell(r, whole + JsonPointer({errsim_key::kRemainderShare})) + EmptyCells(2) +
+            ValueCell(r, JsonPointer({errsim_key::kBudget, errsim_key::kWhole, beside, errsim_key::kRemainderShare})) + EmptyCells(1) +
             "<td style=\"text-align:left\">" + std::string(none ? "none: the whole chain's mean square is 0 to rounding" : "") +
             "</td><td></td></tr>\n";
-    rows += "<tr><th>whole chain (RMS)</th>" + EmptyCells(1) + ValueCell(r, ReportPointer({errsim_key::kTotals, rms})) + EmptyCells(2) +
-            ValueCell(r, ReportPointer({errsim_key::kTotals, beside_rms})) + EmptyCells(2) + "</tr>\n";
+    rows += "<tr><th>whole chain (RMS)</th>" + EmptyCells(1) + ValueCell(r, JsonPointer({errsim_key::kTotals, rms})) + EmptyCells(2) +
+            ValueCell(r, JsonPointer({errsim_key::kTotals, beside_rms})) + EmptyCells(2) + "</tr>\n";
     s += Table("ranked by " + title_of(ranked.measure) +
                    (ranked.measure == Total::kImage ? " (what the user sees: the default ranking)" : ""),
                "<th>source</th><th>share of mean square</th><th>alone RMS (" + unit_of(ranked.measure) + ")</th><th>whole chain, halved (" +
@@ -215,7 +215,7 @@ std::string ErrSimSweepHtml(const OrderedJson& r) {
     for (size_t i = 0; i < parameters.size(); ++i) {
       const OrderedJson& p = parameters[i];
       if (p.at(errsim_key::kSource) != source) continue;
-      const std::string key = ReportPointer({errsim_key::kParameters, std::to_string(i)}), last = std::to_string(p.at(errsim_key::kValues).size() - 1);
+      const std::string key = JsonPointer({errsim_key::kParameters, std::to_string(i)}), last = std::to_string(p.at(errsim_key::kValues).size() - 1);
       const OrderedJson& slopes = p.at(errsim_key::kSlopePerUnit);
       size_t steepest = 0;
       for (size_t j = 1; j < slopes.size(); ++j) {
@@ -225,11 +225,11 @@ std::string ErrSimSweepHtml(const OrderedJson& r) {
         }
       }
       rows += "<tr><th>" + Name(p.at(errsim_key::kName).get<std::string>()) + "</th><td>" + Escape(p.at(errsim_key::kUnit).get<std::string>()) +
-              "</td>" + ValueCell(r, key + ReportPointer({errsim_key::kValues, "0"})) + ValueCell(r, key + ReportPointer({errsim_key::kValues, last})) +
-              ValueCell(r, key + ReportPointer({TotalKey(Total::kImage), "0"})) + ValueCell(r, key + ReportPointer({TotalKey(Total::kImage), last})) +
-              ValueCell(r, key + ReportPointer({TotalKey(Total::kMisregistration), "0"})) +
-              ValueCell(r, key + ReportPointer({TotalKey(Total::kMisregistration), last})) +
-              (slopes.empty() ? EmptyCells(1) : ValueCell(r, key + ReportPointer({errsim_key::kSlopePerUnit, std::to_string(steepest)}))) +
+              "</td>" + ValueCell(r, key + JsonPointer({errsim_key::kValues, "0"})) + ValueCell(r, key + JsonPointer({errsim_key::kValues, last})) +
+              ValueCell(r, key + JsonPointer({TotalKey(Total::kImage), "0"})) + ValueCell(r, key + JsonPointer({TotalKey(Total::kImage), last})) +
+              ValueCell(r, key + JsonPointer({TotalKey(Total::kMisregistration), "0"})) +
+              ValueCell(r, key + JsonPointer({TotalKey(Total::kMisregistration), last})) +
+              (slopes.empty() ? EmptyCells(1) : ValueCell(r, key + JsonPointer({errsim_key::kSlopePerUnit, std::to_string(steepest)}))) +
               "<td style=\"text-align:left\">" + (slopes.empty() ? "" : Name(r.at(errsim_key::kOutputs).at(steepest).get<std::string>())) +
               "</td></tr>\n";
     }

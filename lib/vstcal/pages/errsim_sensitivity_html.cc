@@ -62,8 +62,8 @@ std::string ErrSimSobolHtml(const OrderedJson& r) {
        "with the others (docs/tools/err-sim.md). Error bars and intervals: bootstrap over the samples." +
        Filters(r) + "</p>\n";
   s += Table("run", "<th></th><th>value</th>",
-             "<tr><th>samples N</th>" + ValueCell(r, ReportPointer({errsim_key::kSamples})) + "</tr>\n<tr><th>seed</th>" + ValueCell(r, ReportPointer({errsim_key::kSeed})) +
-                 "</tr>\n<tr><th>chain evaluations</th>" + ValueCell(r, ReportPointer({errsim_key::kEvaluations})) + "</tr>\n");
+             "<tr><th>samples N</th>" + ValueCell(r, JsonPointer({errsim_key::kSamples})) + "</tr>\n<tr><th>seed</th>" + ValueCell(r, JsonPointer({errsim_key::kSeed})) +
+                 "</tr>\n<tr><th>chain evaluations</th>" + ValueCell(r, JsonPointer({errsim_key::kEvaluations})) + "</tr>\n");
 
   std::vector<size_t> charted;
   for (size_t k = 0; k < outputs.size(); ++k) {
@@ -85,12 +85,12 @@ std::string ErrSimSobolHtml(const OrderedJson& r) {
   for (size_t k : charted) {
     const std::string name = outputs[k].at(errsim_key::kName).get<std::string>();
     for (const auto& group : groups) {
-      const std::string key = ReportPointer({errsim_key::kOutputs, std::to_string(k), errsim_key::kIndices, group.get<std::string>()});
+      const std::string key = JsonPointer({errsim_key::kOutputs, std::to_string(k), errsim_key::kIndices, group.get<std::string>()});
       interval_rows += "<tr><th>" + Name(name) + "</th><th>" + Name(group.get<std::string>()) + "</th>";
       for (const char* order : {errsim_key::kFirst, errsim_key::kTotal}) {
-        interval_rows += ValueCell(r, key + ReportPointer({order, errsim_key::kValue})) +
-                         ValueCell(r, key + ReportPointer({order, errsim_key::kInterval, "0"})) +
-                         ValueCell(r, key + ReportPointer({order, errsim_key::kInterval, "1"}));
+        interval_rows += ValueCell(r, key + JsonPointer({order, errsim_key::kValue})) +
+                         ValueCell(r, key + JsonPointer({order, errsim_key::kInterval, "0"})) +
+                         ValueCell(r, key + JsonPointer({order, errsim_key::kInterval, "1"}));
       }
       interval_rows += "</tr>\n";
     }
@@ -104,14 +104,14 @@ std::string ErrSimSobolHtml(const OrderedJson& r) {
   for (const auto& group : groups) source_heads += "<th>" + Name(group.get<std::string>()) + "</th>";
   std::string first_rows, total_rows;
   for (size_t k = 0; k < outputs.size(); ++k) {
-    const std::string key = ReportPointer({errsim_key::kOutputs, std::to_string(k)});
+    const std::string key = JsonPointer({errsim_key::kOutputs, std::to_string(k)});
     const std::string name = "<tr><th>" + Name(outputs[k].at(errsim_key::kName).get<std::string>()) + "</th>";
-    first_rows += name + ValueCell(r, key + ReportPointer({errsim_key::kMean})) + ValueCell(r, key + ReportPointer({errsim_key::kVariance}));
+    first_rows += name + ValueCell(r, key + JsonPointer({errsim_key::kMean})) + ValueCell(r, key + JsonPointer({errsim_key::kVariance}));
     total_rows += name;
     for (const auto& group : groups) {
-      const std::string index = key + ReportPointer({errsim_key::kIndices, group.get<std::string>()});
-      first_rows += ValueCell(r, index + ReportPointer({errsim_key::kFirst, errsim_key::kValue}));
-      total_rows += ValueCell(r, index + ReportPointer({errsim_key::kTotal, errsim_key::kValue}));
+      const std::string index = key + JsonPointer({errsim_key::kIndices, group.get<std::string>()});
+      first_rows += ValueCell(r, index + JsonPointer({errsim_key::kFirst, errsim_key::kValue}));
+      total_rows += ValueCell(r, index + JsonPointer({errsim_key::kTotal, errsim_key::kValue}));
     }
     first_rows += "</tr>\n";
     total_rows += "</tr>\n";
@@ -132,9 +132,9 @@ std::string ErrSimLinearHtml(const OrderedJson& r) {
        "misperception in the hmd frame, " + Escape(unit) + "). Where they differ beyond 3 standard errors of the "
        "Monte Carlo estimate, the error is not linear in the sources there." + Filters(r) + "</p>\n";
   s += Table("run", "<th></th><th>value</th>",
-             "<tr><th>Monte Carlo samples</th>" + ValueCell(r, ReportPointer({errsim_key::kSamples})) + "</tr>\n<tr><th>seed</th>" +
-                 ValueCell(r, ReportPointer({errsim_key::kSeed})) + "</tr>\n<tr><th>undefined samples</th>" + ValueCell(r, ReportPointer({errsim_key::kUndefinedSamples})) +
-                 "</tr>\n<tr><th>outputs that differ</th>" + ValueCell(r, ReportPointer({errsim_key::kDisagreements})) + "</tr>\n");
+             "<tr><th>Monte Carlo samples</th>" + ValueCell(r, JsonPointer({errsim_key::kSamples})) + "</tr>\n<tr><th>seed</th>" +
+                 ValueCell(r, JsonPointer({errsim_key::kSeed})) + "</tr>\n<tr><th>undefined samples</th>" + ValueCell(r, JsonPointer({errsim_key::kUndefinedSamples})) +
+                 "</tr>\n<tr><th>outputs that differ</th>" + ValueCell(r, JsonPointer({errsim_key::kDisagreements})) + "</tr>\n");
   std::vector<size_t> pixels, lengths, all;
   for (size_t k = 0; k < outputs.size(); ++k) {
     (InPixels(outputs[k].at(errsim_key::kName).get<std::string>()) ? pixels : lengths).push_back(k);
@@ -155,18 +155,18 @@ std::string ErrSimLinearHtml(const OrderedJson& r) {
   std::string rows, source_rows;
   for (size_t k = 0; k < outputs.size(); ++k) {
     const OrderedJson& o = outputs[k];
-    const std::string key = ReportPointer({errsim_key::kOutputs, std::to_string(k)});
+    const std::string key = JsonPointer({errsim_key::kOutputs, std::to_string(k)});
     const std::string name = "<tr><th>" + Name(o.at(errsim_key::kName).get<std::string>()) + "</th>";
     rows += name;
     for (const char* field : {errsim_key::kLinearMean, errsim_key::kMonteCarloMean, errsim_key::kMeanStandardError,
                               errsim_key::kLinearSigma, errsim_key::kMonteCarloSigma, errsim_key::kSigmaStandardError,
                               errsim_key::kSigmaRelativeDifference}) {
-      rows += ValueCell(r, key + ReportPointer({field}));
+      rows += ValueCell(r, key + JsonPointer({field}));
     }
     const bool mean = o.at(errsim_key::kMeanDisagrees).get<bool>(), sigma = o.at(errsim_key::kSigmaDisagrees).get<bool>();
     rows += std::string("<td>") + (mean && sigma ? "mean, σ" : mean ? "mean" : sigma ? "σ" : "") + "</td></tr>\n";
     source_rows += name;
-    for (const auto& [group, value] : groups.items()) source_rows += ValueCell(r, key + ReportPointer({errsim_key::kLinearSigmaBySource, group}));
+    for (const auto& [group, value] : groups.items()) source_rows += ValueCell(r, key + JsonPointer({errsim_key::kLinearSigmaBySource, group}));
     source_rows += "</tr>\n";
   }
   const std::string units = "pixel outputs in px, the others in " + unit;

@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <numeric>
 
+#include "vstcal/formats/report/report_keys.h"
+#include "vstcal/json/json_pointer.h"
 #include "vstcal/json/json_writer.h"
 #include "vstcal/pages/charts.h"
 #include "vstcal/pages/html_page.h"
@@ -30,12 +32,12 @@ std::string ParametersTable(const CameraReport& c, const std::string& key) {
   std::string rows;
   for (size_t i = 0; i < c.parameters.size(); ++i) {
     const ParameterEstimate& p = c.parameters[i];
-    const std::string pk = key + "/parameters/" + std::to_string(i);
-    rows += "<tr><th>" + Escape(p.name) + "</th>" + SignificantCell(pk + "/value", p.value, 9);
+    const std::string pk = key + JsonPointer({reproj_key::kParameters, std::to_string(i)});
+    rows += "<tr><th>" + Escape(p.name) + "</th>" + SignificantCell(pk + JsonPointer({reproj_key::kValue}), p.value, 9);
     if (p.sigma) {
       char interval[96];
       std::snprintf(interval, sizeof interval, "[%.8g, %.8g]", p.value - 3 * *p.sigma, p.value + 3 * *p.sigma);
-      rows += SignificantCell(pk + "/sigma", *p.sigma, 4) + "<td>" + interval + "</td>";
+      rows += SignificantCell(pk + JsonPointer({reproj_key::kSigma}), *p.sigma, 4) + "<td>" + interval + "</td>";
     } else {
       rows += "<td>—</td><td>—</td>";
     }
@@ -47,17 +49,17 @@ std::string ParametersTable(const CameraReport& c, const std::string& key) {
 
 std::string CameraSection(const ReprojReport& r, size_t k) {
   const CameraReport& c = r.cameras[k];
-  const std::string key = "/cameras/" + std::to_string(k);
+  const std::string key = JsonPointer({reproj_key::kCameras, std::to_string(k)});
   const std::string unit(LengthUnitName(r.correspondences.length_unit));
   std::string s = "<section><h2>Camera " + std::to_string(k) + ": " + Escape(c.file) +
                   (c.method.empty() ? "" : " (" + Escape(c.method) + ")") + "</h2>\n";
-  s += StatsTable("calibration points", StatsRow("|residual| px", key + "/overall/error_px", c.overall.error_px) +
-                                            StatsRow("lateral " + unit, key + "/overall/lateral", c.overall.lateral) +
-                                            StatsRow("angular deg", key + "/overall/angular_deg", c.overall.angular_deg) +
-                                            StatsRow("normalized z", key + "/normalized/calibration_points", c.normalized));
+  s += StatsTable("calibration points", StatsRow("|residual| px", key + JsonPointer({reproj_key::kOverall, reproj_key::kErrorPx}), c.overall.error_px) +
+                                            StatsRow("lateral " + unit, key + JsonPointer({reproj_key::kOverall, reproj_key::kLateral}), c.overall.lateral) +
+                                            StatsRow("angular deg", key + JsonPointer({reproj_key::kOverall, reproj_key::kAngularDeg}), c.overall.angular_deg) +
+                                            StatsRow("normalized z", key + JsonPointer({reproj_key::kNormalized, reproj_key::kCalibrationPoints}), c.normalized));
   s += "<p>Normalized residuals: ";
   if (c.chi2_per_dof) {
-    s += "chi² per degree of freedom <span data-key=\"" + key + "/normalized/chi2_per_dof\" data-value=\"" +
+    s += "chi² per degree of freedom <span data-key=\"" + key + JsonPointer({reproj_key::kNormalized, reproj_key::kChi2PerDof}) + "\" data-value=\"" +
          ShortestDecimal(*c.chi2_per_dof) + "\">" + [&] {
            char b[32];
            std::snprintf(b, sizeof b, "%.3f", *c.chi2_per_dof);
@@ -66,31 +68,32 @@ std::string CameraSection(const ReprojReport& r, size_t k) {
   } else {
     s += Escape(c.normalization) + ".";
   }
-  s += " Excluded: <span data-key=\"" + key + "/excluded/behind_camera\" data-value=\"" + std::to_string(c.n_behind_camera) +
+  s += " Excluded: <span data-key=\"" + key + JsonPointer({reproj_key::kExcluded, reproj_key::kBehindCamera}) + "\" data-value=\"" + std::to_string(c.n_behind_camera) +
        "\">" + std::to_string(c.n_behind_camera) + "</span> behind the camera, " + std::to_string(c.n_no_pose) +
        " without a pose, " + std::to_string(c.n_no_ray) + " without a ray.</p>\n";
   s += ParametersTable(c, key);
   // Worst first: the view a user should look at (or drop) heads the table.
   std::string views;
   for (const size_t v : WorstViewsFirst(c)) {
-    views += StatsRow(c.views[v].name, key + "/views/" + std::to_string(v) + "/error_px", c.views[v].error_px);
+    views += StatsRow(c.views[v].name, key + JsonPointer({reproj_key::kViews, std::to_string(v), reproj_key::kErrorPx}), c.views[v].error_px);
   }
   s += StatsTable("|residual| px per view, the largest RMS first", views);
   if (!c.test_points.empty()) {
     s += StatsTable("test points, |residual| px and lateral " + unit,
-                    StatsRow("inside, px", key + "/test_points/inside/error_px", c.test_inside.error_px) +
-                        StatsRow("outside, px", key + "/test_points/outside/error_px", c.test_outside.error_px) +
-                        StatsRow("inside, " + unit, key + "/test_points/inside/lateral", c.test_inside.lateral) +
-                        StatsRow("outside, " + unit, key + "/test_points/outside/lateral", c.test_outside.lateral));
+                    StatsRow("inside, px", key + JsonPointer({reproj_key::kTestPoints, reproj_key::kInside, reproj_key::kErrorPx}), c.test_inside.error_px) +
+                        StatsRow("outside, px", key + JsonPointer({reproj_key::kTestPoints, reproj_key::kOutside, reproj_key::kErrorPx}), c.test_outside.error_px) +
+                        StatsRow("inside, " + unit, key + JsonPointer({reproj_key::kTestPoints, reproj_key::kInside, reproj_key::kLateral}), c.test_inside.lateral) +
+                        StatsRow("outside, " + unit, key + JsonPointer({reproj_key::kTestPoints, reproj_key::kOutside, reproj_key::kLateral}), c.test_outside.lateral));
     std::string rows;
     for (size_t i = 0; i < c.test_points.size(); ++i) {
       const TestPointReport& t = c.test_points[i];
-      const std::string tk = key + "/test_points/points/" + std::to_string(i);
+      const std::string tk = key + JsonPointer({reproj_key::kTestPoints, reproj_key::kPoints, std::to_string(i)});
       rows += "<tr><th>" + Escape(t.name) + "</th><td>" +
               (!t.inside_volume ? "—" : *t.inside_volume ? "inside" : "outside") + "</td>";
       rows += t.error.excluded == Exclusion::kNone
-                  ? Cell(tk + "/error_px", t.error.error_px) + Cell(tk + "/lateral", t.error.lateral) +
-                        Cell(tk + "/angular_deg", t.error.angular_deg())
+                  ? Cell(tk + JsonPointer({reproj_key::kErrorPx}), t.error.error_px) +
+                        Cell(tk + JsonPointer({reproj_key::kLateral}), t.error.lateral) +
+                        Cell(tk + JsonPointer({reproj_key::kAngularDeg}), t.error.angular_deg())
                   : "<td colspan=\"3\">" + std::string(ExclusionName(t.error.excluded)) + "</td>";
       rows += "</tr>\n";
     }
@@ -117,7 +120,7 @@ std::string ReprojReportHtml(const ReprojReport& r, const std::filesystem::path&
       const CameraDifference& d = r.differences[m];
       rows += StatsRow("camera " + std::to_string(d.camera) + " vs " + std::to_string(d.reference) +
                            ": prediction shift px",
-                       "/differences/" + std::to_string(m) + "/prediction_shift_px", d.prediction_shift_px);
+                       JsonPointer({reproj_key::kDifferences, std::to_string(m), reproj_key::kPredictionShiftPx}), d.prediction_shift_px);
     }
     s += "<section><h2>Cameras side by side</h2>\n" + StatsTable("how far the cameras' predictions lie apart", rows) +
          "</section>\n";

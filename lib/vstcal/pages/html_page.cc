@@ -2,6 +2,8 @@
 
 #include <cstdio>
 
+#include "vstcal/formats/report/report_keys.h"
+#include "vstcal/json/json_pointer.h"
 #include "vstcal/json/json_writer.h"
 #include "vstcal/pages/gnuplot.h"
 
@@ -86,8 +88,10 @@ std::string Base64(const unsigned char* data, size_t size) {
 std::string StatsRow(const std::string& label, const std::string& key, const std::optional<ErrorStats>& s) {
   std::string row = "<tr><th>" + Escape(label) + "</th>";
   if (!s) return row + EmptyCells(6) + "</tr>\n";
-  row += Cell(key + "/n", s->n) + Cell(key + "/mean", s->mean) + Cell(key + "/rms", s->rms) +
-         Cell(key + "/median", s->median) + Cell(key + "/p95", s->p95) + Cell(key + "/max", s->max);
+  namespace k = reproj_key;
+  row += Cell(key + JsonPointer({k::kN}), s->n) + Cell(key + JsonPointer({k::kMean}), s->mean) +
+         Cell(key + JsonPointer({k::kRms}), s->rms) + Cell(key + JsonPointer({k::kMedian}), s->median) +
+         Cell(key + JsonPointer({k::kP95}), s->p95) + Cell(key + JsonPointer({k::kMax}), s->max);
   return row + "</tr>\n";
 }
 

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cstdio>
 
+#include "vstcal/formats/report/report_keys.h"
+#include "vstcal/json/json_pointer.h"
 #include "vstcal/json/json_writer.h"
 #include "vstcal/pages/charts.h"
 #include "vstcal/pages/gnuplot.h"
@@ -20,22 +22,27 @@ std::string Fixed4(double v) {
 }
 
 std::string StereoRows(const std::string& key, const std::string& unit, const StereoStats& s) {
-  return StatsRow("|dx| " + unit, key + "/x", s.x) + StatsRow("|dy| " + unit, key + "/y", s.y) +
-         StatsRow("|dz| " + unit, key + "/z", s.z) + StatsRow("linear " + unit, key + "/linear", s.linear) +
-         StatsRow("lateral " + unit, key + "/lateral", s.lateral) + StatsRow("|depth| " + unit, key + "/depth", s.depth) +
-         StatsRow("angular deg", key + "/angular_deg", s.angular_deg);
+  namespace k = reproj_key;
+  return StatsRow("|dx| " + unit, key + JsonPointer({k::kX}), s.x) + StatsRow("|dy| " + unit, key + JsonPointer({k::kY}), s.y) +
+         StatsRow("|dz| " + unit, key + JsonPointer({k::kZ}), s.z) +
+         StatsRow("linear " + unit, key + JsonPointer({k::kLinear}), s.linear) +
+         StatsRow("lateral " + unit, key + JsonPointer({k::kLateral}), s.lateral) +
+         StatsRow("|depth| " + unit, key + JsonPointer({k::kDepth}), s.depth) +
+         StatsRow("angular deg", key + JsonPointer({k::kAngularDeg}), s.angular_deg);
 }
 
 // Test points inside and outside the measured volume, and each one's error.
 std::string TestPointSection(const StereoReport& r, const std::string& unit) {
   std::string s = "<h2>Test points</h2>\n<p>Points never used in a calibration, triangulated like the others. Measured "
                   "volume (the convex hull of both files' calibration points): " + Escape(r.volume.status) + ".</p>\n";
-  s += StatsTable("measured test points inside the volume", StereoRows("/stereo/test_points/inside", unit, r.test_inside));
-  s += StatsTable("measured test points outside the volume", StereoRows("/stereo/test_points/outside", unit, r.test_outside));
+  s += StatsTable("measured test points inside the volume", StereoRows(JsonPointer({reproj_key::kStereo, reproj_key::kTestPoints, reproj_key::kInside}), unit, r.test_inside));
+  s += StatsTable("measured test points outside the volume", StereoRows(JsonPointer({reproj_key::kStereo, reproj_key::kTestPoints, reproj_key::kOutside}), unit, r.test_outside));
   std::string rows;
   for (size_t i = 0; i < r.test_points.size(); ++i) {
     const StereoTestPoint& t = r.test_points[i];
-    const std::string key = "/stereo/test_points/points/" + std::to_string(i) + "/error/";
+    // The error array: [dx, dy, dz, linear, …].
+    const std::string key =
+        JsonPointer({reproj_key::kStereo, reproj_key::kTestPoints, reproj_key::kPoints, std::to_string(i), reproj_key::kError}) + "/";
     rows += "<tr><th>" + Escape(t.name) + "</th><td>" +
             (t.inside_volume ? (*t.inside_volume ? "inside" : "outside") : "—") + "</td>";
     if (t.error.excluded != StereoExclusion::kNone) {
@@ -58,13 +65,15 @@ std::string PerViewTable(const StereoReport& r, const std::string& unit) {
   std::string rows;
   for (size_t v = 0; v < r.views.size(); ++v) {
     const StereoViewReport& view = r.views[v];
-    const std::string key = "/stereo/views/" + std::to_string(v);
+    const std::string key = JsonPointer({reproj_key::kStereo, reproj_key::kViews, std::to_string(v)});
     rows += "<tr><th>" + Escape(view.name) + "</th><td>" + Escape(view.pose_status) + "</td>" +
-            stat(key + "/reprojection/left/error_px/rms", view.left.error_px, &ErrorStats::rms) +
-            stat(key + "/reprojection/right/error_px/rms", view.right.error_px, &ErrorStats::rms) +
-            (view.stats.linear ? Cell(key + "/stats/linear/n", view.stats.linear->n) : EmptyCells(1)) +
-            stat(key + "/stats/linear/rms", view.stats.linear, &ErrorStats::rms) +
-            stat(key + "/stats/linear/max", view.stats.linear, &ErrorStats::max) + "</tr>\n";
+            stat(key + JsonPointer({reproj_key::kReprojection, reproj_key::kLeft, reproj_key::kErrorPx, reproj_key::kRms}), view.left.error_px,
+                 &ErrorStats::rms) +
+            stat(key + JsonPointer({reproj_key::kReprojection, reproj_key::kRight, reproj_key::kErrorPx, reproj_key::kRms}), view.right.error_px,
+                 &ErrorStats::rms) +
+            (view.stats.linear ? Cell(key + JsonPointer({reproj_key::kStats, reproj_key::kLinear, reproj_key::kN}), view.stats.linear->n) : EmptyCells(1)) +
+            stat(key + JsonPointer({reproj_key::kStats, reproj_key::kLinear, reproj_key::kRms}), view.stats.linear, &ErrorStats::rms) +
+            stat(key + JsonPointer({reproj_key::kStats, reproj_key::kLinear, reproj_key::kMax}), view.stats.linear, &ErrorStats::max) + "</tr>\n";
   }
   return "<table><caption>per view: each camera's reprojection error through the rig and the triangulated error</caption>"
          "<tr><th>view</th><th>left pose</th><th>left RMS px</th><th>right RMS px</th><th>points triangulated</th>"
@@ -123,7 +132,7 @@ std::string StereoReportHtml(const StereoReport& r, const std::filesystem::path&
        Escape(unit) + ". Each point both cameras saw is triangulated through the rig (the midpoint of the two rays) and "
        "compared with the known point in the left camera's frame (x right, y down, z forward); Holloway's terms are "
        "seen from the midpoint of the cameras. Definitions: docs/math/stereo.md#triangulated-error.</p>\n";
-  s += StatsTable("every measured point", StereoRows("/stereo/overall", unit, r.overall));
+  s += StatsTable("every measured point", StereoRows(JsonPointer({reproj_key::kStereo, reproj_key::kOverall}), unit, r.overall));
   s += "<p>Excluded: " + std::to_string(r.n_left_only) + " seen by the left camera only, " +
        std::to_string(r.n_right_only) + " by the right only, " + std::to_string(r.n_no_pose) + " without a left pose, " +
        std::to_string(r.n_no_ray) + " without a ray, " + std::to_string(r.n_behind) + " behind; views seen by one camera: " +

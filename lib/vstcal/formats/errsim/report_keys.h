@@ -4,11 +4,11 @@
 // them there, so no key is spelled twice.
 #pragma once
 
-#include <initializer_list>
 #include <string>
 #include <string_view>
 
 #include "vstcal/errsim/outputs.h"
+#include "vstcal/json/json_pointer.h"
 
 namespace vstcal {
 
@@ -146,12 +146,5 @@ inline constexpr char kSigmaDisagrees[] = "sigma_disagrees";
 inline constexpr char kLinearSigmaBySource[] = "linear_sigma_by_source";
 inline constexpr char kDisagreements[] = "disagreements";
 }  // namespace errsim_key
-
-// "/a/b/3": a JSON pointer into the report from its keys (and array indices as text).
-inline std::string ReportPointer(std::initializer_list<std::string_view> parts) {
-  std::string pointer;
-  for (const std::string_view part : parts) pointer.append("/").append(part);
-  return pointer;
-}
 
 }  // namespace vstcal

@@ -4,17 +4,20 @@
 
 #include "vstcal/core/string_printf.h"
 #include "vstcal/formats/camera/camera_io.h"
+#include "vstcal/formats/report/report_keys.h"
 
 namespace vstcal {
 namespace {
 
 OrderedJson StatsJson(const std::optional<ErrorStats>& s) {
   if (!s) return nullptr;
-  return {{"n", s->n}, {"mean", s->mean}, {"rms", s->rms}, {"median", s->median}, {"p95", s->p95}, {"max", s->max}};
+  namespace key = reproj_key;
+  return {{key::kN, s->n}, {key::kMean, s->mean}, {key::kRms, s->rms}, {key::kMedian, s->median}, {key::kP95, s->p95}, {key::kMax, s->max}};
 }
 
 OrderedJson MeasureJson(const MeasureStats& m) {
-  return {{"error_px", StatsJson(m.error_px)}, {"lateral", StatsJson(m.lateral)}, {"angular_deg", StatsJson(m.angular_deg)}};
+  return {{reproj_key::kErrorPx, StatsJson(m.error_px)}, {reproj_key::kLateral, StatsJson(m.lateral)},
+          {reproj_key::kAngularDeg, StatsJson(m.angular_deg)}};
 }
 
 OrderedJson Optional(const std::optional<double>& v) { return v ? OrderedJson(*v) : OrderedJson(nullptr); }
@@ -49,9 +52,9 @@ OrderedJson TestPointJson(const TestPointReport& t) {
   j["inside_volume"] = t.inside_volume ? OrderedJson(*t.inside_volume) : OrderedJson(nullptr);
   j["measured"] = e.excluded == Exclusion::kNotMeasured ? OrderedJson(nullptr) : MatrixToJson(e.measured);
   j["predicted"] = measured ? MatrixToJson(*e.predicted) : OrderedJson(nullptr);
-  j["error_px"] = measured ? OrderedJson(e.error_px) : OrderedJson(nullptr);
-  j["lateral"] = measured ? OrderedJson(e.lateral) : OrderedJson(nullptr);
-  j["angular_deg"] = measured ? OrderedJson(e.angular_deg()) : OrderedJson(nullptr);
+  j[reproj_key::kErrorPx] = measured ? OrderedJson(e.error_px) : OrderedJson(nullptr);
+  j[reproj_key::kLateral] = measured ? OrderedJson(e.lateral) : OrderedJson(nullptr);
+  j[reproj_key::kAngularDeg] = measured ? OrderedJson(e.angular_deg()) : OrderedJson(nullptr);
   j["normalized"] = Optional(e.normalized);
   j["excluded"] = measured ? OrderedJson(nullptr) : OrderedJson(ExclusionName(e.excluded));
   return j;
@@ -72,23 +75,24 @@ OrderedJson CameraJson(const CameraReport& c, const ImageGrid& grid) {
   j["method"] = c.method;
   OrderedJson parameters = OrderedJson::array();
   for (const ParameterEstimate& p : c.parameters) {
-    parameters.push_back({{"name", p.name}, {"value", p.value}, {"sigma", p.sigma ? OrderedJson(*p.sigma) : OrderedJson(nullptr)}});
+    parameters.push_back(
+        {{"name", p.name}, {reproj_key::kValue, p.value}, {reproj_key::kSigma, p.sigma ? OrderedJson(*p.sigma) : OrderedJson(nullptr)}});
   }
-  j["parameters"] = std::move(parameters);
-  j["overall"] = MeasureJson(c.overall);
-  j["excluded"] = {{"behind_camera", c.n_behind_camera}, {"no_pose", c.n_no_pose}, {"no_ray", c.n_no_ray}};
-  j["normalized"] = {{"how", c.normalization},
-                     {"calibration_points", StatsJson(c.normalized)},
-                     {"chi2_per_dof", Optional(c.chi2_per_dof)},
+  j[reproj_key::kParameters] = std::move(parameters);
+  j[reproj_key::kOverall] = MeasureJson(c.overall);
+  j[reproj_key::kExcluded] = {{reproj_key::kBehindCamera, c.n_behind_camera}, {"no_pose", c.n_no_pose}, {"no_ray", c.n_no_ray}};
+  j[reproj_key::kNormalized] = {{"how", c.normalization},
+                     {reproj_key::kCalibrationPoints, StatsJson(c.normalized)},
+                     {reproj_key::kChi2PerDof, Optional(c.chi2_per_dof)},
                      {"test_points", StatsJson(c.test_normalized)}};
   OrderedJson views = OrderedJson::array();
   for (const ViewReport& v : c.views) {
     OrderedJson points = OrderedJson::array();
     for (const PointError& e : v.points) points.push_back(PointJson(e));
-    views.push_back({{"name", v.name}, {"error_px", StatsJson(v.error_px)}, {"excluded", ExclusionsJson(v.points)},
-                     {"points", std::move(points)}});
+    views.push_back({{"name", v.name}, {reproj_key::kErrorPx, StatsJson(v.error_px)}, {reproj_key::kExcluded, ExclusionsJson(v.points)},
+                     {reproj_key::kPoints, std::move(points)}});
   }
-  j["views"] = std::move(views);
+  j[reproj_key::kViews] = std::move(views);
   j["grid"] = GridJson(grid, c.grid);
   if (c.uncertainty_px.empty()) {
     j["projection_uncertainty"] = nullptr;
@@ -99,8 +103,8 @@ OrderedJson CameraJson(const CameraReport& c, const ImageGrid& grid) {
   }
   OrderedJson tests = OrderedJson::array();
   for (const TestPointReport& t : c.test_points) tests.push_back(TestPointJson(t));
-  j["test_points"] = {{"inside", MeasureJson(c.test_inside)}, {"outside", MeasureJson(c.test_outside)},
-                      {"points", std::move(tests)}};
+  j[reproj_key::kTestPoints] = {{reproj_key::kInside, MeasureJson(c.test_inside)}, {reproj_key::kOutside, MeasureJson(c.test_outside)},
+                      {reproj_key::kPoints, std::move(tests)}};
   return j;
 }
 
@@ -116,13 +120,13 @@ void AppendStatsRow(std::string* out, const std::string& label, const std::optio
 }
 
 OrderedJson StereoStatsJson(const StereoStats& s) {
-  return {{"x", StatsJson(s.x)},
-          {"y", StatsJson(s.y)},
-          {"z", StatsJson(s.z)},
-          {"linear", StatsJson(s.linear)},
-          {"lateral", StatsJson(s.lateral)},
-          {"depth", StatsJson(s.depth)},
-          {"angular_deg", StatsJson(s.angular_deg)},
+  return {{reproj_key::kX, StatsJson(s.x)},
+          {reproj_key::kY, StatsJson(s.y)},
+          {reproj_key::kZ, StatsJson(s.z)},
+          {reproj_key::kLinear, StatsJson(s.linear)},
+          {reproj_key::kLateral, StatsJson(s.lateral)},
+          {reproj_key::kDepth, StatsJson(s.depth)},
+          {reproj_key::kAngularDeg, StatsJson(s.angular_deg)},
           {"bias", MatrixToJson(s.bias)},
           {"depth_bias", s.depth_bias}};
 }
@@ -148,7 +152,8 @@ OrderedJson StereoReprojectionJson(const StereoReprojection& r) {
     points.push_back({e.measured.x(), e.measured.y(), measured ? OrderedJson(d.x()) : OrderedJson(nullptr),
                       measured ? OrderedJson(d.y()) : OrderedJson(nullptr)});
   }
-  return {{"error_px", StatsJson(r.error_px)}, {"excluded", ExclusionsJson(r.points)}, {"points", std::move(points)}};
+  return {{reproj_key::kErrorPx, StatsJson(r.error_px)}, {reproj_key::kExcluded, ExclusionsJson(r.points)},
+          {reproj_key::kPoints, std::move(points)}};
 }
 
 void AppendStereoRows(std::string* out, const std::string& prefix, const std::string& unit, const StereoStats& s) {
@@ -202,17 +207,17 @@ OrderedJson ReprojReportToJson(const ReprojReport& r, const Provenance& provenan
   j["volume"] = MeasuredVolumeToJson(r.volume);
   OrderedJson cameras = OrderedJson::array();
   for (const CameraReport& cam : r.cameras) cameras.push_back(CameraJson(cam, r.grid));
-  j["cameras"] = std::move(cameras);
+  j[reproj_key::kCameras] = std::move(cameras);
   OrderedJson differences = OrderedJson::array();
   for (const CameraDifference& d : r.differences) {
     differences.push_back({{"camera", d.camera},
                            {"reference", d.reference},
-                           {"prediction_shift_px", StatsJson(d.prediction_shift_px)},
+                           {reproj_key::kPredictionShiftPx, StatsJson(d.prediction_shift_px)},
                            {"rms_change_px", Optional(d.rms_change_px)},
                            {"median_change_px", Optional(d.median_change_px)},
                            {"p95_change_px", Optional(d.p95_change_px)}});
   }
-  j["differences"] = std::move(differences);
+  j[reproj_key::kDifferences] = std::move(differences);
   j["provenance"] = ProvenanceToJson(provenance);
   return j;
 }
@@ -272,18 +277,19 @@ OrderedJson StereoReportToJson(const StereoReport& r, const Provenance& provenan
         excluded.push_back({{"index", i}, {"reason", StereoExclusionName(v.points[i].excluded)}});
       }
     }
-    views.push_back({{"name", v.name}, {"left_pose", v.pose_status}, {"stats", StereoStatsJson(v.stats)},
-                     {"excluded", std::move(excluded)}, {"points", std::move(points)},
-                     {"reprojection", {{"left", StereoReprojectionJson(v.left)}, {"right", StereoReprojectionJson(v.right)}}}});
+    views.push_back({{"name", v.name}, {"left_pose", v.pose_status}, {reproj_key::kStats, StereoStatsJson(v.stats)},
+                     {reproj_key::kExcluded, std::move(excluded)}, {reproj_key::kPoints, std::move(points)},
+                     {reproj_key::kReprojection,
+                      {{reproj_key::kLeft, StereoReprojectionJson(v.left)}, {reproj_key::kRight, StereoReprojectionJson(v.right)}}}});
   }
-  j["stereo"] = {{"rig", r.rig_file},
+  j[reproj_key::kStereo] = {{"rig", r.rig_file},
                  {"left", r.left_file},
                  {"right", r.right_file},
                  {"length_unit", LengthUnitName(r.length_unit)},
                  {"target", r.rig_kind == Rig::kVolume ? "volume" : "planar-views"},
                  {"baseline", r.baseline},
                  {"volume", MeasuredVolumeToJson(r.volume)},
-                 {"overall", StereoStatsJson(r.overall)},
+                 {reproj_key::kOverall, StereoStatsJson(r.overall)},
                  {"excluded",
                   {{"left_only", r.n_left_only},
                    {"right_only", r.n_right_only},
@@ -292,7 +298,7 @@ OrderedJson StereoReportToJson(const StereoReport& r, const Provenance& provenan
                    {"behind", r.n_behind}}},
                  {"left_only_views", r.left_only_views},
                  {"right_only_views", r.right_only_views},
-                 {"views", std::move(views)},
+                 {reproj_key::kViews, std::move(views)},
                  {"grid", {{"cols", r.left_grid.grid.cols}, {"rows", r.left_grid.grid.rows}}},
                  {"reprojection",
                   {{"left", {{"error_px", StatsJson(r.left_grid.overall_px)}, {"grid", GridJson(r.left_grid.grid, r.left_grid.error_px)}}},
@@ -305,13 +311,13 @@ OrderedJson StereoReportToJson(const StereoReport& r, const Provenance& provenan
     tests.push_back({{"name", t.name},
                      {"world", MatrixToJson(t.point_in_world)},
                      {"inside_volume", t.inside_volume ? OrderedJson(*t.inside_volume) : OrderedJson(nullptr)},
-                     {"error", std::move(point)},
+                     {reproj_key::kError, std::move(point)},
                      {"excluded", measured ? OrderedJson(nullptr) : OrderedJson(StereoExclusionName(t.error.excluded))}});
   }
-  j["stereo"]["test_points"] = {{"stats", StereoStatsJson(r.test_stats)},
-                                {"inside", StereoStatsJson(r.test_inside)},
-                                {"outside", StereoStatsJson(r.test_outside)},
-                                {"points", std::move(tests)}};
+  j[reproj_key::kStereo][reproj_key::kTestPoints] = {{reproj_key::kStats, StereoStatsJson(r.test_stats)},
+                                {reproj_key::kInside, StereoStatsJson(r.test_inside)},
+                                {reproj_key::kOutside, StereoStatsJson(r.test_outside)},
+                                {reproj_key::kPoints, std::move(tests)}};
   j["provenance"] = ProvenanceToJson(provenance);
   return j;
 }
