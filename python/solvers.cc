@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -50,13 +51,131 @@ DltOptions::Solver SolverNamed(std::string_view name) {
 }
 
 // Raises the tool's exception when the DLT failed; otherwise P's decomposition.
-DltSolution Solve(std::span<const Observation> observations, const DltOptions& options) {
-  DltSolution s{SolveDlt(observations, options), {}};
-  if (s.result.status != DltStatus::kOk) throw Error(DltStatusExitCode(s.result.status), s.result.message);
-  const std::optional<ProjectionDecomposition> d = DecomposeProjection(s.result.P);
+void SolveInto(std::span<const Observation> observations, const DltOptions& options, DltSolution* s) {
+  s->result = SolveDlt(observations, options);
+  if (s->result.status != DltStatus::kOk) throw Error(DltStatusExitCode(s->result.status), s->result.message);
+  const std::optional<ProjectionDecomposition> d = DecomposeProjection(s->result.P);
   if (!d) throw DegenerateError("P: its left 3×3 block is singular or mirrored; check the points' coordinates");
-  s.decomposition = *d;
+  s->decomposition = *d;
+}
+
+DltSolution Solve(std::span<const Observation> observations, const DltOptions& options) {
+  DltSolution s;
+  SolveInto(observations, options, &s);
   return s;
+}
+
+// solve_dlt(points, pixels=None, solver="normal-equations", exact_diagnostics=False).
+DltSolution SolveDltOf(const py::object& points, const py::object& pixels, std::string_view solver, bool exact_diagnostics) {
+  DltOptions options;
+  options.solver = SolverNamed(solver);
+  options.exact_diagnostics = exact_diagnostics;
+  if (py::isinstance<Observations>(points)) {
+    if (!pixels.is_none()) throw InputError("pixels: already in the Observations; leave it out");
+    return Solve(points.cast<const Observations&>().list, options);
+  }
+  if (pixels.is_none()) throw InputError("pixels: missing; give the (N, 2) pixels of the (N, 3) points");
+  return Solve(MakeObservations(points, pixels, py::none()).list, options);
+}
+
+// vstcal.solve_dlt is a plain CPython function (METH_FASTCALL) in front of the pybind11 one
+// (docs/performance.md#python). pybind11's dispatch (an argument tuple, the defaults filled in,
+// four casters, a type-map lookup per isinstance and cast and one for the result) was most of the
+// 0.3 µs the binding added to a 60-point DLT of 4.7 µs. The fast entry takes the calls whose
+// arguments need no conversion — an Observations (exactly), pixels None, solver a str naming a
+// solver, exact_diagnostics True or False, by position or keyword — and hands every other call to
+// the pybind11 function unchanged, so that arrays, type errors and their messages stay pybind11's.
+// Its result is the same DltSolution; errors go through the same translators as pybind11's.
+struct FastSolveDlt {
+  PyObject* general = nullptr;  // the pybind11 solve_dlt, for every other call
+  const py::detail::type_info* observations = nullptr;
+  const py::detail::type_info* solution = nullptr;
+  PyObject* keywords[4] = {};  // interned: points, pixels, solver, exact_diagnostics
+  std::string doc;             // pybind11's docstring of `general`: the signature line and the text
+  PyMethodDef method{};
+};
+FastSolveDlt fast_solve_dlt;
+
+PyObject* SolveDltEntry(PyObject* /*self*/, PyObject* const* args, Py_ssize_t nargsf, PyObject* kwnames) {
+  const FastSolveDlt& f = fast_solve_dlt;
+  const Py_ssize_t nargs = PyVectorcall_NARGS(nargsf);
+  const auto general = [&] { return PyObject_Vectorcall(f.general, args, nargsf, kwnames); };
+  PyObject* given[4] = {};
+  if (nargs > 4) return general();
+  for (Py_ssize_t i = 0; i < nargs; ++i) given[i] = args[i];
+  if (kwnames != nullptr) {
+    const Py_ssize_t nkw = PyTuple_GET_SIZE(kwnames);
+    for (Py_ssize_t k = 0; k < nkw; ++k) {
+      PyObject* name = PyTuple_GET_ITEM(kwnames, k);
+      int slot = 0;
+      while (slot < 4 && f.keywords[slot] != name) ++slot;  // call sites' keywords are interned
+      if (slot == 4 || given[slot] != nullptr) return general();
+      given[slot] = args[nargs + k];
+    }
+  }
+  if (given[0] == nullptr || Py_TYPE(given[0]) != f.observations->type) return general();
+  if (given[1] != nullptr && given[1] != Py_None) return general();
+  DltOptions options;
+  if (given[2] != nullptr) {
+    if (!PyUnicode_CheckExact(given[2])) return general();
+    Py_ssize_t size = 0;
+    const char* name = PyUnicode_AsUTF8AndSize(given[2], &size);
+    if (name == nullptr) {
+      PyErr_Clear();
+      return general();
+    }
+    const auto solver = FromName(DltOptions::kSolverNames, std::string_view(name, static_cast<size_t>(size)));
+    if (!solver) return general();
+    options.solver = *solver;
+  }
+  if (given[3] != nullptr) {
+    if (given[3] != Py_True && given[3] != Py_False) return general();
+    options.exact_diagnostics = given[3] == Py_True;
+  }
+  const auto* observations =
+      static_cast<const Observations*>(reinterpret_cast<py::detail::instance*>(given[0])->get_value_and_holder().value_ptr());
+  if (observations == nullptr) return general();  // not initialised: pybind11 says so
+  try {
+    auto solution = std::make_unique<DltSolution>();
+    SolveInto(observations->list, options, solution.get());
+    const py::handle result = py::detail::type_caster_generic::cast(solution.get(), py::return_value_policy::take_ownership,
+                                                                    py::handle(), f.solution, nullptr, nullptr);
+    if (result) solution.release();  // now owned by the Python object
+    return result.ptr();
+  } catch (py::error_already_set& e) {
+    e.restore();
+    return nullptr;
+#ifdef __GLIBCXX__
+  } catch (abi::__forced_unwind&) {  // a cancelled thread unwinds through, as in pybind11's dispatcher
+    throw;
+#endif
+  } catch (...) {
+    // As pybind11's dispatcher: the module's translators, then the global ones (module.cc's).
+    if (py::detail::apply_exception_translators(py::detail::get_local_internals().registered_exception_translators)) return nullptr;
+    if (py::detail::apply_exception_translators(py::detail::get_internals().registered_exception_translators)) return nullptr;
+    PyErr_SetString(PyExc_SystemError, "Exception escaped from default exception translator!");
+    return nullptr;
+  }
+}
+
+void DefineSolveDlt(py::module_& m, const char* doc) {
+  FastSolveDlt& f = fast_solve_dlt;
+  py::cpp_function general(&SolveDltOf, py::name("solve_dlt"), py::scope(m), py::arg("points"), py::arg("pixels") = py::none(),
+                           py::arg("solver") = "normal-equations", py::arg("exact_diagnostics") = false, doc);
+  f.doc = py::str(general.attr("__doc__"));
+  f.general = general.release().ptr();  // held for the life of the process, as module.cc's exception types
+  f.observations = py::detail::get_type_info(typeid(Observations));
+  f.solution = py::detail::get_type_info(typeid(DltSolution));
+  const char* names[4] = {"points", "pixels", "solver", "exact_diagnostics"};
+  for (int i = 0; i < 4; ++i) {
+    f.keywords[i] = PyUnicode_InternFromString(names[i]);
+    if (f.keywords[i] == nullptr) throw py::error_already_set();
+  }
+  f.method = {"solve_dlt", reinterpret_cast<PyCFunction>(reinterpret_cast<void (*)()>(&SolveDltEntry)), METH_FASTCALL | METH_KEYWORDS,
+              f.doc.c_str()};
+  PyObject* entry = PyCFunction_NewEx(&f.method, nullptr, m.attr("__name__").ptr());
+  if (entry == nullptr) throw py::error_already_set();
+  m.attr("solve_dlt") = py::reinterpret_steal<py::object>(entry);
 }
 
 // The refinement options as calib-dlt and calib-tsai read their flags (tools/common/calibration_flags.cc).
@@ -205,23 +324,8 @@ void RegisterSolvers(py::module_& m) {
       .def_property_readonly("warnings", [](const DltSolution& s) { return s.result.warnings; })
       .def_property_readonly("n_points", [](const DltSolution& s) { return s.result.n_points; });
 
-  m.def(
-      "solve_dlt",
-      [](const py::object& points, const py::object& pixels, std::string_view solver, bool exact_diagnostics) {
-        DltOptions options;
-        options.solver = SolverNamed(solver);
-        options.exact_diagnostics = exact_diagnostics;
-        if (py::isinstance<Observations>(points)) {
-          if (!pixels.is_none()) throw InputError("pixels: already in the Observations; leave it out");
-          return Solve(points.cast<const Observations&>().list, options);
-        }
-        if (pixels.is_none()) throw InputError("pixels: missing; give the (N, 2) pixels of the (N, 3) points");
-        return Solve(MakeObservations(points, pixels, py::none()).list, options);
-      },
-      py::arg("points"), py::arg("pixels") = py::none(), py::arg("solver") = "normal-equations",
-      py::arg("exact_diagnostics") = false,
-      "P from ≥ 6 non-coplanar world points (N, 3) and their pixels (N, 2), or from an Observations "
-      "(docs/math/dlt.md). Raises vstcal.DegenerateError (coplanar, collinear, ill-conditioned) or InputError.");
+  DefineSolveDlt(m, "P from ≥ 6 non-coplanar world points (N, 3) and their pixels (N, 2), or from an Observations "
+                    "(docs/math/dlt.md). Raises vstcal.DegenerateError (coplanar, collinear, ill-conditioned) or InputError.");
 
   m.def("calibrate", &Calibrate, py::arg("correspondences"), py::arg("method") = "tsai", py::arg("refine") = py::none(),
         py::arg("distortion") = py::none(), py::arg("skew") = false, py::arg("loss") = "none",
