@@ -12,6 +12,7 @@
 #include <vector>
 
 #include <pybind11/stl.h>
+#include <structmember.h>
 
 #include "bindings.h"
 #include "vstcal/app/calib_stereo.h"
@@ -43,6 +44,123 @@ struct DltSolution {
   ProjectionDecomposition decomposition;
 };
 
+// The Python DltSolution: a CPython type holding the DltSolution inline (one allocation, freed with
+// the object), not a pybind11 class, whose instances cost a second allocation and an entry in
+// pybind11's instance map — 0.1 of the 0.2 µs the binding added to a 60-point DLT
+// (docs/performance.md#python). Read-only attributes made when read, as the pybind11 class had.
+struct SolutionObject {
+  PyObject_HEAD
+  DltSolution value;
+  PyObject* weak_references;
+};
+PyTypeObject* solution_type = nullptr;
+
+// A new, default DltSolution object; nullptr with the Python error set.
+SolutionObject* NewSolution() {
+  SolutionObject* self = PyObject_New(SolutionObject, solution_type);
+  if (self == nullptr) return nullptr;
+  new (&self->value) DltSolution();
+  self->weak_references = nullptr;
+  return self;
+}
+
+void DeleteSolution(PyObject* object) {
+  auto* self = reinterpret_cast<SolutionObject*>(object);
+  if (self->weak_references != nullptr) PyObject_ClearWeakRefs(object);
+  self->value.~DltSolution();
+  PyTypeObject* type = Py_TYPE(object);
+  type->tp_free(object);
+  Py_DECREF(type);
+}
+
+PyObject* RefuseConstruction(PyTypeObject*, PyObject*, PyObject*) {
+  PyErr_SetString(PyExc_TypeError, "vstcal.DltSolution: No constructor defined!");  // as a pybind11 class without py::init
+  return nullptr;
+}
+
+// A C++ exception in flight as pybind11's dispatcher turns it into a Python one: the module's
+// translators, then the global ones (module.cc's). Call inside a catch block; returns nullptr.
+PyObject* RaiseTranslated() {
+  try {
+    throw;
+  } catch (py::error_already_set& e) {
+    e.restore();
+    return nullptr;
+#ifdef __GLIBCXX__
+  } catch (abi::__forced_unwind&) {  // a cancelled thread unwinds through, as in pybind11's dispatcher
+    throw;
+#endif
+  } catch (...) {
+    if (py::detail::apply_exception_translators(py::detail::get_local_internals().registered_exception_translators)) return nullptr;
+    if (py::detail::apply_exception_translators(py::detail::get_internals().registered_exception_translators)) return nullptr;
+    PyErr_SetString(PyExc_SystemError, "Exception escaped from default exception translator!");
+    return nullptr;
+  }
+}
+
+template <auto kRead>
+PyObject* Attribute(PyObject* object, void*) {
+  try {
+    auto value = kRead(reinterpret_cast<SolutionObject*>(object)->value);
+    return py::detail::make_caster<decltype(value)>::cast(std::move(value), py::return_value_policy::move, py::handle()).ptr();
+  } catch (...) {
+    return RaiseTranslated();
+  }
+}
+
+PyGetSetDef solution_attributes[] = {
+    {"P", Attribute<[](const DltSolution& s) { return ToArray(s.result.P); }>, nullptr, nullptr, nullptr},
+    {"K", Attribute<[](const DltSolution& s) { return ToArray(s.decomposition.K); }>, nullptr, nullptr, nullptr},
+    {"R", Attribute<[](const DltSolution& s) { return ToArray(s.decomposition.camera_from_world.R); }>, nullptr,
+     "camera_from_world's rotation", nullptr},
+    {"t", Attribute<[](const DltSolution& s) { return ToVector(s.decomposition.camera_from_world.t); }>, nullptr,
+     "camera_from_world's translation", nullptr},
+    {"sigma_11", Attribute<[](const DltSolution& s) { return s.result.sigma_11; }>, nullptr, nullptr, nullptr},
+    {"sigma_12", Attribute<[](const DltSolution& s) { return s.result.sigma_12; }>, nullptr, nullptr, nullptr},
+    {"conditioning", Attribute<[](const DltSolution& s) { return s.result.conditioning; }>, nullptr, nullptr, nullptr},
+    {"extents", Attribute<[](const DltSolution& s) { return s.result.extents; }>, nullptr, nullptr, nullptr},
+    {"warnings", Attribute<[](const DltSolution& s) { return s.result.warnings; }>, nullptr, nullptr, nullptr},
+    {"n_points", Attribute<[](const DltSolution& s) { return s.result.n_points; }>, nullptr, nullptr, nullptr},
+    {nullptr, nullptr, nullptr, nullptr, nullptr}};
+
+PyMemberDef solution_members[] = {
+    {"__weaklistoffset__", T_PYSSIZET, offsetof(SolutionObject, weak_references), READONLY, nullptr},
+    {nullptr, 0, 0, 0, nullptr}};
+
+void RegisterSolutionType(py::module_& m) {
+  static PyType_Slot slots[] = {
+      {Py_tp_doc, const_cast<char*>("A DLT solve: P (normalized), its decomposition K, R, t, and diagnostics.")},
+      {Py_tp_dealloc, reinterpret_cast<void*>(&DeleteSolution)},
+      {Py_tp_new, reinterpret_cast<void*>(&RefuseConstruction)},
+      {Py_tp_getset, solution_attributes},
+      {Py_tp_members, solution_members},
+      {0, nullptr}};
+  static PyType_Spec spec = {"vstcal.DltSolution", sizeof(SolutionObject), 0, Py_TPFLAGS_DEFAULT, slots};
+  PyObject* type = PyType_FromSpec(&spec);
+  if (type == nullptr) throw py::error_already_set();
+  solution_type = reinterpret_cast<PyTypeObject*>(type);  // held for the life of the process
+  m.attr("DltSolution") = py::reinterpret_borrow<py::object>(type);
+}
+
+// The object pybind11 returns for solve_dlt's other calls, under the name signatures show.
+struct SolutionHandle {
+  py::object object;
+};
+
+}  // namespace
+}  // namespace vstcal::python
+
+namespace pybind11::detail {
+template <>
+struct type_caster<vstcal::python::SolutionHandle> {
+  static constexpr auto name = const_name("vstcal.DltSolution");
+  static handle cast(vstcal::python::SolutionHandle solution, return_value_policy, handle) { return solution.object.release(); }
+};
+}  // namespace pybind11::detail
+
+namespace vstcal::python {
+namespace {
+
 // A string_view, not a std::string: "normal-equations" is longer than the small-string buffer, and
 // its copy on every call was a tenth of the binding's cost on a 60-point DLT (docs/performance.md#python).
 DltOptions::Solver SolverNamed(std::string_view name) {
@@ -59,23 +177,25 @@ void SolveInto(std::span<const Observation> observations, const DltOptions& opti
   s->decomposition = *d;
 }
 
-DltSolution Solve(std::span<const Observation> observations, const DltOptions& options) {
-  DltSolution s;
-  SolveInto(observations, options, &s);
-  return s;
+// A new DltSolution object of the observations' solve; raises as SolveInto.
+SolutionHandle Solved(std::span<const Observation> observations, const DltOptions& options) {
+  SolutionHandle solution{py::reinterpret_steal<py::object>(reinterpret_cast<PyObject*>(NewSolution()))};
+  if (!solution.object) throw py::error_already_set();
+  SolveInto(observations, options, &reinterpret_cast<SolutionObject*>(solution.object.ptr())->value);
+  return solution;
 }
 
 // solve_dlt(points, pixels=None, solver="normal-equations", exact_diagnostics=False).
-DltSolution SolveDltOf(const py::object& points, const py::object& pixels, std::string_view solver, bool exact_diagnostics) {
+SolutionHandle SolveDltOf(const py::object& points, const py::object& pixels, std::string_view solver, bool exact_diagnostics) {
   DltOptions options;
   options.solver = SolverNamed(solver);
   options.exact_diagnostics = exact_diagnostics;
   if (py::isinstance<Observations>(points)) {
     if (!pixels.is_none()) throw InputError("pixels: already in the Observations; leave it out");
-    return Solve(points.cast<const Observations&>().list, options);
+    return Solved(points.cast<const Observations&>().list, options);
   }
   if (pixels.is_none()) throw InputError("pixels: missing; give the (N, 2) pixels of the (N, 3) points");
-  return Solve(MakeObservations(points, pixels, py::none()).list, options);
+  return Solved(MakeObservations(points, pixels, py::none()).list, options);
 }
 
 // vstcal.solve_dlt is a plain CPython function (METH_FASTCALL) in front of the pybind11 one
@@ -85,11 +205,10 @@ DltSolution SolveDltOf(const py::object& points, const py::object& pixels, std::
 // arguments need no conversion — an Observations (exactly), pixels None, solver a str naming a
 // solver, exact_diagnostics True or False, by position or keyword — and hands every other call to
 // the pybind11 function unchanged, so that arrays, type errors and their messages stay pybind11's.
-// Its result is the same DltSolution; errors go through the same translators as pybind11's.
+// Its result is the same DltSolution object; errors go through the same translators as pybind11's.
 struct FastSolveDlt {
   PyObject* general = nullptr;  // the pybind11 solve_dlt, for every other call
   const py::detail::type_info* observations = nullptr;
-  const py::detail::type_info* solution = nullptr;
   PyObject* keywords[4] = {};  // interned: points, pixels, solver, exact_diagnostics
   std::string doc;             // pybind11's docstring of `general`: the signature line and the text
   PyMethodDef method{};
@@ -136,25 +255,9 @@ PyObject* SolveDltEntry(PyObject* /*self*/, PyObject* const* args, Py_ssize_t na
       static_cast<const Observations*>(reinterpret_cast<py::detail::instance*>(given[0])->get_value_and_holder().value_ptr());
   if (observations == nullptr) return general();  // not initialised: pybind11 says so
   try {
-    auto solution = std::make_unique<DltSolution>();
-    SolveInto(observations->list, options, solution.get());
-    const py::handle result = py::detail::type_caster_generic::cast(solution.get(), py::return_value_policy::take_ownership,
-                                                                    py::handle(), f.solution, nullptr, nullptr);
-    if (result) solution.release();  // now owned by the Python object
-    return result.ptr();
-  } catch (py::error_already_set& e) {
-    e.restore();
-    return nullptr;
-#ifdef __GLIBCXX__
-  } catch (abi::__forced_unwind&) {  // a cancelled thread unwinds through, as in pybind11's dispatcher
-    throw;
-#endif
+    return Solved(observations->list, options).object.release().ptr();
   } catch (...) {
-    // As pybind11's dispatcher: the module's translators, then the global ones (module.cc's).
-    if (py::detail::apply_exception_translators(py::detail::get_local_internals().registered_exception_translators)) return nullptr;
-    if (py::detail::apply_exception_translators(py::detail::get_internals().registered_exception_translators)) return nullptr;
-    PyErr_SetString(PyExc_SystemError, "Exception escaped from default exception translator!");
-    return nullptr;
+    return RaiseTranslated();
   }
 }
 
@@ -165,7 +268,6 @@ void DefineSolveDlt(py::module_& m, const char* doc) {
   f.doc = py::str(general.attr("__doc__"));
   f.general = general.release().ptr();  // held for the life of the process, as module.cc's exception types
   f.observations = py::detail::get_type_info(typeid(Observations));
-  f.solution = py::detail::get_type_info(typeid(DltSolution));
   const char* names[4] = {"points", "pixels", "solver", "exact_diagnostics"};
   for (int i = 0; i < 4; ++i) {
     f.keywords[i] = PyUnicode_InternFromString(names[i]);
@@ -310,19 +412,7 @@ void RegisterSolvers(py::module_& m) {
       .def(py::init(&MakeObservations), py::arg("points"), py::arg("pixels"), py::arg("weights") = py::none())
       .def("__len__", [](const Observations& o) { return o.list.size(); });
 
-  py::class_<DltSolution>(m, "DltSolution", "A DLT solve: P (normalized), its decomposition K, R, t, and diagnostics.")
-      .def_property_readonly("P", [](const DltSolution& s) { return ToArray(s.result.P); })
-      .def_property_readonly("K", [](const DltSolution& s) { return ToArray(s.decomposition.K); })
-      .def_property_readonly("R", [](const DltSolution& s) { return ToArray(s.decomposition.camera_from_world.R); },
-                             "camera_from_world's rotation")
-      .def_property_readonly("t", [](const DltSolution& s) { return ToVector(s.decomposition.camera_from_world.t); },
-                             "camera_from_world's translation")
-      .def_property_readonly("sigma_11", [](const DltSolution& s) { return s.result.sigma_11; })
-      .def_property_readonly("sigma_12", [](const DltSolution& s) { return s.result.sigma_12; })
-      .def_property_readonly("conditioning", [](const DltSolution& s) { return s.result.conditioning; })
-      .def_property_readonly("extents", [](const DltSolution& s) { return s.result.extents; })
-      .def_property_readonly("warnings", [](const DltSolution& s) { return s.result.warnings; })
-      .def_property_readonly("n_points", [](const DltSolution& s) { return s.result.n_points; });
+  RegisterSolutionType(m);
 
   DefineSolveDlt(m, "P from ≥ 6 non-coplanar world points (N, 3) and their pixels (N, 2), or from an Observations "
                     "(docs/math/dlt.md). Raises vstcal.DegenerateError (coplanar, collinear, ill-conditioned) or InputError.");
