@@ -45,9 +45,10 @@ struct DltSolution {
 };
 
 // The Python DltSolution: a CPython type holding the DltSolution inline (one allocation, freed with
-// the object), not a pybind11 class, whose instances cost a second allocation and an entry in
-// pybind11's instance map — 0.1 of the 0.2 µs the binding added to a 60-point DLT
-// (docs/performance.md#python). Read-only attributes made when read, as the pybind11 class had.
+// the object), not a pybind11 class, whose instances cost a type-map lookup, a second allocation
+// and an entry in pybind11's instance map — about 0.1 µs of the 0.14–0.22 µs the binding still
+// added to a 60-point DLT behind the fast entry below (docs/performance.md#python). Read-only
+// attributes made when read, as the pybind11 class had; not subclassable from Python.
 struct SolutionObject {
   PyObject_HEAD
   DltSolution value;
