@@ -30,6 +30,45 @@ def test_solve_dlt_is_calib_dlts_p(vstcal, tmp_path):
     np.testing.assert_array_equal(vstcal.solve_dlt(kept).P, vstcal.solve_dlt(points, pixels).P)
 
 
+def test_solve_dlt_on_observations_is_the_arrays_solve(vstcal):
+    """solve_dlt on an Observations takes a fast entry (python/solvers.cc, docs/performance.md#python);
+    every call form gives what the arrays' path (pybind11's) gives, and the same errors."""
+    points, pixels = arrays(vstcal.read(DATASETS / "seed000" / "noisy.json"))
+    kept = vstcal.Observations(points, pixels)
+    fields = ("P", "K", "R", "t", "sigma_11", "sigma_12", "conditioning", "extents", "warnings", "n_points")
+    for kwargs in ({}, {"solver": "svd"}, {"exact_diagnostics": True}, {"solver": "svd", "exact_diagnostics": True}):
+        expected = vstcal.solve_dlt(points, pixels, **kwargs)
+        calls = [vstcal.solve_dlt(kept, **kwargs), vstcal.solve_dlt(points=kept, pixels=None, **kwargs),
+                 vstcal.solve_dlt(kept, None, kwargs.get("solver", "normal-equations"), kwargs.get("exact_diagnostics", False)),
+                 vstcal.solve_dlt(kept, exact_diagnostics=int(kwargs.get("exact_diagnostics", False)),  # converted by pybind11
+                                  solver=kwargs.get("solver", "normal-equations"))]
+        for s in calls:
+            assert type(s) is vstcal.DltSolution
+            for name in fields:
+                np.testing.assert_array_equal(getattr(s, name), getattr(expected, name), err_msg=f"{kwargs} {name}")
+    assert vstcal.solve_dlt.__doc__.startswith("solve_dlt(points: object, pixels: object = None, solver: str = 'normal-equations', "
+                                               "exact_diagnostics: bool = False) -> vstcal.DltSolution")
+    with pytest.raises(vstcal.InputError, match=r'^solver: unknown DLT solver "qr"; use "normal-equations" or "svd"$'):
+        vstcal.solve_dlt(kept, solver="qr")
+    with pytest.raises(vstcal.InputError, match=r"^pixels: already in the Observations; leave it out$"):
+        vstcal.solve_dlt(kept, pixels)
+    with pytest.raises(TypeError, match=r"^solve_dlt\(\): incompatible function arguments"):
+        vstcal.solve_dlt(kept, solver=3)
+    with pytest.raises(TypeError, match=r"^solve_dlt\(\): incompatible function arguments"):
+        vstcal.solve_dlt(kept, colour="red")
+    with pytest.raises(TypeError, match=r"^solve_dlt\(\): incompatible function arguments"):
+        vstcal.solve_dlt(kept, None, "svd", False, points=kept)
+    with pytest.raises(TypeError, match=r"^solve_dlt\(\): incompatible function arguments"):
+        vstcal.solve_dlt()
+    coplanar = points.copy()
+    coplanar[:, 2] = 0
+    with pytest.raises(vstcal.DegenerateError) as from_arrays:
+        vstcal.solve_dlt(coplanar, pixels)
+    with pytest.raises(vstcal.DegenerateError) as from_observations:
+        vstcal.solve_dlt(vstcal.Observations(coplanar, pixels))
+    assert str(from_observations.value) == str(from_arrays.value) and from_observations.value.exit_code == 3
+
+
 def test_calibrate_is_calib_dlt_and_calib_tsai(vstcal, tmp_path):
     source = DATASETS / "seed000" / "distorted-noisy.json"
     for tool, method, flags, kwargs in [
