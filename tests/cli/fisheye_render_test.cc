@@ -45,6 +45,13 @@ TEST_F(CliFisheyeRender, RenderedFisheyeCalibratesToItsTruthWithinSigma) {
   const std::string chosen = camera.at("fisheye_start").at("chosen").get<std::string>();
   EXPECT_EQ(chosen.rfind("equidistant rounds from", 0), 0u) << chosen;
   EXPECT_NE(solve.err.find("  fisheye start: " + chosen + ", "), std::string::npos) << solve.err;
+  // The reports take the fisheye as any camera (issue 23 item 3): reproj-report's residuals through
+  // the Kannala–Brandt projection, corners past 70° off the axis included, are the solver's own fit.
+  const CommandResult report = Run("reproj-report", {"out/camera.json", "in/corners.json", "-o", "out/report.json"});
+  ASSERT_EQ(report.exit_code, kOk) << report.err;
+  const Json reported = ReadJson("out/report.json")["cameras"][0]["overall"]["error_px"];
+  EXPECT_EQ(reported["n"], camera["fit"]["n_points"]);
+  EXPECT_NEAR(reported["rms"].get<double>(), camera["fit"]["rms_px"].get<double>(), 1e-9);
   const Json truth = ReadJson("in/views/camera.truth.json");
   const std::vector<std::string> names = {"fx", "fy", "cx", "cy", "k1", "k2", "k3", "k4"};
   EXPECT_EQ(camera.at("distortion").at("model"), "kannala-brandt");
