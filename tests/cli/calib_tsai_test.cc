@@ -5,6 +5,7 @@
 // output file.
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <map>
 #include <ostream>
 #include <sstream>
@@ -321,6 +322,17 @@ TEST_F(CliCalibTsai, KannalaBrandtOnANarrowLensReachesTheTruth) {
   EXPECT_EQ(camera.at("distortion").at("model"), "kannala-brandt");
   EXPECT_TRUE(WithinSigmas(camera, ReadJson("in/narrow.truth.json"), kIntrinsics, 5));
   EXPECT_LT(camera.at("fit").at("rms_px").get<double>(), 0.6);  // √2 · 0.3 px per point
+  // The start's decision is in the file and the summary (docs/formats.md#camera-fisheye-start).
+  const Json& start = camera.at("fisheye_start");
+  const std::string chosen = start.at("chosen").get<std::string>();
+  double cheapest = std::numeric_limits<double>::infinity();
+  for (const Json& x : start.at("candidates")) {
+    if (!x.at("rms_px").is_null()) cheapest = std::min(cheapest, x.at("rms_px").get<double>());
+  }
+  EXPECT_EQ(start.at("rms_px").get<double>(), cheapest) << start.dump();
+  EXPECT_NE(last_.err.find("  fisheye start: " + chosen + ", "), std::string::npos) << last_.err;
+  // A Brown–Conrady solve makes no such choice.
+  EXPECT_FALSE(Calibrate("in/narrow.json").contains("fisheye_start"));
 }
 
 // A refinement that stops short (the iteration limit) or ends far beyond any corner noise (RMS over
@@ -334,6 +346,11 @@ TEST_F(CliCalibTsai, UnconvergedOrImplausibleRefinementWritesNothing) {
   Synth("in/noisy.json", Override(NarrowPlanarArgs(), "--noise", "100"));
   EXPECT_TRUE(FailsWith(Run(kTool, {"in/noisy.json", "-o", "out/camera.json"}), kTool, kDegenerate, "in/noisy.json: ",
                         {"more than 5 % of the image diagonal (73.43 px)", "check that the lens model suits the lens"}));
+  EXPECT_TRUE(OutDirEmpty());
+  // Unrefined, Zhang's closed form is held to the same bound (it would be written as solved).
+  EXPECT_TRUE(FailsWith(Run(kTool, {"in/noisy.json", "-o", "out/camera.json", "--no-refine"}), kTool, kDegenerate,
+                        "in/noisy.json: ",
+                        {"the zhang camera reprojects at an RMS of 165.2 px, more than 5 % of the image diagonal (73.43 px)"}));
   EXPECT_TRUE(OutDirEmpty());
 }
 

@@ -719,6 +719,36 @@ TEST_F(CliCalibDlt, SolvesSynthCalibrationVolume) {
   EXPECT_EQ(residuals.at("views").size(), 3u);
 }
 
+// Unrefined, the DLT camera is written as solved, so an absurd one is refused like an implausible
+// refinement (docs/tools/calib-dlt.md#exit-codes): exit 3, one line, nothing written. 60 px of
+// corner noise gives fx = 21 px (a pinhole 172° across); 30 px an RMS over 5 % of the image
+// diagonal; 3 points per plane at 10 px an RMS of 8.8 px, under the RMS bound, with fy = 5.5 px
+// (the DLT fits so few points closely, so the K is checked too). 10 px on all 60 points is noisy but
+// a camera, and is written.
+TEST_F(CliCalibDlt, UnrefinedImplausibleCameraWritesNothing) {
+  const auto synth = [&](const std::string& noise) {
+    return Synth("in/noisy.json", Override(Override(DefaultSynthArgs(), "--noise", noise), "--seed", "1"));
+  };
+  synth("60");
+  EXPECT_TRUE(FailsWith(Run("calib-dlt", DltArgs("in/noisy.json")), "calib-dlt", kDegenerate, "in/noisy.json: ",
+                        {"the dlt camera's focal lengths (fx 21.4 px", "pinhole field of view of 172.3 x",
+                         "reprojection RMS 136.2 px over 60 points", "check that the points and pixels correspond"}));
+  EXPECT_TRUE(OutDirEmpty());
+  synth("30");
+  EXPECT_TRUE(FailsWith(Run("calib-dlt", DltArgs("in/noisy.json")), "calib-dlt", kDegenerate, "in/noisy.json: ",
+                        {"the dlt camera reprojects at an RMS of 46.7 px, more than 5 % of the image diagonal (40 px)"}));
+  EXPECT_TRUE(OutDirEmpty());
+  Json few = synth("10");
+  for (Json& view : few["views"]) view["points"] = Json::array({view["points"][0], view["points"][9], view["points"][17]});
+  WriteJson("in/few.json", few);
+  EXPECT_TRUE(FailsWith(Run("calib-dlt", DltArgs("in/few.json")), "calib-dlt", kDegenerate, "in/few.json: ",
+                        {"fy 5.488 px", "reprojection RMS 8.779 px over 9 points", "or add points"}));
+  EXPECT_TRUE(OutDirEmpty());
+  const CommandResult r = Run("calib-dlt", DltArgs("in/noisy.json"));
+  ASSERT_EQ(r.exit_code, kOk) << r.err;
+  EXPECT_GT(ReadJson("out/camera.json").at("fit").at("rms_px").get<double>(), 10.0);
+}
+
 TEST_F(CliCalibDlt, SvdSolverAgrees) {
   Synth();
   ASSERT_EQ(Run("calib-dlt", {"in/volume.json", "-o", "out/ne.json"}).exit_code, kOk);

@@ -36,9 +36,22 @@ TEST_F(CliFisheyeRender, RenderedFisheyeCalibratesToItsTruthWithinSigma) {
   ASSERT_TRUE(run("calib-capture", {"render", "in/board.target.json", "--camera", "in/fisheye.json", "--rig",
                                     "planar-views", "--views", "10", "--distance", "220", "--seed", "3", "-o", "in/views"}));
   ASSERT_TRUE(run("calib-capture", {"detect", "in/board.target.json", "in/views/view-*.png", "-o", "in/corners.json"}));
-  ASSERT_TRUE(run("calib-tsai", {"in/corners.json", "--lens-model", "kannala-brandt", "-o", "out/camera.json"}));
+  const CommandResult solve = Run("calib-tsai", {"in/corners.json", "--lens-model", "kannala-brandt", "-o", "out/camera.json"});
+  ASSERT_EQ(solve.exit_code, kOk) << solve.err;
 
   const Json camera = ReadJson("out/camera.json");
+  // 179° across: the start came from the equidistant rounds, not from Zhang's pinhole on the raw
+  // corners, and the file and the summary say so (docs/formats.md#camera-fisheye-start).
+  const std::string chosen = camera.at("fisheye_start").at("chosen").get<std::string>();
+  EXPECT_EQ(chosen.rfind("equidistant rounds from", 0), 0u) << chosen;
+  EXPECT_NE(solve.err.find("  fisheye start: " + chosen + ", "), std::string::npos) << solve.err;
+  // The reports take the fisheye as any camera (issue 23 item 3): reproj-report's residuals through
+  // the Kannala–Brandt projection, corners past 70° off the axis included, are the solver's own fit.
+  const CommandResult report = Run("reproj-report", {"out/camera.json", "in/corners.json", "-o", "out/report.json"});
+  ASSERT_EQ(report.exit_code, kOk) << report.err;
+  const Json reported = ReadJson("out/report.json")["cameras"][0]["overall"]["error_px"];
+  EXPECT_EQ(reported["n"], camera["fit"]["n_points"]);
+  EXPECT_NEAR(reported["rms"].get<double>(), camera["fit"]["rms_px"].get<double>(), 1e-9);
   const Json truth = ReadJson("in/views/camera.truth.json");
   const std::vector<std::string> names = {"fx", "fy", "cx", "cy", "k1", "k2", "k3", "k4"};
   EXPECT_EQ(camera.at("distortion").at("model"), "kannala-brandt");

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 
 #include <opencv2/calib3d.hpp>
 
@@ -71,6 +72,58 @@ TEST(FisheyeCalibration, PlanarViewsCalibrateToTheTruth) {
   EXPECT_EQ(got[4], 0.0);  // skew not estimated
   for (int i = 5; i < 9; ++i) EXPECT_NEAR(got[i], truth.params[i], 1e-8) << i;
   EXPECT_LT(r.camera.fit->overall.rms_px, 1e-6);
+}
+
+// The start's decision reaches the result (and from there the camera file's `fisheye_start`): every
+// candidate judged, with k = 0 and with fitted k's; the chosen one is the cheapest; written unrefined,
+// the camera is that start, so its fit's RMS (an independent pass over the corners) is √(cost/N).
+// The same decision is recorded when the refinement runs from it; a Brown–Conrady solve has none.
+TEST(FisheyeCalibration, StartDecisionIsRecorded) {
+  const Camera truth = FisheyeTruth();
+  const SyntheticViews views = FisheyeViews(truth);
+  CalibrationOptions options;
+  options.refinement.lens_model = "kannala-brandt";
+  options.refinement.free_distortion = {"k1", "k2", "k3", "k4"};
+  options.refine = false;
+  const CalibrationResult start = Calibrate(views.correspondences, options);
+  ASSERT_EQ(start.exit_code, ExitCode::kOk) << start.message;
+  ASSERT_TRUE(start.fisheye_start.has_value());
+  const FisheyeStartDecision& d = *start.fisheye_start;
+  EXPECT_EQ(d.num_points, NumObservations(views.correspondences));
+  // The three candidates in order, each judged with k = 0 and (when the angles determine them)
+  // fitted k's, or listed once as failed (here the rounds from Zhang's raw K, far off on this lens, fail).
+  std::vector<std::string> names;
+  double cheapest = std::numeric_limits<double>::infinity();
+  const FisheyeStartCandidate* winner = nullptr;
+  for (const FisheyeStartCandidate& x : d.candidates) {
+    if (names.empty() || names.back() != x.name) names.push_back(x.name);
+    if (x.ok && x.cost < cheapest) cheapest = x.cost, winner = &x;
+  }
+  EXPECT_EQ(names, (std::vector<std::string>{"equidistant rounds from the fisheye guess",
+                                             "equidistant rounds from the pinhole start", "the pinhole start"}));
+  EXPECT_GE(d.candidates.size(), 4u);
+  ASSERT_NE(winner, nullptr);
+  EXPECT_EQ(d.chosen, winner->name);
+  EXPECT_EQ(d.coefficients_fitted, winner->coefficients_fitted);
+  EXPECT_EQ(d.cost, cheapest);
+  // 92° at the image's side edges: Zhang on the raw corners is no fisheye's start, and the lens's
+  // own k's are not 0.
+  EXPECT_NE(d.chosen, "the pinhole start");
+  EXPECT_TRUE(d.coefficients_fitted);
+  ASSERT_TRUE(start.camera.fit.has_value());
+  EXPECT_NEAR(start.camera.fit->overall.rms_px, std::sqrt(d.cost / static_cast<double>(d.num_points)),
+              1e-9 * start.camera.fit->overall.rms_px);
+
+  options.refine = true;
+  const CalibrationResult refined = Calibrate(views.correspondences, options);
+  ASSERT_EQ(refined.exit_code, ExitCode::kOk) << refined.message;
+  ASSERT_TRUE(refined.fisheye_start.has_value());
+  EXPECT_EQ(refined.fisheye_start->chosen, d.chosen);
+  EXPECT_EQ(refined.fisheye_start->cost, d.cost);
+
+  CalibrationOptions pinhole;
+  pinhole.refine = false;
+  EXPECT_FALSE(Calibrate(views.correspondences, pinhole).fisheye_start.has_value());
 }
 
 // Peer: cv::fisheye::calibrate on the same corners (its own start, CALIB_RECOMPUTE_EXTRINSIC,

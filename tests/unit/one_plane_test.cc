@@ -281,17 +281,25 @@ TEST(OnePlane, PriorCoversTheTruthFromWideToVeryLong) {
 // noise draw of the cases above, the principal point held at the image centre (73 px from the
 // truth) or under the prior. Held, f's error grows with the focal length to many times its
 // reported σ (the σ knows nothing of the hold); under the prior f stays within 3 reported σ.
+//
+// The old `auto` rule beside them: free the principal point when its σ with it free is at most
+// 0.5 % of the image diagonal in both coordinates, else hold it (the default issue 23 replaced; its σ
+// is taken here at the free optimum, where the old code took it at the held one: the same
+// information to first order). Its decision and the error it led to are recorded per focal length.
 TEST(OnePlane, HoldAgainstPriorFromWideToVeryLong) {
   const double diagonal = std::hypot(1280, 720);
   CalibrationOptions prior;
   prior.refinement.free_distortion = {"k1"};
   CalibrationOptions hold = prior;
   hold.plane_principal_point = CalibrationOptions::PlanePrincipalPoint::kHold;
-  double worst_held = 0;
+  CalibrationOptions free = prior;
+  free.plane_principal_point = CalibrationOptions::PlanePrincipalPoint::kFree;
+  double worst_held = 0, worst_old = 0;
   for (const double f : {600.0, 1200.0, 2400.0, 4800.0, 9600.0}) {
     const OnePlaneCase c = LongOrWide(f, 0.05 * diagonal * Eigen::Vector2d(std::cos(0.7), std::sin(0.7)));
     const Correspondences noisy = testing::WithNoise(SynthesizeVolume(c.camera, c.spec, {}).correspondences, 0.2, 77);
     std::string row;
+    double held_z = 0;
     for (const CalibrationOptions* o : {&hold, &prior}) {
       const CalibrationResult r = Calibrate(noisy, *o);
       ASSERT_EQ(r.exit_code, ExitCode::kOk) << "f " << f << ": " << r.message;
@@ -308,12 +316,31 @@ TEST(OnePlane, HoldAgainstPriorFromWideToVeryLong) {
       if (o == &prior) {
         EXPECT_LT(std::abs(error_f), 3 * sigma_f) << "f " << f << ": " << row;
       } else {
-        worst_held = std::max(worst_held, std::abs(error_f) / sigma_f);
+        held_z = std::abs(error_f) / sigma_f;
+        worst_held = std::max(worst_held, held_z);
       }
     }
+    // The old rule: freed where the data determine the principal point to 0.5 % of the diagonal.
+    const CalibrationResult freed = Calibrate(noisy, free);
+    ASSERT_EQ(freed.exit_code, ExitCode::kOk) << "f " << f << ": " << freed.message;
+    ASSERT_TRUE(freed.camera.covariance.has_value()) << "f " << f;
+    const ParameterCovariance& cov = *freed.camera.covariance;
+    const double sigma_c = std::max(std::sqrt(cov.matrix(*cov.Find("cx"), *cov.Find("cx"))),
+                                    std::sqrt(cov.matrix(*cov.Find("cy"), *cov.Find("cy"))));
+    const bool old_frees = sigma_c <= 0.005 * diagonal;
+    const double free_z = std::abs(freed.camera.camera.params[1] - f) /
+                          std::sqrt(cov.matrix(*cov.Find("fy"), *cov.Find("fy")));
+    worst_old = std::max(worst_old, old_frees ? free_z : held_z);
+    char buf[200];
+    std::snprintf(buf, sizeof buf, "old auto: sigma(c) if free %.3g px vs limit %.3g px -> %s; free: f error %+.2f %%",
+                  sigma_c, 0.005 * diagonal, old_frees ? "freed" : "held",
+                  100 * (freed.camera.camera.params[1] - f) / f);
+    row += buf;
     ::testing::Test::RecordProperty("f " + std::to_string(static_cast<int>(f)), row);
+    std::printf("f %5.0f: %s\n", f, row.c_str());
   }
   EXPECT_GT(worst_held, 10);  // what the prior is for: a hold's bias is invisible to its σ
+  EXPECT_GT(worst_old, 3);    // and the old rule held where it mattered
 }
 
 // Strong data (15 views of a board tilted up to 40° about varied axes): a prior on the principal

@@ -103,6 +103,31 @@ TEST(ViewRejection, NoisyPlanarViewIsRejected) {
   EXPECT_NEAR(*r.rejection_sigma_px, 0.3, 0.03);
 }
 
+// One corner off by 2 px in a view of 70 (σ 0.3 px): too little to make its view inconsistent, far
+// beyond what the noise gives one corner. That corner alone is rejected, named by its view and its
+// index in the input, and the solution is the clean solve without it.
+TEST(ViewRejection, SingleDisplacedCornerIsRejected) {
+  Correspondences c = PlanarViews(12, 0.3, 13);
+  const size_t bad_view = 5, bad_point = 17;
+  ASSERT_GT(c.views[bad_view].observations.size(), bad_point);
+  c.views[bad_view].observations[bad_point].pixel += Eigen::Vector2d(1.6, -1.2);
+  const CalibrationResult r = Calibrate(c, Rejecting());
+  ASSERT_EQ(r.exit_code, ExitCode::kOk) << r.message;
+  ASSERT_EQ(r.rejections.size(), 1u);
+  const Rejection& x = r.rejections[0];
+  EXPECT_EQ(x.kind, Rejection::Kind::kCorner);
+  EXPECT_EQ(x.view, bad_view);
+  ASSERT_TRUE(x.point.has_value());
+  EXPECT_EQ(*x.point, bad_point);
+  EXPECT_GT(x.rms_px, x.threshold_px);
+  Correspondences without = c;
+  auto& obs = without.views[bad_view].observations;
+  obs.erase(obs.begin() + static_cast<std::ptrdiff_t>(bad_point));
+  const CalibrationResult clean = Calibrate(without, Rejecting(false));
+  ASSERT_EQ(clean.exit_code, ExitCode::kOk);
+  EXPECT_LT(RelativeDifference(r.camera.camera, clean.camera.camera), 1e-9);
+}
+
 // A volume (calib-dlt): one template position's world coordinates off by one square.
 TEST(ViewRejection, ShiftedVolumePlaneIsRejected) {
   VolumeSpec spec;

@@ -1,6 +1,7 @@
 #include "vstcal/app/calibration.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <vector>
 
@@ -72,6 +73,18 @@ std::string PriorsAndConditioningText(const Refinement& r) {
   return text;
 }
 
+// The fisheye start's decision: the candidate taken, among how many, and its RMS.
+std::string FisheyeStartText(const CalibrationResult& result) {
+  if (!result.fisheye_start) return "";
+  const FisheyeStartDecision& d = *result.fisheye_start;
+  if (d.chosen.empty()) return "  fisheye start: no candidate succeeded; Zhang's pinhole start was used\n";
+  const double rms = d.num_points ? std::sqrt(d.cost / static_cast<double>(d.num_points)) : 0.0;
+  char buf[240];
+  std::snprintf(buf, sizeof buf, "  fisheye start: %s, %s, RMS %.4g px (best of %zu candidates)\n", d.chosen.c_str(),
+                d.coefficients_fitted ? "k1..k4 fitted" : "k1..k4 = 0", rms, d.candidates.size());
+  return buf;
+}
+
 // FOLDER/<view>.undistorted.png for every view that names its image; the count of those that do not.
 size_t AddUndistortedImages(const CalibrationResult& result, const CalibrationFiles& files, Outcome* outcome) {
   namespace fs = std::filesystem;
@@ -137,6 +150,7 @@ Outcome CalibrationOutcome(const CalibrationResult& result, const CalibrationOpt
          FitSummaryText(result.camera) +
          ParametersText(result.camera, result.refinement ? std::span<const HeldIntrinsic>(result.refinement->held)
                                                          : std::span<const HeldIntrinsic>());
+  text += FisheyeStartText(result);
   if (result.refinement) {
     const Refinement& r = *result.refinement;
     char buf[200];

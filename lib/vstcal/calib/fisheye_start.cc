@@ -103,25 +103,33 @@ FisheyeStart ChooseFisheyeStart(const Correspondences& c, const ZhangResult& pin
     candidates.emplace_back("the pinhole start", pinhole);
   }
   FisheyeStart best;
-  best.cost = std::numeric_limits<double>::infinity();
+  FisheyeStartDecision& d = best.decision;
+  d.cost = std::numeric_limits<double>::infinity();
+  for (const View& v : c.views) d.num_points += v.observations.size();
   for (auto& [name, start] : candidates) {
-    if (!start.ok) continue;
+    if (!start.ok) {
+      d.candidates.push_back({name, false, false, 0});
+      continue;
+    }
     const Eigen::Matrix3d K = start.camera.K();
     std::vector<Camera> cameras = {Camera::FromK(K, c.image_size, KannalaBrandtModel{})};
     if (auto fitted = FitCoefficients(c, K, start.camera_from_board)) cameras.push_back(std::move(*fitted));
-    for (Camera& camera : cameras) {
-      const double cost = ReprojectionCost(c, camera, start.camera_from_board);
-      if (!(cost < best.cost)) continue;
-      best.cost = cost;
-      best.chosen = name;
+    for (size_t i = 0; i < cameras.size(); ++i) {
+      const double cost = ReprojectionCost(c, cameras[i], start.camera_from_board);
+      d.candidates.push_back({name, true, i == 1, cost});
+      if (!(cost < d.cost)) continue;
+      d.cost = cost;
+      d.chosen = name;
+      d.coefficients_fitted = i == 1;
       best.start = start;
-      best.start.camera = camera;
+      best.start.camera = cameras[i];
     }
   }
-  if (!std::isfinite(best.cost)) {
+  if (!std::isfinite(d.cost)) {
     best.start = pinhole;
-    best.cost = 0;
-    best.chosen = "";
+    d.cost = 0;
+    d.chosen = "";
+    d.coefficients_fitted = false;
   }
   return best;
 }

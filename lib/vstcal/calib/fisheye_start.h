@@ -4,17 +4,36 @@
 // corners are where the fisheye's own guess is worst. docs/math/fisheye.md#start.
 #pragma once
 
+#include <cstddef>
 #include <string>
+#include <vector>
 
 #include "vstcal/calib/zhang.h"
 #include "vstcal/scene/correspondences.h"
 
 namespace vstcal {
 
+// One candidate start as it was judged: with k = 0 or with its k1…k4 fitted.
+struct FisheyeStartCandidate {
+  std::string name;                // e.g. "equidistant rounds from the fisheye guess"
+  bool ok = false;                 // false: its rounds or Zhang failed, nothing to judge
+  bool coefficients_fitted = false;
+  double cost = 0;                 // sum of squared reprojection errors, px² (when ok)
+};
+
+// Which candidate became the start, and how each fared: the decision a camera file records
+// (`fisheye_start`, docs/formats.md#camera-fisheye-start).
+struct FisheyeStartDecision {
+  std::string chosen;                // the winner's name (empty when none succeeded: the pinhole's start is used)
+  bool coefficients_fitted = false;  // the winner's k1…k4 fitted (else 0)
+  double cost = 0;                   // its sum of squared reprojection errors, px²
+  size_t num_points = 0;             // the corners every cost sums over
+  std::vector<FisheyeStartCandidate> candidates;  // every one judged, in the order below
+};
+
 struct FisheyeStart {
-  ZhangResult start;   // camera: a "kannala-brandt" camera (K and k1…k4), one pose per view
-  std::string chosen;  // which candidate won (empty when none succeeded: `start` is then the pinhole's)
-  double cost = 0;     // its sum of squared reprojection errors, px²
+  ZhangResult start;  // camera: a "kannala-brandt" camera (K and k1…k4), one pose per view
+  FisheyeStartDecision decision;
 };
 
 // The start chosen from the data among three candidates, each a K and one pose per view:

@@ -7,10 +7,10 @@
 
 #include <Eigen/Geometry>
 
-#include "vstcal/calib/fisheye_start.h"
 #include "vstcal/estimators/information.h"
 #include "vstcal/estimators/principal_point_prior.h"
 #include "vstcal/core/option_name.h"
+#include "vstcal/geometry/rotation.h"
 
 namespace vstcal {
 namespace {
@@ -83,6 +83,62 @@ void ApplyRefinement(CalibrationResult* r, Refinement refinement) {
   cam.covariance.reset();
   if (!refinement.covariance.empty()) cam.covariance = refinement.covariance;
   r->refinement = std::move(refinement);
+}
+
+// The bound ApplyRefinement puts on a refined camera, for a closed-form camera written unrefined
+// (DLT, Tsai, Zhang): an algebraic solve always returns some K, and on data no camera explains (60 px
+// corner noise, points and pixels that do not correspond) that K is absurd while the run would look
+// like a success. Refused (exit 3, nothing written) when its K is physically impossible — a focal
+// length not positive and finite; a pinhole field of view of kMaxPinholeFovDeg or more across the
+// image's width or height (no rectilinear lens comes near; a 180° fisheye's K spans ~115°); the
+// principal point more than one image diagonal from the image centre (the image's corners are half
+// a diagonal from it) — or when its reprojection RMS exceeds kMaxPlausibleRmsFraction of the
+// diagonal. With few points the DLT fits noise closely, so the RMS alone does not catch an absurd
+// K. docs/math/dlt.md#plausibility.
+void RefuseImplausibleClosedForm(CalibrationResult* r) {
+  constexpr double kMaxPinholeFovDeg = 170;
+  const CalibratedCamera& cam = r->camera;
+  const ImageSize& size = r->used.image_size;
+  const double diagonal = std::hypot(size.width, size.height);
+  const std::vector<double>& p = cam.camera.params;
+  const double fx = p[intrinsic::kFx], fy = p[intrinsic::kFy];
+  const Eigen::Vector2d principal(p[intrinsic::kCx], p[intrinsic::kCy]);
+  const Eigen::Vector2d centre(0.5 * (size.width - 1), 0.5 * (size.height - 1));
+  const double rms = cam.fit ? cam.fit->overall.rms_px : 0;
+  const double half_fov = 0.5 * kMaxPinholeFovDeg * kPi / 180;
+  const double fov_x = 2 * std::atan(0.5 * size.width / fx) * 180 / kPi;
+  const double fov_y = 2 * std::atan(0.5 * size.height / fy) * 180 / kPi;
+  char buf[520];
+  if (!(fx > 0 && fy > 0 && std::isfinite(fx) && std::isfinite(fy))) {
+    std::snprintf(buf, sizeof buf,
+                  "the %s camera has a focal length that is not positive (fx %.4g px, fy %.4g px): no physical camera; "
+                  "the data do not determine one: check that the points and pixels correspond",
+                  cam.method.c_str(), fx, fy);
+  } else if (!(fx > 0.5 * size.width / std::tan(half_fov) && fy > 0.5 * size.height / std::tan(half_fov))) {
+    std::snprintf(buf, sizeof buf,
+                  "the %s camera's focal lengths (fx %.4g px, fy %.4g px) give a pinhole field of view of %.4g x %.4g "
+                  "degrees, %g or more across the image, which no lens its model describes: the data do not determine "
+                  "the camera (reprojection RMS %.4g px over %zu points); check that the points and pixels correspond, "
+                  "or add points",
+                  cam.method.c_str(), fx, fy, fov_x, fov_y, kMaxPinholeFovDeg, rms, NumObservations(r->used));
+  } else if (!((principal - centre).norm() <= diagonal)) {
+    std::snprintf(buf, sizeof buf,
+                  "the %s camera's principal point (%.4g, %.4g) px lies %.4g px from the image centre, more than the "
+                  "image diagonal (%.4g px): no physical lens; the data do not determine the camera (reprojection RMS "
+                  "%.4g px over %zu points): check that the points and pixels correspond, or add points",
+                  cam.method.c_str(), principal.x(), principal.y(), (principal - centre).norm(), diagonal, rms,
+                  NumObservations(r->used));
+  } else if (!(rms <= kMaxPlausibleRmsFraction * diagonal)) {
+    std::snprintf(buf, sizeof buf,
+                  "the %s camera reprojects at an RMS of %.4g px, more than %g %% of the image diagonal (%.4g px), "
+                  "beyond any corner detector's noise: wrong data or a lens its model cannot describe, not a "
+                  "calibration; check that the points and pixels correspond (the columns are X, Y, Z, u, v)",
+                  cam.method.c_str(), rms, 100 * kMaxPlausibleRmsFraction, kMaxPlausibleRmsFraction * diagonal);
+  } else {
+    return;
+  }
+  r->exit_code = ExitCode::kDegenerate;
+  r->message = buf;
 }
 
 void StartVolume(CalibrationResult* r, const CalibrationOptions& options) {
@@ -159,7 +215,9 @@ void StartPlanar(CalibrationResult* r, const CalibrationOptions& options) {
   // k1…k4 fitted to it (fisheye_start.h): neither alone suits both wide and narrow lenses.
   const auto solved = LensModelFromName(options.refinement.lens_model);
   if (solved && std::visit([](const auto& m) { return std::decay_t<decltype(m)>::kOnRay; }, *solved)) {
-    zhang = ChooseFisheyeStart(c, zhang).start;
+    FisheyeStart start = ChooseFisheyeStart(c, zhang);
+    zhang = std::move(start.start);
+    r->fisheye_start = std::move(start.decision);
   }
   if (!zhang.ok) {
     r->exit_code = ExitCode::kDegenerate;
@@ -377,8 +435,11 @@ CalibrationResult CalibrateRejecting(Correspondences c, const CalibrationOptions
 }  // namespace
 
 CalibrationResult Calibrate(Correspondences correspondences, const CalibrationOptions& options) {
-  if (options.reject_views.enabled) return CalibrateRejecting(std::move(correspondences), options);
-  return CalibrateOnce(std::move(correspondences), options);
+  CalibrationResult r = options.reject_views.enabled ? CalibrateRejecting(std::move(correspondences), options)
+                                                     : CalibrateOnce(std::move(correspondences), options);
+  // Here, not in CalibrateOnce: view rejection tests an unrefined start that may be far off on purpose.
+  if (r.exit_code == ExitCode::kOk && !options.refine) RefuseImplausibleClosedForm(&r);
+  return r;
 }
 
 namespace {

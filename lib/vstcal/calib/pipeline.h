@@ -11,6 +11,7 @@
 #include "vstcal/scene/correspondences.h"
 #include "vstcal/estimators/decompose.h"
 #include "vstcal/calib/dlt.h"
+#include "vstcal/calib/fisheye_start.h"
 #include "vstcal/calib/refine.h"
 #include "vstcal/calib/tsai.h"
 #include "vstcal/estimators/principal_point_prior.h"
@@ -73,6 +74,9 @@ struct CalibrationResult {
   std::optional<TsaiResult> tsai;
   std::optional<Refinement> refinement;
   std::optional<PlanePrincipalPointDecision> plane_principal_point;  // one plane, refined
+  // Planar views solved with a ray lens model (a fisheye): which candidate start was taken and how
+  // each fared (fisheye_start.h).
+  std::optional<FisheyeStartDecision> fisheye_start;
 
   // With reject_views: what was rejected, in order, and the last test's robust σ̂ (every view and
   // corner of `used` passed it). `used` then holds only what was kept.
