@@ -332,7 +332,8 @@ std::vector<std::vector<Eigen::Vector2d>> Refine(Chain* chain, const std::vector
   // With the tracker's noise weighed in, w(s(δ)) makes Gauss–Newton's curvature in δ too large (it
   // lacks −ẅ rᵀC⁻¹KC⁻¹r, which cancels the noisy slope's excess: docs/math/handeye.md#delta-likelihood),
   // so the last steps shrink only by about ⅔ an iteration; stopping at a relative change of 1e-10
-  // leaves δ within ~1 % of its σ and halves those iterations. D = 0: the model is exact, as before.
+  // moved the tests' mean δ̂ by ≤ 2 % of its σ and saves a third of the iterations (31 → 21 at 1,000
+  // noisy views). D = 0: the model is exact and the tolerance as before.
   if (whitening && std::any_of(whitening->begin(), whitening->end(), [](const Whitening& w) { return !w.lambda.isZero(0); })) {
     solver.function_tolerance = 1e-10;
   }
