@@ -125,8 +125,9 @@ T InterpolationWeight(std::span<const TrackedPose> log, const T& tau) {
 // tangent of the tracker-error perturbation e — from a quadratic fit of the ten reports around the
 // interval (k − 4 … k + 5, shifted inside the log), its slope at the interval's midpoint: for a
 // quadratic, the secant of the fitted poses at t_k and t_k+1, what the interpolation of the true
-// reports would give. Its noise is 1/41 of the two reports' slope's (variance), at the price of
-// taking the motion smooth over ten reports. Fewer than three reports: their secant.
+// reports would give. Its variance, σ²/Σ(t − t_mid)² = σ²/(82.5 Δt²), is 1/165 of the two reports'
+// slope's (2σ²/Δt²), at the price of taking the motion smooth over ten reports. Fewer than three
+// reports: their secant.
 Eigen::Matrix<double, 6, 1> SmoothedVelocity(std::span<const TrackedPose> log, size_t k) {
   constexpr size_t kReports = 10;
   const size_t count = std::min(kReports, log.size());
