@@ -121,9 +121,9 @@ TEST(HandEyeTrackerNoise, DropsBadFramesOfANoisyTrackersRecording) {
 
 // Over 60 recordings of 16 views: the joint estimate's RMS of (estimate − truth)/σ_predicted over X's
 // six tangent components is below 2 and at least three times closer to 1 than the exact-tracker
-// solve's (measured: 1.5 against 7.5 over 200); the noise σ's average within 10 % of the truth and
-// their 95 % intervals cover it in at least 75 % of the recordings (measured 88 % and 83 %). Not yet
-// within 10 % of 1, and δ's σ is understated (RMS 5): docs/math/handeye.md#tracker-noise says why.
+// solve's (measured over these 60: 1.07 against 7.57; 1.5 over 200 before w followed δ in the cost
+// and the covariance was the sandwich); the noise σ's average within 10 % of the truth and their 95 % intervals cover
+// it in at least 75 % of the recordings (measured 93 % and 77 %). δ: DeltaSigmaMatchesItsSpread… .
 TEST(HandEyeTrackerNoise, PredictedSigmasApproachTheSpreadAndTheNoiseIsRecovered) {
   VSTCAL_STATISTICAL_TEST_RELEASE_ONLY();
   constexpr int kRuns = 60;
@@ -167,31 +167,76 @@ TEST(HandEyeTrackerNoise, PredictedSigmasApproachTheSpreadAndTheNoiseIsRecovered
   EXPECT_NEAR(mean_t, 1.0, 0.1);
 }
 
-// The cause of δ's understated σ (docs/math/handeye.md#tracker-noise, "Not yet within 10 %"): the
-// recordings above put every view on a tracker report (s = 0), where least squares on the
-// interpolated noisy poses pulls δ towards s = ½ (the interpolated error's variance w(s) is lowest
-// there, and the fit holds w fixed). With the views midway between reports (δ = 35 ms: s = ½, no
-// pull) the same solve's predicted σ of δ matches its spread: over 60 recordings RMS z 1.14
-// (against 5.2 at s = 0 and 3.5 at s = ¼), X's translation 1.17. The bound allows the sampling
-// error of an RMS over 60 (≈ 9 %).
-TEST(HandEyeTrackerNoise, DeltaSigmaHoldsWithViewsMidwayBetweenReports) {
-  VSTCAL_STATISTICAL_TEST_RELEASE_ONLY();
-  constexpr int kRuns = 60;
-  constexpr double kDelta = 0.035;
-  double zd = 0;
-  for (int run = 0; run < kRuns; ++run) {
-    HandEyeSpec spec = testing::HandEyeTestSpec(kDelta, 0.2, 1000 + static_cast<uint64_t>(run));
+// δ's estimate and σ over recordings of 16 views from a noisy tracker (0.05°, 0.2 mm a report),
+// the views all at one fraction s of the tracker's report interval.
+struct DeltaSpread {
+  double mean_error = 0;   // mean δ̂ − δ, s
+  double spread = 0;       // standard deviation of δ̂, s
+  double mean_sigma = 0;   // mean of the predicted σ_δ, s
+  double ratio_se = 0;     // standard error of spread/mean_sigma (relative)
+  double rms_z = 0;
+};
+
+DeltaSpread DeltaMonteCarlo(double delta, int runs, uint64_t first_seed) {
+  std::vector<double> error, sigma;
+  for (int run = 0; run < runs; ++run) {
+    HandEyeSpec spec = testing::HandEyeTestSpec(delta, 0.2, first_seed + static_cast<uint64_t>(run));
     spec.tracker_noise_deg = kNoiseDeg;
     spec.tracker_noise = kNoiseMm;
     spec.views = 16;
     const testing::HandEyeRecording r = testing::RecordHandEye(spec);
     const HandEyeSolution s = SolveHandEye(r.camera, r.log, r.views);
-    ASSERT_TRUE(s.tracker_noise) << run;
-    zd += (s.time_offset - kDelta) * (s.time_offset - kDelta) / s.covariance(12, 12) / kRuns;
+    EXPECT_TRUE(s.tracker_noise) << run;
+    error.push_back(s.time_offset - delta);
+    sigma.push_back(std::sqrt(s.covariance(12, 12)));
   }
-  ::testing::Test::RecordProperty("delta_rms_z", ::testing::PrintToString(std::sqrt(zd)));
-  EXPECT_GT(std::sqrt(zd), 0.75);
-  EXPECT_LT(std::sqrt(zd), 1.3);
+  const double n = runs;
+  DeltaSpread d;
+  double m2 = 0, m4 = 0, sigma_var = 0;
+  for (double e : error) d.mean_error += e / n;
+  for (double x : sigma) d.mean_sigma += x / n;
+  for (int k = 0; k < runs; ++k) {
+    const double e = error[k] - d.mean_error;
+    m2 += e * e / n;
+    m4 += e * e * e * e / n;
+    sigma_var += (sigma[k] - d.mean_sigma) * (sigma[k] - d.mean_sigma) / (n - 1);
+    d.rms_z += error[k] * error[k] / (sigma[k] * sigma[k]) / n;
+  }
+  d.spread = std::sqrt(m2 * n / (n - 1));
+  d.rms_z = std::sqrt(d.rms_z);
+  // The sample standard deviation's relative standard error is √((κ − 1)/(4n)), κ the kurtosis (δ̂
+  // is not Gaussian: the profile likelihood has cusps at the reports); the mean predicted σ's is
+  // its spread over √n. Independent recordings: they add in quadrature.
+  const double kurtosis = m4 / (m2 * m2);
+  d.ratio_se = std::sqrt((kurtosis - 1) / (4 * n) + sigma_var / n / (d.mean_sigma * d.mean_sigma));
+  return d;
+}
+
+// docs/math/handeye.md#delta-likelihood: with the weight w(s(δ)) of each view's pose error
+// recomputed from δ inside the cost, δ̂ is unbiased wherever the views fall between the tracker's
+// reports (s = 0, ¼, ½: δ = 30, 32.5, 35 ms), and the sandwich covariance predicts its spread. With
+// w held fixed during the solve (before), views on a report were pulled towards s = ½: a spread
+// 1.8× the sandwich's σ at s = 0 and a bias of 0.97 ms (5.5 standard errors) at s = ¼ over these
+// seeds. Each spread must be within 10 % of the mean predicted σ — or within three standard errors
+// of this Monte Carlo when that is wider (δ̂ is not Gaussian: with every view on a report a fifth of
+// the recordings put it exactly there, at the profile likelihood's cusp) — and the mean within three
+// standard errors of the truth. 100 recordings each; over 400 the spreads
+// are 0.92, 1.02 and 1.15 of the predicted σ (the math page's table: not within 10 % midway).
+TEST(HandEyeTrackerNoise, DeltaSigmaMatchesItsSpreadOnAndBetweenReports) {
+  VSTCAL_STATISTICAL_TEST_RELEASE_ONLY();
+  constexpr int kRuns = 100;
+  for (const double delta : {0.030, 0.0325, 0.035}) {
+    const DeltaSpread d = DeltaMonteCarlo(delta, kRuns, 3000);
+    const double ratio = d.spread / d.mean_sigma;
+    const std::string at = std::string("delta_").append(std::to_string(static_cast<int>(std::lround(delta * 1e4))));
+    ::testing::Test::RecordProperty(at + "_spread_ms", ::testing::PrintToString(d.spread * 1e3));
+    ::testing::Test::RecordProperty(at + "_mean_sigma_ms", ::testing::PrintToString(d.mean_sigma * 1e3));
+    ::testing::Test::RecordProperty(at + "_mean_error_ms", ::testing::PrintToString(d.mean_error * 1e3));
+    ::testing::Test::RecordProperty(at + "_ratio_se", ::testing::PrintToString(d.ratio_se));
+    ::testing::Test::RecordProperty(at + "_rms_z", ::testing::PrintToString(d.rms_z));
+    EXPECT_LT(std::abs(ratio - 1), std::max(0.1, 3 * d.ratio_se)) << "δ = " << delta << ": spread " << d.spread << " s, predicted " << d.mean_sigma;
+    EXPECT_LT(std::abs(d.mean_error), 3 * d.spread / std::sqrt(kRuns)) << "δ = " << delta;
+  }
 }
 
 }  // namespace

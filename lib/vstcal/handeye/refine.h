@@ -138,7 +138,11 @@ struct HandEyeSolution {
   // camera's (those two counts are both cameras'). Rejections index the left views, then the right.
   std::optional<Rigid3d> right_from_left;
   size_t right_views = 0, right_corners = 0;
-  // With estimate_tracker_noise: the noise's σ's; `covariance` and `names` then end with
+  // With estimate_tracker_noise: the noise's σ's. X, Z and δ then minimise Σ_f r_fᵀ C_f(δ)⁻¹ r_f,
+  // C_f(δ) = c I + w(s_f(δ)) K_f (each frame's corners with the tracker's error at its instant
+  // profiled out, the interpolation's weight w following δ), and their covariance is that cost's
+  // sandwich Ī⁻¹ + N (Ī⁻¹e_δ)(Ī⁻¹e_δ)ᵀ (docs/math/handeye.md#delta-likelihood), not σ̂²(JᵀJ)⁻¹;
+  // `covariance` and `names` then end with
   // tracker_noise.rotation (rad) and tracker_noise.translation (length unit), the σ's themselves,
   // uncorrelated with X, Z and δ to first order (a Gaussian's mean and variance parameters are
   // orthogonal in its information). sigma_px stays the residuals' σ̂ (the fit); the corners' σ
