@@ -17,6 +17,7 @@
 #include <opencv2/imgproc.hpp>
 #include <opencv2/videoio.hpp>
 
+#include "vstcal/image/codecs.h"
 #include "vstcal/image/image_io.h"
 #include "vstcal/core/error.h"
 #include "vstcal/core/parallel.h"
@@ -339,9 +340,9 @@ CaptureResult DetectInVideo(const VideoRequest& video, const DetectRequest& requ
     cv::utils::logging::LogLevel saved = cv::utils::logging::setLogLevel(cv::utils::logging::LOG_LEVEL_SILENT);
     ~QuietOpenCv() { cv::utils::logging::setLogLevel(saved); }
   } quiet;
-  cv::VideoCapture capture;
+  VideoSource capture;
   if (live) {
-    capture.open(video.camera_index);
+    capture.OpenCamera(video.camera_index);
   } else {
     std::error_code ec;
     if (!std::filesystem::exists(video.file, ec)) throw InputError(video.file + ": no such file; check the path");
@@ -350,10 +351,10 @@ CaptureResult DetectInVideo(const VideoRequest& video, const DetectRequest& requ
     // The file backends only, in OpenCV's own order: CAP_ANY also offers the name to libgphoto2,
     // which enumerates the USB bus for a camera of that name (and leaks what it enumerated).
     for (const int api : {cv::CAP_FFMPEG, cv::CAP_GSTREAMER, cv::CAP_OPENCV_MJPEG}) {
-      if (capture.open(video.file, api)) break;
+      if (capture.OpenFile(video.file, api)) break;
     }
   }
-  if (!capture.isOpened()) {
+  if (!capture.IsOpened()) {
     throw InputError(source + (live ? ": cannot open the camera; check the index (0 is the first camera) and that no other program uses it"
                                     : ": cannot open as a video (OpenCV's video I/O does not read it); check that it is a video file "
                                       "(e.g. an MJPG AVI, or a format FFmpeg reads) and not truncated"));
@@ -378,14 +379,14 @@ CaptureResult DetectInVideo(const VideoRequest& video, const DetectRequest& requ
     }
     for (; batch.size() < max_batch && records.size() + batch.size() < limit; ++frame) {
       if (frame % video.every != 0) {
-        if (!capture.grab()) break;
+        if (!capture.Grab()) break;
         continue;
       }
       cv::Mat bgr, gray;
-      if (!capture.read(bgr) || bgr.empty()) break;
+      if (!capture.Read(&bgr) || bgr.empty()) break;
       // The frame's time on the video's clock, for hand-eye calibration (views[i].time): the
       // container's timestamp where the backend gives one, else the frame's index over its rate.
-      const double msec = capture.get(cv::CAP_PROP_POS_MSEC), fps = capture.get(cv::CAP_PROP_FPS);
+      const double msec = capture.Get(cv::CAP_PROP_POS_MSEC), fps = capture.Get(cv::CAP_PROP_FPS);
       batch_times.push_back(std::isfinite(msec) && msec > 0 ? msec / 1000 : (fps > 0 ? static_cast<double>(frame) / fps : 0.0));
       if (bgr.channels() == 1) {
         gray = bgr;

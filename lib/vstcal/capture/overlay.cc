@@ -3,10 +3,10 @@
 #include <algorithm>
 #include <map>
 
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "vstcal/core/error.h"
+#include "vstcal/image/codecs.h"
 
 namespace vstcal {
 
@@ -36,8 +36,7 @@ std::string OverlayPng(const GrayImage& image, const Target& target, const Detec
     cv::putText(bgr, std::to_string(id), point(p) + cv::Point2d(5 * scale, -5 * scale), cv::FONT_HERSHEY_PLAIN, 0.8 * scale, colour, 1,
                 cv::LINE_AA);
   }
-  std::vector<uint8_t> bytes;
-  VSTCAL_CHECK(cv::imencode(".png", bgr, bytes), "PNG encoding failed");
+  const std::vector<uint8_t> bytes = PngBytes(bgr, "the detection overlay");
   return std::string(bytes.begin(), bytes.end());
 }
 

@@ -4,10 +4,11 @@
 #include <cmath>
 #include <cstdio>
 
-#include <opencv2/imgcodecs.hpp>
+#include <opencv2/core/mat.hpp>
 
 #include "vstcal/capture/target_pattern.h"
 #include "vstcal/core/error.h"
+#include "vstcal/image/codecs.h"
 #include "vstcal/json/json_writer.h"
 #include "vstcal/core/option_name.h"
 
@@ -127,8 +128,7 @@ GrayImage RasterizeTarget(const Target& t, double dpi) {
 
 std::string EncodePng(const GrayImage& image, double dpi) {
   const cv::Mat mat(image.height, image.width, CV_8U, const_cast<uint8_t*>(image.pixels.data()));
-  std::vector<uint8_t> bytes;
-  VSTCAL_CHECK(cv::imencode(".png", mat, bytes), "PNG encoding failed");
+  const std::vector<uint8_t> bytes = PngBytes(mat, "the target");
   std::string png(bytes.begin(), bytes.end());
   if (dpi <= 0) return png;
   // pHYs (pixels per metre, unit 1 = metre) right after IHDR, which ends at byte 8 + 25 = 33.

@@ -8,7 +8,9 @@
 #include <optional>
 #include <sstream>
 
-#include <opencv2/imgcodecs.hpp>
+#include <opencv2/core/mat.hpp>
+
+#include "vstcal/image/codecs.h"
 
 namespace vstcal {
 namespace {
@@ -115,12 +117,7 @@ LoadedImage DecodeImage(const std::string& bytes) {
     return out;
   }
   const cv::Mat raw(1, static_cast<int>(bytes.size()), CV_8U, const_cast<char*>(bytes.data()));
-  cv::Mat gray;
-  try {
-    gray = cv::imdecode(raw, cv::IMREAD_GRAYSCALE);
-  } catch (const cv::Exception&) {
-    gray.release();
-  }
+  const cv::Mat gray = DecodeGrayImage(raw);
   if (gray.empty() || gray.type() != CV_8U) {
     out.problem = "not an image OpenCV can decode (PNG, JPEG, BMP, TIFF, PGM …) or corrupt";
     return out;

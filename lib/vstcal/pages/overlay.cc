@@ -4,9 +4,9 @@
 #include <cmath>
 #include <cstdio>
 
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "vstcal/image/codecs.h"
 #include "vstcal/image/image_io.h"
 #include "vstcal/core/error.h"
 
@@ -97,7 +97,7 @@ OverlayPicture DrawResidualOverlay(std::span<const OverlayView> all_views, const
     }
   }
   OverlayPicture picture;
-  VSTCAL_CHECK(cv::imencode(".png", canvas, picture.png), "PNG encoding of the overlay");
+  picture.png = PngBytes(canvas, "the residual overlay");
   char text[160];
   std::snprintf(text, sizeof text, "; %zu residuals drawn x%g (a %g px residual is %g px long), green 0 to red >= p95 %.3g px",
                 drawn, scale, p95, p95 * scale, p95);
