@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <random>
 
+#include <fstream>
 #include <sstream>
 
 #include "cli_fixture.h"
@@ -130,6 +131,55 @@ TEST_F(CliErrSimMeasured, BudgetSaysWhatWasMeasured) {
   const std::string page = ReadText("out/report.html");
   EXPECT_NE(page.find("measured (<span title=\"vstcal/handeye@1\">he.json</span>)"), std::string::npos);
   EXPECT_NE(page.find("<td class=\"origin\" style=\"text-align:left\">assumed</td>"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace vstcal::cli_test
+
+namespace vstcal::cli_test {
+namespace {
+
+using CliErrSimFisheye = CliTest;
+
+Json ShippedJson(const std::string& relative) {
+  std::ifstream in(std::string(VSTCAL_SOURCE_DIR) + "/" + relative);
+  return Json::parse(in);
+}
+
+// err-sim on a Kannala–Brandt (fisheye) camera (issue 23 item 3). Its coefficients are tan's series,
+// θd = θ(1 + θ²/3 + 2θ⁴/15 + 17θ⁶/315 + 62θ⁸/2835) = tan θ − O(θ¹¹), so the fisheye camera projects as
+// the pinhole with the same K to about 1e-5 px at the chain's angles (< 35° off axis): the
+// error-free chain's systematic misperception (projection and unprojection only) must agree to that,
+// and each test point's mean image error within the two runs' Monte Carlo standard errors (their θ
+// vectors differ by the four coefficients, so their samples are not the same draws).
+TEST_F(CliErrSimFisheye, TanSeriesFisheyeCameraRunsAsItsPinhole) {
+  Json pinhole = ShippedJson("datasets/zedmini/clean.truth.json");
+  ASSERT_EQ(pinhole.at("distortion").at("model"), "none");
+  Json fisheye = pinhole;
+  fisheye["distortion"] = {{"model", "kannala-brandt"}, {"k1", 1.0 / 3}, {"k2", 2.0 / 15}, {"k3", 17.0 / 315}, {"k4", 62.0 / 2835}};
+  WriteJson("in/pinhole.json", pinhole);
+  WriteJson("in/fisheye.json", fisheye);
+  Json chain = ShippedJson("datasets/vst/seed001.json");
+  for (const char* camera : {"pinhole", "fisheye"}) {
+    chain["cameras"] = {{"left", {{"file", std::string(camera) + ".json"}}}, {"right", {{"file", std::string(camera) + ".json"}}}};
+    WriteJson(std::string("in/") + camera + "-chain.json", chain);
+    const CommandResult r = Run("err-sim", {"run", std::string("in/") + camera + "-chain.json", "--samples", "4000", "--no-budget",
+                                            "-o", std::string("out/") + camera + ".json", "-q"});
+    ASSERT_EQ(r.exit_code, kOk) << r.err;
+  }
+  const Json a = ReadJson("out/pinhole.json"), b = ReadJson("out/fisheye.json");
+  const double systematic_a = a.at("totals").at("systematic_misperception_rms").get<double>();
+  const double systematic_b = b.at("totals").at("systematic_misperception_rms").get<double>();
+  EXPECT_NEAR(systematic_b, systematic_a, 1e-4 * systematic_a);
+  ASSERT_EQ(a.at("test_points").size(), b.at("test_points").size());
+  for (size_t k = 0; k < a.at("test_points").size(); ++k) {
+    for (const char* eye : {"left", "right"}) {
+      const Json& sa = a.at("test_points")[k].at("image").at(eye).at("pixel_px");
+      const Json& sb = b.at("test_points")[k].at("image").at(eye).at("pixel_px");
+      const double se = std::hypot(sa.at("mean_standard_error").get<double>(), sb.at("mean_standard_error").get<double>());
+      EXPECT_NEAR(sb.at("mean").get<double>(), sa.at("mean").get<double>(), 4 * se) << "test point " << k << ", " << eye;
+    }
+  }
 }
 
 }  // namespace
