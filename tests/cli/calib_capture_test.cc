@@ -734,3 +734,34 @@ INSTANTIATE_TEST_SUITE_P(Cases, CliCalibCaptureBad, ::testing::ValuesIn(BadCases
 
 }  // namespace
 }  // namespace vstcal::cli_test
+
+namespace vstcal::cli_test {
+namespace {
+
+using CliCodecsPlugin = CliTest;
+
+// OpenCV's codecs are a plugin loaded on first use (image/codecs.h, docs/conventions.md#image-codecs):
+// the PNG of a target is encoded through it, and a plugin that does not load is one line naming it
+// and VSTCAL_CODECS_PLUGIN, exit 1 (an installation fault), with nothing written.
+TEST_F(CliCodecsPlugin, PngThroughThePluginAndOneLineWhenItIsMissing) {
+  const std::vector<std::string> args = {"target", "--rows", "5", "--cols", "7", "--square-size", "30", "--dpi", "40", "-o", "out/board"};
+  const CommandResult ok = Run("calib-capture", args);
+  ASSERT_EQ(ok.exit_code, kOk) << ok.err;
+  const std::string png = ReadText("out/board.png");
+  ASSERT_GT(png.size(), 8u);
+  EXPECT_EQ(png.substr(1, 3), "PNG");
+  fs::remove_all(Path("out"));
+  fs::create_directories(Path("out"));
+
+  ::setenv("VSTCAL_CODECS_PLUGIN", "/nonexistent/libvstcal_codecs.so", 1);
+  const CommandResult missing = Run("calib-capture", args);
+  ::unsetenv("VSTCAL_CODECS_PLUGIN");
+  EXPECT_EQ(missing.exit_code, 1);
+  EXPECT_EQ(std::count(missing.err.begin(), missing.err.end(), '\n'), 1) << missing.err;
+  EXPECT_NE(missing.err.find("/nonexistent/libvstcal_codecs.so"), std::string::npos) << missing.err;
+  EXPECT_NE(missing.err.find("VSTCAL_CODECS_PLUGIN"), std::string::npos) << missing.err;
+  EXPECT_TRUE(OutDirEmpty());
+}
+
+}  // namespace
+}  // namespace vstcal::cli_test
