@@ -1,7 +1,6 @@
 #include "vstcal/app/calibration.h"
 
 #include <algorithm>
-#include <cmath>
 #include <cstdio>
 #include <vector>
 
@@ -78,10 +77,9 @@ std::string FisheyeStartText(const CalibrationResult& result) {
   if (!result.fisheye_start) return "";
   const FisheyeStartDecision& d = *result.fisheye_start;
   if (d.chosen.empty()) return "  fisheye start: no candidate succeeded; Zhang's pinhole start was used\n";
-  const double rms = d.num_points ? std::sqrt(d.cost / static_cast<double>(d.num_points)) : 0.0;
   char buf[240];
   std::snprintf(buf, sizeof buf, "  fisheye start: %s, %s, RMS %.4g px (best of %zu candidates)\n", d.chosen.c_str(),
-                d.coefficients_fitted ? "k1..k4 fitted" : "k1..k4 = 0", rms, d.candidates.size());
+                d.coefficients_fitted ? "k1..k4 fitted" : "k1..k4 = 0", d.RmsPx(d.cost), d.candidates.size());
   return buf;
 }
 

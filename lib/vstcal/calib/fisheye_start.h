@@ -4,6 +4,7 @@
 // corners are where the fisheye's own guess is worst. docs/math/fisheye.md#start.
 #pragma once
 
+#include <cmath>
 #include <cstddef>
 #include <string>
 #include <vector>
@@ -29,6 +30,11 @@ struct FisheyeStartDecision {
   double cost = 0;                   // its sum of squared reprojection errors, px²
   size_t num_points = 0;             // the corners every cost sums over
   std::vector<FisheyeStartCandidate> candidates;  // every one judged, in the order below
+
+  // A cost as the RMS of the residual lengths over every corner, px: √(cost / N).
+  double RmsPx(double sum_of_squares) const {
+    return num_points ? std::sqrt(sum_of_squares / static_cast<double>(num_points)) : 0.0;
+  }
 };
 
 struct FisheyeStart {

@@ -1,7 +1,5 @@
 #include "vstcal/formats/calib/calibration_io.h"
 
-#include <cmath>
-
 #include "vstcal/formats/calib/dlt_io.h"
 
 namespace vstcal {
@@ -50,18 +48,16 @@ OrderedJson CalibrationBlocksToJson(const CalibrationResult& r, const Calibratio
   }
   if (r.fisheye_start) {
     const FisheyeStartDecision& d = *r.fisheye_start;
-    // RMS of the residual lengths over every corner: √(cost / N).
-    const auto rms = [&](double cost) { return d.num_points ? std::sqrt(cost / static_cast<double>(d.num_points)) : 0.0; };
     OrderedJson candidates = OrderedJson::array();
     for (const FisheyeStartCandidate& x : d.candidates) {
       candidates.push_back({{"name", x.name},
                             {"coefficients", !x.ok ? OrderedJson(nullptr) : OrderedJson(x.coefficients_fitted ? "fitted" : "zero")},
-                            {"rms_px", x.ok ? OrderedJson(rms(x.cost)) : OrderedJson(nullptr)}});
+                            {"rms_px", x.ok ? OrderedJson(d.RmsPx(x.cost)) : OrderedJson(nullptr)}});
     }
     const bool chosen = !d.chosen.empty();
     j["fisheye_start"] = {{"chosen", chosen ? OrderedJson(d.chosen) : OrderedJson(nullptr)},
                           {"coefficients", chosen ? OrderedJson(d.coefficients_fitted ? "fitted" : "zero") : OrderedJson(nullptr)},
-                          {"rms_px", chosen ? OrderedJson(rms(d.cost)) : OrderedJson(nullptr)},
+                          {"rms_px", chosen ? OrderedJson(d.RmsPx(d.cost)) : OrderedJson(nullptr)},
                           {"candidates", std::move(candidates)}};
   }
   if (options.reject_views.enabled) {
