@@ -1,11 +1,12 @@
 #include "vstcal/calib/dlt.h"
 
 #include <Eigen/Eigenvalues>
-#include <Eigen/SVD>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <optional>
+
+#include "vstcal/geometry/linalg.h"
 
 namespace vstcal {
 namespace {
@@ -369,12 +370,12 @@ DltResult SolveDlt(std::span<const Observation> obs, const DltOptions& options) 
 
   Vector12d m;
   if (reference) {
-    Eigen::JacobiSVD<Eigen::MatrixXd> svd(A, Eigen::ComputeThinV);
-    const auto& sv = svd.singularValues();
+    const SingularValueDecomposition svd = DecomposeSvd(A, Eigen::ComputeThinV);
+    const auto& sv = svd.singular_values;
     r.sigma_11 = sv(10);
     r.sigma_12 = sv(11);
     r.frobenius = sv.norm();
-    m = svd.matrixV().col(11);
+    m = svd.V.col(11);
   } else {
     r.frobenius = std::sqrt(moments.Trace());
     const SchurComplement schur(moments);
