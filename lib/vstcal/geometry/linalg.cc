@@ -15,6 +15,11 @@ SymmetricEigen DecomposeSymmetric(const Eigen::MatrixXd& A, bool with_vectors) {
   return out;
 }
 
+SymmetricEigen12 DecomposeSymmetric12(const Eigen::Matrix<double, 12, 12>& A) {
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 12, 12>> eig(A);
+  return {eig.eigenvalues(), eig.eigenvectors()};
+}
+
 SingularValueDecomposition DecomposeSvd(const Eigen::MatrixXd& A, unsigned options) {
   const Eigen::JacobiSVD<Eigen::MatrixXd> svd(A, options);
   SingularValueDecomposition out;

@@ -20,6 +20,15 @@ struct SymmetricEigen {
 };
 SymmetricEigen DecomposeSymmetric(const Eigen::MatrixXd& A, bool with_vectors = true);
 
+// The same on Eigen's fixed 12 × 12 type (DLT's AᵀA, EPnP's MᵀM), whose vectorised arithmetic
+// rounds differently from the dynamic type's: 4,443 of 5,000 random matrices differed in some
+// bit, so these two keep their type (a 9 × 9 or smaller one gave the dynamic type's bits).
+struct SymmetricEigen12 {
+  Eigen::Matrix<double, 12, 1> values;
+  Eigen::Matrix<double, 12, 12> vectors;
+};
+SymmetricEigen12 DecomposeSymmetric12(const Eigen::Matrix<double, 12, 12>& A);
+
 // A = U diag(σ) Vᵀ, σ decreasing (min(rows, cols) of them), by two-sided Jacobi rotations after a
 // column-pivoting QR when A is not square (Eigen's JacobiSVD). `options` is Eigen's
 // (Eigen::ComputeThinU | ComputeFullV …; 0 for the singular values alone); U and V are empty
