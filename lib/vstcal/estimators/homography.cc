@@ -36,8 +36,9 @@ std::optional<Eigen::Matrix3d> EstimateHomography(std::span<const Observation> o
   if (!Tb.allFinite() || !Ti.allFinite()) return std::nullopt;
   // The right singular vectors of the 2n × 9 system A are the eigenvectors of the 9 × 9 AᵀA, and
   // its singular values the square roots of the eigenvalues: on normalized coordinates AᵀA is well
-  // enough conditioned, and a fixed 9 × 9 eigenproblem costs a fraction of A's Jacobi SVD (PnP
-  // starts from a homography every frame).
+  // enough conditioned, and a 9 × 9 eigenproblem costs a fraction of A's Jacobi SVD (PnP starts
+  // from a homography every frame). On the dynamic type (geometry/linalg.h), which gives the fixed
+  // type's bits at 9 × 9 (docs/performance.md#build, stop 35).
   Eigen::Matrix<double, 9, 9> AtA = Eigen::Matrix<double, 9, 9>::Zero();
   for (size_t i = 0; i < n; ++i) {
     const Eigen::Vector3d X = Tb * board[i].homogeneous();
