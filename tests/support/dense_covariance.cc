@@ -1,10 +1,10 @@
 #include "support/dense_covariance.h"
 
 #include <Eigen/Cholesky>
-#include <Eigen/Eigenvalues>
 
 #include "vstcal/estimators/reprojection_cost.h"
 #include "vstcal/estimators/robust_loss.h"
+#include "vstcal/geometry/linalg.h"
 
 namespace vstcal::testing {
 namespace {
@@ -63,8 +63,8 @@ DenseCovariance DenseCovarianceAt(const Correspondences& c, const Camera& camera
   MatrixL M = MatrixL::Zero(n, n);
   std::visit([&](auto m) { Accumulate<decltype(m)>(c, params, poses, options, sigma, &out, &M); }, model);
   out.information = M.cast<double>();
-  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(out.information, Eigen::EigenvaluesOnly);
-  out.unscaled_eigenvalue_ratio = eig.eigenvalues().minCoeff() / eig.eigenvalues().maxCoeff();
+  const Eigen::VectorXd eigenvalues = DecomposeSymmetric(out.information, /*with_vectors=*/false).values;
+  out.unscaled_eigenvalue_ratio = eigenvalues.minCoeff() / eigenvalues.maxCoeff();
   // The inverse in long double (64-bit mantissa) on the Jacobi-scaled matrix: the oracle's own
   // rounding must stay far below the 1e-9 it is compared at. (The old refine.cc inverted the
   // unscaled matrix by a double eigen decomposition: on 12 planar views that was off by up to

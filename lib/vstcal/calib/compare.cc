@@ -8,6 +8,7 @@
 
 #include "vstcal/core/error.h"
 #include "vstcal/estimators/uncertainty.h"
+#include "vstcal/geometry/linalg.h"
 #include "vstcal/scene/measured_volume.h"
 #include "vstcal/core/option_name.h"
 
@@ -176,13 +177,13 @@ CrossValidation CrossValidate(const CalibratedCamera& a, const CalibratedCamera&
     // amplify the noise (rank(C) is then at most the number of parameters, as it should be).
     if (a.covariance->parameters == b.covariance->parameters) Ja = Jb = 0.5 * (Ja + Jb);
     const Eigen::MatrixXd C = PropagateCovariance(*a.covariance, Ja) + PropagateCovariance(*b.covariance, Jb);
-    Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(C);
-    const double largest = eig.eigenvalues().maxCoeff();
-    const Eigen::VectorXd along = eig.eigenvectors().transpose() * d;
+    const SymmetricEigen eig = DecomposeSymmetric(C);
+    const double largest = eig.values.maxCoeff();
+    const Eigen::VectorXd along = eig.vectors.transpose() * d;
     bool beyond = false;  // a difference where neither calibration has any uncertainty
     for (Eigen::Index i = 0; i < along.size(); ++i) {
-      if (eig.eigenvalues()(i) > 1e-12 * largest) {
-        out.chi2 += along(i) * along(i) / eig.eigenvalues()(i);
+      if (eig.values(i) > 1e-12 * largest) {
+        out.chi2 += along(i) * along(i) / eig.values(i);
         ++out.dof;
       } else if (std::abs(along(i)) > 1e-9) {
         beyond = true;

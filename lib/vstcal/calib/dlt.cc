@@ -1,11 +1,12 @@
 #include "vstcal/calib/dlt.h"
 
 #include <Eigen/Eigenvalues>
-#include <Eigen/SVD>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <optional>
+
+#include "vstcal/geometry/linalg.h"
 
 namespace vstcal {
 namespace {
@@ -369,12 +370,12 @@ DltResult SolveDlt(std::span<const Observation> obs, const DltOptions& options) 
 
   Vector12d m;
   if (reference) {
-    Eigen::JacobiSVD<Eigen::MatrixXd> svd(A, Eigen::ComputeThinV);
-    const auto& sv = svd.singularValues();
+    const SingularValueDecomposition svd = DecomposeSvd(A, Eigen::ComputeThinV);
+    const auto& sv = svd.singular_values;
     r.sigma_11 = sv(10);
     r.sigma_12 = sv(11);
     r.frobenius = sv.norm();
-    m = svd.matrixV().col(11);
+    m = svd.V.col(11);
   } else {
     r.frobenius = std::sqrt(moments.Trace());
     const SchurComplement schur(moments);
@@ -384,10 +385,10 @@ DltResult SolveDlt(std::span<const Observation> obs, const DltOptions& options) 
     const double lambda_threshold = std::pow(options.min_conditioning * r.frobenius, 2);
     const bool need_spectrum = !smallest || options.exact_diagnostics || !schur.SecondAtLeast(lambda_threshold);
     if (need_spectrum) {
-      Eigen::SelfAdjointEigenSolver<Matrix12d> eig(moments.Full());
-      r.sigma_11 = std::sqrt(std::max(0.0, eig.eigenvalues()(1)));
-      r.sigma_12 = std::sqrt(std::max(0.0, eig.eigenvalues()(0)));  // rounding can make λ slightly negative
-      m = smallest ? smallest->second : Vector12d(eig.eigenvectors().col(0));
+      const SymmetricEigen12 eig = DecomposeSymmetric12(moments.Full());
+      r.sigma_11 = std::sqrt(std::max(0.0, eig.values(1)));
+      r.sigma_12 = std::sqrt(std::max(0.0, eig.values(0)));  // rounding can make λ slightly negative
+      m = smallest ? smallest->second : Vector12d(eig.vectors.col(0));
     } else {
       r.sigma_11 = NAN;  // not computed; certified ≥ min_conditioning·‖A‖_F
       r.sigma_12 = std::sqrt(std::max(0.0, smallest->first));
@@ -484,11 +485,11 @@ DltUncertainty EstimateDltUncertainty(std::span<const Observation> obs, const Ma
 
   // δm = G Aᵀ D δq̃ with G = Σ_{j>0} v_j v_jᵀ / (λ_j − λ₀): first-order perturbation of the
   // smallest eigenvector, which never moves along itself (‖m‖ = 1).
-  Eigen::SelfAdjointEigenSolver<Matrix12d> eig(N);
+  const SymmetricEigen12 eig = DecomposeSymmetric12(N);
   Matrix12d G = Matrix12d::Zero();
   for (int j = 1; j < 12; ++j) {
-    const Vector12d v = eig.eigenvectors().col(j);
-    G += v * v.transpose() / (eig.eigenvalues()(j) - eig.eigenvalues()(0));
+    const Vector12d v = eig.vectors.col(j);
+    G += v * v.transpose() / (eig.values(j) - eig.values(0));
   }
   const Matrix12d cov_m = (u.sigma_px * s2) * (u.sigma_px * s2) * G * B * G;
 

@@ -5,8 +5,8 @@
 #include <limits>
 
 #include <Eigen/LU>
-#include <Eigen/QR>
 
+#include "vstcal/geometry/linalg.h"
 #include "vstcal/geometry/rotation.h"
 
 namespace vstcal {
@@ -80,9 +80,9 @@ std::optional<Camera> FitCoefficients(const Correspondences& c, const Eigen::Mat
       b(row++) = theta_d - theta;
     }
   }
-  const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(A);
-  if (qr.rank() < 4) return std::nullopt;
-  const Eigen::Vector4d k = qr.solve(b);
+  const LeastSquaresSolution ls = SolveLeastSquares(A, b);
+  if (ls.rank < 4) return std::nullopt;
+  const Eigen::Vector4d k = ls.x;
   if (!k.allFinite()) return std::nullopt;
   return Camera::FromK(K, c.image_size, KannalaBrandtModel{}, std::span<const double>(k.data(), 4));
 }

@@ -4,9 +4,10 @@
 #include <ceres/ceres.h>
 
 #include <Eigen/Eigenvalues>
-#include <Eigen/QR>
 #include <cmath>
 #include <cstdio>
+
+#include "vstcal/geometry/linalg.h"
 
 namespace vstcal {
 namespace {
@@ -63,10 +64,9 @@ bool SolveFocalAndDepth(const std::vector<SensorPoint>& points, const Rigid3d& p
     b(2 * i) = w * points[i].xd;
     b(2 * i + 1) = w * points[i].yd;
   }
-  Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(A);
-  qr.setThreshold(1e-10);
-  if (qr.rank() < 2) return false;
-  const Eigen::Vector2d sol = qr.solve(b);
+  const LeastSquaresSolution ls = SolveLeastSquares(A, b, 1e-10);
+  if (ls.rank < 2) return false;
+  const Eigen::Vector2d sol = ls.x;
   *f = sol(0);
   *tz = sol(1);
   if (residual) *residual = (A * sol - b).norm();
@@ -216,13 +216,12 @@ TsaiStatus StageOneNonCoplanar(const std::vector<SensorPoint>& points, Rigid3d* 
     A.row(i) << s.yd * s.X.transpose(), s.yd, -s.xd * s.X.transpose();
     b(i) = s.xd;
   }
-  Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(A);
-  qr.setThreshold(1e-10);
-  if (qr.rank() < 7) {
+  const LeastSquaresSolution ls = SolveLeastSquares(A, b, 1e-10);
+  if (ls.rank < 7) {
     out->message = "the radial alignment system is rank deficient: the points do not span a volume in the view";
     return TsaiStatus::kDegenerate;
   }
-  const Eigen::Matrix<double, 7, 1> a = qr.solve(b);
+  const Eigen::Matrix<double, 7, 1> a = ls.x;
   const double ty_abs = 1.0 / a.tail<3>().norm();
   *sx = a.head<3>().norm() * ty_abs;
   Eigen::Matrix<double, 2, 3> rows;
@@ -254,13 +253,12 @@ TsaiStatus StageOneCoplanar(const std::vector<SensorPoint>& points, Rigid3d* pos
     A.row(i) << s.yd * s.X.x(), s.yd * s.X.y(), s.yd, -s.xd * s.X.x(), -s.xd * s.X.y();
     b(i) = s.xd;
   }
-  Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(A);
-  qr.setThreshold(1e-10);
-  if (qr.rank() < 5) {
+  const LeastSquaresSolution ls = SolveLeastSquares(A, b, 1e-10);
+  if (ls.rank < 5) {
     out->message = "the coplanar radial alignment system is rank deficient: the board points are collinear";
     return TsaiStatus::kDegenerate;
   }
-  const Eigen::Matrix<double, 5, 1> a = qr.solve(b);
+  const Eigen::Matrix<double, 5, 1> a = ls.x;
   const double a1 = a(0), a2 = a(1), a3 = a(2), a4 = a(3), a5 = a(4);
   const double ty_abs = std::sqrt(CoplanarTySquared(a1, a2, a4, a5));
   Eigen::Matrix<double, 2, 3> rows;
@@ -307,7 +305,7 @@ KappaConversion ConvertTsaiKappa(double K, double r_max) {
     A.row(i) << r * r * r, std::pow(r, 5), std::pow(r, 7);
     b(i) = d - r;
   }
-  const Eigen::Vector3d k = A.colPivHouseholderQr().solve(b);
+  const Eigen::Vector3d k = SolveLeastSquares(A, b).x;
   out.k1 = k(0);
   out.k2 = k(1);
   out.k3 = k(2);

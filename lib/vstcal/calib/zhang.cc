@@ -1,10 +1,11 @@
 #include "vstcal/calib/zhang.h"
 
-#include <Eigen/SVD>
+#include <Eigen/LU>
 #include <cmath>
 
 #include "vstcal/estimators/homography.h"
 #include "vstcal/estimators/length_range.h"
+#include "vstcal/geometry/linalg.h"
 
 namespace vstcal {
 namespace {
@@ -78,13 +79,13 @@ ZhangResult ZhangInitialization(const Correspondences& c) {
     A.row(2 * k + 1) = (V(H, 0, 0) - V(H, 1, 1)).transpose();
   }
   A.row(A.rows() - 1) << 0, 1, 0, 0, 0, 0;  // zero skew: B12 = 0
-  Eigen::JacobiSVD<Eigen::MatrixXd> svd(A, Eigen::ComputeFullV);
-  if (!(svd.singularValues()(4) > 1e-9 * svd.singularValues()(0))) {
+  const SingularValueDecomposition svd = DecomposeSvd(A, Eigen::ComputeFullV);
+  if (!(svd.singular_values(4) > 1e-9 * svd.singular_values(0))) {
     out.message = "the views do not constrain K (boards all parallel, or all tilted about one axis); add views "
                   "with the board tilted in different directions";
     return out;
   }
-  Eigen::Matrix<double, 6, 1> b = svd.matrixV().col(5);
+  Eigen::Matrix<double, 6, 1> b = svd.V.col(5);
   if (b(0) < 0) b = -b;  // B is positive definite up to scale
   const double B11 = b(0), B12 = b(1), B22 = b(2), B13 = b(3), B23 = b(4), B33 = b(5);
   // Zhang's Appendix B closed form.

@@ -1,11 +1,9 @@
 #include "vstcal/estimators/arrow_information.h"
 
-#include <Eigen/Householder>
-#include <Eigen/QR>
-#include <Eigen/SVD>
 #include <cmath>
 
 #include "vstcal/core/error.h"
+#include "vstcal/geometry/linalg.h"
 
 namespace vstcal {
 namespace {
@@ -24,17 +22,16 @@ Eigen::VectorXd Unit(Eigen::Index n, Eigen::Index i) {
 Eigen::MatrixXd TriangularFactor(const Eigen::MatrixXd& rows, Eigen::Index keep) {
   Eigen::MatrixXd R = Eigen::MatrixXd::Zero(keep, rows.cols());
   if (rows.rows() == 0) return R;
-  const Eigen::HouseholderQR<Eigen::MatrixXd> qr(rows);
   const Eigen::Index n = std::min(keep, rows.rows());
-  R.topRows(n) = qr.matrixQR().topRows(n).triangularView<Eigen::Upper>();
+  R.topRows(n) = HouseholderR(rows).topRows(n);
   return R;
 }
 
 // Smallest singular value of a square matrix and its right singular vector.
 std::pair<double, Eigen::VectorXd> SmallestSingular(const Eigen::MatrixXd& A) {
-  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(A, Eigen::ComputeFullV);
+  const SingularValueDecomposition svd = DecomposeSvd(A, Eigen::ComputeFullV);
   const Eigen::Index last = A.cols() - 1;
-  return {svd.singularValues()(last), svd.matrixV().col(last)};
+  return {svd.singular_values(last), svd.V.col(last)};
 }
 
 // X = R⁻¹ R⁻ᵀ for an upper-triangular R: (R⁻ᵀ)ᵀ R⁻ᵀ, symmetric by construction.

@@ -1,8 +1,10 @@
 #include "vstcal/estimators/homography.h"
 
 #include <Eigen/Geometry>
-#include <Eigen/Eigenvalues>
+#include <Eigen/LU>
 #include <cmath>
+
+#include "vstcal/geometry/linalg.h"
 
 namespace vstcal {
 namespace {
@@ -34,8 +36,9 @@ std::optional<Eigen::Matrix3d> EstimateHomography(std::span<const Observation> o
   if (!Tb.allFinite() || !Ti.allFinite()) return std::nullopt;
   // The right singular vectors of the 2n × 9 system A are the eigenvectors of the 9 × 9 AᵀA, and
   // its singular values the square roots of the eigenvalues: on normalized coordinates AᵀA is well
-  // enough conditioned, and a fixed 9 × 9 eigenproblem costs a fraction of A's Jacobi SVD (PnP
-  // starts from a homography every frame).
+  // enough conditioned, and a 9 × 9 eigenproblem costs a fraction of A's Jacobi SVD (PnP starts
+  // from a homography every frame). On the dynamic type (geometry/linalg.h), which gives the fixed
+  // type's bits at 9 × 9 (docs/performance.md#build, stop 35).
   Eigen::Matrix<double, 9, 9> AtA = Eigen::Matrix<double, 9, 9>::Zero();
   for (size_t i = 0; i < n; ++i) {
     const Eigen::Vector3d X = Tb * board[i].homogeneous();
@@ -45,10 +48,10 @@ std::optional<Eigen::Matrix3d> EstimateHomography(std::span<const Observation> o
     rows.row(1) << 0, 0, 0, X.transpose(), -q.y() * X.transpose();
     AtA.noalias() += rows.transpose() * rows;
   }
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 9, 9>> eig(AtA);
+  const SymmetricEigen eig = DecomposeSymmetric(AtA);
   // σ₇ > 1e-6 σ₀ for the second-smallest and the largest singular values, squared.
-  if (!(eig.eigenvalues()(1) > 1e-12 * eig.eigenvalues()(8))) return std::nullopt;
-  const Eigen::Matrix<double, 9, 1> h = eig.eigenvectors().col(0);
+  if (!(eig.values(1) > 1e-12 * eig.values(8))) return std::nullopt;
+  const Eigen::Matrix<double, 9, 1> h = eig.vectors.col(0);
   Eigen::Matrix3d Hn;
   Hn << h(0), h(1), h(2), h(3), h(4), h(5), h(6), h(7), h(8);
   Eigen::Matrix3d H = Ti.inverse() * Hn * Tb;

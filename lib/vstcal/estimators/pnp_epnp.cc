@@ -1,5 +1,5 @@
-#include <Eigen/Eigenvalues>
-#include <Eigen/QR>
+#include <Eigen/Cholesky>
+#include <Eigen/LU>
 #include <array>
 #include <cmath>
 #include <initializer_list>
@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "vstcal/estimators/pnp_starts.h"
+#include "vstcal/geometry/linalg.h"
 #include "vstcal/geometry/point_registration.h"
 
 namespace vstcal::pnp_starts {
@@ -71,9 +72,9 @@ ClosedFormPose EpnpPose(std::span<const Eigen::Vector3d> world, std::span<const 
     }
     MtM.noalias() += rows.transpose() * rows;
   }
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 12, 12>> eig(MtM);
+  const SymmetricEigen12 eig = DecomposeSymmetric12(MtM);
   std::array<Vec12, 4> v;
-  for (int k = 0; k < 4; ++k) v[k] = eig.eigenvectors().col(k);  // smallest eigenvalues first
+  for (int k = 0; k < 4; ++k) v[k] = eig.vectors.col(k);  // smallest eigenvalues first
 
   // Distance constraints |c_a − c_b|² = |cw_a − cw_b|² as a linear system in the ten products
   // β_k β_l, ordered (11, 12, 22, 13, 23, 33, 14, 24, 34, 44).
@@ -98,13 +99,14 @@ ClosedFormPose EpnpPose(std::span<const Eigen::Vector3d> world, std::span<const 
   };
   // Approximations of the betas (the paper's N = 1, 2, 3 cases): solve for a subset of the
   // products by least squares, then read the betas off them.
-  // One dynamic-size QR for the three systems: it gives the fixed-size ones' solutions bit for bit
-  // (60,000 random systems checked) at a third of the compile time (docs/performance.md#build).
+  // One dynamic-size QR for the three systems, compiled once in geometry/linalg.cc: it gives the
+  // fixed-size ones' solutions bit for bit (60,000 random systems checked, and as many with ρ as a
+  // dynamic vector) at a fraction of the compile time (docs/performance.md#build).
   const auto least_squares = [&](std::initializer_list<int> columns) {
     Eigen::MatrixXd A(6, static_cast<Eigen::Index>(columns.size()));
     Eigen::Index c = 0;
     for (const int column : columns) A.col(c++) = L.col(column);
-    return Eigen::VectorXd(Eigen::ColPivHouseholderQR<Eigen::MatrixXd>(A).solve(rho));
+    return SolveLeastSquares(A, Eigen::VectorXd(rho)).x;
   };
   std::vector<Eigen::Vector4d> starts;
   {

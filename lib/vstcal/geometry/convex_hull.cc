@@ -4,13 +4,12 @@
 #include <cmath>
 #include <cstdio>
 
-#include <Eigen/SVD>
-
 extern "C" {
 #include <libqhull_r/qhull_ra.h>
 }
 
 #include "vstcal/core/error.h"
+#include "vstcal/geometry/linalg.h"
 
 namespace vstcal {
 namespace {
@@ -45,7 +44,7 @@ std::string WhyNoVolume(std::span<const Eigen::Vector3d> points) {
   mean /= static_cast<double>(points.size());
   Eigen::MatrixXd centred(points.size(), 3);
   for (size_t i = 0; i < points.size(); ++i) centred.row(static_cast<Eigen::Index>(i)) = (points[i] - mean).transpose();
-  const Eigen::Vector3d s = Eigen::JacobiSVD<Eigen::MatrixXd>(centred).singularValues();
+  const Eigen::Vector3d s = DecomposeSvd(centred, 0).singular_values;
   if (!(s(0) > 0)) return "all points coincide";
   if (s(1) <= 1e-12 * s(0)) return "the points lie on one line";
   if (s(2) <= 1e-12 * s(0)) return "the points lie on one plane: they span no volume";

@@ -15,6 +15,7 @@
 #include "vstcal/core/error.h"
 #include "vstcal/estimators/pose_refine.h"
 #include "vstcal/scene/fit.h"
+#include "vstcal/geometry/linalg.h"
 #include "vstcal/geometry/rotation.h"
 
 namespace vstcal {
@@ -148,7 +149,7 @@ Eigen::Matrix<double, 6, 1> SmoothedVelocity(std::span<const TrackedPose> log, s
     A.row(static_cast<Eigen::Index>(m)) << 1, t, t * t;
     Y.row(static_cast<Eigen::Index>(m)) << RotvecFromRotation(p.tracker_from_hmd.R * at.R.transpose()).transpose(), p.tracker_from_hmd.t.transpose();
   }
-  v = A.colPivHouseholderQr().solve(Y).row(1).transpose();
+  v = SolveLeastSquares(A, Y).row(1).transpose();
   return v;
 }
 

@@ -1,8 +1,7 @@
 #include "vstcal/scene/parameter_covariance.h"
 
-#include <Eigen/Eigenvalues>
-
 #include "vstcal/core/error.h"
+#include "vstcal/geometry/linalg.h"
 
 namespace vstcal {
 namespace {
@@ -13,14 +12,14 @@ Eigen::MatrixXd GeneralizedInverse(const Eigen::MatrixXd& sigma) {
   const Eigen::Index n = sigma.rows();
   Eigen::VectorXd s(n);
   for (Eigen::Index i = 0; i < n; ++i) s(i) = sigma(i, i) > 0 ? 1.0 / std::sqrt(sigma(i, i)) : 1.0;
-  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(s.asDiagonal() * sigma * s.asDiagonal());
-  const double largest = n > 0 ? eig.eigenvalues().cwiseAbs().maxCoeff() : 0.0;
+  const SymmetricEigen eig = DecomposeSymmetric(s.asDiagonal() * sigma * s.asDiagonal());
+  const double largest = n > 0 ? eig.values.cwiseAbs().maxCoeff() : 0.0;
   Eigen::VectorXd inverse(n);
   for (Eigen::Index i = 0; i < n; ++i) {
-    const double l = eig.eigenvalues()(i);
+    const double l = eig.values(i);
     inverse(i) = l > kObservabilityFloor * largest ? 1.0 / l : 0.0;
   }
-  return s.asDiagonal() * eig.eigenvectors() * inverse.asDiagonal() * eig.eigenvectors().transpose() * s.asDiagonal();
+  return s.asDiagonal() * eig.vectors * inverse.asDiagonal() * eig.vectors.transpose() * s.asDiagonal();
 }
 
 }  // namespace

@@ -1,6 +1,6 @@
 #include "vstcal/formats/camera/camera_io.h"
 
-#include <Eigen/Eigenvalues>
+#include <Eigen/LU>
 
 #include <algorithm>
 #include <cmath>
@@ -12,6 +12,7 @@
 #include "vstcal/camera/intrinsics.h"
 #include "vstcal/core/limits.h"
 #include "vstcal/core/suggest.h"
+#include "vstcal/geometry/linalg.h"
 #include "vstcal/json/fields.h"
 #include "vstcal/json/format_check.h"
 
@@ -129,9 +130,9 @@ void CheckCovarianceMatrix(const JsonNode& node, const Eigen::MatrixXd& matrix, 
 
 // Positive semi-definite to −1e-9 of the largest |eigenvalue| (the lower triangle is read).
 void CheckPositiveSemiDefinite(const JsonNode& node, const Eigen::MatrixXd& matrix, const std::string& what) {
-  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(matrix, Eigen::EigenvaluesOnly);
-  const double smallest = eig.eigenvalues().minCoeff();
-  const double largest = eig.eigenvalues().cwiseAbs().maxCoeff();
+  const Eigen::VectorXd eigenvalues = DecomposeSymmetric(matrix, /*with_vectors=*/false).values;
+  const double smallest = eigenvalues.minCoeff();
+  const double largest = eigenvalues.cwiseAbs().maxCoeff();
   if (smallest < -1e-9 * largest) {
     char buf[200];
     std::snprintf(buf, sizeof buf, "%snot positive semi-definite: eigenvalue %.6g < -1e-9 × largest |eigenvalue| %.6g",

@@ -4,10 +4,9 @@
 #include <array>
 #include <cmath>
 
-#include <Eigen/Eigenvalues>
-
 #include "vstcal/core/error.h"
 #include "vstcal/errsim/chain.h"
+#include "vstcal/geometry/linalg.h"
 #include "vstcal/json/json_writer.h"
 #include "vstcal/json/reader_common.h"
 #include "vstcal/scene/stereo_rig.h"
@@ -121,13 +120,13 @@ void Correlate(const CorrelationSpec& c, ChainModel* model) {
 // has covariance Σ for standard normals z. InputError at `field` unless Σ is positive semi-definite.
 Eigen::MatrixXd PrincipalRoots(const Eigen::MatrixXd& covariance, const ChainSpec& spec, const std::string& field,
                                const std::string& what) {
-  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(covariance);
-  const double largest = std::max(0.0, eig.eigenvalues().maxCoeff());
-  if (eig.eigenvalues().minCoeff() < -1e-9 * largest) {
+  const SymmetricEigen eig = DecomposeSymmetric(covariance);
+  const double largest = std::max(0.0, eig.values.maxCoeff());
+  if (eig.values.minCoeff() < -1e-9 * largest) {
     FailField(spec.file, field, what + " is not positive semi-definite", "give a valid covariance matrix");
   }
-  Eigen::MatrixXd roots = eig.eigenvectors();
-  for (int j = 0; j < roots.cols(); ++j) roots.col(j) *= std::sqrt(std::max(0.0, eig.eigenvalues()(j)));
+  Eigen::MatrixXd roots = eig.vectors;
+  for (int j = 0; j < roots.cols(); ++j) roots.col(j) *= std::sqrt(std::max(0.0, eig.values(j)));
   return roots;
 }
 
