@@ -12,6 +12,9 @@
 #   floor(A) == floor(B) on a floor whose folders may stand on each other (foundations, formats and
 #   pages) and rank(B) < rank(A): a fixed order, so no loop can form.
 # Domains (floor 2) never include each other: what two domains share moves down to the foundations.
+# A domain's model (cmake/DomainModels.cmake: the value types its files hold, a library under its
+# algorithms) includes only the foundations and its own model, so the formats floor can link a
+# model without the domain's solvers.
 
 cmake_minimum_required(VERSION 3.22)
 
@@ -27,6 +30,12 @@ set(floor_2 calib stereo capture handeye errsim report)
 set(floor_3 formats/camera formats/calib formats/stereo formats/capture formats/handeye formats/report
             formats/errsim pages)
 set(floor_4 app)
+include("${ROOT}/cmake/DomainModels.cmake")
+foreach(domain IN LISTS vstcal_domain_models)
+  foreach(stem IN LISTS vstcal_model_${domain})
+    set(model_of_${stem} ${domain})
+  endforeach()
+endforeach()
 set(floor_5 tools python)
 set(sideways_floors 1 3)
 
@@ -74,10 +83,22 @@ foreach(file IN LISTS files)
     string(APPEND broken "\n  ${file}: folder '${from}' is on no floor of docs/architecture.md; add it to cmake/CheckLayers.cmake and the plan")
     continue()
   endif()
+  string(REGEX REPLACE "^lib/vstcal/(.*)\\.(h|cc)$" "\\1" stem "${file}")
+  set(model "")
+  if(DEFINED model_of_${stem})
+    set(model ${model_of_${stem}})
+  endif()
   file(STRINGS "${ROOT}/${file}" includes REGEX "^[ \t]*#[ \t]*include[ \t]+\"vstcal/")
   foreach(line IN LISTS includes)
     string(REGEX REPLACE "^[ \t]*#[ \t]*include[ \t]+\"vstcal/([^\"]+)\".*" "\\1" target "${line}")
     node_of("${target}" to)
+    if(model)
+      string(REGEX REPLACE "\\.(h|cc)$" "" target_stem "${target}")
+      if(NOT to STREQUAL "" AND NOT "${floor_of_${to}}" STREQUAL "1" AND NOT "${model_of_${target_stem}}" STREQUAL "${model}")
+        string(APPEND broken "\n  ${file}: #include \"vstcal/${target}\": ${model}'s model (cmake/DomainModels.cmake) includes only the foundations and its own model")
+        continue()
+      endif()
+    endif()
     if(to STREQUAL "" OR to STREQUAL from)
       continue()
     endif()

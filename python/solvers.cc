@@ -16,7 +16,7 @@
 
 #include "bindings.h"
 #include "vstcal/app/calib_stereo.h"
-#include "vstcal/calib/dlt.h"
+#include "vstcal/estimators/dlt.h"
 #include "vstcal/calib/pipeline.h"
 #include "vstcal/core/enum_names.h"
 #include "vstcal/core/error.h"

@@ -14,7 +14,7 @@
 #include "support/opencv_views.h"
 #include "support/scenes.h"
 #include "vstcal/estimators/decompose.h"
-#include "vstcal/calib/dlt.h"
+#include "vstcal/estimators/dlt.h"
 #include "vstcal/estimators/information.h"
 #include "vstcal/calib/pipeline.h"
 #include "vstcal/calib/refine.h"

@@ -14,7 +14,7 @@
 
 #include "support/scenes.h"
 #include "vstcal/estimators/decompose.h"
-#include "vstcal/calib/dlt.h"
+#include "vstcal/estimators/dlt.h"
 
 namespace {
 

@@ -1,7 +1,7 @@
 // vstcal/correspondences@1: the reader, the writer's fixed point, and the DLT on what was read
 // (docs/formats.md#correspondences).
 #include "harness.h"
-#include "vstcal/calib/dlt.h"
+#include "vstcal/estimators/dlt.h"
 #include "vstcal/formats/camera/correspondences_io.h"
 
 namespace {

@@ -7,7 +7,7 @@
 #include "support/crb.h"
 #include "support/scenes.h"
 #include "vstcal/estimators/decompose.h"
-#include "vstcal/calib/dlt.h"
+#include "vstcal/estimators/dlt.h"
 #include "vstcal/random/philox.h"
 
 namespace vstcal {

@@ -9,7 +9,7 @@
 #include <cmath>
 
 #include "support/scenes.h"
-#include "vstcal/calib/dlt.h"
+#include "vstcal/estimators/dlt.h"
 #include "vstcal/calib/pipeline.h"
 #include "vstcal/estimators/decompose.h"
 #include "vstcal/estimators/uncertainty.h"

@@ -5,7 +5,7 @@
 
 #include <gtest/gtest.h>
 
-#include "vstcal/calib/dlt.h"
+#include "vstcal/estimators/dlt.h"
 #include "vstcal/calib/pipeline.h"
 #include "vstcal/calib/tsai.h"
 #include "vstcal/capture/detect.h"

@@ -10,7 +10,7 @@
 #include "support/opencv_views.h"
 #include "support/scenes.h"
 #include "vstcal/estimators/decompose.h"
-#include "vstcal/calib/dlt.h"
+#include "vstcal/estimators/dlt.h"
 #include "vstcal/calib/refine.h"
 #include "vstcal/calib/zhang.h"
 #include "vstcal/capture/synthetic_views.h"

@@ -10,7 +10,7 @@
 #include "vstcal/scene/calibrated_camera.h"
 #include "vstcal/scene/correspondences.h"
 #include "vstcal/estimators/decompose.h"
-#include "vstcal/calib/dlt.h"
+#include "vstcal/estimators/dlt.h"
 #include "vstcal/calib/fisheye_start.h"
 #include "vstcal/calib/refine.h"
 #include "vstcal/calib/tsai.h"

@@ -5,10 +5,6 @@
 
 namespace vstcal {
 
-std::string_view DetectionStatusName(DetectionStatus status) {
-  return NameOf(kDetectionStatusNames, status);
-}
-
 Detection DetectTarget(const GrayImage& image, const Target& target, const DetectorOptions& options) {
   VSTCAL_CHECK(image.width > 0 && image.height > 0 && image.pixels.size() == static_cast<size_t>(image.width) * image.height,
                "empty or inconsistent image");

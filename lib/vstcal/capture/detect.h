@@ -24,7 +24,8 @@ enum class DetectionStatus {
   kRejected,  // seen, but unusable: too few corners, blurred, orientation ambiguous, …
 };
 inline constexpr EnumNames<DetectionStatus, 3> kDetectionStatusNames = {{{DetectionStatus::kFound, "found"}, {DetectionStatus::kNotFound, "not-found"}, {DetectionStatus::kRejected, "rejected"}}};
-std::string_view DetectionStatusName(DetectionStatus status);  // "found", "not-found", "rejected"
+// "found", "not-found", "rejected". Inline, so the capture file's writer needs none of the detectors.
+inline std::string_view DetectionStatusName(DetectionStatus status) { return NameOf(kDetectionStatusNames, status); }
 
 struct DetectedCorner {
   int id = 0;            // the target's corner id (target.h)

@@ -1,4 +1,4 @@
-#include "vstcal/handeye/refine.h"
+#include "vstcal/handeye/covariance_names.h"
 
 namespace vstcal {
 

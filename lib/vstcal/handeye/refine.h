@@ -23,6 +23,7 @@
 #include "vstcal/estimators/view_rejection.h"
 #include "vstcal/geometry/rigid3.h"
 #include "vstcal/handeye/closed_form.h"
+#include "vstcal/handeye/covariance_names.h"
 #include "vstcal/scene/correspondences.h"
 
 namespace vstcal {
@@ -149,12 +150,6 @@ struct HandEyeSolution {
   // estimated beside the tracker's is tracker_noise->corner_px.
   std::optional<JointTrackerNoise> tracker_noise;
 };
-
-// The names of HandEyeSolution::covariance's rows, in order: X's left-perturbation tangent (ω rad,
-// ρ length unit; hmd frame), Z's (tracker frame), δ (s). handeye@1 writes them; err-sim reads them.
-const std::vector<std::string>& HandEyeCovarianceNames();
-// The two rows that follow them when the tracker's noise was estimated jointly.
-const std::vector<std::string>& HandEyeNoiseCovarianceNames();
 
 // `iterations` counts every solve's (one per rejection round). Throws InputError for a log that is
 // not strictly increasing in time or has fewer than 2 reports, a view outside the log's span, and

@@ -4,7 +4,7 @@
 #include <optional>
 
 #include "vstcal/estimators/decompose.h"
-#include "vstcal/calib/dlt.h"
+#include "vstcal/estimators/dlt.h"
 #include "vstcal/json/json_writer.h"
 
 namespace vstcal {

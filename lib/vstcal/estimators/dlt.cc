@@ -1,4 +1,4 @@
-#include "vstcal/calib/dlt.h"
+#include "vstcal/estimators/dlt.h"
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
