@@ -121,7 +121,7 @@ int RunTool(CLI::App& app, int argc, char** argv, const std::function<int()>& bo
     const InputProtection protection;  // no output may be an input (files/input_protection.h)
     return CheckStdout(tool, body());
   } catch (const Error& e) {
-    if (e.code() == ExitCode::kInternal) {
+    if (dynamic_cast<const InternalError*>(&e) != nullptr) {
       std::cerr << tool << ": internal error: " << OneLine(ForUser(e.what())) << " (please report this)\n";
     } else {
       std::cerr << tool << ": error: " << OneLine(ForUser(e.what())) << "\n";

@@ -25,10 +25,11 @@ namespace vstcal::tools {
 // Files read without ReadInputFile (images through OpenCV) are recorded with
 // NoteInputFile(path) before they are read.
 // Returns the process exit code:
-//  0 ok (also for --help and --version), 2 bad usage or input, 3 degenerate data, 1 internal error;
+//  0 ok (also for --help and --version), 2 bad usage or input, 3 degenerate data, 1 internal error
+//  (or a broken installation, which says how to fix it);
 //  a body returns 4 (ExitCode::kCheckFailed, app::ExitStatus) itself when a check it ran failed.
 // Every failure prints exactly one line on stderr, "<tool>: error: <message>" (or "<tool>:
-// internal error: … (please report this)" for exit code 1); control characters in the message
+// internal error: … (please report this)" for a bug, an InternalError); control characters in the message
 // are escaped so that it stays one line.
 int RunTool(CLI::App& app, int argc, char** argv, const std::function<int()>& body);
 

@@ -11,6 +11,11 @@
 namespace vstcal {
 namespace {
 
+// A plugin that does not load is a fault of the installation, not a bug: exit 1 like an internal
+// error (docs/conventions.md#exit-codes), but without asking the user to report it — the message
+// says how to fix it.
+Error InstallationError(const std::string& message) { return Error(ExitCode::kInternal, message); }
+
 // Loaded once, kept for the life of the process (RTLD_NODELETE: OpenCV's backends keep threads).
 const CodecsTable& Table() {
   static const CodecsTable* const table = [] {
@@ -19,14 +24,14 @@ const CodecsTable& Table() {
     void* plugin = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL | RTLD_NODELETE);
     if (plugin == nullptr) {
       const char* why = dlerror();
-      throw InternalError("the image codecs plugin " + path + " does not load (" + (why ? why : "no reason given") +
-                          "); rebuild with scripts/build, or name it with VSTCAL_CODECS_PLUGIN");
+      throw InstallationError("the image codecs plugin " + path + " does not load (" + (why ? why : "no reason given") +
+                              "); rebuild with scripts/build, or name it with VSTCAL_CODECS_PLUGIN");
     }
     using Get = const CodecsTable* (*)();
     const auto get = reinterpret_cast<Get>(dlsym(plugin, "vstcal_codecs_table"));
     const CodecsTable* found = get != nullptr ? get() : nullptr;
     if (found == nullptr || found->version != CodecsTable::kVersion) {
-      throw InternalError("the image codecs plugin " + path + " is not this build's; rebuild with scripts/build");
+      throw InstallationError("the image codecs plugin " + path + " is not this build's; rebuild with scripts/build");
     }
     return found;
   }();
