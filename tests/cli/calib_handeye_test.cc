@@ -126,6 +126,21 @@ TEST_F(CliCalibHandEye, SolvesAStereoRigAndRefusesUnpairableViews) {
   EXPECT_EQ(he.at("fit").at("views"), 60);
   EXPECT_NEAR(he.at("rig").at("right_from_left").at("t")[0].get<double>(), -64, 1e-12);
   for (int i = 0; i < 3; ++i) EXPECT_NEAR(he.at("hmd_from_camera").at("t")[i].get<double>(), testing::kHmdFromCamera.t(i), 1.0) << i;
+  // The bootstrap simulates the right camera's views through right_from_left too: were they
+  // simulated at the left camera's pose, each replicate would be off by the baseline, not by the
+  // noise. (4 replicates: a σ good to a factor of a few.)
+  const CommandResult boot = Run(kTool, {"solve", "in/corners.json", "--right", "in/right.json", "--rig", "in/rig.json", "--poses", "in/poses.txt",
+                                         "--bootstrap", "4", "-o", "out/he_boot.json"});
+  ASSERT_EQ(boot.exit_code, kOk) << boot.err;
+  const Json he_boot = ReadJson("out/he_boot.json");
+  const Json& b = he_boot.at("bootstrap");
+  EXPECT_EQ(b.at("solved"), 4);
+  for (const int i : {3, 12}) {
+    const double first = std::sqrt(he.at("covariance").at("matrix")[i][i].get<double>());
+    const double by_bootstrap = std::sqrt(b.at("covariance").at("matrix")[i][i].get<double>());
+    EXPECT_GT(by_bootstrap, first / 5) << i;
+    EXPECT_LT(by_bootstrap, first * 5) << i;
+  }
 
   // Names that pair with nothing, at times 5 ms off the left views'.
   std::vector<TimedView> unpaired = r.rig.views;
