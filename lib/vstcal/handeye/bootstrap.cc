@@ -20,7 +20,8 @@ namespace {
 // (k − 5 … k + 5, shifted inside the log) evaluated at its time — the rotation as log(R_m R_kᵀ),
 // the translation per component. The reports themselves would not do: their noise is in them
 // already, and fresh noise on top doubles the noise of the slope between two reports, which is
-// the information on δ (the headset's velocity: docs/math/handeye.md#delta-bootstrap).
+// the information on δ (the headset's velocity): with the raw reports the bootstrap's σ_δ came out
+// half the spread (docs/math/handeye.md#delta-bootstrap).
 std::vector<TrackedPose> SmoothedMotion(std::span<const TrackedPose> log) {
   constexpr size_t kReports = 11;
   std::vector<TrackedPose> out(log.begin(), log.end());
