@@ -126,6 +126,21 @@ TEST_F(CliCalibHandEye, SolvesAStereoRigAndRefusesUnpairableViews) {
   EXPECT_EQ(he.at("fit").at("views"), 60);
   EXPECT_NEAR(he.at("rig").at("right_from_left").at("t")[0].get<double>(), -64, 1e-12);
   for (int i = 0; i < 3; ++i) EXPECT_NEAR(he.at("hmd_from_camera").at("t")[i].get<double>(), testing::kHmdFromCamera.t(i), 1.0) << i;
+  // The bootstrap simulates the right camera's views through right_from_left too: were they
+  // simulated at the left camera's pose, each replicate would be off by the baseline, not by the
+  // noise. (4 replicates: a σ good to a factor of a few.)
+  const CommandResult boot = Run(kTool, {"solve", "in/corners.json", "--right", "in/right.json", "--rig", "in/rig.json", "--poses", "in/poses.txt",
+                                         "--bootstrap", "4", "-o", "out/he_boot.json"});
+  ASSERT_EQ(boot.exit_code, kOk) << boot.err;
+  const Json he_boot = ReadJson("out/he_boot.json");
+  const Json& b = he_boot.at("bootstrap");
+  EXPECT_EQ(b.at("solved"), 4);
+  for (const int i : {3, 12}) {
+    const double first = std::sqrt(he.at("covariance").at("matrix")[i][i].get<double>());
+    const double by_bootstrap = std::sqrt(b.at("covariance").at("matrix")[i][i].get<double>());
+    EXPECT_GT(by_bootstrap, first / 5) << i;
+    EXPECT_LT(by_bootstrap, first * 5) << i;
+  }
 
   // Names that pair with nothing, at times 5 ms off the left views'.
   std::vector<TimedView> unpaired = r.rig.views;
@@ -279,6 +294,59 @@ TEST_F(CliCalibHandEye, DropsABadFrameUnlessToldToKeepAll) {
   EXPECT_TRUE(kept.at("rejected_views").empty());
   EXPECT_EQ(kept.at("fit").at("views"), 30);
   EXPECT_GT(kept["fit"]["sigma_px"].get<double>(), 2 * dropped["fit"]["sigma_px"].get<double>());
+}
+
+// --bootstrap N (docs/math/handeye.md#delta-bootstrap): a noisy tracker's recording of 16 views,
+// solved with 10 replicates — the file's "bootstrap" holds them all solved, δ's σ beside the
+// first-order one (the two within a factor 2: they estimate the same spread), the seed in the
+// provenance; the same bytes on 2 threads as on 1 (replicate b draws from (seed, b) alone), another
+// seed another σ; without the flag no "bootstrap". One replicate, --seed without --bootstrap and 300
+// threads are refused with nothing written.
+TEST_F(CliCalibHandEye, BootstrapsTheCovarianceDeterministically) {
+  HandEyeSpec spec = testing::HandEyeTestSpec(0.0325, 0.2, 3001);
+  spec.tracker_noise_deg = 0.05;
+  spec.tracker_noise = 0.2;
+  spec.views = 16;
+  WriteRecording(testing::RecordHandEye(spec));
+  const std::vector<std::string> base = {"solve", "in/corners.json", "--poses", "in/poses.json", "--camera", "in/camera.json"};
+  const auto with = [&](std::vector<std::string> extra) {
+    std::vector<std::string> args = base;
+    args.insert(args.end(), extra.begin(), extra.end());
+    return args;
+  };
+  const CommandResult r = Run(kTool, with({"--bootstrap", "10", "--seed", "7", "-o", "out/b1.json"}));
+  ASSERT_EQ(r.exit_code, kOk) << r.err;
+  EXPECT_NE(r.err.find("  time offset by the bootstrap (10 of 10 replicates solved): ± "), std::string::npos) << r.err;
+  const Json he = ReadJson("out/b1.json");
+  ASSERT_TRUE(he.contains("bootstrap"));
+  const Json& b = he.at("bootstrap");
+  EXPECT_EQ(b.at("replicates"), 10);
+  EXPECT_EQ(b.at("solved"), 10);
+  EXPECT_EQ(b.at("seed"), 7);
+  EXPECT_EQ(he.at("provenance").at("seed"), 7);
+  ASSERT_EQ(b.at("covariance").at("parameters").size(), 13u);
+  EXPECT_EQ(b.at("covariance").at("parameters")[12], "time_offset");
+  const double boot = b.at("time_offset_sigma_s"), first = b.at("first_order_time_offset_sigma_s");
+  EXPECT_EQ(first, std::sqrt(he.at("covariance").at("matrix")[12][12].get<double>()));
+  EXPECT_EQ(boot, std::sqrt(b.at("covariance").at("matrix")[12][12].get<double>()));
+  EXPECT_GT(boot, first / 2);
+  EXPECT_LT(boot, first * 2);
+  ASSERT_EQ(Run(kTool, with({"--bootstrap", "10", "--seed", "7", "--threads", "2", "-o", "out/b2.json"})).exit_code, kOk);
+  EXPECT_EQ(ReadText("out/b2.json").substr(0, ReadText("out/b2.json").find("\"provenance\"")),
+            ReadText("out/b1.json").substr(0, ReadText("out/b1.json").find("\"provenance\"")));
+  ASSERT_EQ(Run(kTool, with({"--bootstrap", "10", "--seed", "8", "-o", "out/b3.json"})).exit_code, kOk);
+  EXPECT_NE(ReadJson("out/b3.json").at("bootstrap").at("time_offset_sigma_s").get<double>(), boot);
+  ASSERT_EQ(Run(kTool, with({"-o", "out/none.json"})).exit_code, kOk);
+  EXPECT_FALSE(ReadJson("out/none.json").contains("bootstrap"));
+  EXPECT_EQ(ReadJson("out/none.json").at("time_offset_s"), he.at("time_offset_s"));
+  fs::remove_all(Path("out"));
+  fs::create_directories(Path("out"));
+  EXPECT_TRUE(FailsWith(Run(kTool, with({"--bootstrap", "1", "-o", "out/x.json"})), std::string(kTool), kBadInput, "--bootstrap: 1 replicates",
+                        {"give 2 … 100000"}));
+  EXPECT_TRUE(FailsWith(Run(kTool, with({"--bootstrap", "10", "--threads", "300", "-o", "out/x.json"})), std::string(kTool), kBadInput,
+                        "--threads: 300", {"0 (all cores) … 256"}));
+  EXPECT_EQ(Run(kTool, with({"--seed", "3", "-o", "out/x.json"})).exit_code, kBadInput);
+  EXPECT_TRUE(OutDirEmpty());
 }
 
 // Issue 22 item 5, from photographs: calib-synth renders the recording's views (the chessboard its

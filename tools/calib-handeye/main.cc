@@ -1,6 +1,8 @@
 // calib-handeye: the camera's place on the tracked headset, the board in the tracker's frame and
 // the two clocks' offset, with their covariance; the tracker's jitter (docs/tools/calib-handeye.md).
+#include <cstdint>
 #include <iostream>
+#include <optional>
 
 #include "common/run_tool.h"
 #include "flags.h"
@@ -18,7 +20,9 @@ int main(int argc, char** argv) {
   return vstcal::tools::RunTool(app, argc, argv, [&] {
     const bool solving = app.got_subcommand(f.solve_app);
     vstcal::DeclareOutputs({solving ? f.solve.output : f.noise.output, solving ? f.solve.opencv : std::string()});
-    const vstcal::Provenance provenance = vstcal::MakeProvenance("calib-handeye", argc, argv);
+    // Only a bootstrap draws random numbers: its seed goes into the provenance.
+    const vstcal::Provenance provenance = vstcal::MakeProvenance(
+        "calib-handeye", argc, argv, solving && f.solve.bootstrap > 0 ? std::optional<uint64_t>(f.solve.seed) : std::nullopt);
     const vstcal::app::Outcome outcome =
         solving ? vstcal::app::SolveHandEyeFiles(f.solve, provenance) : vstcal::app::MeasureTrackerNoise(f.noise, provenance);
     vstcal::app::WriteOutcome(outcome);

@@ -12,6 +12,7 @@
 #include "vstcal/formats/handeye/pose_log_io.h"
 #include "vstcal/formats/stereo/stereo_io.h"
 #include "vstcal/geometry/rotation.h"
+#include "vstcal/handeye/bootstrap.h"
 #include "vstcal/handeye/refine.h"
 #include "vstcal/scene/view_keys.h"
 #include "vstcal/core/option_name.h"
@@ -133,6 +134,10 @@ Outcome SolveHandEyeFiles(const HandEyeRequest& request, const Provenance& prove
     throw InputError("camera: a rig is given, whose left camera took the views; give either the rig or a camera, not both");
   }
   if (request.rig.empty() && request.camera.empty()) throw InputError("camera: give the camera that took the views (camera@1), or a rig");
+  if (request.bootstrap < 0 || request.bootstrap == 1 || request.bootstrap > 100000) {
+    throw InputError(VSTCAL_OPT("bootstrap") ": " + std::to_string(request.bootstrap) + " replicates; give 2 … 100000 (e.g. 100), or 0 for none");
+  }
+  if (request.threads > 256) throw InputError(VSTCAL_OPT("threads") ": " + std::to_string(request.threads) + "; give 0 (all cores) … 256");
   const std::optional<StereoRig> stereo = request.rig.empty() ? std::nullopt : std::optional<StereoRig>(ReadStereoRig(request.rig));
   const Camera camera = stereo ? stereo->left.camera : ReadCamera(request.camera).camera;
   const Correspondences corners = ReadCorrespondences(request.corners);
@@ -166,8 +171,17 @@ Outcome SolveHandEyeFiles(const HandEyeRequest& request, const Provenance& prove
       throw InputError(request.corners + " with " + request.poses + ": " + e.what());
     }
   }();
+  std::optional<HandEyeBootstrap> bootstrap;
+  if (request.bootstrap > 0) {
+    try {
+      bootstrap = BootstrapHandEye(camera, log.poses, views, s, options, {request.bootstrap, request.seed, request.threads}, rig ? &*rig : nullptr);
+    } catch (const DegenerateError& e) {
+      throw DegenerateError(request.corners + " with " + request.poses + ": " + e.what());
+    }
+  }
   Outcome out;
-  out.files.emplace_back(request.output, DumpJson(HandEyeToJson(s, corners.length_unit, provenance, rig ? &rig_file : nullptr)));
+  out.files.emplace_back(request.output,
+                         DumpJson(HandEyeToJson(s, corners.length_unit, provenance, rig ? &rig_file : nullptr, bootstrap ? &*bootstrap : nullptr)));
   if (!request.opencv.empty()) out.files.emplace_back(request.opencv, HandEyeOpenCvYaml(s, corners.length_unit, provenance));
   const std::string unit(LengthUnitName(corners.length_unit));
   const auto sigma = [&](int i) { return std::sqrt(s.covariance(i, i)); };
@@ -188,6 +202,12 @@ Outcome SolveHandEyeFiles(const HandEyeRequest& request, const Provenance& prove
       std::to_string(log.poses.size()) + " tracker reports\n";
   t += Line("  time offset: %.4f ms ± %.4f ms%s (the tracker's clock reads t + offset at the camera's t)\n", s.time_offset * 1000,
             sigma(12) * 1000, "");
+  if (bootstrap) {
+    char line[200];
+    std::snprintf(line, sizeof line, "  time offset by the bootstrap (%d of %d replicates solved): ± %.4f ms, bias %+.4f ms\n", bootstrap->solved,
+                  bootstrap->replicates, std::sqrt(bootstrap->covariance(12, 12)) * 1000, bootstrap->mean[12] * 1000);
+    t += line;
+  }
   const Eigen::Vector3d rx = RotvecFromRotation(s.hmd_from_camera.R) * deg;
   char buf[400];
   std::snprintf(buf, sizeof buf, "  hmd_from_camera: t (%.3f, %.3f, %.3f) %s ± (%.3f, %.3f, %.3f); rotation %.3f° ± (%.3f, %.3f, %.3f)°\n",

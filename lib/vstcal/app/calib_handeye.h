@@ -3,6 +3,7 @@
 // clocks, from the board's corners in timed images and the tracker's log.
 #pragma once
 
+#include <cstdint>
 #include <string>
 
 #include "vstcal/app/outcome.h"
@@ -27,6 +28,12 @@ struct HandEyeRequest {
   // The tracker's poses taken as exact instead of weighed by their noise, estimated jointly
   // (HandEyeOptions::estimate_tracker_noise).
   bool tracker_exact = false;
+  // δ's σ (and the whole covariance) also by a parametric bootstrap of this many replicates
+  // (docs/math/handeye.md#delta-bootstrap; 0: none): each replicate one more solve. Replicate b
+  // draws from (seed, b) alone, so the file does not depend on `threads`.
+  int bootstrap = 0;
+  uint64_t seed = 1;
+  unsigned threads = 1;  // 0: every core
 };
 
 // calib-handeye noise: the tracker's jitter from a static segment of its log.

@@ -3,6 +3,7 @@
 #include <opencv2/core.hpp>
 
 #include <algorithm>
+#include <cmath>
 
 #include "vstcal/camera/opencv_mat.h"
 #include "vstcal/formats/camera/camera_io.h"
@@ -141,7 +142,8 @@ OrderedJson TrackerNoiseToJson(const TrackerNoise& n, LengthUnit length_unit, co
   return j;
 }
 
-OrderedJson HandEyeToJson(const HandEyeSolution& s, LengthUnit length_unit, const Provenance& provenance, const HandEyeRigFile* rig) {
+OrderedJson HandEyeToJson(const HandEyeSolution& s, LengthUnit length_unit, const Provenance& provenance, const HandEyeRigFile* rig,
+                          const HandEyeBootstrap* bootstrap) {
   OrderedJson j;
   j["format"] = "vstcal/handeye@1";
   j["length_unit"] = LengthUnitName(length_unit);
@@ -196,6 +198,23 @@ OrderedJson HandEyeToJson(const HandEyeSolution& s, LengthUnit length_unit, cons
                 {"pairing", rig->pairing},
                 {"right_views", s.right_views},
                 {"right_corners", s.right_corners}};
+  }
+  if (bootstrap) {
+    OrderedJson b_matrix = OrderedJson::array();
+    for (Eigen::Index r = 0; r < bootstrap->covariance.rows(); ++r) {
+      OrderedJson row = OrderedJson::array();
+      for (Eigen::Index c = 0; c < bootstrap->covariance.cols(); ++c) row.push_back(bootstrap->covariance(r, c));
+      b_matrix.push_back(std::move(row));
+    }
+    const auto delta = static_cast<Eigen::Index>(kHandEyeParameters - 1);
+    j["bootstrap"] = {{"method", "parametric: recordings simulated at the estimate, each solved again"},
+                      {"replicates", bootstrap->replicates},
+                      {"solved", bootstrap->solved},
+                      {"seed", bootstrap->seed},
+                      {"time_offset_sigma_s", std::sqrt(bootstrap->covariance(delta, delta))},
+                      {"first_order_time_offset_sigma_s", std::sqrt(s.covariance(delta, delta))},
+                      {"time_offset_bias_s", bootstrap->mean[delta]},
+                      {"covariance", {{"parameters", HandEyeCovarianceNames()}, {"matrix", std::move(b_matrix)}}}};
   }
   j["provenance"] = ProvenanceToJson(provenance);
   return j;

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "vstcal/core/units.h"
+#include "vstcal/handeye/bootstrap.h"
 #include "vstcal/handeye/refine.h"
 #include "vstcal/handeye/tracker_noise.h"
 #include "vstcal/json/json_reader.h"
@@ -19,8 +20,10 @@ struct HandEyeRigFile {
 };
 
 // `rig`: written as the file's "rig" (with right_from_left and the right camera's counts).
+// `bootstrap`: written as the file's "bootstrap", beside the first-order `covariance` (which stays
+// what readers take).
 OrderedJson HandEyeToJson(const HandEyeSolution& solution, LengthUnit length_unit, const Provenance& provenance,
-                          const HandEyeRigFile* rig = nullptr);
+                          const HandEyeRigFile* rig = nullptr, const HandEyeBootstrap* bootstrap = nullptr);
 
 // The same as OpenCV FileStorage YAML, for a user's OpenCV code: R_cam2gripper / t_cam2gripper
 // (hmd_from_camera, OpenCV's calibrateHandEye names), R_target2base / t_target2base
