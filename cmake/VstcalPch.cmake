@@ -40,3 +40,41 @@ function(vstcal_pch target owner)
   endif()
 endfunction()
 
+
+# ---- The library's precompiled header (stop 36, docs/performance.md#build) ------------------------
+# vstcal_library_pch(TARGET...): the library's static libraries share one precompiled header of the
+# standard set and the numerics (Eigen, Ceres's Jet, nlohmann-json), built with vstcal_foundations,
+# the floor every other one stands on. GCC takes a header only with its user's flags, so the glue
+# libraries (vstcal_glue_flags: -O1) share a second one, built with the first of them. Since stop 35
+# moved Eigen's decompositions into geometry/linalg.cc, parsing headers is most of a typical library
+# file's compile: FIGURE-TBD.
+# The sanitizer and fuzz builds (VSTCAL_PCH off) compile each file with its own includes alone,
+# so a file that leans on a header it does not include still fails there.
+function(vstcal_library_pch)
+  set(owner "")
+  set(glue_owner "")
+  foreach(target IN LISTS ARGN)
+    get_target_property(options ${target} COMPILE_OPTIONS)
+    set(glue FALSE)
+    if(options AND VSTCAL_GLUE_OPT)
+      set(glue TRUE)
+      foreach(flag IN LISTS VSTCAL_GLUE_OPT)
+        if(NOT flag IN_LIST options)
+          set(glue FALSE)
+        endif()
+      endforeach()
+    endif()
+    if(glue)
+      if(NOT glue_owner)
+        set(glue_owner ${target})
+      endif()
+      vstcal_pch(${target} ${glue_owner} ${VSTCAL_PCH_STANDARD} ${VSTCAL_PCH_NUMERICS})
+    else()
+      if(NOT owner)
+        set(owner ${target})
+      endif()
+      vstcal_pch(${target} ${owner} ${VSTCAL_PCH_STANDARD} ${VSTCAL_PCH_NUMERICS})
+    endif()
+  endforeach()
+endfunction()
+# ---- end of the library's precompiled header ------------------------------------------------------
