@@ -42,18 +42,25 @@ endfunction()
 
 
 # ---- The library's precompiled header (stop 36, docs/performance.md#build) ------------------------
-# vstcal_library_pch(TARGET...): the library's static libraries share one precompiled header of the
-# standard set and the numerics (Eigen, Ceres's Jet, nlohmann-json), built with vstcal_foundations,
-# the floor every other one stands on. GCC takes a header only with its user's flags, so the glue
-# libraries (vstcal_glue_flags: -O1) share a second one, built with the first of them. Since stop 35
-# moved Eigen's decompositions into geometry/linalg.cc, parsing headers is most of a typical library
-# file's compile: FIGURE-TBD.
+# vstcal_library_pch(TARGET... JSON TARGET...): the library's static libraries share precompiled
+# headers, each built once, by the first target of its group, and reused by the others. Since stop
+# 35 moved Eigen's decompositions into geometry/linalg.cc, parsing headers is most of a typical
+# library file's compile; but loading a header costs every file that uses it, ~1 CPU-s for the
+# tests' set (nlohmann-json and Eigen/Dense in it), which more than doubles a small file's compile.
+# So the foundations and the domains take the light set (the standard headers, Eigen/Core, Ceres's
+# Jet), and the targets listed after JSON — the formats, the pages, the application, whose files
+# read and write JSON — the tests' set. GCC takes a header only with its user's flags: the glue
+# libraries (vstcal_glue_flags: -O1) get their own. FIGURE-TBD.
 # The sanitizer and fuzz builds (VSTCAL_PCH off) compile each file with its own includes alone,
 # so a file that leans on a header it does not include still fails there.
+set(VSTCAL_PCH_LIBRARY ${VSTCAL_PCH_STANDARD} <Eigen/Core> <ceres/jet.h>)
 function(vstcal_library_pch)
-  set(owner "")
-  set(glue_owner "")
+  set(json FALSE)
   foreach(target IN LISTS ARGN)
+    if(target STREQUAL "JSON")
+      set(json TRUE)
+      continue()
+    endif()
     get_target_property(options ${target} COMPILE_OPTIONS)
     set(glue FALSE)
     if(options AND VSTCAL_GLUE_OPT)
@@ -64,17 +71,19 @@ function(vstcal_library_pch)
         endif()
       endforeach()
     endif()
+    set(group "opt")
     if(glue)
-      if(NOT glue_owner)
-        set(glue_owner ${target})
-      endif()
-      vstcal_pch(${target} ${glue_owner} ${VSTCAL_PCH_STANDARD} ${VSTCAL_PCH_NUMERICS})
-    else()
-      if(NOT owner)
-        set(owner ${target})
-      endif()
-      vstcal_pch(${target} ${owner} ${VSTCAL_PCH_STANDARD} ${VSTCAL_PCH_NUMERICS})
+      set(group "glue")
     endif()
+    set(headers ${VSTCAL_PCH_LIBRARY})
+    if(json)
+      string(APPEND group "_json")
+      set(headers ${VSTCAL_PCH_STANDARD} ${VSTCAL_PCH_NUMERICS})
+    endif()
+    if(NOT owner_${group})
+      set(owner_${group} ${target})
+    endif()
+    vstcal_pch(${target} ${owner_${group}} ${headers})
   endforeach()
 endfunction()
 # ---- end of the library's precompiled header ------------------------------------------------------
