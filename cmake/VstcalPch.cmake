@@ -40,3 +40,52 @@ function(vstcal_pch target owner)
   endif()
 endfunction()
 
+
+# ---- The library's precompiled header (stop 36, docs/performance.md#build) ------------------------
+# vstcal_library_pch(TARGET... JSON TARGET...): the library's static libraries share precompiled
+# headers, each built once, by the first target of its group, and reused by the others. Since stop
+# 35 moved Eigen's decompositions into geometry/linalg.cc, parsing headers is most of a typical
+# library file's compile; but loading a header costs every file that uses it, ~1 CPU-s for the
+# tests' set (nlohmann-json and Eigen/Dense in it), which more than doubles a small file's compile.
+# So the foundations and the domains take the light set (the standard headers, Eigen/Core, Ceres's
+# Jet), and the targets listed after JSON — the formats, the pages, the application, whose files
+# read and write JSON, and the report domain, which shares the pages' -O1 — the tests' set. GCC takes a header only with its user's flags: the glue
+# libraries (vstcal_glue_flags: -O1) get their own. On 29 sample files, back to back: the formats'
+# and the application's 20 % less with the JSON set (8 % with the light one), the others 11 % less
+# with the light one (6 % with the JSON set; docs/performance.md#build, stop 36).
+# The sanitizer and fuzz builds (VSTCAL_PCH off) compile each file with its own includes alone,
+# so a file that leans on a header it does not include still fails there.
+set(VSTCAL_PCH_LIBRARY ${VSTCAL_PCH_STANDARD} <Eigen/Core> <ceres/jet.h>)
+function(vstcal_library_pch)
+  set(json FALSE)
+  foreach(target IN LISTS ARGN)
+    if(target STREQUAL "JSON")
+      set(json TRUE)
+      continue()
+    endif()
+    get_target_property(options ${target} COMPILE_OPTIONS)
+    set(glue FALSE)
+    if(options AND VSTCAL_GLUE_OPT)
+      set(glue TRUE)
+      foreach(flag IN LISTS VSTCAL_GLUE_OPT)
+        if(NOT flag IN_LIST options)
+          set(glue FALSE)
+        endif()
+      endforeach()
+    endif()
+    set(group "opt")
+    if(glue)
+      set(group "glue")
+    endif()
+    set(headers ${VSTCAL_PCH_LIBRARY})
+    if(json)
+      string(APPEND group "_json")
+      set(headers ${VSTCAL_PCH_STANDARD} ${VSTCAL_PCH_NUMERICS})
+    endif()
+    if(NOT owner_${group})
+      set(owner_${group} ${target})
+    endif()
+    vstcal_pch(${target} ${owner_${group}} ${headers})
+  endforeach()
+endfunction()
+# ---- end of the library's precompiled header ------------------------------------------------------

@@ -172,10 +172,14 @@ Whitening MakeWhitening(const Eigen::MatrixXd& J_e, const Eigen::Vector3d& theta
   Eigen::Matrix<double, 6, 1> d;
   d << Eigen::Vector3d::Constant(std::sqrt(theta[1])), Eigen::Vector3d::Constant(std::sqrt(theta[2]));
   const Eigen::MatrixXd JD = J_e * d.asDiagonal();
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 6, 6>> eigen((JD.transpose() * JD).eval());
+  // geometry/linalg.cc's dynamic eigen-solver gives the fixed 6 × 6 one's values and vectors bit for
+  // bit (5,000 random whitenings, docs/performance.md stop 36); V stays a fixed 6 × 6 because JD
+  // times a dynamic V takes Eigen's other product kernel and rounds L differently.
+  const SymmetricEigen eigen = DecomposeSymmetric((JD.transpose() * JD).eval());
+  const Eigen::Matrix<double, 6, 6> V = eigen.vectors;
   Whitening w;
-  w.L = JD * eigen.eigenvectors();
-  w.lambda = eigen.eigenvalues().cwiseMax(0.0);
+  w.L = JD * V;
+  w.lambda = eigen.values.cwiseMax(0.0);
   w.c = theta[0];
   w.inv_sqrt_c = 1 / std::sqrt(theta[0]);
   return w;
