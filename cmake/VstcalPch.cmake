@@ -4,6 +4,10 @@
 # does without: its time goes to instantiating templates, which a precompiled header does not save
 # (7 % on a sample, and small files got slower), and it keeps compiling every file with nothing but
 # its own includes.
+# What a precompiled header cannot save is code a header makes every unit emit: CLI11's help
+# formatter, config reader and error classes, about 4 CPU-s a unit, so each tool and tools/common is
+# one unit instead (tools/CMakeLists.txt). The Python module has none: pybind11's header cost more
+# to build than its 6 units saved; one unit saved more (stop 36).
 # Off under the sanitizers, so that a test or tool file leaning on a header it does not include
 # still fails somewhere.
 option(VSTCAL_PCH "Precompiled headers of the tests and tools (off under the sanitizers)" ON)
