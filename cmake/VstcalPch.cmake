@@ -2,6 +2,10 @@
 # files are short and mostly parse GoogleTest, CLI11, nlohmann-json, Eigen and Ceres's Jet: a shared
 # precompiled header saves 18 % of a tool file's compile and 20-35 % of a test file's. The library
 # has its own since stop 36 (vstcal_library_pch, below: lighter for its small files).
+# What a precompiled header cannot save is code a header makes every unit emit: CLI11's help
+# formatter, config reader and error classes, about 4 CPU-s a unit, so each tool and tools/common is
+# one unit instead (tools/CMakeLists.txt). The Python module has none: pybind11's header cost more
+# to build than its 6 units saved; one unit saved more (stop 36).
 # Off under the sanitizers, so that a test or tool file leaning on a header it does not include
 # still fails somewhere.
 option(VSTCAL_PCH "Precompiled headers of the tests and tools (off under the sanitizers)" ON)
