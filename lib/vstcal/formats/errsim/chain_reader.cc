@@ -121,7 +121,7 @@ HandEyeReference ReadHandEyeReference(const JsonNode& node, const std::filesyste
   auto [file, document] = ReadReference(node, directory, "handeye@1");
   HandEyeMeasurement m = HandEyeFromJson(document);
   CheckUnit(node, m.length_unit, chain_unit, "a hand-eye calibration");
-  return {std::move(file), std::move(m.solution)};
+  return {std::move(file), std::move(m.solution), m.bootstrap_time_offset_sigma};
 }
 
 // {"file": "<tracker-noise@1 path>"}.

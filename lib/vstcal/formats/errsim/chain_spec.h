@@ -106,6 +106,7 @@ struct IntrinsicCovarianceSpec {
 struct HandEyeReference {
   std::string file;  // as written, relative to the chain's folder
   HandEyeSolution measured;  // covariance empty for a file without one (a calib-synth truth)
+  std::optional<double> measured_bootstrap_time_offset_sigma;  // the file's bootstrap σ_δ, when it has one
 };
 
 // "tracker_noise": {"file": "<tracker-noise@1 path>"}: calib-handeye noise's σ's, which

@@ -87,6 +87,10 @@ HandEyeMeasurement HandEyeFromJson(const JsonDocument& doc) {
       for (Eigen::Index b = 0; b < n; ++b) out.solution.covariance(a, b) = c.matrix(*c.Find(expected[a]), *c.Find(expected[b]));
     out.solution.names = expected;
   }
+  if (const auto b = root.find("bootstrap")) {
+    b->ExpectObject();
+    out.bootstrap_time_offset_sigma = b->at("time_offset_sigma_s").NonNegativeNumber();
+  }
   // The tracker's noise when it was estimated jointly (err-sim's tracking σ's may come from it);
   // a file whose tracker was taken as exact says so in words and has no σ's.
   if (const auto noise = root.find("tracker_noise"); noise && noise->json().is_object() && noise->json().contains("rotation_rad")) {

@@ -3,6 +3,8 @@
 // closed-form start — for err-sim's chain and for the user.
 #pragma once
 
+#include <optional>
+
 #include "vstcal/core/units.h"
 #include "vstcal/handeye/bootstrap.h"
 #include "vstcal/handeye/refine.h"
@@ -39,6 +41,9 @@ OrderedJson TrackerNoiseToJson(const TrackerNoise& noise, LengthUnit length_unit
 struct HandEyeMeasurement {
   LengthUnit length_unit = LengthUnit::kMillimetre;
   HandEyeSolution solution;  // hmd_from_camera, tracker_from_board, time_offset, covariance, names
+  // The file's `bootstrap.time_offset_sigma_s` (calib-handeye solve --bootstrap), when it has one:
+  // δ's σ where the first-order one is off with few views (docs/math/handeye.md#delta-bootstrap).
+  std::optional<double> bootstrap_time_offset_sigma;
 };
 HandEyeMeasurement HandEyeFromJson(const JsonDocument& doc);
 
