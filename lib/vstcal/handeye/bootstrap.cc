@@ -9,7 +9,6 @@
 
 #include "vstcal/core/error.h"
 #include "vstcal/core/parallel.h"
-#include "vstcal/geometry/linalg.h"
 #include "vstcal/geometry/rotation.h"
 #include "vstcal/random/philox.h"
 
@@ -30,14 +29,7 @@ std::vector<TrackedPose> SmoothedMotion(std::span<const TrackedPose> log) {
   for (size_t k = 0; k < log.size(); ++k) {
     const size_t first = std::min(k >= kReports / 2 ? k - kReports / 2 : 0, log.size() - count);
     const Rigid3d& at = log[k].tracker_from_hmd;
-    Eigen::MatrixXd A(count, 3), Y(count, 6);
-    for (size_t m = 0; m < count; ++m) {
-      const TrackedPose& p = log[first + m];
-      const double t = p.time - log[k].time;
-      A.row(static_cast<Eigen::Index>(m)) << 1, t, t * t;
-      Y.row(static_cast<Eigen::Index>(m)) << RotvecFromRotation(p.tracker_from_hmd.R * at.R.transpose()).transpose(), p.tracker_from_hmd.t.transpose();
-    }
-    const Eigen::MatrixXd c = SolveLeastSquares(A, Y);
+    const Eigen::MatrixXd c = FitReportsQuadratic(log, first, count, at, log[k].time);
     out[k].tracker_from_hmd.R = RotationFromRotvec(Eigen::Vector3d(c.row(0).head<3>().transpose())) * at.R;
     out[k].tracker_from_hmd.t = c.row(0).tail<3>().transpose();
   }

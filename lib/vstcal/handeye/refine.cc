@@ -142,14 +142,7 @@ Eigen::Matrix<double, 6, 1> SmoothedVelocity(std::span<const TrackedPose> log, s
     v << RotvecFromRotation(next.R * at.R.transpose()) / dt, (next.t - at.t) / dt;
     return v;
   }
-  Eigen::MatrixXd A(count, 3), Y(count, 6);
-  for (size_t m = 0; m < count; ++m) {
-    const TrackedPose& p = log[first + m];
-    const double t = p.time - mid;
-    A.row(static_cast<Eigen::Index>(m)) << 1, t, t * t;
-    Y.row(static_cast<Eigen::Index>(m)) << RotvecFromRotation(p.tracker_from_hmd.R * at.R.transpose()).transpose(), p.tracker_from_hmd.t.transpose();
-  }
-  v = SolveLeastSquares(A, Y).row(1).transpose();
+  v = FitReportsQuadratic(log, first, count, at, mid).row(1).transpose();
   return v;
 }
 
@@ -560,6 +553,17 @@ RejectionTest TestViewsAgainstNoise(const Chain& chain, double delta, const std:
 }
 
 }  // namespace
+
+Eigen::MatrixXd FitReportsQuadratic(std::span<const TrackedPose> log, size_t first, size_t count, const Rigid3d& at, double t0) {
+  Eigen::MatrixXd A(count, 3), Y(count, 6);
+  for (size_t m = 0; m < count; ++m) {
+    const TrackedPose& p = log[first + m];
+    const double t = p.time - t0;
+    A.row(static_cast<Eigen::Index>(m)) << 1, t, t * t;
+    Y.row(static_cast<Eigen::Index>(m)) << RotvecFromRotation(p.tracker_from_hmd.R * at.R.transpose()).transpose(), p.tracker_from_hmd.t.transpose();
+  }
+  return SolveLeastSquares(A, Y);
+}
 
 std::vector<Eigen::Vector3d> LogSteps(std::span<const TrackedPose> log) {
   std::vector<Eigen::Vector3d> steps;

@@ -47,6 +47,12 @@ struct TimedView {
 // log_steps[k] = log(R_kᵀ R_k+1), one per interval (LogSteps).
 std::vector<Eigen::Vector3d> LogSteps(std::span<const TrackedPose> log);
 
+// A quadratic in time fitted by least squares, per component, to the reports log[first, first +
+// count): rows (1, t, t²) with t = time − t0, six columns — the rotation as log(R_m R_atᵀ), the
+// translation. The tracker's noise's smoothing (SmoothedVelocity takes its slope) and the
+// bootstrap's motion (its value) both fit it.
+Eigen::MatrixXd FitReportsQuadratic(std::span<const TrackedPose> log, size_t first, size_t count, const Rigid3d& at, double t0);
+
 namespace detail {
 inline double ScalarPart(double x) { return x; }
 template <typename J>

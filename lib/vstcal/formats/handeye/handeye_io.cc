@@ -154,18 +154,12 @@ OrderedJson HandEyeToJson(const HandEyeSolution& s, LengthUnit length_unit, cons
   j["hmd_from_camera"] = PoseJson(s.hmd_from_camera);
   j["tracker_from_board"] = PoseJson(s.tracker_from_board);
   j["time_offset_s"] = s.time_offset;
-  OrderedJson matrix = OrderedJson::array();
-  for (Eigen::Index r = 0; r < s.covariance.rows(); ++r) {
-    OrderedJson row = OrderedJson::array();
-    for (Eigen::Index c = 0; c < s.covariance.cols(); ++c) row.push_back(s.covariance(r, c));
-    matrix.push_back(std::move(row));
-  }
   if (s.covariance.size() == 0) {  // a truth (calib-synth): nothing was estimated
     j["fit"] = {{"views", s.views}, {"corners", s.corners}};
     j["provenance"] = ProvenanceToJson(provenance);
     return j;
   }
-  j["covariance"] = {{"parameters", s.names}, {"matrix", std::move(matrix)}};
+  j["covariance"] = {{"parameters", s.names}, {"matrix", MatrixToJson(s.covariance)}};
   j["fit"] = {{"views", s.views}, {"corners", s.corners}, {"rms_px", s.rms_px}, {"sigma_px", s.sigma_px}, {"iterations", s.iterations}};
   j["start"] = {{"method", "park-martin"},
                 {"hmd_from_camera", PoseJson(s.start.hmd_from_camera)},
@@ -204,12 +198,6 @@ OrderedJson HandEyeToJson(const HandEyeSolution& s, LengthUnit length_unit, cons
                 {"right_corners", s.right_corners}};
   }
   if (bootstrap) {
-    OrderedJson b_matrix = OrderedJson::array();
-    for (Eigen::Index r = 0; r < bootstrap->covariance.rows(); ++r) {
-      OrderedJson row = OrderedJson::array();
-      for (Eigen::Index c = 0; c < bootstrap->covariance.cols(); ++c) row.push_back(bootstrap->covariance(r, c));
-      b_matrix.push_back(std::move(row));
-    }
     const auto delta = static_cast<Eigen::Index>(kHandEyeParameters - 1);
     j["bootstrap"] = {{"method", "parametric: recordings simulated at the estimate, each solved again"},
                       {"replicates", bootstrap->replicates},
@@ -218,7 +206,7 @@ OrderedJson HandEyeToJson(const HandEyeSolution& s, LengthUnit length_unit, cons
                       {"time_offset_sigma_s", std::sqrt(bootstrap->covariance(delta, delta))},
                       {"first_order_time_offset_sigma_s", std::sqrt(s.covariance(delta, delta))},
                       {"time_offset_bias_s", bootstrap->mean[delta]},
-                      {"covariance", {{"parameters", HandEyeCovarianceNames()}, {"matrix", std::move(b_matrix)}}}};
+                      {"covariance", {{"parameters", HandEyeCovarianceNames()}, {"matrix", MatrixToJson(bootstrap->covariance)}}}};
   }
   j["provenance"] = ProvenanceToJson(provenance);
   return j;
