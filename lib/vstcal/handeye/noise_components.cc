@@ -100,7 +100,7 @@ Eigen::Vector3d MomentStart(std::span<const NoiseFrame> frames) {
     s_perp += f.s_perp;
     n_perp += f.n_perp;
   }
-  const double c = std::max(s_perp / n_perp, 1e-12);
+  const double c = std::max(s_perp / n_perp, kMinCornerVariance);
   for (const NoiseFrame& f : frames) {
     a += f.d.head<3>().squaredNorm() - c * f.M_inv.topLeftCorner<3, 3>().trace();
     b += f.d.tail<3>().squaredNorm() - c * f.M_inv.bottomRightCorner<3, 3>().trace();
@@ -118,11 +118,12 @@ VarianceComponents EstimateVarianceComponents(std::span<const NoiseFrame> frames
   double last_decrement = std::numeric_limits<double>::infinity();
   for (int it = 0; it < 100; ++it) {
     out.iterations = it + 1;
-    // Fisher scoring over the components not held at their bound a = 0 or b = 0 by a gradient
-    // pushing them below it (an active set); scaled so that c, a and b, of very different sizes,
+    // Fisher scoring over the components not held at their bound (c at kMinCornerVariance, a or b at
+    // 0) by a gradient pushing them below it (an active set); scaled so that c, a and b, of very different sizes,
     // are solved on an equal footing.
     std::array<bool, 3> free{};
-    for (int k = 0; k < 3; ++k) free[static_cast<size_t>(k)] = k == 0 || theta[k] > 0 || e.gradient[k] > 0;
+    const Eigen::Vector3d bound(kMinCornerVariance, 0, 0);
+    for (int k = 0; k < 3; ++k) free[static_cast<size_t>(k)] = theta[k] > bound[k] || e.gradient[k] > 0;
     Eigen::Vector3d scale = e.information.diagonal().cwiseMax(1e-300).cwiseSqrt().cwiseInverse();
     Eigen::Matrix3d F = scale.asDiagonal() * e.information * scale.asDiagonal();
     Eigen::Vector3d g = scale.cwiseProduct(e.gradient);
@@ -141,14 +142,13 @@ VarianceComponents EstimateVarianceComponents(std::span<const NoiseFrame> frames
       out.converged = true;
       break;
     }
-    // Step halving keeps ℓ_R rising (and c positive, a and b at or above their bound).
+    // Step halving keeps ℓ_R rising (and c, a and b at or above their bounds).
     double t = 1;
     bool moved = false;
     for (int half = 0; half < 30; ++half, t /= 2) {
       Eigen::Vector3d next = theta + t * step;
-      if (!(next[0] > 0)) continue;
-      next[1] = std::max(next[1], 0.0);
-      next[2] = std::max(next[2], 0.0);
+      if (!(next[0] > 0)) continue;  // halved rather than clamped: the path of every recording before the floor
+      next = next.cwiseMax(bound);
       const Evaluation n = Evaluate(frames, next, false);
       if (n.ok && n.value >= e.value - 1e-9) {
         theta = next;
@@ -168,6 +168,7 @@ VarianceComponents EstimateVarianceComponents(std::span<const NoiseFrame> frames
   // squared length in them) is converged too: the rest is far inside every interval.
   if (!out.converged && last_decrement < 1e-2) out.converged = true;
   out.theta = theta;
+  out.corner_variance_at_floor = theta[0] <= kMinCornerVariance;
   out.covariance = e.information.ldlt().solve(Eigen::Matrix3d::Identity());
   return out;
 }

@@ -488,6 +488,13 @@ void EstimateTrackerNoiseJointly(Chain* chain, const std::vector<Frame>& frames,
   }
   const Eigen::Vector3d se = components.covariance.diagonal().cwiseMax(0).cwiseSqrt();
   noise.corner_px = SigmaOf(theta[0], se[0]);
+  if (components.corner_variance_at_floor) {
+    // At its bound the corners' σ is an upper limit, not an estimate.
+    noise.corner_px.lower = 0;
+    out->warnings.push_back("the corners' noise estimate reached its floor of " + MessageNumber(std::sqrt(kMinCornerVariance)) +
+                            " px (noise-free corners, as a synthetic recording without pixel noise has): the tracker's noise is estimated "
+                            "with the corners' held there");
+  }
   noise.rotation = SigmaOf(theta[1], se[1]);
   noise.translation = SigmaOf(theta[2], se[2]);
   // The σ's join the covariance, uncorrelated with X, Z and δ (the struct's comment says why).
