@@ -91,3 +91,69 @@ function(vstcal_library_pch)
   endforeach()
 endfunction()
 # ---- end of the library's precompiled header ------------------------------------------------------
+
+# ---- The library's light folders as unity units (stop 37, docs/performance.md#build) --------------
+# vstcal_library_unity(TARGET [BATCH N] FOLDERS folder... [ALONE file...]): TARGET's files in each
+# FOLDER (under lib/vstcal/) are compiled N at a time as one unit (0: the whole folder), in the
+# folder's order, split evenly. Most of a light library file's compile is what every unit pays
+# again — loading the precompiled header, parsing the headers not in it, instantiating
+# nlohmann-json, std::format and Eigen's expressions — so a unit of several files pays it once.
+# Not the heavy files (ALONE, over ~8 CPU-s each in the cold build's log): their compile is their
+# own instantiations, which a unity unit does not share and can make slower (estimators/ as one
+# unit took twice the CPU of its files apart, stop 27). Groups stay inside a folder, so file-local
+# names need only differ between the files of one folder (a folder of one file stays as it is). Only with VSTCAL_PCH, like the tools' units: under the
+# sanitizers and in the fuzz build each file still compiles alone, so one that leans on an include
+# only its neighbour makes still fails somewhere.
+# VSTCAL_LIBRARY_UNITY_BATCH overrides every folder's N (1: each file alone), for measuring.
+set(VSTCAL_LIBRARY_UNITY_BATCH "" CACHE STRING "Files per unity unit of the library's light folders (empty: each folder's own; 1: off)")
+function(vstcal_library_unity target)
+  cmake_parse_arguments(ARG "" "BATCH" "FOLDERS;ALONE" ${ARGN})
+  if(NOT VSTCAL_PCH)
+    return()
+  endif()
+  set(batch 0)
+  if(DEFINED ARG_BATCH)
+    set(batch ${ARG_BATCH})
+  endif()
+  if(NOT VSTCAL_LIBRARY_UNITY_BATCH STREQUAL "")
+    set(batch ${VSTCAL_LIBRARY_UNITY_BATCH})
+  endif()
+  if(batch EQUAL 1)
+    return()
+  endif()
+  get_target_property(sources ${target} SOURCES)
+  foreach(file IN LISTS ARG_ALONE)
+    if(NOT file IN_LIST sources)
+      message(FATAL_ERROR "vstcal_library_unity: ${file} (ALONE) is not a source of ${target}")
+    endif()
+  endforeach()
+  foreach(folder IN LISTS ARG_FOLDERS)
+    set(members "")
+    foreach(file IN LISTS sources)
+      get_filename_component(dir ${file} DIRECTORY)
+      if(dir STREQUAL "vstcal/${folder}" AND NOT file IN_LIST ARG_ALONE)
+        list(APPEND members ${file})
+      endif()
+    endforeach()
+    list(LENGTH members n)
+    if(n EQUAL 0)
+      message(FATAL_ERROR "vstcal_library_unity: ${target} has no file in lib/vstcal/${folder} to unify")
+    endif()
+    if(n EQUAL 1)
+      continue()
+    endif()
+    set(groups 1)
+    if(batch GREATER 0)
+      math(EXPR groups "(${n} + ${batch} - 1) / ${batch}")
+    endif()
+    string(REPLACE "/" "_" stem ${folder})
+    set(i 0)
+    foreach(file IN LISTS members)
+      math(EXPR g "${i} * ${groups} / ${n}")
+      set_source_files_properties(${file} PROPERTIES UNITY_GROUP ${stem}_${g})
+      math(EXPR i "${i} + 1")
+    endforeach()
+  endforeach()
+  set_target_properties(${target} PROPERTIES UNITY_BUILD ON UNITY_BUILD_MODE GROUP)
+endfunction()
+# ---- end of the library's unity units -------------------------------------------------------------

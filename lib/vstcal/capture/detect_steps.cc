@@ -14,8 +14,8 @@
 namespace vstcal {
 namespace {
 
-constexpr double kMaxWindowPx = 6;
-constexpr double kMaxAsymmetry = 0.25;
+constexpr double kStepsMaxWindowPx = 6;
+constexpr double kStepsMaxAsymmetry = 0.25;
 
 // corner id → index into `corners`, −1 where not detected.
 std::vector<int> IndexById(const Target& target, const std::vector<DetectedCorner>& corners) {
@@ -59,7 +59,7 @@ int RefineXCorners(const GrayImage& image, const Target& target, CornerRefiner r
   std::vector<DetectedCorner> kept;
   kept.reserve(corners->size());
   for (size_t k = 0; k < corners->size(); ++k) {
-    const double radius = std::min(kMaxWindowPx, window_fraction * (std::isfinite(spacing[k]) ? spacing[k] : 10));
+    const double radius = std::min(kStepsMaxWindowPx, window_fraction * (std::isfinite(spacing[k]) ? spacing[k] : 10));
     if (radius < 2) {  // squares of 5 px or less: nothing to refine with
       kept.push_back((*corners)[k]);
       continue;
@@ -78,9 +78,9 @@ int DropAsymmetricCorners(const GrayImage& image, const Target& target, double w
   const std::vector<double> spacing = NeighbourSpacing(target, *corners);
   std::vector<DetectedCorner> kept;
   for (size_t k = 0; k < corners->size(); ++k) {
-    const double radius = std::min(kMaxWindowPx, window_fraction * (std::isfinite(spacing[k]) ? spacing[k] : 10));
+    const double radius = std::min(kStepsMaxWindowPx, window_fraction * (std::isfinite(spacing[k]) ? spacing[k] : 10));
     const auto asymmetry = Asymmetry(image, (*corners)[k].pixel, std::max(radius, 2.0));
-    if (asymmetry && *asymmetry <= kMaxAsymmetry) kept.push_back((*corners)[k]);
+    if (asymmetry && *asymmetry <= kStepsMaxAsymmetry) kept.push_back((*corners)[k]);
   }
   const int dropped = static_cast<int>(corners->size() - kept.size());
   *corners = std::move(kept);

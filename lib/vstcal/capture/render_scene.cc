@@ -13,7 +13,7 @@
 namespace vstcal {
 namespace {
 
-constexpr int kMaxImages = 1000;
+constexpr int kMaxRenderedImages = 1000;
 
 std::string Name(const char* prefix, int k) {
   char buf[32];
@@ -34,7 +34,7 @@ Eigen::Vector3d CornerCentre(const Target& target) {
 int NumPlanes(const VolumeSpec& spec) {
   if (!(spec.interval > 0) || !(spec.far >= spec.near)) return 0;
   const double n = std::floor((spec.far - spec.near) / spec.interval + 1e-9) + 1;
-  return n > kMaxImages ? kMaxImages + 1 : static_cast<int>(n);
+  return n > kMaxRenderedImages ? kMaxRenderedImages + 1 : static_cast<int>(n);
 }
 
 void CheckRenderSize(ImageSize size, std::string_view camera_file) {
@@ -62,7 +62,7 @@ RenderedScene RenderScene(const Camera& camera, const Target& target, const Scen
     if (!(v.camera_distance > 0)) throw InputError(VSTCAL_OPT("camera_distance") ": must be positive");
     if (!(std::abs(v.tilt_deg) < 80)) throw InputError(VSTCAL_OPT("tilt_deg") ": must lie within ±80°");
     const int n = NumPlanes(v);
-    if (n > kMaxImages) throw InputError(VSTCAL_OPT("interval") ": more than 1000 template positions; use a larger interval");
+    if (n > kMaxRenderedImages) throw InputError(VSTCAL_OPT("interval") ": more than 1000 template positions; use a larger interval");
     const Rigid3d camera_from_world = VolumeCameraPose(v) * Rigid3d{Eigen::Matrix3d::Identity(), -centre};
     scene.truth_camera.camera_from_world = camera_from_world;
     for (int k = 0; k < n; ++k) {
@@ -73,7 +73,7 @@ RenderedScene RenderScene(const Camera& camera, const Target& target, const Scen
     }
   } else {
     PlanarViewsSpec v = spec.views;
-    if (v.num_views < 1 || v.num_views > kMaxImages) throw InputError(VSTCAL_OPT("views") ": give 1 to 1000 views");
+    if (v.num_views < 1 || v.num_views > kMaxRenderedImages) throw InputError(VSTCAL_OPT("views") ": give 1 to 1000 views");
     if (!(v.distance > 0)) throw InputError(VSTCAL_OPT("distance") ": must be positive");
     if (!(v.max_tilt_deg >= 0 && v.max_tilt_deg < 80)) throw InputError(VSTCAL_OPT("max_tilt_deg") ": must lie in [0, 80)");
     // PlanarViewPose aims the centre of a grid_cols × grid_rows grid of `spacing`; shift it to

@@ -17,7 +17,7 @@ constexpr double kSmoothingPx = 1.0;
 // here (the smoothing, the pixel and a little blur): 3 keeps boards of contrast ≥ 40 blurred to
 // σ ≈ 2 px, and leaves out sensor noise (σ 2 grey levels gives ≈ 0.3).
 constexpr double kMinSaddle = 3;
-constexpr double kMinContrast = 20;       // grey levels between the squares on the two sides of a link
+constexpr double kMinLinkContrast = 20;   // grey levels between the squares on the two sides of a link
 constexpr double kMaxAlongEdge = 0.35;    // |uᵀHu| over H's largest |eigenvalue|: u along a zero line
 constexpr double kMaxOffMiddle = 0.25;    // the middle's grey off the mean of the two sides, over their difference
 constexpr double kMinBalance = 0.2;       // H's eigenvalues' smaller |λ| over the larger: an X-junction whose edges meet at ≥ 48°
@@ -57,7 +57,7 @@ bool Linked(const cv::Mat& smooth, const Saddle& p, const Saddle& q) {
   const double mx = 0.5 * (p.x + q.x), my = 0.5 * (p.y + q.y);
   const double a = Sample(smooth, mx + 0.25 * d * nx, my + 0.25 * d * ny), b = Sample(smooth, mx - 0.25 * d * nx, my - 0.25 * d * ny);
   const double contrast = std::abs(a - b), mean = 0.5 * (a + b);
-  if (contrast < kMinContrast) return false;
+  if (contrast < kMinLinkContrast) return false;
   return std::abs(Sample(smooth, mx, my) - mean) <= kMaxOffMiddle * contrast;
 }
 

@@ -14,7 +14,7 @@
 namespace vstcal {
 namespace {
 
-std::string Num(double v) {
+std::string CameraNum(double v) {
   char buf[40];
   std::snprintf(buf, sizeof buf, "%.6g", v);
   return buf;
@@ -24,7 +24,7 @@ std::string Num(double v) {
 double InScale(std::optional<double> v, double fallback, const std::string& flag) {
   const double x = v.value_or(fallback);
   if (!(std::abs(x) <= limits::kMaxSyntheticScale)) {
-    throw InputError(flag + ": " + Num(x) + " px is beyond ±" + Num(limits::kMaxSyntheticScale) +
+    throw InputError(flag + ": " + CameraNum(x) + " px is beyond ±" + CameraNum(limits::kMaxSyntheticScale) +
                      " (docs/reliability.md#limits); give a realistic value");
   }
   return x;
@@ -39,7 +39,7 @@ Camera MakeSyntheticCamera(const SyntheticCameraSpec& spec) {
   }
   if (spec.fx.has_value() == spec.hfov_deg.has_value()) throw InputError(VSTCAL_OPT("fx") "/" VSTCAL_OPT("hfov_deg") ": give exactly one of them");
   if (spec.hfov_deg && !(*spec.hfov_deg > 0 && *spec.hfov_deg < 180)) {
-    throw InputError(VSTCAL_OPT("hfov_deg") ": must lie in (0, 180) degrees for a pinhole camera, got " + Num(*spec.hfov_deg));
+    throw InputError(VSTCAL_OPT("hfov_deg") ": must lie in (0, 180) degrees for a pinhole camera, got " + CameraNum(*spec.hfov_deg));
   }
   if (!(spec.skew_deg > 0 && spec.skew_deg < 180)) throw InputError(VSTCAL_OPT("skew_deg") ": must lie in (0, 180); 90 means no skew");
   const double fx = InScale(spec.fx, spec.fx ? 0.0 : FocalFromHorizontalFov(w, DegToRad(*spec.hfov_deg)),
@@ -51,7 +51,7 @@ Camera MakeSyntheticCamera(const SyntheticCameraSpec& spec) {
       0, fy, InScale(spec.cy, 0.5 * (h - 1), VSTCAL_OPT("cy")),  //
       0, 0, 1;
   for (const double k : spec.distortion) {
-    if (!std::isfinite(k)) throw InputError(VSTCAL_OPT("distortion") ": must be finite numbers, got " + Num(k));
+    if (!std::isfinite(k)) throw InputError(VSTCAL_OPT("distortion") ": must be finite numbers, got " + CameraNum(k));
   }
   const int n = static_cast<int>(spec.distortion.size());
   if (n != 0 && n != 5 && n != 8) {

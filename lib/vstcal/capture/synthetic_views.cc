@@ -26,7 +26,7 @@ double Halton(int index, int base) {
   return r;
 }
 
-void Require(bool ok, const std::string& message) {
+void ViewsRequire(bool ok, const std::string& message) {
   if (!ok) throw InputError(message);
 }
 
@@ -52,23 +52,23 @@ Rigid3d PlanarViewPose(const Camera& camera, const PlanarViewsSpec& spec, int vi
 }
 
 SyntheticViews SynthesizePlanarViews(const Camera& camera, const PlanarViewsSpec& spec) {
-  Require(spec.grid_cols >= 2 && spec.grid_rows >= 2, VSTCAL_OPT("grid") ": the board needs at least 2×2 corners");
-  Require(spec.spacing > 0, VSTCAL_OPT("spacing") ": must be positive");
-  Require(spec.num_views >= 1 && static_cast<size_t>(spec.num_views) <= limits::kMaxViews,
+  ViewsRequire(spec.grid_cols >= 2 && spec.grid_rows >= 2, VSTCAL_OPT("grid") ": the board needs at least 2×2 corners");
+  ViewsRequire(spec.spacing > 0, VSTCAL_OPT("spacing") ": must be positive");
+  ViewsRequire(spec.num_views >= 1 && static_cast<size_t>(spec.num_views) <= limits::kMaxViews,
           VSTCAL_OPT("views") ": give 1 to " + std::to_string(limits::kMaxViews) + " views");
-  Require(spec.distance > 0, VSTCAL_OPT("distance") ": must be positive");
+  ViewsRequire(spec.distance > 0, VSTCAL_OPT("distance") ": must be positive");
   for (const auto& [flag, value] : {std::pair<const char*, double>{VSTCAL_OPT("spacing"), spec.spacing},
                                     {VSTCAL_OPT("distance"), spec.distance}, {VSTCAL_OPT("noise"), spec.noise_px}}) {
-    Require(std::abs(value) <= limits::kMaxSyntheticScale,
+    ViewsRequire(std::abs(value) <= limits::kMaxSyntheticScale,
             std::string(flag) + ": beyond ±1e9 (docs/reliability.md#limits); give a realistic value");
   }
   const double points = static_cast<double>(spec.num_views) * spec.grid_cols * spec.grid_rows;
-  Require(points <= static_cast<double>(limits::kMaxPoints),
+  ViewsRequire(points <= static_cast<double>(limits::kMaxPoints),
           VSTCAL_OPT("grid") "/" VSTCAL_OPT("views") ": " + std::to_string(spec.grid_cols) + "×" + std::to_string(spec.grid_rows) + " corners in " +
               std::to_string(spec.num_views) + " views is more than the " + std::to_string(limits::kMaxPoints) +
               " points a file may hold (docs/reliability.md#limits); use fewer corners or views");
-  Require(spec.max_tilt_deg >= 0 && spec.max_tilt_deg < 80, VSTCAL_OPT("max_tilt_deg") ": must lie in [0, 80)");
-  Require(spec.noise_px >= 0, VSTCAL_OPT("noise") ": σ must not be negative");
+  ViewsRequire(spec.max_tilt_deg >= 0 && spec.max_tilt_deg < 80, VSTCAL_OPT("max_tilt_deg") ": must lie in [0, 80)");
+  ViewsRequire(spec.noise_px >= 0, VSTCAL_OPT("noise") ": σ must not be negative");
 
   SyntheticViews out;
   Correspondences& c = out.correspondences;
@@ -101,7 +101,7 @@ SyntheticViews SynthesizePlanarViews(const Camera& camera, const PlanarViewsSpec
     c.views.push_back(std::move(view));
     out.camera_from_board.push_back(camera_from_board);
   }
-  Require(!c.views.empty(), VSTCAL_OPT("distance") "/" VSTCAL_OPT("max_tilt_deg") ": no view shows the board; move it into the field of view");
+  ViewsRequire(!c.views.empty(), VSTCAL_OPT("distance") "/" VSTCAL_OPT("max_tilt_deg") ": no view shows the board; move it into the field of view");
   return out;
 }
 

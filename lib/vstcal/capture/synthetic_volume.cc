@@ -16,11 +16,11 @@ namespace {
 // Philox stream ids: one per view, one for the test points.
 constexpr uint32_t kTestPointStream = 0xFFFFFFFFu;
 
-void Require(bool ok, const std::string& message) {
+void VolumeRequire(bool ok, const std::string& message) {
   if (!ok) throw InputError(message);
 }
 
-std::string Num(double v) {
+std::string VolumeNum(double v) {
   char buf[40];
   std::snprintf(buf, sizeof buf, "%.6g", v);
   return buf;
@@ -64,30 +64,30 @@ std::vector<TestPoint> Seed000TestPoints(const VolumeSpec& spec) {
 }
 
 SyntheticVolume SynthesizeVolume(const Camera& camera, const VolumeSpec& spec, std::vector<TestPoint> test_points) {
-  Require(spec.grid_cols >= 2 && spec.grid_rows >= 2, VSTCAL_OPT("grid") ": the template needs at least 2×2 corners");
-  Require(spec.spacing > 0, VSTCAL_OPT("spacing") ": must be positive, got " + Num(spec.spacing));
-  Require(spec.interval > 0, VSTCAL_OPT("interval") ": must be positive, got " + Num(spec.interval));
-  Require(spec.far >= spec.near, VSTCAL_OPT("far") ": must not be less than " VSTCAL_OPT("near") " (" + Num(spec.far) + " < " + Num(spec.near) + ")");
-  Require(spec.camera_distance > 0, VSTCAL_OPT("camera_distance") ": must be positive, got " + Num(spec.camera_distance));
-  Require(spec.noise_px >= 0, VSTCAL_OPT("noise") ": σ must not be negative, got " + Num(spec.noise_px));
-  Require(std::abs(spec.tilt_deg) < 80, VSTCAL_OPT("tilt_deg") ": must lie within ±80°, got " + Num(spec.tilt_deg));
+  VolumeRequire(spec.grid_cols >= 2 && spec.grid_rows >= 2, VSTCAL_OPT("grid") ": the template needs at least 2×2 corners");
+  VolumeRequire(spec.spacing > 0, VSTCAL_OPT("spacing") ": must be positive, got " + VolumeNum(spec.spacing));
+  VolumeRequire(spec.interval > 0, VSTCAL_OPT("interval") ": must be positive, got " + VolumeNum(spec.interval));
+  VolumeRequire(spec.far >= spec.near, VSTCAL_OPT("far") ": must not be less than " VSTCAL_OPT("near") " (" + VolumeNum(spec.far) + " < " + VolumeNum(spec.near) + ")");
+  VolumeRequire(spec.camera_distance > 0, VSTCAL_OPT("camera_distance") ": must be positive, got " + VolumeNum(spec.camera_distance));
+  VolumeRequire(spec.noise_px >= 0, VSTCAL_OPT("noise") ": σ must not be negative, got " + VolumeNum(spec.noise_px));
+  VolumeRequire(std::abs(spec.tilt_deg) < 80, VSTCAL_OPT("tilt_deg") ": must lie within ±80°, got " + VolumeNum(spec.tilt_deg));
   for (const auto& [flag, value] : {std::pair<const char*, double>{VSTCAL_OPT("spacing"), spec.spacing}, {VSTCAL_OPT("near"), spec.near},
                                     {VSTCAL_OPT("far"), spec.far}, {VSTCAL_OPT("interval"), spec.interval},
                                     {VSTCAL_OPT("camera_distance"), spec.camera_distance}, {VSTCAL_OPT("noise"), spec.noise_px}}) {
-    Require(std::abs(value) <= limits::kMaxSyntheticScale,
-            std::string(flag) + ": " + Num(value) + " is beyond ±" + Num(limits::kMaxSyntheticScale) +
+    VolumeRequire(std::abs(value) <= limits::kMaxSyntheticScale,
+            std::string(flag) + ": " + VolumeNum(value) + " is beyond ±" + VolumeNum(limits::kMaxSyntheticScale) +
                 " (docs/reliability.md#limits); give a realistic value");
   }
   // Counted in double before any loop: a tiny interval would otherwise ask for 1e300 planes.
   const double planes = std::floor((spec.far - spec.near) / spec.interval + 1e-9) + 1;
-  Require(planes <= static_cast<double>(limits::kMaxViews),
-          VSTCAL_OPT("interval") ": " + Num(planes) + " template positions, more than the " + std::to_string(limits::kMaxViews) +
+  VolumeRequire(planes <= static_cast<double>(limits::kMaxViews),
+          VSTCAL_OPT("interval") ": " + VolumeNum(planes) + " template positions, more than the " + std::to_string(limits::kMaxViews) +
               " views a file may hold (docs/reliability.md#limits); use a larger interval");
   const size_t n_planes = static_cast<size_t>(planes);
   const double points = planes * spec.grid_cols * spec.grid_rows;
-  Require(points <= static_cast<double>(limits::kMaxPoints),
+  VolumeRequire(points <= static_cast<double>(limits::kMaxPoints),
           VSTCAL_OPT("grid") ": " + std::to_string(spec.grid_cols) + "×" + std::to_string(spec.grid_rows) + " corners on " +
-              std::to_string(n_planes) + " planes is " + Num(points) + " points, more than the " +
+              std::to_string(n_planes) + " planes is " + VolumeNum(points) + " points, more than the " +
               std::to_string(limits::kMaxPoints) + " a file may hold (docs/reliability.md#limits); use fewer corners");
 
   SyntheticVolume out;
@@ -112,7 +112,7 @@ SyntheticVolume SynthesizeVolume(const Camera& camera, const VolumeSpec& spec, s
       for (int i = 0; i < spec.grid_cols; ++i) {
         const Eigen::Vector3d p(x0 + i * spec.spacing, y0 + j * spec.spacing, offset);
         const Eigen::Vector3d p_cam = out.camera_from_world * p;
-        Require(p_cam.z() > 0, VSTCAL_OPT("camera_distance") ": the camera sits inside the volume (a corner of plane " +
+        VolumeRequire(p_cam.z() > 0, VSTCAL_OPT("camera_distance") ": the camera sits inside the volume (a corner of plane " +
                                    std::to_string(k) + " is behind it); move it back");
         const auto px = camera.Project(p_cam);
         if (!px || !camera.InImage(*px)) continue;
@@ -125,7 +125,7 @@ SyntheticVolume SynthesizeVolume(const Camera& camera, const VolumeSpec& spec, s
     }
     if (!view.observations.empty()) c.views.push_back(std::move(view));
   }
-  Require(NumObservations(c) > 0, VSTCAL_OPT("camera_distance") "/" VSTCAL_OPT("tilt_deg") ": no corner is visible; point the camera at the template");
+  VolumeRequire(NumObservations(c) > 0, VSTCAL_OPT("camera_distance") "/" VSTCAL_OPT("tilt_deg") ": no corner is visible; point the camera at the template");
 
   const CounterRng test_rng(spec.seed, kTestPointStream);
   for (size_t i = 0; i < test_points.size(); ++i) {
@@ -133,7 +133,7 @@ SyntheticVolume SynthesizeVolume(const Camera& camera, const VolumeSpec& spec, s
     const auto px = camera.Project(out.camera_from_world * t.point_in_world);
     const auto noise = test_rng.Normal2(i, 0);
     const bool visible = px && camera.InImage(*px + spec.noise_px * Eigen::Vector2d(noise[0], noise[1]));
-    Require(visible, "test point \"" + t.name +
+    VolumeRequire(visible, "test point \"" + t.name +
                          "\" is not visible (behind the camera or outside the image); widen the field of view, move "
                          "the camera back, or use " VSTCAL_OPT("no_test_points"));
     t.pixel = *px + spec.noise_px * Eigen::Vector2d(noise[0], noise[1]);

@@ -18,7 +18,7 @@ namespace {
 constexpr double kMaxMegapixels = 200;
 
 // Millimetres per length unit.
-double Millimetres(LengthUnit unit) { return MetresPer(unit) * 1000; }
+double DrawingMillimetres(LengthUnit unit) { return MetresPer(unit) * 1000; }
 
 std::string Mm(double v) {
   // Sub-micrometre precision, no exponent: SVG viewers differ on long or exponent forms.
@@ -79,7 +79,7 @@ std::string ScaleBar(const Rect& sheet, const Rect& pattern, double mm) {
 std::string TargetSvg(const Target& t) {
   const Pattern pattern = TargetPattern(t);
   const Rect& sheet = pattern.sheet();
-  const double mm = Millimetres(t.length_unit);
+  const double mm = DrawingMillimetres(t.length_unit);
   const double w = sheet.width() * mm, h = sheet.height() * mm;
   std::string svg = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
   svg += "<svg xmlns=\"http://www.w3.org/2000/svg\" version=\"1.1\" width=\"" + Mm(w) + "mm\" height=\"" + Mm(h) +
@@ -104,7 +104,7 @@ GrayImage RasterizeTarget(const Target& t, double dpi) {
   if (!(std::isfinite(dpi) && dpi > 0)) throw InputError(VSTCAL_OPT("dpi") ": must be a positive number of pixels per inch");
   const Pattern pattern = TargetPattern(t);
   const Rect& sheet = pattern.sheet();
-  const double pitch = 25.4 / dpi / Millimetres(t.length_unit);  // one pixel in the target's unit
+  const double pitch = 25.4 / dpi / DrawingMillimetres(t.length_unit);  // one pixel in the target's unit
   const double cols = std::ceil(sheet.width() / pitch - 1e-9), rows = std::ceil(sheet.height() / pitch - 1e-9);
   if (cols * rows > kMaxMegapixels * 1e6) {
     char buf[200];

@@ -19,7 +19,7 @@
 namespace vstcal {
 namespace {
 
-constexpr std::string_view kFormat = "vstcal/camera@1";
+constexpr std::string_view kCameraFormat = "vstcal/camera@1";
 constexpr double kAgreement = 1e-6;  // relative agreement required between redundant fields
 
 bool Agrees(double a, double b, double scale) { return std::abs(a - b) <= kAgreement * std::max(1.0, scale); }
@@ -265,7 +265,7 @@ CalibratedCamera CameraFromJson(const JsonDocument& doc) { return CameraFromNode
 
 CalibratedCamera CameraFromNode(const JsonNode& root) {
   root.ExpectObject();
-  CheckFormat(root, kFormat);
+  CheckFormat(root, kCameraFormat);
   CalibratedCamera c;
   if (auto name = root.find("camera")) c.name = name->String();
   c.length_unit = ReadLengthUnit(root.at("length_unit"));
@@ -376,7 +376,7 @@ OrderedJson MeasuredVolumeToJson(const MeasuredVolume& volume) {
 
 OrderedJson CameraToJson(const CalibratedCamera& c, const Provenance& provenance, const OrderedJson& extra) {
   OrderedJson j;
-  j["format"] = kFormat;
+  j["format"] = kCameraFormat;
   if (!c.name.empty()) j["camera"] = c.name;
   j["image_size"] = {c.camera.image_size.width, c.camera.image_size.height};
   j["length_unit"] = LengthUnitName(c.length_unit);

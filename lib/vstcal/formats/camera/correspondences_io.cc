@@ -9,7 +9,7 @@
 namespace vstcal {
 namespace {
 
-constexpr std::string_view kFormat = "vstcal/correspondences@1";
+constexpr std::string_view kCorrespondencesFormat = "vstcal/correspondences@1";
 
 std::string_view RigName(Rig rig) { return rig == Rig::kVolume ? "volume" : "planar-views"; }
 
@@ -52,7 +52,7 @@ Observation ReadPoint(const JsonNode& node, const Correspondences& c) {
 Correspondences CorrespondencesFromJson(const JsonDocument& doc) {
   const JsonNode root = doc.root();
   root.ExpectObject();
-  CheckFormat(root, kFormat);
+  CheckFormat(root, kCorrespondencesFormat);
   Correspondences c;
   if (auto camera = root.find("camera")) c.camera = camera->String();
   c.image_size = ReadImageSize(root.at("image_size"));
@@ -117,7 +117,7 @@ Correspondences ReadCorrespondences(const std::filesystem::path& path) {
 
 OrderedJson CorrespondencesToJson(const Correspondences& c, const Provenance& provenance) {
   OrderedJson j;
-  j["format"] = kFormat;
+  j["format"] = kCorrespondencesFormat;
   if (!c.camera.empty()) j["camera"] = c.camera;
   j["image_size"] = {c.image_size.width, c.image_size.height};
   j["length_unit"] = LengthUnitName(c.length_unit);

@@ -235,7 +235,7 @@ void RefuseDuplicates(const cv::FileNode& root, const std::string& name) {
 }
 
 // An !!opencv-matrix: {rows, cols, dt, data}, read row by row.
-Eigen::MatrixXd ReadMatrix(const Field& f) {
+Eigen::MatrixXd ReadCvMatrix(const Field& f) {
   if (!f.node.isMap()) {
     f.Fail("expected an !!opencv-matrix (rows, cols, dt, data), got " + f.Describe(), "write it with cv::FileStorage");
   }
@@ -277,7 +277,7 @@ Eigen::Matrix3d ReadCameraMatrix(const Field& f, std::vector<std::string>* notes
   if (f.node.isNone()) {
     f.Fail("missing field", "add the 3×3 camera matrix [fx, 0, cx, 0, fy, cy, 0, 0, 1] as an !!opencv-matrix");
   }
-  const Eigen::MatrixXd m = ReadMatrix(f);
+  const Eigen::MatrixXd m = ReadCvMatrix(f);
   if (m.rows() != 3 || m.cols() != 3) {
     f.Fail("expected a 3×3 matrix, got " + std::to_string(m.rows()) + "×" + std::to_string(m.cols()),
            "write rows: 3, cols: 3 and nine values");
@@ -294,7 +294,7 @@ Eigen::Matrix3d ReadCameraMatrix(const Field& f, std::vector<std::string>* notes
 // cv::fisheye's k1…k4 (distortion_model: fisheye): exactly four.
 std::vector<double> ReadFisheyeDistortion(const Field& f) {
   if (f.node.isNone()) f.Fail("missing field", "add cv::fisheye's four coefficients k1, k2, k3, k4 (the D of cv::fisheye::calibrate)");
-  const Eigen::MatrixXd m = ReadMatrix(f);
+  const Eigen::MatrixXd m = ReadCvMatrix(f);
   if ((m.rows() > 1 && m.cols() > 1) || m.size() != 4) {
     f.Fail("distortion_model fisheye takes 4 coefficients (k1, k2, k3, k4), got a " + std::to_string(m.rows()) + "×" +
                std::to_string(m.cols()) + " matrix",
@@ -303,12 +303,12 @@ std::vector<double> ReadFisheyeDistortion(const Field& f) {
   return std::vector<double>(m.data(), m.data() + 4);
 }
 
-std::vector<double> ReadDistortion(const Field& f, std::vector<std::string>* notes) {
+std::vector<double> ReadCvDistortion(const Field& f, std::vector<std::string>* notes) {
   if (f.node.isNone()) {
     notes->push_back(*f.file + ": " + f.path + ": absent, read as no distortion (model \"none\")");
     return {};
   }
-  const Eigen::MatrixXd m = ReadMatrix(f);
+  const Eigen::MatrixXd m = ReadCvMatrix(f);
   if (m.rows() > 1 && m.cols() > 1) {
     f.Fail("expected N×1 or 1×N, got " + std::to_string(m.rows()) + "×" + std::to_string(m.cols()),
            "write the coefficients as one column (k1, k2, p1, p2[, k3[, k4, k5, k6]])");
@@ -361,7 +361,7 @@ ImportedCamera OpenCvYamlFromText(const std::string& text, const std::string& na
     fisheye = true;
   }
   const std::vector<double> distortion =
-      fisheye ? ReadFisheyeDistortion(field(kDistortion)) : ReadDistortion(field(kDistortion), &out.notes);
+      fisheye ? ReadFisheyeDistortion(field(kDistortion)) : ReadCvDistortion(field(kDistortion), &out.notes);
   const ImageSize size{ReadImageDimension(field("image_width"), "width"),
                        ReadImageDimension(field("image_height"), "height")};
   out.camera.camera =

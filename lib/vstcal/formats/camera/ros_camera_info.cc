@@ -13,11 +13,11 @@
 namespace vstcal {
 namespace {
 
-constexpr std::string_view kWhat = "a ROS camera_info file";
+constexpr std::string_view kRosWhat = "a ROS camera_info file";
 constexpr std::string_view kPlumbBob = "plumb_bob", kRational = "rational_polynomial", kEquidistant = "equidistant";
 
 // A {rows, cols, data} matrix of `rows`×`cols` (`vector`: 1×n or n×1 with n = rows·cols).
-Eigen::MatrixXd ReadMatrix(const YamlField& f, int rows, int cols, bool vector, std::string_view what) {
+Eigen::MatrixXd ReadRosMatrix(const YamlField& f, int rows, int cols, bool vector, std::string_view what) {
   const std::string shape = std::to_string(rows) + "×" + std::to_string(cols);
   f.Require("add " + std::string(what) + " as rows: " + std::to_string(rows) + ", cols: " + std::to_string(cols) +
             " and data: [ ... ]");
@@ -55,13 +55,13 @@ void WriteMatrix(std::string& out, std::string_view key, const Eigen::MatrixXd& 
 }  // namespace
 
 RosCameraInfo RosCameraInfoFromText(const std::string& text, const std::string& name, LengthUnit length_unit) {
-  const YamlNode root = ParseYamlMap(text, name, kWhat);
+  const YamlNode root = ParseYamlMap(text, name, kRosWhat);
   const YamlField top = RootField(root, name);
   RosCameraInfo info;
   const ImageSize size{ReadSide(top.Member("image_width"), "width"), ReadSide(top.Member("image_height"), "height")};
   if (const YamlField n = top.Member("camera_name"); n.present()) info.camera.name = n.String();
   const YamlField kf = top.Member("camera_matrix");
-  const Eigen::Matrix3d K = ReadMatrix(kf, 3, 3, false, "the 3×3 camera matrix K");
+  const Eigen::Matrix3d K = ReadRosMatrix(kf, 3, 3, false, "the 3×3 camera matrix K");
   if (const auto problem = CameraMatrixProblem(K)) kf.Fail(problem->reason, problem->fix);
 
   const YamlField model = top.Member("distortion_model");
@@ -79,16 +79,16 @@ RosCameraInfo RosCameraInfoFromText(const std::string& text, const std::string& 
                "write plumb_bob (5 coefficients), rational_polynomial (8) or equidistant (4), the ROS models vstcal has");
   }
   const YamlField df = top.Member("distortion_coefficients");
-  const Eigen::MatrixXd D = ReadMatrix(df, 1, n, true, "the " + model_name + " coefficients");
+  const Eigen::MatrixXd D = ReadRosMatrix(df, 1, n, true, "the " + model_name + " coefficients");
   const std::vector<double> coefficients(D.data(), D.data() + D.size());
 
   const YamlField rf = top.Member("rectification_matrix");
-  info.rectification = ReadMatrix(rf, 3, 3, false, "the 3×3 rectification rotation R (identity for one camera)");
+  info.rectification = ReadRosMatrix(rf, 3, 3, false, "the 3×3 rectification rotation R (identity for one camera)");
   if (!IsRotation(info.rectification, 1e-6)) {
     rf.Fail("not a rotation matrix (RᵀR ≠ I or det R < 0, tolerance 1e-6)",
             "write the rectification rotation with at least 7 significant digits (identity for one camera)");
   }
-  info.projection = ReadMatrix(top.Member("projection_matrix"), 3, 4, false,
+  info.projection = ReadRosMatrix(top.Member("projection_matrix"), 3, 4, false,
                                "the 3×4 projection matrix P ([K | 0] for one camera)");
 
   info.camera.camera = model_name == kEquidistant ? Camera::FromK(K, size, KannalaBrandtModel{}, coefficients)
@@ -113,7 +113,7 @@ ImportedCamera ImportRosCameraInfo(const RosCameraInfo& info, const std::string&
 
 ImportedCamera ReadRosCameraInfo(const std::filesystem::path& path, LengthUnit length_unit) {
   const std::string name = path.string();
-  return ImportRosCameraInfo(RosCameraInfoFromText(ReadInputFile(path, kWhat, limits::kMaxOpenCvYamlBytes, "ROS camera_info YAML"), name, length_unit), name);
+  return ImportRosCameraInfo(RosCameraInfoFromText(ReadInputFile(path, kRosWhat, limits::kMaxOpenCvYamlBytes, "ROS camera_info YAML"), name, length_unit), name);
 }
 
 ExportedCamera RosCameraInfoText(const RosCameraInfo& info, std::string_view source, const Provenance& provenance) {

@@ -20,16 +20,16 @@ namespace {
 
 // One open collection while the events are turned into a tree: libyaml's parser keeps its own
 // state on the heap, and so does this, so no input nests the C++ stack.
-struct Open {
+struct OpenContainer {
   YamlNode node;
   std::string key;  // a map's key waiting for its value
   bool have_key = false;
 };
 
-struct Parser {
+struct YamlParser {
   yaml_parser_t parser;
-  Parser() { yaml_parser_initialize(&parser); }
-  ~Parser() { yaml_parser_delete(&parser); }
+  YamlParser() { yaml_parser_initialize(&parser); }
+  ~YamlParser() { yaml_parser_delete(&parser); }
 };
 
 struct Event {
@@ -53,9 +53,9 @@ YamlNode ParseYamlMap(const std::string& text, const std::string& name, std::str
     throw InputError(name + ": larger than the " + std::to_string(limits::kMaxOpenCvYamlBytes >> 20) +
                      " MiB vstcal reads as YAML (docs/reliability.md#limits); check that it is " + std::string(what));
   }
-  Parser p;
+  YamlParser p;
   yaml_parser_set_input_string(&p.parser, reinterpret_cast<const unsigned char*>(text.data()), text.size());
-  std::vector<Open> stack;
+  std::vector<OpenContainer> stack;
   std::optional<YamlNode> root;
   int documents = 0;
   // Adds a finished node to the collection it belongs to, or makes it the root.
@@ -64,7 +64,7 @@ YamlNode ParseYamlMap(const std::string& text, const std::string& name, std::str
       root = std::move(node);
       return;
     }
-    Open& top = stack.back();
+    OpenContainer& top = stack.back();
     if (top.node.kind == YamlNode::Kind::kSequence) {
       top.node.items.push_back(std::move(node));
     } else if (!top.have_key) {
@@ -115,7 +115,7 @@ YamlNode ParseYamlMap(const std::string& text, const std::string& name, std::str
           FailSyntax(name, text, offset, "nested more than " + std::to_string(limits::kMaxNesting) + " levels deep",
                      "a camera file needs 3 levels; check that this is the right file");
         }
-        Open open;
+        OpenContainer open;
         open.node.kind =
             e.event.type == YAML_SEQUENCE_START_EVENT ? YamlNode::Kind::kSequence : YamlNode::Kind::kMap;
         open.node.offset = offset;

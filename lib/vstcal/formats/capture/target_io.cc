@@ -10,7 +10,7 @@
 namespace vstcal {
 namespace {
 
-constexpr std::string_view kFormat = "vstcal/target@1";
+constexpr std::string_view kTargetFormat = "vstcal/target@1";
 
 // The fields of each type beyond format, type, length_unit, rows, cols, margin.
 struct TypeFields {
@@ -39,7 +39,7 @@ bool HasField(TargetType type, std::string_view field) {
 Target TargetFromJson(const JsonDocument& doc) {
   const JsonNode root = doc.root();
   root.ExpectObject();
-  CheckFormat(root, kFormat);
+  CheckFormat(root, kTargetFormat);
   Target t;
   t.type = *TargetTypeFromName(root.at("type").OneOf({"chessboard", "charuco", "apriltag-grid", "aprilgrid"}));
   // A field of another type means the file describes another board than it says: refuse it
@@ -92,7 +92,7 @@ Target ReadTarget(const std::filesystem::path& path) { return TargetFromJson(Jso
 
 OrderedJson TargetToJson(const Target& t, const Provenance& provenance) {
   OrderedJson j;
-  j["format"] = kFormat;
+  j["format"] = kTargetFormat;
   j["type"] = TargetTypeName(t.type);
   j["length_unit"] = LengthUnitName(t.length_unit);
   j["rows"] = t.rows;

@@ -12,7 +12,7 @@
 namespace vstcal {
 namespace {
 
-constexpr std::string_view kFormat = "vstcal/volume-manifest@1";
+constexpr std::string_view kManifestFormat = "vstcal/volume-manifest@1";
 constexpr size_t kMaxImages = 100000;
 
 }  // namespace
@@ -20,7 +20,7 @@ constexpr size_t kMaxImages = 100000;
 VolumeManifest VolumeManifestFromJson(const JsonDocument& doc, const std::filesystem::path& folder) {
   const JsonNode root = doc.root();
   root.ExpectObject();
-  CheckFormat(root, kFormat);
+  CheckFormat(root, kManifestFormat);
   VolumeManifest m;
   m.length_unit = ReadLengthUnit(root.at("length_unit"));
   const JsonNode images = root.at("images");
@@ -56,7 +56,7 @@ VolumeManifest ReadVolumeManifest(const std::filesystem::path& path) {
 
 OrderedJson VolumeManifestToJson(const VolumeManifest& m, const Provenance& provenance) {
   OrderedJson j;
-  j["format"] = kFormat;
+  j["format"] = kManifestFormat;
   j["length_unit"] = LengthUnitName(m.length_unit);
   OrderedJson images = OrderedJson::array();
   for (const ManifestImage& image : m.images) images.push_back({{"image", image.image}, {"plane_offset", image.plane_offset}});

@@ -8,10 +8,10 @@
 namespace vstcal {
 namespace {
 
-constexpr const char* kRegenerate = "give a report written by err-sim run or merge (this one was changed)";
+constexpr const char* kReportRegenerate = "give a report written by err-sim run or merge (this one was changed)";
 
-uint64_t Count(const JsonNode& n) {
-  if (!n.json().is_number_unsigned()) n.Fail("expected a non-negative integer, got " + n.json().dump(), kRegenerate);
+uint64_t ReportCount(const JsonNode& n) {
+  if (!n.json().is_number_unsigned()) n.Fail("expected a non-negative integer, got " + n.json().dump(), kReportRegenerate);
   return n.json().get<uint64_t>();
 }
 
@@ -46,16 +46,16 @@ ReportForCheck ReadReportForCheck(const JsonDocument& document) {
   r.chain = root.at(errsim_key::kChain).String();
   r.chain_digest = root.at(errsim_key::kChainDigest).String();
   r.length_unit = root.at(errsim_key::kLengthUnit).String();
-  r.samples = Count(root.at(errsim_key::kSamples));
-  if (r.samples == 0) root.at(errsim_key::kSamples).Fail("is 0", kRegenerate);
-  r.seed = Count(root.at(errsim_key::kSeed));
+  r.samples = ReportCount(root.at(errsim_key::kSamples));
+  if (r.samples == 0) root.at(errsim_key::kSamples).Fail("is 0", kReportRegenerate);
+  r.seed = ReportCount(root.at(errsim_key::kSeed));
   const JsonNode sources = root.at(errsim_key::kSources);
   for (const char* key : {errsim_key::kOnly, errsim_key::kWithout}) {
     const JsonNode list = sources.at(key);
     std::vector<std::string>& out = std::string_view(key) == errsim_key::kOnly ? r.only : r.without;
     for (size_t i = 0; i < list.ArraySize(); ++i) {
       out.push_back(list.at(i).String());
-      if (!SourceFromKey(out.back())) list.at(i).Fail("unknown error source \"" + out.back() + "\"", kRegenerate);
+      if (!SourceFromKey(out.back())) list.at(i).Fail("unknown error source \"" + out.back() + "\"", kReportRegenerate);
     }
   }
   const JsonNode points = root.at(errsim_key::kTestPoints);

@@ -6,10 +6,10 @@
 namespace vstcal {
 namespace {
 
-constexpr const char* kRegenerate = "regenerate the shard file (it was changed or truncated)";
+constexpr const char* kShardRegenerate = "regenerate the shard file (it was changed or truncated)";
 
-uint64_t Count(const JsonNode& n) {
-  if (!n.json().is_number_unsigned()) n.Fail("expected a non-negative integer, got " + n.json().dump(), kRegenerate);
+uint64_t ShardCount(const JsonNode& n) {
+  if (!n.json().is_number_unsigned()) n.Fail("expected a non-negative integer, got " + n.json().dump(), kShardRegenerate);
   return n.json().get<uint64_t>();
 }
 
@@ -43,25 +43,25 @@ SimulationResult ShardFromJson(const JsonDocument& doc, RunDescription* run) {
   CheckFormat(root, kShardFormat);
   run->chain_path = root.at("chain").String();
   run->digest = root.at("chain_digest").String();
-  run->options.samples = Count(root.at("samples"));
-  run->options.budget_samples = Count(root.at("budget_samples"));
-  run->options.seed = Count(root.at("seed"));
+  run->options.samples = ShardCount(root.at("samples"));
+  run->options.budget_samples = ShardCount(root.at("budget_samples"));
+  run->options.seed = ShardCount(root.at("seed"));
   run->options.budget = root.at("budget").Boolean();
-  run->options.block_size = Count(root.at("block_size"));
+  run->options.block_size = ShardCount(root.at("block_size"));
   for (const char* key : {"only", "without"}) {
     const JsonNode list = root.at(key);
     std::vector<std::string>& out = std::string(key) == "only" ? run->only : run->without;
     for (size_t i = 0; i < list.ArraySize(); ++i) {
       out.push_back(list.at(i).String());
-      if (!SourceFromKey(out.back())) list.at(i).Fail("unknown error source \"" + out.back() + "\"", kRegenerate);
+      if (!SourceFromKey(out.back())) list.at(i).Fail("unknown error source \"" + out.back() + "\"", kShardRegenerate);
     }
   }
   const JsonNode shard = root.at("shard");
   shard.ArraySize(2);
-  run->options.shard = Count(shard.at(size_t{0}));
-  run->options.shards = Count(shard.at(1));
+  run->options.shard = ShardCount(shard.at(size_t{0}));
+  run->options.shards = ShardCount(shard.at(1));
   if (run->options.shards == 0 || run->options.shard >= run->options.shards) {
-    shard.Fail("is not i/N with 0 ≤ i < N", kRegenerate);
+    shard.Fail("is not i/N with 0 ≤ i < N", kShardRegenerate);
   }
   SimulationResult result;
   const JsonNode scenarios = root.at("scenarios");

@@ -13,7 +13,7 @@ namespace {
 cv::Mat Roi(const std::array<int, 4>& roi) { return (cv::Mat_<int>(1, 4) << roi[0], roi[1], roi[2], roi[3]); }
 
 // What neither peer's files hold.
-void NoteUnwritten(const StereoRig& rig, std::string_view source, std::vector<std::string>* notes) {
+void NotePeerUnwritten(const StereoRig& rig, std::string_view source, std::vector<std::string>* notes) {
   if (rig.covariance) notes->push_back(std::string(source) + ": covariance: not written: the format has no field for it");
   if (rig.fit) notes->push_back(std::string(source) + ": fit: not written: the format has no field for it");
 }
@@ -51,7 +51,7 @@ ExportedCamera OpenCvStereoYamlText(const StereoRig& rig, std::string_view sourc
   }
   ExportedCamera out;
   out.text = fs.releaseAndGetString();
-  NoteUnwritten(rig, source, &out.notes);
+  NotePeerUnwritten(rig, source, &out.notes);
   return out;
 }
 
@@ -66,7 +66,7 @@ std::pair<ExportedCamera, ExportedCamera> MrcalStereoTexts(const StereoRig& rig,
   right.camera_from_world = rig.right_from_left;
   std::pair<ExportedCamera, ExportedCamera> out{MrcalCameramodelText(left, std::string(source) + ": left", options, provenance),
                                                 MrcalCameramodelText(right, std::string(source) + ": right", options, provenance)};
-  NoteUnwritten(rig, source, &out.first.notes);
+  NotePeerUnwritten(rig, source, &out.first.notes);
   return out;
 }
 
