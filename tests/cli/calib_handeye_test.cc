@@ -80,7 +80,7 @@ TEST_F(CliCalibHandEye, RecoversTheCameraOnTheHeadsetAndTheClockOffset) {
   }
   // OpenCV reads the YAML: calibrateHandEye's names, the same numbers.
   ASSERT_EQ(Run(kTool, {"solve", "in/corners.json", "--poses", "in/poses.txt", "--camera", "in/camera.json", "-o", "out/he3.json", "--opencv",
-                        "out/he.yaml"}).exit_code, kOk);
+                        "out/he.yaml", "--bootstrap", "0"}).exit_code, kOk);
   cv::FileStorage fs(Path("out/he.yaml").string(), cv::FileStorage::READ);
   cv::Mat t_cam2gripper;
   fs["t_cam2gripper"] >> t_cam2gripper;
@@ -88,7 +88,7 @@ TEST_F(CliCalibHandEye, RecoversTheCameraOnTheHeadsetAndTheClockOffset) {
   for (int i = 0; i < 3; ++i) EXPECT_NEAR(t_cam2gripper.at<double>(i), he.at("hmd_from_camera").at("t")[i].get<double>(), 1e-9);
   EXPECT_NEAR(static_cast<double>(fs["time_offset"]), offset, 1e-12);
   // The same log as poses@1 (mm) gives the same answer.
-  ASSERT_EQ(Run(kTool, {"solve", "in/corners.json", "--poses", "in/poses.json", "--camera", "in/camera.json", "-o", "out/he2.json"}).exit_code, kOk);
+  ASSERT_EQ(Run(kTool, {"solve", "in/corners.json", "--poses", "in/poses.json", "--camera", "in/camera.json", "--bootstrap", "0", "-o", "out/he2.json"}).exit_code, kOk);
   EXPECT_NEAR(ReadJson("out/he2.json").at("time_offset_s").get<double>(), offset, 1e-9);
   EXPECT_NEAR(ReadJson("out/he2.json").at("hmd_from_camera").at("t")[0].get<double>(), he.at("hmd_from_camera").at("t")[0].get<double>(), 1e-6);
 }
@@ -115,7 +115,7 @@ TEST_F(CliCalibHandEye, SolvesAStereoRigAndRefusesUnpairableViews) {
   rig.right_from_left = r.rig.right_from_left;
   WriteText("in/rig.json", DumpJson(StereoRigToJson(rig, Provenance{})));
   const CommandResult ok = Run(kTool, {"solve", "in/corners.json", "--right", "in/right.json", "--rig", "in/rig.json", "--poses", "in/poses.txt",
-                                       "-o", "out/he.json"});
+                                       "--bootstrap", "0", "-o", "out/he.json"});
   ASSERT_EQ(ok.exit_code, kOk) << ok.err;
   EXPECT_NE(ok.err.find("calib-handeye: 30 left + 30 right views, 3067 corners"), std::string::npos) << ok.err;
   EXPECT_NE(ok.err.find("rig: in/rig.json (right_from_left held; baseline 64.0062 mm), the right camera's views paired by name"), std::string::npos)
@@ -278,7 +278,7 @@ TEST_F(CliCalibHandEye, DropsABadFrameUnlessToldToKeepAll) {
   const std::vector<std::string> args = {"solve", "in/corners.json", "--poses", "in/poses.txt", "--camera", "in/camera.json"};
   std::vector<std::string> dropping = args, keeping = args;
   dropping.insert(dropping.end(), {"-o", "out/dropped.json"});
-  keeping.insert(keeping.end(), {"--keep-all-views", "-o", "out/kept.json"});
+  keeping.insert(keeping.end(), {"--keep-all-views", "--bootstrap", "0", "-o", "out/kept.json"});
   const CommandResult d = Run(kTool, dropping);
   ASSERT_EQ(d.exit_code, kOk) << d.err;
   EXPECT_NE(d.err.find("calib-handeye: 29 views (of 30; bad frames dropped below)"), std::string::npos) << d.err;
@@ -300,8 +300,9 @@ TEST_F(CliCalibHandEye, DropsABadFrameUnlessToldToKeepAll) {
 // solved with 10 replicates — the file's "bootstrap" holds them all solved, δ's σ beside the
 // first-order one (the two within a factor 2: they estimate the same spread), the seed in the
 // provenance; the same bytes on 2 threads as on 1 (replicate b draws from (seed, b) alone), another
-// seed another σ; without the flag no "bootstrap". One replicate, --seed without --bootstrap and 300
-// threads are refused with nothing written.
+// seed another σ. Without the flag the default's 40 replicates; with --bootstrap 0 none, the summary
+// saying so. One replicate, --seed or --threads with --bootstrap 0 and 300 threads are refused with
+// nothing written.
 TEST_F(CliCalibHandEye, BootstrapsTheCovarianceDeterministically) {
   HandEyeSpec spec = testing::HandEyeTestSpec(0.0325, 0.2, 3001);
   spec.tracker_noise_deg = 0.05;
@@ -316,7 +317,7 @@ TEST_F(CliCalibHandEye, BootstrapsTheCovarianceDeterministically) {
   };
   const CommandResult r = Run(kTool, with({"--bootstrap", "10", "--seed", "7", "-o", "out/b1.json"}));
   ASSERT_EQ(r.exit_code, kOk) << r.err;
-  EXPECT_NE(r.err.find("  time offset by the bootstrap (10 of 10 replicates solved): ± "), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find(" ms, σ by the bootstrap (10 of 10 replicates solved; first-order ± "), std::string::npos) << r.err;
   const Json he = ReadJson("out/b1.json");
   ASSERT_TRUE(he.contains("bootstrap"));
   const Json& b = he.at("bootstrap");
@@ -336,8 +337,21 @@ TEST_F(CliCalibHandEye, BootstrapsTheCovarianceDeterministically) {
             ReadText("out/b1.json").substr(0, ReadText("out/b1.json").find("\"provenance\"")));
   ASSERT_EQ(Run(kTool, with({"--bootstrap", "10", "--seed", "8", "-o", "out/b3.json"})).exit_code, kOk);
   EXPECT_NE(ReadJson("out/b3.json").at("bootstrap").at("time_offset_sigma_s").get<double>(), boot);
-  ASSERT_EQ(Run(kTool, with({"-o", "out/none.json"})).exit_code, kOk);
+  // By default (16 views, below the 100 past which it is off): 40 replicates with seed 1, the
+  // summary saying whose σ it prints; --bootstrap 0 none, the first-order σ named as such.
+  const CommandResult by_default = Run(kTool, with({"-o", "out/default.json"}));
+  ASSERT_EQ(by_default.exit_code, kOk) << by_default.err;
+  EXPECT_NE(by_default.err.find(" ms, σ by the bootstrap (40 of 40 replicates solved; "), std::string::npos) << by_default.err;
+  const Json he_default = ReadJson("out/default.json");
+  ASSERT_TRUE(he_default.contains("bootstrap"));
+  EXPECT_EQ(he_default.at("bootstrap").at("replicates"), 40);
+  EXPECT_EQ(he_default.at("bootstrap").at("seed"), 1);
+  EXPECT_EQ(he_default.at("provenance").at("seed"), 1);
+  const CommandResult none = Run(kTool, with({"--bootstrap", "0", "-o", "out/none.json"}));
+  ASSERT_EQ(none.exit_code, kOk) << none.err;
+  EXPECT_NE(none.err.find(" ms, σ first-order (--bootstrap 0)"), std::string::npos) << none.err;
   EXPECT_FALSE(ReadJson("out/none.json").contains("bootstrap"));
+  EXPECT_TRUE(ReadJson("out/none.json").at("provenance").at("seed").is_null());  // no bootstrap, no random draw
   EXPECT_EQ(ReadJson("out/none.json").at("time_offset_s"), he.at("time_offset_s"));
   fs::remove_all(Path("out"));
   fs::create_directories(Path("out"));
@@ -345,7 +359,8 @@ TEST_F(CliCalibHandEye, BootstrapsTheCovarianceDeterministically) {
                         {"give 2 … 100000"}));
   EXPECT_TRUE(FailsWith(Run(kTool, with({"--bootstrap", "10", "--threads", "300", "-o", "out/x.json"})), std::string(kTool), kBadInput,
                         "--threads: 300", {"0 (all cores) … 256"}));
-  EXPECT_EQ(Run(kTool, with({"--seed", "3", "-o", "out/x.json"})).exit_code, kBadInput);
+  EXPECT_EQ(Run(kTool, with({"--bootstrap", "0", "--seed", "3", "-o", "out/x.json"})).exit_code, kBadInput);
+  EXPECT_EQ(Run(kTool, with({"--bootstrap", "0", "--threads", "2", "-o", "out/x.json"})).exit_code, kBadInput);
   EXPECT_TRUE(OutDirEmpty());
 }
 

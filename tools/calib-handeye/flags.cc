@@ -1,5 +1,7 @@
 #include "flags.h"
 
+#include <string>
+
 #include "common/validators.h"
 
 namespace vstcal::tools {
@@ -29,9 +31,6 @@ void HandEyeFlags::Add(CLI::App& app) {
   camera->excludes(rig);
   rig->needs(right);
   right->needs(rig);
-  solve_app->parse_complete_callback([camera, rig] {
-    if (camera->count() == 0 && rig->count() == 0) throw CLI::RequiredError("--camera (or --rig with --right)");
-  });
   solve_app->add_option("--tum-unit", solve.tum_unit, "length unit of a TUM log's translations")->capture_default_str();
   solve_app->add_option("--max-time-offset", solve.max_time_offset, "search the clocks' offset within ±this many seconds")
       ->capture_default_str();
@@ -40,14 +39,29 @@ void HandEyeFlags::Add(CLI::App& app) {
                       "do not drop views inconsistent with the others' noise (bad frames; dropped by default)");
   solve_app->add_flag("--tracker-exact", solve.tracker_exact,
                       "take the tracker's poses as exact instead of estimating their noise jointly and weighing the views by it");
-  auto* bootstrap = solve_app->add_option("--bootstrap", solve.bootstrap,
-                         "also a parametric bootstrap of the covariance from this many simulated recordings (e.g. 100; each costs one "
-                         "more solve): δ's σ within 10 % of its spread where the first-order σ is not (few views; "
-                         "docs/math/handeye.md#delta-bootstrap)");
-  solve_app->add_option("--seed", solve.seed, "with --bootstrap: the replicates' seed")->check(kSeed)->needs(bootstrap)->capture_default_str();
-  solve_app->add_option("--threads", solve.threads, "with --bootstrap: threads (0: all cores, at most 256; the output does not depend on it)")
-      ->needs(bootstrap)
-      ->capture_default_str();
+  const std::string bootstrap_help =
+      std::string("the parametric bootstrap's simulated recordings, each one more solve (0: none). By default ")
+          .append(std::to_string(app::kDefaultBootstrapReplicates))
+          .append(" when the solve keeps at most ")
+          .append(std::to_string(app::kDefaultBootstrapMaxViews))
+          .append(" views, else none: the time offset's σ is then the bootstrap's, within 10 % of its spread where the first-order σ is "
+                  "not (few views midway between the tracker's reports; docs/math/handeye.md#delta-bootstrap)");
+  auto* bootstrap = solve_app->add_option("--bootstrap", bootstrap_replicates, bootstrap_help);
+  auto* seed = solve_app->add_option("--seed", solve.seed, "the bootstrap's seed (the output depends on it only through the bootstrap)")
+                   ->check(kSeed)
+                   ->capture_default_str();
+  auto* threads = solve_app->add_option("--threads", solve.threads, "the bootstrap's threads (0: all cores, at most 256; the output does not depend on it)")
+                      ->capture_default_str();
+  // The flag's value goes into the request only when given: unset, the app applies the default rule.
+  // A seed or threads for a bootstrap turned off would be silently ignored: refused instead.
+  solve_app->parse_complete_callback([this, camera, rig, bootstrap, seed, threads] {
+    if (camera->count() == 0 && rig->count() == 0) throw CLI::RequiredError("--camera (or --rig with --right)");
+    if (bootstrap->count() == 0) return;
+    solve.bootstrap = bootstrap_replicates;
+    if (bootstrap_replicates == 0 && seed->count() + threads->count() > 0) {
+      throw CLI::ValidationError(seed->count() > 0 ? "--seed" : "--threads", "applies to the bootstrap, which --bootstrap 0 turns off");
+    }
+  });
   solve_app->add_option("--opencv", solve.opencv, "also write X, Z and the offset as OpenCV YAML (calibrateHandEye's names)")->check(kNonEmpty);
   solve_app->add_flag("-q,--quiet", quiet, "print only errors");
 

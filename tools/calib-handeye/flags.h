@@ -12,6 +12,7 @@ struct HandEyeFlags {
   app::HandEyeRequest solve;
   app::TrackerNoiseRequest noise;
   bool quiet = false;
+  int bootstrap_replicates = 0;  // --bootstrap as given; solve.bootstrap stays unset when it is not
   CLI::App* solve_app = nullptr;
   CLI::App* noise_app = nullptr;
 

@@ -20,9 +20,9 @@ int main(int argc, char** argv) {
   return vstcal::tools::RunTool(app, argc, argv, [&] {
     const bool solving = app.got_subcommand(f.solve_app);
     vstcal::DeclareOutputs({solving ? f.solve.output : f.noise.output, solving ? f.solve.opencv : std::string()});
-    // Only a bootstrap draws random numbers: its seed goes into the provenance.
-    const vstcal::Provenance provenance = vstcal::MakeProvenance(
-        "calib-handeye", argc, argv, solving && f.solve.bootstrap > 0 ? std::optional<uint64_t>(f.solve.seed) : std::nullopt);
+    // Only a bootstrap draws random numbers: the app keeps the seed in the provenance if one ran.
+    const vstcal::Provenance provenance =
+        vstcal::MakeProvenance("calib-handeye", argc, argv, solving ? std::optional<uint64_t>(f.solve.seed) : std::nullopt);
     const vstcal::app::Outcome outcome =
         solving ? vstcal::app::SolveHandEyeFiles(f.solve, provenance) : vstcal::app::MeasureTrackerNoise(f.noise, provenance);
     vstcal::app::WriteOutcome(outcome);

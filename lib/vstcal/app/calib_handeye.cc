@@ -134,8 +134,8 @@ Outcome SolveHandEyeFiles(const HandEyeRequest& request, const Provenance& prove
     throw InputError("camera: a rig is given, whose left camera took the views; give either the rig or a camera, not both");
   }
   if (request.rig.empty() && request.camera.empty()) throw InputError("camera: give the camera that took the views (camera@1), or a rig");
-  if (request.bootstrap < 0 || request.bootstrap == 1 || request.bootstrap > 100000) {
-    throw InputError(VSTCAL_OPT("bootstrap") ": " + std::to_string(request.bootstrap) + " replicates; give 2 … 100000 (e.g. 100), or 0 for none");
+  if (const int b = request.bootstrap.value_or(0); b < 0 || b == 1 || b > 100000) {
+    throw InputError(VSTCAL_OPT("bootstrap") ": " + std::to_string(b) + " replicates; give 2 … 100000 (e.g. 100), or 0 for none");
   }
   if (request.threads > 256) throw InputError(VSTCAL_OPT("threads") ": " + std::to_string(request.threads) + "; give 0 (all cores) … 256");
   const std::optional<StereoRig> stereo = request.rig.empty() ? std::nullopt : std::optional<StereoRig>(ReadStereoRig(request.rig));
@@ -171,18 +171,29 @@ Outcome SolveHandEyeFiles(const HandEyeRequest& request, const Provenance& prove
       throw InputError(request.corners + " with " + request.poses + ": " + e.what());
     }
   }();
+  // The default bootstraps the recordings whose first-order σ_δ may be off by more than 10 % and
+  // leaves the large ones, where it is not and B solves would cost tens of seconds
+  // (docs/tools/calib-handeye.md#bootstrap).
+  const bool by_default = !request.bootstrap;
+  const int replicates = request.bootstrap.value_or(s.views <= kDefaultBootstrapMaxViews ? kDefaultBootstrapReplicates : 0);
   std::optional<HandEyeBootstrap> bootstrap;
-  if (request.bootstrap > 0) {
+  std::string bootstrap_failed;
+  if (replicates > 0) {
     try {
-      bootstrap = BootstrapHandEye(camera, log.poses, views, s, options, {request.bootstrap, request.seed, request.threads}, rig ? &*rig : nullptr);
+      bootstrap = BootstrapHandEye(camera, log.poses, views, s, options, {replicates, request.seed, request.threads}, rig ? &*rig : nullptr);
     } catch (const DegenerateError& e) {
-      throw DegenerateError(request.corners + " with " + request.poses + ": " + e.what());
+      // Asked for, its failure is the run's; by default, the solution stands with its first-order σ.
+      if (!by_default) throw DegenerateError(request.corners + " with " + request.poses + ": " + e.what());
+      bootstrap_failed = e.what();
     }
   }
+  // Only a bootstrap that ran drew random numbers: the seed is in the provenance then only.
+  Provenance written = provenance;
+  if (!bootstrap) written.seed.reset();
   Outcome out;
   out.files.emplace_back(request.output,
-                         DumpJson(HandEyeToJson(s, corners.length_unit, provenance, rig ? &rig_file : nullptr, bootstrap ? &*bootstrap : nullptr)));
-  if (!request.opencv.empty()) out.files.emplace_back(request.opencv, HandEyeOpenCvYaml(s, corners.length_unit, provenance));
+                         DumpJson(HandEyeToJson(s, corners.length_unit, written, rig ? &rig_file : nullptr, bootstrap ? &*bootstrap : nullptr)));
+  if (!request.opencv.empty()) out.files.emplace_back(request.opencv, HandEyeOpenCvYaml(s, corners.length_unit, written));
   const std::string unit(LengthUnitName(corners.length_unit));
   const auto sigma = [&](int i) { return std::sqrt(s.covariance(i, i)); };
   // A translation's σ: the left perturbation moves t by dt = −[t]× ω + ρ, so the rotation's
@@ -200,14 +211,27 @@ Outcome SolveHandEyeFiles(const HandEyeRequest& request, const Provenance& prove
   t = "calib-handeye: " + counted + " views" +
       (s.rejected.empty() ? std::string() : " (of " + std::to_string(s.views + s.rejected.size()) + "; bad frames dropped below)") + ", " + std::to_string(s.corners) + " corners, " +
       std::to_string(log.poses.size()) + " tracker reports\n";
-  t += Line("  time offset: %.4f ms ± %.4f ms%s (the tracker's clock reads t + offset at the camera's t)\n", s.time_offset * 1000,
-            sigma(12) * 1000, "");
+  // The offset's σ is the bootstrap's when one ran (what err-sim's latency takes), else the first
+  // order's; the line says which, and why not the bootstrap.
   if (bootstrap) {
-    char line[200];
-    std::snprintf(line, sizeof line, "  time offset by the bootstrap (%d of %d replicates solved): ± %.4f ms, bias %+.4f ms\n", bootstrap->solved,
-                  bootstrap->replicates, std::sqrt(bootstrap->covariance(12, 12)) * 1000, bootstrap->mean[12] * 1000);
+    char line[300];
+    std::snprintf(line, sizeof line,
+                  "  time offset: %.4f ms ± %.4f ms, σ by the bootstrap (%d of %d replicates solved; first-order ± %.4f ms, bias %+.4f ms)\n",
+                  s.time_offset * 1000, std::sqrt(bootstrap->covariance(12, 12)) * 1000, bootstrap->solved, bootstrap->replicates,
+                  sigma(12) * 1000, bootstrap->mean[12] * 1000);
     t += line;
+  } else {
+    t += Line("  time offset: %.4f ms ± %.4f ms%s, σ first-order (", s.time_offset * 1000, sigma(12) * 1000, "");
+    if (!bootstrap_failed.empty()) {
+      t.append("the bootstrap failed: ").append(bootstrap_failed).append(")\n");
+    } else if (by_default) {
+      t.append(std::to_string(s.views)).append(" views: the bootstrap runs by default up to ").append(std::to_string(kDefaultBootstrapMaxViews));
+      t += "; " VSTCAL_OPT("bootstrap") " B runs it)\n";
+    } else {
+      t += VSTCAL_OPT("bootstrap") " 0)\n";
+    }
   }
+  t += "    (the tracker's clock reads t + offset at the camera's t)\n";
   const Eigen::Vector3d rx = RotvecFromRotation(s.hmd_from_camera.R) * deg;
   char buf[400];
   std::snprintf(buf, sizeof buf, "  hmd_from_camera: t (%.3f, %.3f, %.3f) %s ± (%.3f, %.3f, %.3f); rotation %.3f° ± (%.3f, %.3f, %.3f)°\n",
