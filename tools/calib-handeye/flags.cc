@@ -44,8 +44,8 @@ void HandEyeFlags::Add(CLI::App& app) {
           .append(std::to_string(app::kDefaultBootstrapReplicates))
           .append(" when the solve keeps at most ")
           .append(std::to_string(app::kDefaultBootstrapMaxViews))
-          .append(" views, else none: the time offset's σ is then the bootstrap's, within 10 % of its spread where the first-order σ is "
-                  "not (few views midway between the tracker's reports; docs/math/handeye.md#delta-bootstrap)");
+          .append(" views, else none: the time offset's σ is then the bootstrap's, nearer its spread than the first-order σ where that "
+                  "is low (few views midway between the tracker's reports; docs/math/handeye.md#delta-bootstrap)");
   auto* bootstrap = solve_app->add_option("--bootstrap", bootstrap_replicates, bootstrap_help);
   auto* seed = solve_app->add_option("--seed", solve.seed, "the bootstrap's seed (the output depends on it only through the bootstrap)")
                    ->check(kSeed)
