@@ -7,7 +7,12 @@
 // defaults), past what a test may take.
 //
 //   mc_handeye_bootstrap [recordings = 40] [replicates = 30] [first seed = 3000] [s = all: 0, 0.25, 0.5]
-//                        [views = 16]
+//                        [views = 16] [centre = estimate]
+//
+// centre: where the bootstrap's world is put — `estimate` (what calib-handeye does), or with the
+// truth in place of one plug-in value to measure what that value's error costs: `true-noise` (the
+// tracker's and the corners' σ's), `true-delta` (δ, hence where the views fall between the
+// reports), `true-both`. It also prints the mean estimated σ's over the truth's.
 //
 // The standard error of spread/RMS: the ratio is √(mean e² / mean σ_b²) over recordings (e = δ̂ − δ
 // less its mean), so by the delta method Var log(ratio) = ¼ Var(e²/E e² − σ_b²/E σ_b²)/n, the
@@ -16,6 +21,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <string>
 #include <ctime>
 #include <vector>
 
@@ -31,28 +37,49 @@ int main(int argc, char** argv) {
   std::vector<double> fractions = {0, 0.25, 0.5};
   if (argc > 4) fractions = {std::atof(argv[4])};
   const int views = argc > 5 ? std::atoi(argv[5]) : 16;
-  if (runs < 2 || replicates < 2 || views < 3 || fractions[0] < 0 || fractions[0] >= 1) {
-    std::fprintf(stderr, "usage: mc_handeye_bootstrap [recordings ≥ 2] [replicates ≥ 2] [first seed] [s in [0, 1)] [views ≥ 3]\n");
+  const std::string centre = argc > 6 ? argv[6] : "estimate";
+  const bool true_noise = centre == "true-noise" || centre == "true-both", true_delta = centre == "true-delta" || centre == "true-both";
+  if (runs < 2 || replicates < 2 || views < 3 || fractions[0] < 0 || fractions[0] >= 1 ||
+      !(centre == "estimate" || true_noise || true_delta)) {
+    std::fprintf(stderr, "usage: mc_handeye_bootstrap [recordings ≥ 2] [replicates ≥ 2] [first seed] [s in [0, 1)] [views ≥ 3] "
+                         "[centre: estimate | true-noise | true-delta | true-both]\n");
     return 2;
   }
+  constexpr double kNoiseRad = 0.05 * M_PI / 180, kNoiseLength = 0.2, kNoisePx = 0.2;
   std::printf("s     spread_ms  sandwich_ms  spread/sandwich  boot_mean_ms  boot_rms_ms  spread/boot_rms (se)  rms_z_sandwich  rms_z_boot  "
               "boot_bias_ms  cpu_s\n");
   for (const double s_fraction : fractions) {
     const double delta = 0.03 + 0.01 * s_fraction;  // the tracker reports every 10 ms, the views at s = 0 with δ = 30 ms
     const std::clock_t start = std::clock();  // CPU, not wall: the machine is shared
     std::vector<double> error, sandwich, boot, bias;
+    double rotation = 0, translation = 0, corners = 0;  // mean estimated σ over the truth's
+    int without_noise = 0;
     for (int run = 0; run < runs; ++run) {
       HandEyeSpec spec = testing::HandEyeTestSpec(delta, 0.2, first_seed + static_cast<uint64_t>(run));
-      spec.tracker_noise_deg = 0.05;
-      spec.tracker_noise = 0.2;
+      spec.tracker_noise_deg = kNoiseRad * 180 / M_PI;
+      spec.tracker_noise = kNoiseLength;
       spec.views = views;
       const testing::HandEyeRecording r = testing::RecordHandEye(spec);
       const HandEyeSolution s = SolveHandEye(r.camera, r.log, r.views);
-      const HandEyeBootstrap b = BootstrapHandEye(r.camera, r.log, r.views, s, {}, {replicates, 77 + static_cast<uint64_t>(run), 1});
+      HandEyeSolution at = s;
+      if (s.tracker_noise) {
+        rotation += s.tracker_noise->rotation.sigma / kNoiseRad / runs;
+        translation += s.tracker_noise->translation.sigma / kNoiseLength / runs;
+        corners += s.tracker_noise->corner_px.sigma / kNoisePx / runs;
+        if (true_noise) {
+          at.tracker_noise->rotation.sigma = kNoiseRad;
+          at.tracker_noise->translation.sigma = kNoiseLength;
+          at.tracker_noise->corner_px.sigma = kNoisePx;
+        }
+      } else {
+        ++without_noise;
+      }
+      if (true_delta) at.time_offset = delta;
+      const HandEyeBootstrap b = BootstrapHandEye(r.camera, r.log, r.views, at, {}, {replicates, 77 + static_cast<uint64_t>(run), 1});
       error.push_back(s.time_offset - delta);
       sandwich.push_back(std::sqrt(s.covariance(12, 12)));
       boot.push_back(std::sqrt(b.covariance(12, 12)));
-      bias.push_back(b.mean[12]);
+      bias.push_back(b.mean[12]);  // mean δ̂* less the bootstrap world's δ
     }
     const double seconds = static_cast<double>(std::clock() - start) / CLOCKS_PER_SEC;
     const double n = runs;
@@ -81,6 +108,9 @@ int main(int argc, char** argv) {
     std::printf("%-5.3g %9.3f  %11.3f  %15.3f  %12.3f  %11.3f  %9.3f (%.3f)  %14.3f  %10.3f  %12.3f  %5.0f\n", s_fraction, spread * 1e3,
                 mean_sandwich * 1e3, spread / mean_sandwich, mean_boot * 1e3, boot_rms * 1e3, ratio, ratio * ratio_se, std::sqrt(z_sandwich),
                 std::sqrt(z_boot), mean_bias * 1e3, seconds);
+    std::printf("      centre %s; mean estimated σ / truth's: rotation %.3f, translation %.3f, corners %.3f (over the %d of %d "
+                "recordings with a noise estimate)\n", centre.c_str(), rotation * runs / (runs - without_noise),
+                translation * runs / (runs - without_noise), corners * runs / (runs - without_noise), runs - without_noise, runs);
     std::fflush(stdout);
   }
   return 0;
