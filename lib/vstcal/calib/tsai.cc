@@ -134,7 +134,11 @@ double FocalStandardError(const std::vector<SensorPoint>& points, const Rigid3d&
   double* jacobians[1] = {J.data()};
   if (!cost.Evaluate(&p, r.data(), jacobians)) return INFINITY;
   // f (px), Tz (length) and κ₁ (px⁻²) differ in scale by ten orders: invert with unit columns.
-  const Eigen::Vector3d scale = J.colwise().norm().cwiseInverse().transpose();
+  // alignas(16): Eigen's vectorised column norms do the first column alone, summed in another
+  // order, when the destination starts 8 bytes off a 16-byte boundary, and where a small fixed
+  // vector sits is the compiler's choice (GCC 12 put this one on a boundary, clang 14 off it): the
+  // last bits of f_sigma_px depended on the compiler (docs/performance.md#build, stop 38).
+  alignas(16) const Eigen::Vector3d scale = J.colwise().norm().cwiseInverse().transpose();
   const Eigen::Matrix3d information = scale.asDiagonal() * (J.transpose() * J) * scale.asDiagonal();
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(information);
   if (!(eig.eigenvalues()(0) > 1e-14 * eig.eigenvalues()(2))) return INFINITY;

@@ -63,7 +63,9 @@ ParameterCovariance DecompositionCovariance(const ProjectionDecomposition& d,
     J.col(8 + k) = vec(dP);
   }
   // J⁺ by least squares on unit columns (px and length units differ by orders of magnitude).
-  const Eigen::Matrix<double, 11, 1> scale = J.colwise().norm().transpose();
+  // alignas(16): as in tsai.cc's FocalStandardError, so that the column norms' summation order does
+  // not depend on where the compiler puts the vector.
+  alignas(16) const Eigen::Matrix<double, 11, 1> scale = J.colwise().norm().transpose();
   const Matrix12x11 Js = J * scale.cwiseInverse().asDiagonal();
   const Eigen::HouseholderQR<Matrix12x11> qr(Js);
   const Eigen::Matrix<double, 11, 12> pinv = scale.cwiseInverse().asDiagonal() * qr.solve(Eigen::Matrix<double, 12, 12>::Identity());
