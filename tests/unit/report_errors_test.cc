@@ -110,7 +110,7 @@ TEST(ReprojReport, RotationAboutTheCentreGivesDTanTheta) {
   Correspondences c = Volume({0, 0});
   const std::vector<Eigen::Vector3d> tests = {{0, 0, 800}, {150, 0, 1300}, {-300, 0, 2500}};
   for (size_t i = 0; i < tests.size(); ++i) c.test_points.push_back({"t" + std::to_string(i), tests[i], PixelOf(tests[i])});
-  const ReportCamera rc = Model(Rigid3d(RotationFromRotvec(Eigen::Vector3d(0, dtheta, 0)), Eigen::Vector3d::Zero()));
+  const ReportCamera rc = Model(Rigid3d{RotationFromRotvec(Eigen::Vector3d(0, dtheta, 0)), Eigen::Vector3d::Zero()});
   const ReprojReport report = BuildReprojReport({&rc, 1}, c, "corr.json");
   const CameraReport& cam = report.cameras.at(0);
   ASSERT_EQ(cam.test_points.size(), 3u);
@@ -134,7 +134,7 @@ TEST(ReprojReport, TranslationAcrossTheSightLineGivesDeltaTAtAnyDepth) {
   const double a = 1.0;
   Correspondences c = Volume({0, 0});
   for (const double d : {500.0, 1000.0, 4000.0}) c.test_points.push_back({"d", {0, 0, d}, PixelOf({0, 0, d})});
-  const ReportCamera rc = Model(Rigid3d(Eigen::Matrix3d::Identity(), Eigen::Vector3d(a, 0, 0)));
+  const ReportCamera rc = Model(Rigid3d{Eigen::Matrix3d::Identity(), Eigen::Vector3d(a, 0, 0)});
   const ReprojReport report = BuildReprojReport({&rc, 1}, c, "corr.json");
   for (const TestPointReport& t : report.cameras.at(0).test_points) {
     const double d = t.point_in_world.z();
@@ -177,7 +177,7 @@ TEST(ReprojReport, CamerasThatDoNotGoWithTheCorrespondencesAreRefused) {
 }
 
 TEST(ReprojReport, TwoCamerasSideBySide) {
-  const ReportCamera cams[2] = {Model(Rigid3d()), Model(Rigid3d(Eigen::Matrix3d::Identity(), Eigen::Vector3d(0, 0, 0)))};
+  const ReportCamera cams[2] = {Model(Rigid3d()), Model(Rigid3d{Eigen::Matrix3d::Identity(), Eigen::Vector3d(0, 0, 0)})};
   ReportCamera shifted = cams[1];
   Eigen::Matrix3d K = shifted.camera.camera.K();
   K(0, 2) += 2;  // the second camera's principal point is 2 px to the right: every prediction moves 2 px

@@ -94,7 +94,7 @@ template <typename T>
 bool ProjectWith(const AnyLensModel& model, const T* params, const T* p_cam, T* px) {
   return [&]<size_t... I>(std::index_sequence<I...>) {
     bool ok = false;
-    ((model.index() == I && (ok = std::variant_alternative_t<I, AnyLensModel>::Project(params, p_cam, px), true)) || ...);
+    (void)((model.index() == I && (ok = std::variant_alternative_t<I, AnyLensModel>::Project(params, p_cam, px), true)) || ...);
     return ok;
   }(std::make_index_sequence<std::variant_size_v<AnyLensModel>>{});
 }

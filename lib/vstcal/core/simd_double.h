@@ -195,4 +195,20 @@ struct NumTraits<vstcal::SimdDouble> {
   };
 };
 
+namespace internal {
+
+// Eigen aligns a fixed-size matrix's array to 16 bytes under SSE; SimdDouble already asks for 32,
+// and clang rejects an alignas weaker than the type's own (GCC ignores it). 0: no alignas, the
+// array keeps SimdDouble's 32 — the layout GCC gave it before. (No packet maths is defined for
+// SimdDouble, so Eigen's alignment flag chooses no code path here.)
+template <int Size>
+struct compute_default_alignment<vstcal::SimdDouble, Size> {
+  enum { value = 0 };
+};
+template <>
+struct compute_default_alignment<vstcal::SimdDouble, Dynamic> {
+  enum { value = 0 };
+};
+
+}  // namespace internal
 }  // namespace Eigen

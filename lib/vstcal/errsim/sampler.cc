@@ -161,7 +161,9 @@ void FillGroupsScalar(size_t size, const std::vector<uint32_t>& blocks, const st
 // _mm512_undefined_epi32 in avx512fintrin.h) may be used uninitialized: GCC bug 105593, fixed in
 // 12.3. The placeholder is a pass-through the full mask never reads; silenced for this class only.
 #pragma GCC diagnostic push
+#if !defined(__clang__)  // clang has no such warning, and warns of the unknown name
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#endif
 class PhiloxAvx2 {
  public:
   static constexpr uint32_t kM0 = 0xD2511F53u, kM1 = 0xCD9E8D57u;

@@ -35,8 +35,16 @@ size_t HistogramSpec::BinOf(double y) const {
   return (bits & kSign) ? k - b : k + 2 + b;
 }
 
-[[gnu::target_clones("avx2", "default")]] void HistogramSpec::BinsOf4(const double* y, uint32_t* bins) const {
-  BinsOf4Inline(*this, y, bins);
+// Dispatched by hand rather than with target_clones: clang 14 emits a target_clones member
+// function's ifunc without its plain name, so callers in other units do not link.
+namespace {
+[[gnu::target("avx2")]] void BinsOf4Avx2(const HistogramSpec& spec, const double* y, uint32_t* bins) { BinsOf4Inline(spec, y, bins); }
+void BinsOf4Default(const HistogramSpec& spec, const double* y, uint32_t* bins) { BinsOf4Inline(spec, y, bins); }
+}  // namespace
+
+void HistogramSpec::BinsOf4(const double* y, uint32_t* bins) const {
+  static const bool avx2 = __builtin_cpu_supports("avx2");
+  (avx2 ? BinsOf4Avx2 : BinsOf4Default)(*this, y, bins);
 }
 
 double HistogramSpec::BinLow(size_t bin) const {

@@ -16,6 +16,13 @@
 #include "vstcal/json/reader_common.h"
 
 namespace vstcal {
+
+YamlNode::YamlNode() = default;
+YamlNode::YamlNode(const YamlNode&) = default;
+YamlNode::YamlNode(YamlNode&&) noexcept = default;
+YamlNode& YamlNode::operator=(const YamlNode&) = default;
+YamlNode& YamlNode::operator=(YamlNode&&) noexcept = default;
+YamlNode::~YamlNode() = default;
 namespace {
 
 // One open collection while the events are turned into a tree: libyaml's parser keeps its own

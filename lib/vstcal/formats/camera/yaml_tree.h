@@ -20,6 +20,15 @@ struct YamlNode {
   std::vector<YamlNode> items;                           // kSequence
   std::vector<std::pair<std::string, YamlNode>> members;  // kMap, in file order
   size_t offset = 0;                                      // byte offset in the text, for messages
+
+  // Declared here, defaulted in yaml_tree.cc, where the type is complete: clang 14 with libstdc++
+  // 12 cannot instantiate `members`' destructor inside the definition of the type it holds.
+  YamlNode();
+  YamlNode(const YamlNode&);
+  YamlNode(YamlNode&&) noexcept;
+  YamlNode& operator=(const YamlNode&);
+  YamlNode& operator=(YamlNode&&) noexcept;
+  ~YamlNode();
 };
 
 // Parses one YAML document whose top level is a map. Throws InputError "<name>: line L, column C:
