@@ -12,7 +12,9 @@
 // centre: where the bootstrap's world is put — `estimate` (what calib-handeye does), or with the
 // truth in place of one plug-in value to measure what that value's error costs: `true-noise` (the
 // tracker's and the corners' σ's), `true-delta` (δ, hence where the views fall between the
-// reports), `true-both`. It also prints the mean estimated σ's over the truth's.
+// reports), `true-both`, or `truth` (both, and the truth's motion, hand-eye and board: the bootstrap's
+// world is then the Monte Carlo's own, and the ratio must be 1 within its standard error — a check
+// of the simulation). It also prints the mean estimated σ's over the truth's.
 //
 // The standard error of spread/RMS: the ratio is √(mean e² / mean σ_b²) over recordings (e = δ̂ − δ
 // less its mean), so by the delta method Var log(ratio) = ¼ Var(e²/E e² − σ_b²/E σ_b²)/n, the
@@ -38,11 +40,13 @@ int main(int argc, char** argv) {
   if (argc > 4) fractions = {std::atof(argv[4])};
   const int views = argc > 5 ? std::atoi(argv[5]) : 16;
   const std::string centre = argc > 6 ? argv[6] : "estimate";
-  const bool true_noise = centre == "true-noise" || centre == "true-both", true_delta = centre == "true-delta" || centre == "true-both";
+  const bool truth = centre == "truth";
+  const bool true_noise = centre == "true-noise" || centre == "true-both" || truth;
+  const bool true_delta = centre == "true-delta" || centre == "true-both" || truth;
   if (runs < 2 || replicates < 2 || views < 3 || fractions[0] < 0 || fractions[0] >= 1 ||
       !(centre == "estimate" || true_noise || true_delta)) {
     std::fprintf(stderr, "usage: mc_handeye_bootstrap [recordings ≥ 2] [replicates ≥ 2] [first seed] [s in [0, 1)] [views ≥ 3] "
-                         "[centre: estimate | true-noise | true-delta | true-both]\n");
+                         "[centre: estimate | true-noise | true-delta | true-both | truth]\n");
     return 2;
   }
   constexpr double kNoiseRad = 0.05 * M_PI / 180, kNoiseLength = 0.2, kNoisePx = 0.2;
@@ -75,7 +79,15 @@ int main(int argc, char** argv) {
         ++without_noise;
       }
       if (true_delta) at.time_offset = delta;
-      const HandEyeBootstrap b = BootstrapHandEye(r.camera, r.log, r.views, at, {}, {replicates, 77 + static_cast<uint64_t>(run), 1});
+      std::vector<TrackedPose> motion = r.log;
+      if (truth) {
+        at.hmd_from_camera = testing::kHmdFromCamera;
+        at.tracker_from_board = testing::kTrackerFromBoard;
+        HandEyeSpec exact = spec;
+        exact.tracker_noise_deg = exact.tracker_noise = 0;
+        motion = testing::RecordHandEye(exact).log;
+      }
+      const HandEyeBootstrap b = BootstrapHandEye(r.camera, motion, r.views, at, {}, {replicates, 77 + static_cast<uint64_t>(run), 1});
       error.push_back(s.time_offset - delta);
       sandwich.push_back(std::sqrt(s.covariance(12, 12)));
       boot.push_back(std::sqrt(b.covariance(12, 12)));
