@@ -23,6 +23,7 @@ YamlNode::YamlNode(YamlNode&&) noexcept = default;
 YamlNode& YamlNode::operator=(const YamlNode&) = default;
 YamlNode& YamlNode::operator=(YamlNode&&) noexcept = default;
 YamlNode::~YamlNode() = default;
+
 namespace {
 
 // One open collection while the events are turned into a tree: libyaml's parser keeps its own
