@@ -143,5 +143,22 @@ TEST(Rigid3, PerturbLeftActsInDestinationFrame) {
   EXPECT_LT(((turned * x) - RotationFromRotvec(omega) * (cam_from_hmd * x)).norm(), 1e-12);
 }
 
+// LeftPerturbationBetween undoes PerturbLeft: the tangent it returns, applied to `from`, gives
+// `to` again, and it is zero between a pose and itself.
+TEST(Rigid3, LeftPerturbationBetweenInvertsPerturbLeft) {
+  const Rigid3d from = Rigid3d::FromRotvec(Eigen::Vector3d(0.5, 0.1, -1.0), Eigen::Vector3d(1000, 200, 1500));
+  const Eigen::Vector3d omega(0.003, -0.002, 0.004), rho(0.5, -0.25, 2);
+  const Rigid3d to = PerturbLeft(from, omega, rho);
+  const Vector6d e = LeftPerturbationBetween(from, to);
+  EXPECT_LT((e.head<3>() - omega).norm(), 1e-15);
+  EXPECT_LT((e.tail<3>() - rho).norm(), 1e-10);
+  EXPECT_LT(LeftPerturbationBetween(from, from).norm(), 1e-12);  // R Rᵀ is I to rounding
+  // A large turn too (RotvecFromRotation is exact beyond the small-angle path): 2 rad about one axis.
+  const Rigid3d far = Rigid3d{RotationFromRotvec(Eigen::Vector3d(0, 2, 0)), Eigen::Vector3d(1, 2, 3)} * from;
+  const Vector6d g = LeftPerturbationBetween(from, far);
+  EXPECT_LT((g.head<3>() - Eigen::Vector3d(0, 2, 0)).norm(), 1e-12);
+  EXPECT_LT((g.tail<3>() - Eigen::Vector3d(1, 2, 3)).norm(), 1e-9);
+}
+
 }  // namespace
 }  // namespace vstcal

@@ -23,14 +23,6 @@ namespace {
 
 constexpr double kNoiseDeg = 0.05, kNoiseMm = 0.2;
 
-// The truth's left-perturbation tangent from the estimate: truth = (Exp(ω), ρ) · estimate.
-Eigen::Matrix<double, 6, 1> ErrorTangent(const Rigid3d& estimate, const Rigid3d& truth) {
-  const Eigen::Vector3d w = RotvecFromRotation(truth.R * estimate.R.transpose());
-  Eigen::Matrix<double, 6, 1> e;
-  e << w, truth.t - RotationFromRotvec(w) * estimate.t;
-  return e;
-}
-
 testing::HandEyeRecording NoisyTracker(uint64_t seed, int views = 30) {
   HandEyeSpec spec = testing::HandEyeTestSpec(0.03, 0.2, seed);
   spec.tracker_noise_deg = kNoiseDeg;
@@ -163,9 +155,9 @@ TEST(HandEyeTrackerNoise, PredictedSigmasApproachTheSpreadAndTheNoiseIsRecovered
     const HandEyeSolution s = SolveHandEye(r.camera, r.log, r.views);
     const HandEyeSolution e = SolveHandEye(r.camera, r.log, r.views, exact);
     ASSERT_TRUE(s.tracker_noise) << run;
-    const Eigen::Matrix<double, 6, 1> ex = ErrorTangent(s.hmd_from_camera, testing::kHmdFromCamera);
-    const Eigen::Matrix<double, 6, 1> ee = ErrorTangent(e.hmd_from_camera, testing::kHmdFromCamera);
-    const Eigen::Matrix<double, 6, 1> ez = ErrorTangent(s.tracker_from_board, testing::kTrackerFromBoard);
+    const Eigen::Matrix<double, 6, 1> ex = LeftPerturbationBetween(s.hmd_from_camera, testing::kHmdFromCamera);
+    const Eigen::Matrix<double, 6, 1> ee = LeftPerturbationBetween(e.hmd_from_camera, testing::kHmdFromCamera);
+    const Eigen::Matrix<double, 6, 1> ez = LeftPerturbationBetween(s.tracker_from_board, testing::kTrackerFromBoard);
     for (int i = 0; i < 6; ++i) {
       zx += ex[i] * ex[i] / s.covariance(i, i) / (6 * kRuns);
       zx_exact += ee[i] * ee[i] / e.covariance(i, i) / (6 * kRuns);

@@ -19,14 +19,6 @@ namespace {
 using testing::kHmdFromCamera;
 using testing::kTrackerFromBoard;
 
-// The truth's left-perturbation tangent from the estimate: truth = (Exp(ω), ρ) · estimate.
-Eigen::Matrix<double, 6, 1> TangentToTruth(const Rigid3d& estimate, const Rigid3d& truth) {
-  const Eigen::Vector3d w = RotvecFromRotation(truth.R * estimate.R.transpose());
-  Eigen::Matrix<double, 6, 1> e;
-  e << w, truth.t - RotationFromRotvec(w) * estimate.t;
-  return e;
-}
-
 // Ten views, 1 s apart, at times whose tracker time (t + δ) falls on a 100 Hz report: no
 // interpolation error, so noise-free views give X, Z and δ to the solver's tolerance.
 TEST(HandEyeRig, ExactOnNoiseFreeViews) {
@@ -40,7 +32,7 @@ TEST(HandEyeRig, ExactOnNoiseFreeViews) {
   EXPECT_EQ(s.right_corners, right_corners);
   ASSERT_TRUE(s.right_from_left);
   EXPECT_TRUE(s.rejected.empty());
-  const Eigen::Matrix<double, 6, 1> ex = TangentToTruth(s.hmd_from_camera, kHmdFromCamera);
+  const Eigen::Matrix<double, 6, 1> ex = LeftPerturbationBetween(s.hmd_from_camera, kHmdFromCamera);
   EXPECT_LT(ex.head<3>().norm(), 1e-8) << ex.transpose();
   EXPECT_LT(ex.tail<3>().norm(), 1e-6) << ex.transpose();
   EXPECT_LT((s.tracker_from_board.t - kTrackerFromBoard.t).norm(), 1e-6);
@@ -72,7 +64,7 @@ TEST(HandEyeRig, WithinItsCovarianceAndTighterThanTheLeftCameraAlone) {
     const HandEyeSolution rig = SolveHandEye(r.left.camera, r.left.log, r.left.views, {}, &r.rig);
     const HandEyeSolution left = SolveHandEye(r.left.camera, r.left.log, r.left.views);
     ASSERT_EQ(rig.covariance.rows(), 15);
-    const Eigen::Matrix<double, 6, 1> e = TangentToTruth(rig.hmd_from_camera, kHmdFromCamera);
+    const Eigen::Matrix<double, 6, 1> e = LeftPerturbationBetween(rig.hmd_from_camera, kHmdFromCamera);
     const Eigen::Matrix<double, 6, 6> cov = rig.covariance.topLeftCorner<6, 6>();
     chi2 += e.dot(cov.ldlt().solve(e));
     for (int i = 0; i < 6; ++i) {

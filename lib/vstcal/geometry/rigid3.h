@@ -58,4 +58,13 @@ Rigid3<T> PerturbLeft(const Rigid3<T>& a_from_b, const Vec3<T>& omega, const Vec
   return Rigid3<T>{RotationFromSmallRotvec(omega), rho} * a_from_b;
 }
 
+// PerturbLeft's inverse: the (ω, ρ) with to = (Exp(ω), ρ) · from — an estimate's error against the
+// truth, a bootstrap replicate's offset from the estimate, in the covariance's convention.
+inline Vector6d LeftPerturbationBetween(const Rigid3d& from, const Rigid3d& to) {
+  const Eigen::Vector3d omega = RotvecFromRotation(to.R * from.R.transpose());
+  Vector6d e;
+  e << omega, to.t - RotationFromRotvec(omega) * from.t;
+  return e;
+}
+
 }  // namespace vstcal

@@ -36,14 +36,6 @@ std::vector<TrackedPose> SmoothedMotion(std::span<const TrackedPose> log) {
   return out;
 }
 
-// The left-perturbation tangent (ω, ρ) taking `from` to `to`: to = (Exp(ω), ρ) · from.
-Eigen::Matrix<double, 6, 1> TangentBetween(const Rigid3d& from, const Rigid3d& to) {
-  const Eigen::Vector3d w = RotvecFromRotation(to.R * from.R.transpose());
-  Eigen::Matrix<double, 6, 1> e;
-  e << w, to.t - RotationFromRotvec(w) * from.t;
-  return e;
-}
-
 // Stream words of the replicates' draws (CounterRng): tracker reports, left corners, right corners.
 constexpr uint32_t kTrackerStream = 0x42540001, kLeftStream = 0x42540002, kRightStream = 0x42540003;
 
@@ -122,7 +114,7 @@ HandEyeBootstrap BootstrapHandEye(const Camera& camera, std::span<const TrackedP
     try {
       const HandEyeSolution s = SolveHandEye(camera, replicate_log, replicate_left, replicate_options, replicate_rig ? &*replicate_rig : nullptr);
       Eigen::Matrix<double, 13, 1> g;
-      g << TangentBetween(solution.hmd_from_camera, s.hmd_from_camera), TangentBetween(solution.tracker_from_board, s.tracker_from_board),
+      g << LeftPerturbationBetween(solution.hmd_from_camera, s.hmd_from_camera), LeftPerturbationBetween(solution.tracker_from_board, s.tracker_from_board),
           s.time_offset - solution.time_offset;
       result[b] = g;
     } catch (const DegenerateError&) {
