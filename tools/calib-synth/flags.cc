@@ -10,7 +10,7 @@ namespace {
 const std::vector<std::string> kVolumeOnly = {"--near",     "--far",          "--interval", "--camera-distance",
                                               "--tilt-deg", "--tilt-direction-deg", "--roll-deg", "--no-test-points"};
 const std::vector<std::string> kPlanarOnly = {"--views", "--distance", "--max-tilt-deg"};
-const std::vector<std::string> kHandEyeOnly = {"--time-offset", "--duration", "--rate", "--tracker-noise-deg", "--tracker-noise", "--images"};
+const std::vector<std::string> kHandEyeOnly = {"--time-offset", "--duration", "--rate", "--tracker-noise-deg", "--tracker-noise", "--view-jitter", "--images"};
 
 }  // namespace
 
@@ -73,6 +73,10 @@ void SynthFlags::Add(CLI::App& app) {
   app.add_option("--time-offset", he.time_offset, "handeye: the tracker's clock ahead of the camera's, s")->check(kFinite)->capture_default_str();
   app.add_option("--duration", he.duration, "handeye: the recording's length, s")->check(kPositiveFinite)->capture_default_str();
   app.add_option("--rate", he.rate_hz, "handeye: the tracker's reports a second")->check(kPositiveFinite)->capture_default_str();
+  app.add_option("--view-jitter", he.view_jitter,
+                 "handeye: each view's time later by a uniform draw in [0, this) s — a camera clock not locked to the tracker's")
+      ->check(kFinite)
+      ->capture_default_str();
   app.add_option("--tracker-noise-deg", he.tracker_noise_deg, "handeye: the tracker's rotation noise per axis, degrees")
       ->check(kFinite)
       ->capture_default_str();

@@ -1,5 +1,6 @@
 #include "vstcal/handeye/synthetic.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -27,6 +28,12 @@ HandEyeRecording SynthesizeHandEye(const Camera& camera, const HandEyeSpec& s) {
     throw InputError("handeye: the duration, the tracker's rate, the spacing, the distance and the grid must be positive");
   }
   if (s.views < 2) throw InputError("views: a hand-eye recording needs at least 2 views");
+  // Less than the views' spacing, so that they keep their order, and within the last 5 % of the
+  // recording that follows the last view.
+  if (!(s.view_jitter >= 0 && s.view_jitter < std::min(0.9 * s.duration / (s.views - 1), 0.05 * s.duration))) {
+    throw InputError(VSTCAL_OPT("view_jitter") ": must be at least 0 and less than both the views' spacing (0.9 × duration / (views − 1)) "
+                     "and 5 % of the duration; lower it");
+  }
   if (s.duration * s.rate_hz > 1e6) throw InputError("duration × rate: more than 1,000,000 tracker reports; shorten the recording or lower the rate");
   // Deterministic draws keyed by (seed, stream, index): the same recording on every machine.
   const CounterRng tracker_rng(s.seed, 1), corner_rng(s.seed, 2);
@@ -59,12 +66,13 @@ HandEyeRecording SynthesizeHandEye(const Camera& camera, const HandEyeSpec& s) {
       }
     }
   };
-  const CounterRng right_rng(s.seed, 3);
+  const CounterRng right_rng(s.seed, 3), jitter_rng(s.seed, 4);
   const std::string prefix = s.right_from_left ? "left-frame-" : "frame-";
   for (int i = 0; i < s.views; ++i) {
     TimedView v;
     v.name = prefix + std::to_string(i);
     v.time = s.duration * (0.05 + 0.9 * i / (s.views - 1));
+    if (s.view_jitter > 0) v.time += s.view_jitter * jitter_rng.Uniform2(static_cast<uint64_t>(i), 0)[0];
     const Rigid3d camera_from_board = BoardFromCamera(s, v.time + s.time_offset).inverse();
     if (s.right_from_left) {
       TimedView right{"right-frame-" + std::to_string(i), v.time, {}};

@@ -24,6 +24,10 @@ struct HandEyeSpec {
   double rate_hz = 100;        // the tracker's
   int views = 30;              // images, spread evenly over [0.05, 0.95] of the duration
   double time_offset = 0.03;   // δ, s
+  // A camera clock not locked to the tracker's: each view's time is moved later by a uniform draw
+  // in [0, view_jitter) s. With 0 every view keeps its place between the tracker's reports (the
+  // evenly spread times fall on one phase of the report interval, as with a genlocked camera).
+  double view_jitter = 0;
   double noise_px = 0;         // corners
   double tracker_noise_deg = 0, tracker_noise = 0;  // per axis, on each report (rotation, length unit)
   bool one_axis = false;
