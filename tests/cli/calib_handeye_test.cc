@@ -2,6 +2,8 @@
 // correspondences@1 with each view's time, the tracker's log as TUM text (metres) and as poses@1,
 // the camera as camera@1 — solved to the truth of tests/support/handeye_scenes.h; every bad input
 // with its exit code, one line naming the file and line or field, and nothing written.
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <random>
 
@@ -269,6 +271,45 @@ TEST_F(CliCalibHandEye, SynthesizedRecordingSolvedToItsTruth) {
   EXPECT_TRUE(OutDirEmpty() || List("out") == std::vector<std::string>{"he.json"});
 }
 
+// --view-jitter: 16 evenly spaced views over 10 s, 0.6 s apart, fall at one place between the
+// tracker's 100 Hz reports (all 16 times the same modulo 10 ms); with one report interval of jitter
+// each moves later by less than 10 ms and they fall at many places. Jitter past the views' spacing
+// (0.6 s) is refused, nothing written.
+TEST_F(CliCalibHandEye, ViewJitterMovesTheViewsBetweenTheReports) {
+  const auto phases = [&](const std::string& file) {
+    std::vector<double> out;
+    const Json views = ReadJson(file).at("views");
+    for (const Json& v : views) out.push_back(std::fmod(v.at("time").get<double>() + 1e-9, 0.01));
+    return out;
+  };
+  const std::vector<std::string> common = {"--rig", "handeye", "--image-size", "640x480", "--fx", "600", "--grid", "9x6", "--spacing", "30", "--views", "16"};
+  std::vector<std::string> locked = common, jittered = common;
+  locked.insert(locked.end(), {"-o", "in/locked.json"});
+  jittered.insert(jittered.end(), {"--view-jitter", "0.01", "-o", "in/jittered.json"});
+  ASSERT_EQ(Run("calib-synth", locked).exit_code, kOk);
+  ASSERT_EQ(Run("calib-synth", jittered).exit_code, kOk);
+  const std::vector<double> a = phases("in/locked.json"), b = phases("in/jittered.json");
+  ASSERT_EQ(a.size(), 16u);
+  ASSERT_EQ(b.size(), 16u);
+  const Json ta = ReadJson("in/locked.json").at("views"), tb = ReadJson("in/jittered.json").at("views");
+  double lowest = 1, highest = 0;
+  for (size_t i = 0; i < a.size(); ++i) {
+    EXPECT_NEAR(a[i], a[0], 1e-6) << i;
+    const double moved = tb[i].at("time").get<double>() - ta[i].at("time").get<double>();
+    EXPECT_GE(moved, 0) << i;
+    EXPECT_LT(moved, 0.01) << i;
+    lowest = std::min(lowest, b[i]);
+    highest = std::max(highest, b[i]);
+  }
+  // 16 uniform draws: the chance that all fall within half of the interval is 16 · 2⁻¹⁵ (and the
+  // draws are the seed's, the same on every run).
+  EXPECT_GT(highest - lowest, 0.005);
+  std::vector<std::string> too_much = common;
+  too_much.insert(too_much.end(), {"--view-jitter", "0.7", "-o", "out/x.json"});
+  EXPECT_TRUE(FailsWith(Run("calib-synth", too_much), "calib-synth", kBadInput, "--view-jitter: must be at least 0 and less than both the views' spacing", {}));
+  EXPECT_TRUE(OutDirEmpty());
+}
+
 // A bad frame (one view's corners 3 px off) is dropped by default, named in the summary and in
 // rejected_views; --keep-all-views keeps it, and the fit then shows it.
 TEST_F(CliCalibHandEye, DropsABadFrameUnlessToldToKeepAll) {
@@ -364,6 +405,43 @@ TEST_F(CliCalibHandEye, BootstrapsTheCovarianceDeterministically) {
   EXPECT_TRUE(FailsWith(Run(kTool, with({"--bootstrap", "0", "--threads", "2", "-o", "out/x.json"})), std::string(kTool), kBadInput,
                         "--threads", {"which --bootstrap 0 turns off"}));
   EXPECT_TRUE(OutDirEmpty());
+}
+
+// The default bootstraps only views locked to the tracker's reports (docs/math/handeye.md#report-phases):
+// the recording above, 16 views a quarter of the way between two reports, is bootstrapped and says
+// where its views sit; the same recording with a report interval of jitter on the camera's clock is
+// not — its first-order σ is printed with the reason — and its file holds the phases.
+TEST_F(CliCalibHandEye, DefaultBootstrapsOnlyViewsLockedToTheReports) {
+  HandEyeSpec spec = testing::HandEyeTestSpec(0.0325, 0.2, 3001);
+  spec.tracker_noise_deg = 0.05;
+  spec.tracker_noise = 0.2;
+  spec.views = 16;
+  WriteRecording(testing::RecordHandEye(spec));
+  const std::vector<std::string> solve = {"solve", "in/corners.json", "--poses", "in/poses.json", "--camera", "in/camera.json", "-o", "out/locked.json"};
+  const CommandResult locked = Run(kTool, solve);
+  ASSERT_EQ(locked.exit_code, kOk) << locked.err;
+  EXPECT_NE(locked.err.find(" ms, σ by the bootstrap (40 of 40 replicates solved; "), std::string::npos) << locked.err;
+  EXPECT_NE(locked.err.find("the views sit at one place between the tracker's reports, 0.2"), std::string::npos) << locked.err;
+  const Json phases = ReadJson("out/locked.json").at("fit").at("report_phases");
+  EXPECT_GT(phases.at("concentration").get<double>(), 0.99);
+  EXPECT_NEAR(phases.at("mean").get<double>(), 0.25, 0.05);
+  EXPECT_EQ(phases.at("instants"), 16);
+
+  spec.view_jitter = 0.01;
+  WriteRecording(testing::RecordHandEye(spec));
+  std::vector<std::string> spread_args = solve;
+  spread_args.back() = "out/spread.json";
+  const CommandResult spread = Run(kTool, spread_args);
+  ASSERT_EQ(spread.exit_code, kOk) << spread.err;
+  EXPECT_NE(spread.err.find(" ms, σ first-order (the views fall at many places between the tracker's reports, where it is within 3 %; --bootstrap B "
+                            "runs the bootstrap)"),
+            std::string::npos)
+      << spread.err;
+  EXPECT_NE(spread.err.find("the views fall at many places between the tracker's reports (concentration 0."), std::string::npos) << spread.err;
+  const Json he = ReadJson("out/spread.json");
+  EXPECT_FALSE(he.contains("bootstrap"));
+  EXPECT_TRUE(he.at("provenance").at("seed").is_null());
+  EXPECT_LT(he.at("fit").at("report_phases").at("concentration").get<double>(), 0.5);
 }
 
 // Issue 22 item 5, from photographs: calib-synth renders the recording's views (the chessboard its

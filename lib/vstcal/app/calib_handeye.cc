@@ -13,6 +13,7 @@
 #include "vstcal/formats/stereo/stereo_io.h"
 #include "vstcal/geometry/rotation.h"
 #include "vstcal/handeye/bootstrap.h"
+#include "vstcal/handeye/report_phases.h"
 #include "vstcal/handeye/refine.h"
 #include "vstcal/scene/view_keys.h"
 #include "vstcal/core/option_name.h"
@@ -171,11 +172,13 @@ Outcome SolveHandEyeFiles(const HandEyeRequest& request, const Provenance& prove
       throw InputError(request.corners + " with " + request.poses + ": " + e.what());
     }
   }();
-  // The default bootstraps the recordings whose first-order σ_δ may be off by more than 10 % and
-  // leaves the large ones, where it is not and B solves would cost tens of seconds
+  // The default bootstraps the recordings whose first-order σ_δ may be off by more than 10 %: views
+  // locked to the tracker's reports, at most kDefaultBootstrapMaxViews of them. Views spread between
+  // the reports, or more of them, have a first-order σ_δ within that, and a bootstrap that is not
   // (docs/tools/calib-handeye.md#bootstrap).
   const bool by_default = !request.bootstrap;
-  const int replicates = request.bootstrap.value_or(s.views <= kDefaultBootstrapMaxViews ? kDefaultBootstrapReplicates : 0);
+  const bool worth_it = s.report_phases.Locked() && s.views <= kDefaultBootstrapMaxViews;
+  const int replicates = request.bootstrap.value_or(worth_it ? kDefaultBootstrapReplicates : 0);
   std::optional<HandEyeBootstrap> bootstrap;
   std::string bootstrap_failed;
   if (replicates > 0) {
@@ -224,6 +227,8 @@ Outcome SolveHandEyeFiles(const HandEyeRequest& request, const Provenance& prove
     t += Line("  time offset: %.4f ms ± %.4f ms%s, σ first-order (", s.time_offset * 1000, sigma(12) * 1000, "");
     if (!bootstrap_failed.empty()) {
       t.append("the bootstrap failed: ").append(bootstrap_failed).append(")\n");
+    } else if (by_default && !s.report_phases.Locked()) {
+      t += "the views fall at many places between the tracker's reports, where it is within 3 %; " VSTCAL_OPT("bootstrap") " B runs the bootstrap)\n";
     } else if (by_default) {
       t.append(std::to_string(s.views)).append(" views: the bootstrap runs by default up to ").append(std::to_string(kDefaultBootstrapMaxViews));
       t += "; " VSTCAL_OPT("bootstrap") " B runs it)\n";
@@ -232,6 +237,15 @@ Outcome SolveHandEyeFiles(const HandEyeRequest& request, const Provenance& prove
     }
   }
   t += "    (the tracker's clock reads t + offset at the camera's t)\n";
+  const ReportPhases& phases = s.report_phases;
+  char where[160];
+  if (phases.Locked()) {
+    std::snprintf(where, sizeof where, "    the views sit at one place between the tracker's reports, %.2f of the way (concentration %.2f)\n", phases.mean,
+                  phases.concentration);
+  } else {
+    std::snprintf(where, sizeof where, "    the views fall at many places between the tracker's reports (concentration %.2f)\n", phases.concentration);
+  }
+  t += where;
   const Eigen::Vector3d rx = RotvecFromRotation(s.hmd_from_camera.R) * deg;
   char buf[400];
   std::snprintf(buf, sizeof buf, "  hmd_from_camera: t (%.3f, %.3f, %.3f) %s ± (%.3f, %.3f, %.3f); rotation %.3f° ± (%.3f, %.3f, %.3f)°\n",

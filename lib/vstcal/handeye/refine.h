@@ -126,6 +126,18 @@ struct JointTrackerNoise {
 // X's 6, Z's 6 and δ.
 inline constexpr size_t kHandEyeParameters = 13;
 
+// Where the kept views fall between the tracker's reports at the solved δ (report_phases.h,
+// docs/math/handeye.md#report-phases): s in [0, 1) of each instant's report interval.
+struct ReportPhases {
+  double concentration = 0;  // |mean of exp(2πi s)|: 1 when every view sits at one place, ~1/√n when spread
+  double mean = 0;           // the circular mean of s, in [0, 1): where they sit when concentrated
+  size_t instants = 0;       // the views' distinct times (a rig's pair is one)
+  bool Locked() const;       // concentration ≥ kLockedReportPhase
+  // Locked within kMidwayBand of the middle with fewer than kMidwayInstants: where σ_δ is known to
+  // be low, by the first order and the bootstrap alike (SolveHandEye warns).
+  bool LockedMidway() const;
+};
+
 struct HandEyeSolution {
   Rigid3d hmd_from_camera, tracker_from_board;
   double time_offset = 0;  // δ, s: the tracker's clock reads t + δ at the camera's t
@@ -155,6 +167,7 @@ struct HandEyeSolution {
   // orthogonal in its information). sigma_px stays the residuals' σ̂ (the fit); the corners' σ
   // estimated beside the tracker's is tracker_noise->corner_px.
   std::optional<JointTrackerNoise> tracker_noise;
+  ReportPhases report_phases;
 };
 
 // `iterations` counts every solve's (one per rejection round). Throws InputError for a log that is

@@ -160,7 +160,8 @@ OrderedJson HandEyeToJson(const HandEyeSolution& s, LengthUnit length_unit, cons
     return j;
   }
   j["covariance"] = {{"parameters", s.names}, {"matrix", MatrixToJson(s.covariance)}};
-  j["fit"] = {{"views", s.views}, {"corners", s.corners}, {"rms_px", s.rms_px}, {"sigma_px", s.sigma_px}, {"iterations", s.iterations}};
+  j["fit"] = {{"views", s.views}, {"corners", s.corners}, {"rms_px", s.rms_px}, {"sigma_px", s.sigma_px}, {"iterations", s.iterations},
+              {"report_phases", {{"concentration", s.report_phases.concentration}, {"mean", s.report_phases.mean}, {"instants", s.report_phases.instants}}}};
   j["start"] = {{"method", "park-martin"},
                 {"hmd_from_camera", PoseJson(s.start.hmd_from_camera)},
                 {"tracker_from_board", PoseJson(s.start.tracker_from_board)},

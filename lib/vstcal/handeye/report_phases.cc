@@ -1,0 +1,38 @@
+#include "vstcal/handeye/report_phases.h"
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <vector>
+
+namespace vstcal {
+
+bool ReportPhases::Locked() const { return concentration >= kLockedReportPhase; }
+
+bool ReportPhases::LockedMidway() const { return Locked() && std::abs(mean - 0.5) < kMidwayBand && instants < kMidwayInstants; }
+
+ReportPhases ViewReportPhases(std::span<const TrackedPose> log, std::span<const double> times, double time_offset) {
+  std::vector<double> sorted(times.begin(), times.end());
+  std::sort(sorted.begin(), sorted.end());
+  ReportPhases out;
+  std::complex<double> sum = 0;
+  double last = -INFINITY;
+  for (const double t : sorted) {
+    if (t - last <= 1e-6) continue;
+    last = t;
+    const double at = t + time_offset;
+    const auto after = std::upper_bound(log.begin(), log.end(), at, [](double x, const TrackedPose& p) { return x < p.time; });
+    if (after == log.begin() || after == log.end()) continue;
+    const double begin = std::prev(after)->time, s = (at - begin) / (after->time - begin);
+    sum += std::polar(1.0, 2 * M_PI * s);
+    ++out.instants;
+  }
+  if (out.instants == 0) return out;
+  out.concentration = std::abs(sum) / static_cast<double>(out.instants);
+  const double turn = std::arg(sum) / (2 * M_PI);
+  out.mean = turn < 0 ? turn + 1 : turn;
+  if (out.mean >= 1) out.mean = 0;
+  return out;
+}
+
+}  // namespace vstcal
