@@ -7,19 +7,28 @@
 // defaults), past what a test may take.
 //
 //   mc_handeye_bootstrap [recordings = 40] [replicates = 30] [first seed = 3000] [s = all: 0, 0.25, 0.5]
-//                        [views = 16] [centre = estimate]
+//                        [views = 16] [centre = estimate] [view jitter = 0 ms]
 //
 // centre: where the bootstrap's world is put — `estimate` (what calib-handeye does), or with the
 // truth in place of one plug-in value to measure what that value's error costs: `true-noise` (the
 // tracker's and the corners' σ's), `true-delta` (δ, hence where the views fall between the
 // reports), `true-both`, or `truth` (both, and the truth's motion, hand-eye and board: the bootstrap's
 // world is then the Monte Carlo's own, and the ratio must be 1 within its standard error — a check
-// of the simulation). It also prints the mean estimated σ's over the truth's.
+// of the simulation). It also prints the mean estimated σ's over the truth's. `envelope`: three
+// bootstraps at the estimate with δ̂ and δ̂ ± the sandwich's σ_δ (the same draws), the largest δ
+// variance of the three. `curvature`: the same three, δ's variance 2v₀ − ½(v₊ + v₋) — the centre's
+// less half its second difference: the plug-in's average over δ̂'s scatter, V + ½σ²V'', undone to
+// second order (linear in the three, so unbiased at any B; it may be negative in one recording).
+//
+// view jitter: each view's time moved later by a uniform draw in [0, jitter) ms (HandEyeSpec::view_jitter):
+// 10 ms (one report interval) puts the views at random phases, as a camera whose clock is not locked
+// to the tracker's; s then only sets δ.
 //
 // The standard error of spread/RMS: the ratio is √(mean e² / mean σ_b²) over recordings (e = δ̂ − δ
 // less its mean), so by the delta method Var log(ratio) = ¼ Var(e²/E e² − σ_b²/E σ_b²)/n, the
 // covariance of a recording's e² and σ_b² included. The sample variance of B replicates is
 // unbiased for the bootstrap's variance at any B ≥ 2, so B sets only σ_b²'s noise, not its mean.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -40,13 +49,15 @@ int main(int argc, char** argv) {
   if (argc > 4) fractions = {std::atof(argv[4])};
   const int views = argc > 5 ? std::atoi(argv[5]) : 16;
   const std::string centre = argc > 6 ? argv[6] : "estimate";
+  const double jitter_ms = argc > 7 ? std::atof(argv[7]) : 0;
+  const bool envelope = centre == "envelope", curvature = centre == "curvature";
   const bool truth = centre == "truth";
   const bool true_noise = centre == "true-noise" || centre == "true-both" || truth;
   const bool true_delta = centre == "true-delta" || centre == "true-both" || truth;
   if (runs < 2 || replicates < 2 || views < 3 || fractions[0] < 0 || fractions[0] >= 1 ||
-      !(centre == "estimate" || true_noise || true_delta)) {
+      !(centre == "estimate" || envelope || curvature || true_noise || true_delta) || !(jitter_ms >= 0 && jitter_ms <= 10)) {
     std::fprintf(stderr, "usage: mc_handeye_bootstrap [recordings ≥ 2] [replicates ≥ 2] [first seed] [s in [0, 1)] [views ≥ 3] "
-                         "[centre: estimate | true-noise | true-delta | true-both | truth]\n");
+                         "[centre: estimate | true-noise | true-delta | true-both | truth | envelope | curvature] [jitter, 0 … 10 ms]\n");
     return 2;
   }
   constexpr double kNoiseRad = 0.05 * M_PI / 180, kNoiseLength = 0.2, kNoisePx = 0.2;
@@ -55,7 +66,7 @@ int main(int argc, char** argv) {
   for (const double s_fraction : fractions) {
     const double delta = 0.03 + 0.01 * s_fraction;  // the tracker reports every 10 ms, the views at s = 0 with δ = 30 ms
     const std::clock_t start = std::clock();  // CPU, not wall: the machine is shared
-    std::vector<double> error, sandwich, boot, bias;
+    std::vector<double> error, sandwich, boot_var, bias;
     double rotation = 0, translation = 0, corners = 0;  // mean estimated σ over the truth's
     int without_noise = 0;
     for (int run = 0; run < runs; ++run) {
@@ -63,6 +74,7 @@ int main(int argc, char** argv) {
       spec.tracker_noise_deg = kNoiseRad * 180 / M_PI;
       spec.tracker_noise = kNoiseLength;
       spec.views = views;
+      spec.view_jitter = jitter_ms * 1e-3;
       const testing::HandEyeRecording r = testing::RecordHandEye(spec);
       const HandEyeSolution s = SolveHandEye(r.camera, r.log, r.views);
       HandEyeSolution at = s;
@@ -87,22 +99,40 @@ int main(int argc, char** argv) {
         exact.tracker_noise_deg = exact.tracker_noise = 0;
         motion = testing::RecordHandEye(exact).log;
       }
-      const HandEyeBootstrap b = BootstrapHandEye(r.camera, motion, r.views, at, {}, {replicates, 77 + static_cast<uint64_t>(run), 1});
+      HandEyeBootstrap b = BootstrapHandEye(r.camera, motion, r.views, at, {}, {replicates, 77 + static_cast<uint64_t>(run), 1});
+      double variance = b.covariance(12, 12);
+      if (envelope || curvature) {
+        double sides = 0;
+        for (const double side : {-1.0, 1.0}) {
+          HandEyeSolution moved = at;
+          moved.time_offset += side * std::sqrt(s.covariance(12, 12));
+          const HandEyeBootstrap other = BootstrapHandEye(r.camera, motion, r.views, moved, {}, {replicates, 77 + static_cast<uint64_t>(run), 1});
+          sides += other.covariance(12, 12);
+          if (envelope && other.covariance(12, 12) > variance) variance = other.covariance(12, 12);
+        }
+        if (curvature) variance = 2 * b.covariance(12, 12) - 0.5 * sides;
+      }
       error.push_back(s.time_offset - delta);
       sandwich.push_back(std::sqrt(s.covariance(12, 12)));
-      boot.push_back(std::sqrt(b.covariance(12, 12)));
+      boot_var.push_back(variance);
       bias.push_back(b.mean[12]);  // mean δ̂* less the bootstrap world's δ
     }
     const double seconds = static_cast<double>(std::clock() - start) / CLOCKS_PER_SEC;
     const double n = runs;
+    std::vector<double> boot;  // σ's for the mean and the z's; a negative variance (curvature) counts as 0 there
+    int negative = 0;
+    for (double v : boot_var) {
+      boot.push_back(std::sqrt(std::max(v, 0.0)));
+      negative += v <= 0;
+    }
     double mean_error = 0, spread = 0, mean_sandwich = 0, mean_boot = 0, boot_ms = 0, z_sandwich = 0, z_boot = 0, mean_bias = 0;
     for (int k = 0; k < runs; ++k) {
       mean_error += error[k] / n;
       mean_sandwich += sandwich[k] / n;
       mean_boot += boot[k] / n;
-      boot_ms += boot[k] * boot[k] / n;
+      boot_ms += boot_var[k] / n;
       z_sandwich += error[k] * error[k] / (sandwich[k] * sandwich[k]) / n;
-      z_boot += error[k] * error[k] / (boot[k] * boot[k]) / n;
+      if (boot_var[k] > 0) z_boot += error[k] * error[k] / boot_var[k] / (n - negative);
       mean_bias += bias[k] / n;
     }
     for (double e : error) spread += (e - mean_error) * (e - mean_error) / (n - 1);
@@ -110,7 +140,7 @@ int main(int argc, char** argv) {
     double log_var = 0;
     for (int k = 0; k < runs; ++k) {
       const double e = error[k] - mean_error;
-      const double u = e * e / e2_mean - boot[k] * boot[k] / boot_ms;
+      const double u = e * e / e2_mean - boot_var[k] / boot_ms;
       log_var += u * u / (n - 1);
     }
     const double ratio_se = 0.5 * std::sqrt(log_var / n);  // relative
@@ -120,9 +150,9 @@ int main(int argc, char** argv) {
     std::printf("%-5.3g %9.3f  %11.3f  %15.3f  %12.3f  %11.3f  %9.3f (%.3f)  %14.3f  %10.3f  %12.3f  %5.0f\n", s_fraction, spread * 1e3,
                 mean_sandwich * 1e3, spread / mean_sandwich, mean_boot * 1e3, boot_rms * 1e3, ratio, ratio * ratio_se, std::sqrt(z_sandwich),
                 std::sqrt(z_boot), mean_bias * 1e3, seconds);
-    std::printf("      centre %s; mean estimated σ / truth's: rotation %.3f, translation %.3f, corners %.3f (over the %d of %d "
-                "recordings with a noise estimate)\n", centre.c_str(), rotation * runs / (runs - without_noise),
-                translation * runs / (runs - without_noise), corners * runs / (runs - without_noise), runs - without_noise, runs);
+    std::printf("      centre %s, view jitter %g ms; mean estimated σ / truth's: rotation %.3f, translation %.3f, corners %.3f (over the %d of %d "
+                "recordings with a noise estimate); %d bootstrap variances ≤ 0\n", centre.c_str(), jitter_ms, rotation * runs / (runs - without_noise),
+                translation * runs / (runs - without_noise), corners * runs / (runs - without_noise), runs - without_noise, runs, negative);
     std::fflush(stdout);
   }
   return 0;
