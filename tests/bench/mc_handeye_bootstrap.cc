@@ -7,7 +7,7 @@
 // defaults), past what a test may take.
 //
 //   mc_handeye_bootstrap [recordings = 40] [replicates = 30] [first seed = 3000] [s = all: 0, 0.25, 0.5]
-//                        [views = 16] [centre = estimate] [view jitter = 0 ms]
+//                        [views = 16] [centre = estimate] [view jitter = 0 ms] [tracker noise = 0.05 °] [= 0.2 mm]
 //
 // centre: where the bootstrap's world is put — `estimate` (what calib-handeye does), or with the
 // truth in place of one plug-in value to measure what that value's error costs: `true-noise` (the
@@ -50,17 +50,19 @@ int main(int argc, char** argv) {
   const int views = argc > 5 ? std::atoi(argv[5]) : 16;
   const std::string centre = argc > 6 ? argv[6] : "estimate";
   const double jitter_ms = argc > 7 ? std::atof(argv[7]) : 0;
+  const double noise_deg = argc > 8 ? std::atof(argv[8]) : 0.05, noise_mm = argc > 9 ? std::atof(argv[9]) : 0.2;
   const bool envelope = centre == "envelope", curvature = centre == "curvature";
   const bool truth = centre == "truth";
   const bool true_noise = centre == "true-noise" || centre == "true-both" || truth;
   const bool true_delta = centre == "true-delta" || centre == "true-both" || truth;
   if (runs < 2 || replicates < 2 || views < 3 || fractions[0] < 0 || fractions[0] >= 1 ||
-      !(centre == "estimate" || envelope || curvature || true_noise || true_delta) || !(jitter_ms >= 0 && jitter_ms <= 10)) {
+      !(centre == "estimate" || envelope || curvature || true_noise || true_delta) || !(jitter_ms >= 0 && jitter_ms <= 10) ||
+      !(noise_deg > 0 && noise_mm > 0)) {
     std::fprintf(stderr, "usage: mc_handeye_bootstrap [recordings ≥ 2] [replicates ≥ 2] [first seed] [s in [0, 1)] [views ≥ 3] "
-                         "[centre: estimate | true-noise | true-delta | true-both | truth | envelope | curvature] [jitter, 0 … 10 ms]\n");
+                         "[centre: estimate | true-noise | true-delta | true-both | truth | envelope | curvature] [jitter, 0 … 10 ms] [tracker noise > 0 °] [> 0 mm]\n");
     return 2;
   }
-  constexpr double kNoiseRad = 0.05 * M_PI / 180, kNoiseLength = 0.2, kNoisePx = 0.2;
+  const double noise_rad = noise_deg * M_PI / 180, noise_length = noise_mm, noise_px = 0.2;
   std::printf("s     spread_ms  sandwich_ms  spread/sandwich  boot_mean_ms  boot_rms_ms  spread/boot_rms (se)  rms_z_sandwich  rms_z_boot  "
               "boot_bias_ms  cpu_s\n");
   for (const double s_fraction : fractions) {
@@ -68,24 +70,25 @@ int main(int argc, char** argv) {
     const std::clock_t start = std::clock();  // CPU, not wall: the machine is shared
     std::vector<double> error, sandwich, boot_var, bias;
     double rotation = 0, translation = 0, corners = 0;  // mean estimated σ over the truth's
+    double slope_excess = 0, concentration = 0;          // means: HandEyeSolution's, and its report_phases'
     int without_noise = 0;
     for (int run = 0; run < runs; ++run) {
       HandEyeSpec spec = testing::HandEyeTestSpec(delta, 0.2, first_seed + static_cast<uint64_t>(run));
-      spec.tracker_noise_deg = kNoiseRad * 180 / M_PI;
-      spec.tracker_noise = kNoiseLength;
+      spec.tracker_noise_deg = noise_rad * 180 / M_PI;
+      spec.tracker_noise = noise_length;
       spec.views = views;
       spec.view_jitter = jitter_ms * 1e-3;
       const testing::HandEyeRecording r = testing::RecordHandEye(spec);
       const HandEyeSolution s = SolveHandEye(r.camera, r.log, r.views);
       HandEyeSolution at = s;
       if (s.tracker_noise) {
-        rotation += s.tracker_noise->rotation.sigma / kNoiseRad / runs;
-        translation += s.tracker_noise->translation.sigma / kNoiseLength / runs;
-        corners += s.tracker_noise->corner_px.sigma / kNoisePx / runs;
+        rotation += s.tracker_noise->rotation.sigma / noise_rad / runs;
+        translation += s.tracker_noise->translation.sigma / noise_length / runs;
+        corners += s.tracker_noise->corner_px.sigma / noise_px / runs;
         if (true_noise) {
-          at.tracker_noise->rotation.sigma = kNoiseRad;
-          at.tracker_noise->translation.sigma = kNoiseLength;
-          at.tracker_noise->corner_px.sigma = kNoisePx;
+          at.tracker_noise->rotation.sigma = noise_rad;
+          at.tracker_noise->translation.sigma = noise_length;
+          at.tracker_noise->corner_px.sigma = noise_px;
         }
       } else {
         ++without_noise;
@@ -112,6 +115,8 @@ int main(int argc, char** argv) {
         }
         if (curvature) variance = 2 * b.covariance(12, 12) - 0.5 * sides;
       }
+      slope_excess += s.slope_excess / runs;
+      concentration += s.report_phases.concentration / runs;
       error.push_back(s.time_offset - delta);
       sandwich.push_back(std::sqrt(s.covariance(12, 12)));
       boot_var.push_back(variance);
@@ -150,9 +155,11 @@ int main(int argc, char** argv) {
     std::printf("%-5.3g %9.3f  %11.3f  %15.3f  %12.3f  %11.3f  %9.3f (%.3f)  %14.3f  %10.3f  %12.3f  %5.0f\n", s_fraction, spread * 1e3,
                 mean_sandwich * 1e3, spread / mean_sandwich, mean_boot * 1e3, boot_rms * 1e3, ratio, ratio * ratio_se, std::sqrt(z_sandwich),
                 std::sqrt(z_boot), mean_bias * 1e3, seconds);
-    std::printf("      centre %s, view jitter %g ms; mean estimated σ / truth's: rotation %.3f, translation %.3f, corners %.3f (over the %d of %d "
-                "recordings with a noise estimate); %d bootstrap variances ≤ 0\n", centre.c_str(), jitter_ms, rotation * runs / (runs - without_noise),
+    std::printf("      centre %s, view jitter %g ms, tracker noise %g° and %g mm; mean estimated σ / truth's: rotation %.3f, translation %.3f, corners %.3f (over the %d of %d "
+                "recordings with a noise estimate); %d bootstrap variances ≤ 0\n", centre.c_str(), jitter_ms, noise_deg, noise_mm, rotation * runs / (runs - without_noise),
                 translation * runs / (runs - without_noise), corners * runs / (runs - without_noise), runs - without_noise, runs, negative);
+    std::printf("      mean slope excess N Ī⁻¹_δδ %.3f (over the views %.4f), mean report-phase concentration %.3f\n", slope_excess,
+                slope_excess / views, concentration);
     std::fflush(stdout);
   }
   return 0;

@@ -433,7 +433,7 @@ TEST_F(CliCalibHandEye, DefaultBootstrapsOnlyViewsLockedToTheReports) {
   spread_args.back() = "out/spread.json";
   const CommandResult spread = Run(kTool, spread_args);
   ASSERT_EQ(spread.exit_code, kOk) << spread.err;
-  EXPECT_NE(spread.err.find(" ms, σ first-order (the views fall at many places between the tracker's reports, where it is within 3 %; --bootstrap B "
+  EXPECT_NE(spread.err.find(" ms, σ first-order (the views fall at many places between the tracker's reports, the better σ there; --bootstrap B "
                             "runs the bootstrap)"),
             std::string::npos)
       << spread.err;

@@ -4,6 +4,7 @@
 // only, and a solve's own phases for views locked to the reports and for views spread by jitter.
 #include <algorithm>
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -70,6 +71,52 @@ TEST(HandEyeReportPhases, SolveReportsLockedAndSpreadViews) {
   r = testing::RecordHandEye(spec);
   s = SolveHandEye(r.camera, r.log, r.views);
   EXPECT_FALSE(s.report_phases.Locked()) << s.report_phases.concentration;
+}
+
+// The shortfall's formula: √(1 + 5q/n) for locked views near the middle, 1 elsewhere.
+TEST(HandEyeReportPhases, MidwayShortfallOnlyForLockedViewsNearTheMiddle) {
+  ReportPhases p;
+  p.concentration = 1;
+  p.mean = 0.45;
+  p.instants = 16;
+  EXPECT_DOUBLE_EQ(MidwaySigmaShortfall(p, 1.6), std::sqrt(1.5));
+  p.mean = 0.25;  // outside the band (0.3, 0.7)
+  EXPECT_EQ(MidwaySigmaShortfall(p, 1.6), 1);
+  p.mean = 0.65;
+  p.concentration = 0.3;  // not locked
+  EXPECT_EQ(MidwaySigmaShortfall(p, 1.6), 1);
+}
+
+// The solve warns where the Monte Carlo of docs/math/handeye.md#report-phases found σ_δ 16 … 22 %
+// low — 16 views locked midway, 0.05° and 0.2 mm a report — and not where it found both σ's within
+// 5 %: the same with 0.02° and 0.1 mm, or with the views jittered over a report interval.
+TEST(HandEyeReportPhases, SolveWarnsWhereTheOffsetsSigmaIsKnownLow) {
+  const auto solve = [](double noise_deg, double noise_mm, double jitter) {
+    HandEyeSpec spec = testing::HandEyeTestSpec(0.035, 0.2, 5001);
+    spec.views = 16;
+    spec.tracker_noise_deg = noise_deg;
+    spec.tracker_noise = noise_mm;
+    spec.view_jitter = jitter;
+    const testing::HandEyeRecording r = testing::RecordHandEye(spec);
+    return SolveHandEye(r.camera, r.log, r.views);
+  };
+  const auto warned = [](const HandEyeSolution& s) {
+    for (const std::string& w : s.warnings) {
+      if (w.find("the time offset's σ is about") != std::string::npos) return true;
+    }
+    return false;
+  };
+  const HandEyeSolution noisy = solve(0.05, 0.2, 0);
+  EXPECT_TRUE(noisy.report_phases.LockedMidway());
+  EXPECT_GT(noisy.slope_excess, 0.8);  // ~1.5 over recordings (the Monte Carlo's mean)
+  EXPECT_LT(noisy.slope_excess, 3);
+  EXPECT_TRUE(warned(noisy)) << ::testing::PrintToString(noisy.warnings);
+  const HandEyeSolution quiet = solve(0.02, 0.1, 0);
+  EXPECT_TRUE(quiet.report_phases.LockedMidway());
+  EXPECT_FALSE(warned(quiet)) << quiet.slope_excess;
+  const HandEyeSolution jittered = solve(0.05, 0.2, 0.01);
+  EXPECT_FALSE(jittered.report_phases.Locked());
+  EXPECT_FALSE(warned(jittered));
 }
 
 }  // namespace

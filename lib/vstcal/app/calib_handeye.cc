@@ -228,7 +228,7 @@ Outcome SolveHandEyeFiles(const HandEyeRequest& request, const Provenance& prove
     if (!bootstrap_failed.empty()) {
       t.append("the bootstrap failed: ").append(bootstrap_failed).append(")\n");
     } else if (by_default && !s.report_phases.Locked()) {
-      t += "the views fall at many places between the tracker's reports, where it is within 3 %; " VSTCAL_OPT("bootstrap") " B runs the bootstrap)\n";
+      t += "the views fall at many places between the tracker's reports, the better σ there; " VSTCAL_OPT("bootstrap") " B runs the bootstrap)\n";
     } else if (by_default) {
       t.append(std::to_string(s.views)).append(" views: the bootstrap runs by default up to ").append(std::to_string(kDefaultBootstrapMaxViews));
       t += "; " VSTCAL_OPT("bootstrap") " B runs it)\n";

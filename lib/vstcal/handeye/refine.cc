@@ -425,6 +425,7 @@ std::vector<std::vector<Eigen::Vector2d>> Refine(Chain* chain, const std::vector
   const Eigen::Matrix<double, 13, 13> inverse = information.inverse();
   const Eigen::Matrix<double, 13, 1> u = inverse.col(12);
   out->covariance = inverse + score_excess * u * u.transpose();
+  out->slope_excess = score_excess * inverse(12, 12);
   return per_view;
 }
 
@@ -714,13 +715,17 @@ HandEyeSolution SolveHandEye(const Camera& camera, std::span<const TrackedPose> 
   std::vector<double> times;
   for (const SolveView& v : active) times.push_back(v.view->time);
   out.report_phases = ViewReportPhases(log, times, out.time_offset);
-  if (out.report_phases.LockedMidway()) {
-    char share[16];
-    std::snprintf(share, sizeof share, "%.2f", out.report_phases.mean);
-    out.warnings.push_back(std::string("the views all sit ") + share + " of the way between two of the tracker's reports (a camera locked to the tracker's clock): there the time offset's "
-                           "σ is up to 20 % too small with " + std::to_string(out.report_phases.instants) +
-                           " view times, the bootstrap's too (docs/math/handeye.md#report-phases). Record 60 views or more, or let the "
-                           "camera's clock run free of the tracker's");
+  // σ_δ more than 10 % too small: say so, with what would mend it (docs/math/handeye.md#report-phases).
+  if (const double shortfall = MidwaySigmaShortfall(out.report_phases, out.slope_excess); shortfall > 1.1) {
+    char text[640];
+    const double n = static_cast<double>(out.report_phases.instants);
+    std::snprintf(text, sizeof text,
+                  "the views all sit %.2f of the way between two of the tracker's reports (a camera locked to the tracker's clock), "
+                  "and the tracker's noise is large beside the motion (the slope's excess %.2f over %.0f view times): there the "
+                  "time offset's σ is about %.0f %% too small, the bootstrap's too (docs/math/handeye.md#report-phases). Record "
+                  "%.0f views or more, move faster, or let the camera's clock run free of the tracker's",
+                  out.report_phases.mean, out.slope_excess, n, 100 * (1 - 1 / shortfall), std::ceil(kMidwayExcess * out.slope_excess / 0.21));
+    out.warnings.push_back(text);
   }
   return out;
 }

@@ -133,9 +133,7 @@ struct ReportPhases {
   double mean = 0;           // the circular mean of s, in [0, 1): where they sit when concentrated
   size_t instants = 0;       // the views' distinct times (a rig's pair is one)
   bool Locked() const;       // concentration ≥ kLockedReportPhase
-  // Locked within kMidwayBand of the middle with fewer than kMidwayInstants: where σ_δ is known to
-  // be low, by the first order and the bootstrap alike (SolveHandEye warns).
-  bool LockedMidway() const;
+  bool LockedMidway() const;  // locked, within kMidwayBand of the middle of the interval
 };
 
 struct HandEyeSolution {
@@ -167,6 +165,10 @@ struct HandEyeSolution {
   // orthogonal in its information). sigma_px stays the residuals' σ̂ (the fit); the corners' σ
   // estimated beside the tracker's is tracker_noise->corner_px.
   std::optional<JointTrackerNoise> tracker_noise;
+  // With the tracker's noise: N Ī⁻¹_δδ, what the noisy slope between two reports adds to δ's
+  // first-order variance over the true velocity's information alone (δ's variance is Ī⁻¹_δδ (1 +
+  // this)); about 6σ²/(wΔt²|ν|²), the slope's noise over the velocity squared. 0 without.
+  double slope_excess = 0;
   ReportPhases report_phases;
 };
 

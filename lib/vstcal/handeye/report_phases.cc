@@ -9,7 +9,12 @@ namespace vstcal {
 
 bool ReportPhases::Locked() const { return concentration >= kLockedReportPhase; }
 
-bool ReportPhases::LockedMidway() const { return Locked() && std::abs(mean - 0.5) < kMidwayBand && instants < kMidwayInstants; }
+bool ReportPhases::LockedMidway() const { return Locked() && std::abs(mean - 0.5) < kMidwayBand; }
+
+double MidwaySigmaShortfall(const ReportPhases& phases, double slope_excess) {
+  if (!phases.LockedMidway() || phases.instants == 0) return 1;
+  return std::sqrt(1 + kMidwayExcess * slope_excess / static_cast<double>(phases.instants));
+}
 
 ReportPhases ViewReportPhases(std::span<const TrackedPose> log, std::span<const double> times, double time_offset) {
   std::vector<double> sorted(times.begin(), times.end());

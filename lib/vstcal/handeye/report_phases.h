@@ -2,7 +2,7 @@
 // (docs/math/handeye.md#report-phases). The time offset's σ depends on it: a camera locked to the
 // tracker's clock puts every view at one place s of the report interval, where the first-order σ_δ
 // is 8 % high (s = 0, on the reports) to 20 % low (s = ½) with 16 views; a camera on its own clock
-// spreads them, and the first-order σ_δ is then within 3 %.
+// spreads them, and the first-order σ_δ is then within 4 % (0.02° … 0.05° a report; 13 % too large at 0.1°).
 #pragma once
 
 #include <cstddef>
@@ -15,11 +15,17 @@ namespace vstcal {
 // At or above this concentration the views count as locked to the tracker's reports; 16 views at
 // random places reach it in 2 % of recordings (Rayleigh: P(R ≥ r) ≈ exp(−n r²)).
 inline constexpr double kLockedReportPhase = 0.5;
-// Locked views this close to the middle of the interval (s in (0.3, 0.7)), fewer than this many:
-// σ_δ is up to 20 % low there with 16 views, by the first order and the bootstrap alike (5 … 6 % at
-// s = 0.3, 13 … 17 % at ⅜, 16 … 22 % at ½; at ¼ both are within 1 %), and about 7 % low with 61.
+// Locked views this close to the middle of the interval, s in (0.3, 0.7): there σ_δ is too small,
+// by the first order and the bootstrap alike, the more so the larger the slope's excess q
+// (HandEyeSolution::slope_excess) per view time n: the variance by about 1 + kMidwayExcess q/n
+// (fitted over three Monte Carlo points, docs/math/handeye.md#report-phases). At s = 0.3 both σ's
+// were 5 … 6 % low where ½ gave 16 … 22 %, at ¼ both within 1 %.
 inline constexpr double kMidwayBand = 0.2;
-inline constexpr size_t kMidwayInstants = 60;
+inline constexpr double kMidwayExcess = 5;
+
+// The factor by which σ_δ is too small for locked views near the middle (1 elsewhere):
+// √(1 + kMidwayExcess q / n).
+double MidwaySigmaShortfall(const ReportPhases& phases, double slope_excess);
 
 // s = (t + δ − t_k) / (t_{k+1} − t_k) for each time t, in the report interval [t_k, t_{k+1}) holding
 // t + δ; times within 1 µs of each other count once, times outside the log not at all. `log` is
