@@ -25,6 +25,16 @@ constexpr std::string_view kTool = "calib-handeye";
 
 class CliCalibHandEye : public CliTest {
  protected:
+  // The bootstrap tests' recording: 16 views a quarter of the way between the 100 Hz reports, the
+  // tracker's every report with 0.05° and 0.2 mm per axis, 0.2 px on the corners.
+  static HandEyeSpec SixteenViewsNoisyTracker() {
+    HandEyeSpec spec = testing::HandEyeTestSpec(0.0325, 0.2, 3001);
+    spec.tracker_noise_deg = 0.05;
+    spec.tracker_noise = 0.2;
+    spec.views = 16;
+    return spec;
+  }
+
   // in/corners.json, in/poses.txt (TUM, metres), in/poses.json (poses@1, mm), in/camera.json.
   void WriteRecording(const testing::HandEyeRecording& r) const {
     Correspondences c;
@@ -345,10 +355,7 @@ TEST_F(CliCalibHandEye, DropsABadFrameUnlessToldToKeepAll) {
 // saying so. One replicate, --seed or --threads with --bootstrap 0 and 300 threads are refused with
 // nothing written.
 TEST_F(CliCalibHandEye, BootstrapsTheCovarianceDeterministically) {
-  HandEyeSpec spec = testing::HandEyeTestSpec(0.0325, 0.2, 3001);
-  spec.tracker_noise_deg = 0.05;
-  spec.tracker_noise = 0.2;
-  spec.views = 16;
+  HandEyeSpec spec = SixteenViewsNoisyTracker();
   WriteRecording(testing::RecordHandEye(spec));
   const std::vector<std::string> base = {"solve", "in/corners.json", "--poses", "in/poses.json", "--camera", "in/camera.json"};
   const auto with = [&](std::vector<std::string> extra) {
@@ -412,10 +419,7 @@ TEST_F(CliCalibHandEye, BootstrapsTheCovarianceDeterministically) {
 // where its views sit; the same recording with a report interval of jitter on the camera's clock is
 // not — its first-order σ is printed with the reason — and its file holds the phases.
 TEST_F(CliCalibHandEye, DefaultBootstrapsOnlyViewsLockedToTheReports) {
-  HandEyeSpec spec = testing::HandEyeTestSpec(0.0325, 0.2, 3001);
-  spec.tracker_noise_deg = 0.05;
-  spec.tracker_noise = 0.2;
-  spec.views = 16;
+  HandEyeSpec spec = SixteenViewsNoisyTracker();
   WriteRecording(testing::RecordHandEye(spec));
   const std::vector<std::string> solve = {"solve", "in/corners.json", "--poses", "in/poses.json", "--camera", "in/camera.json", "-o", "out/locked.json"};
   const CommandResult locked = Run(kTool, solve);

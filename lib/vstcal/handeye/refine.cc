@@ -106,14 +106,6 @@ bool FrameResiduals(const Chain& chain, const Frame& frame, const T* x, const T*
   return true;
 }
 
-// The report interval [t_k, t_k+1] holding tracker time τ (InterpolatePose's; the first or last
-// for τ outside the log).
-size_t ReportInterval(std::span<const TrackedPose> log, double tau) {
-  const size_t k = static_cast<size_t>(std::upper_bound(log.begin(), log.end(), tau, [](double t, const TrackedPose& p) { return t < p.time; }) -
-                                       log.begin());
-  return std::min(std::max<size_t>(k, 1), log.size() - 1) - 1;
-}
-
 // The weight w(s) = (1 − s)² + s² of the interpolated pose's error at tracker time τ (its variance
 // over one report's), s the fraction of τ in its interval: with T a Jet, δ's derivative flows
 // through s (docs/math/handeye.md#delta-likelihood).
@@ -429,12 +421,6 @@ std::vector<std::vector<Eigen::Vector2d>> Refine(Chain* chain, const std::vector
   return per_view;
 }
 
-// The interpolation's s ∈ [0, 1] at tracker time τ between the reports around it (InterpolatePose).
-double InterpolationFraction(std::span<const TrackedPose> log, double tau) {
-  const size_t k = ReportInterval(log, tau);
-  return std::clamp((tau - log[k].time) / (log[k + 1].time - log[k].time), 0.0, 1.0);
-}
-
 // A σ from its variance's estimate v and standard error: σ = √v, σ(σ) = se/(2√v) (first order),
 // the 95 % interval that of v (Wald) taken through the square root, clamped at 0.
 EstimatedSigma SigmaOf(double v, double se) {
@@ -716,7 +702,7 @@ HandEyeSolution SolveHandEye(const Camera& camera, std::span<const TrackedPose> 
   for (const SolveView& v : active) times.push_back(v.view->time);
   out.report_phases = ViewReportPhases(log, times, out.time_offset);
   // σ_δ more than 10 % too small: say so, with what would mend it (docs/math/handeye.md#report-phases).
-  if (const double shortfall = MidwaySigmaShortfall(out.report_phases, out.slope_excess); shortfall > 1.1) {
+  if (const double shortfall = MidwaySigmaShortfall(out.report_phases, out.slope_excess); shortfall > kWarnedShortfall) {
     char text[640];
     const double n = static_cast<double>(out.report_phases.instants);
     std::snprintf(text, sizeof text,
@@ -724,7 +710,7 @@ HandEyeSolution SolveHandEye(const Camera& camera, std::span<const TrackedPose> 
                   "and the tracker's noise is large beside the motion (the slope's excess %.2f over %.0f view times): there the "
                   "time offset's σ is about %.0f %% too small, the bootstrap's too (docs/math/handeye.md#report-phases). Record "
                   "%.0f views or more, move faster, or let the camera's clock run free of the tracker's",
-                  out.report_phases.mean, out.slope_excess, n, 100 * (1 - 1 / shortfall), std::ceil(kMidwayExcess * out.slope_excess / 0.21));
+                  out.report_phases.mean, out.slope_excess, n, 100 * (1 - 1 / shortfall), std::ceil(kMidwayExcess * out.slope_excess / (kWarnedShortfall * kWarnedShortfall - 1)));
     out.warnings.push_back(text);
   }
   return out;

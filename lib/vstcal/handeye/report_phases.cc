@@ -16,6 +16,17 @@ double MidwaySigmaShortfall(const ReportPhases& phases, double slope_excess) {
   return std::sqrt(1 + kMidwayExcess * slope_excess / static_cast<double>(phases.instants));
 }
 
+size_t ReportInterval(std::span<const TrackedPose> log, double tau) {
+  const size_t k = static_cast<size_t>(std::upper_bound(log.begin(), log.end(), tau, [](double t, const TrackedPose& p) { return t < p.time; }) -
+                                       log.begin());
+  return std::min(std::max<size_t>(k, 1), log.size() - 1) - 1;
+}
+
+double InterpolationFraction(std::span<const TrackedPose> log, double tau) {
+  const size_t k = ReportInterval(log, tau);
+  return std::clamp((tau - log[k].time) / (log[k + 1].time - log[k].time), 0.0, 1.0);
+}
+
 ReportPhases ViewReportPhases(std::span<const TrackedPose> log, std::span<const double> times, double time_offset) {
   std::vector<double> sorted(times.begin(), times.end());
   std::sort(sorted.begin(), sorted.end());
@@ -26,10 +37,8 @@ ReportPhases ViewReportPhases(std::span<const TrackedPose> log, std::span<const 
     if (t - last <= 1e-6) continue;
     last = t;
     const double at = t + time_offset;
-    const auto after = std::upper_bound(log.begin(), log.end(), at, [](double x, const TrackedPose& p) { return x < p.time; });
-    if (after == log.begin() || after == log.end()) continue;
-    const double begin = std::prev(after)->time, s = (at - begin) / (after->time - begin);
-    sum += std::polar(1.0, 2 * M_PI * s);
+    if (log.size() < 2 || !(at >= log.front().time && at < log.back().time)) continue;
+    sum += std::polar(1.0, 2 * M_PI * InterpolationFraction(log, at));
     ++out.instants;
   }
   if (out.instants == 0) return out;

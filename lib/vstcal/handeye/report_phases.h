@@ -22,10 +22,20 @@ inline constexpr double kLockedReportPhase = 0.5;
 // were 5 … 6 % low where ½ gave 16 … 22 %, at ¼ both within 1 %.
 inline constexpr double kMidwayBand = 0.2;
 inline constexpr double kMidwayExcess = 5;
+// SolveHandEye warns past this shortfall: σ_δ more than 10 % too small.
+inline constexpr double kWarnedShortfall = 1.1;
 
 // The factor by which σ_δ is too small for locked views near the middle (1 elsewhere):
 // √(1 + kMidwayExcess q / n).
 double MidwaySigmaShortfall(const ReportPhases& phases, double slope_excess);
+
+// The report interval [t_k, t_k+1] holding tracker time τ (InterpolatePose's; the first or last
+// for τ outside the log), as k. `log` has at least 2 reports.
+size_t ReportInterval(std::span<const TrackedPose> log, double tau);
+
+// The interpolation's s ∈ [0, 1] at tracker time τ between the reports around it (clamped outside
+// the log): the place a view's tracker time has between two reports.
+double InterpolationFraction(std::span<const TrackedPose> log, double tau);
 
 // s = (t + δ − t_k) / (t_{k+1} − t_k) for each time t, in the report interval [t_k, t_{k+1}) holding
 // t + δ; times within 1 µs of each other count once, times outside the log not at all. `log` is
