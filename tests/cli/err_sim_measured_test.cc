@@ -131,6 +131,24 @@ TEST_F(CliErrSimMeasured, BudgetSaysWhatWasMeasured) {
   const std::string page = ReadText("out/report.html");
   EXPECT_NE(page.find("measured (<span title=\"vstcal/handeye@1\">he.json</span>)"), std::string::npos);
   EXPECT_NE(page.find("<td class=\"origin\" style=\"text-align:left\">assumed</td>"), std::string::npos);
+
+  // A measurement that doubts itself (calib-handeye's warnings, e.g. views locked midway between the
+  // tracker's reports): err-sim repeats its warnings after the budget's provenance. Warnings that are
+  // not a list of strings are refused, naming the file and field.
+  EXPECT_FALSE(r.err.find("the measurement files warn") != std::string::npos) << r.err;
+  Json doubted = he;
+  doubted["warnings"] = {"the time offset's σ is about 17 % too small"};
+  WriteJson("in/he.json", doubted);
+  const CommandResult warned = Run("err-sim", {"run", "in/chain.json", "-o", "out/report2.json"});
+  ASSERT_EQ(warned.exit_code, kOk) << warned.err;
+  EXPECT_NE(warned.err.find("  the measurement files warn (their σ's are used as written):\n"
+                            "    he.json: the time offset's σ is about 17 % too small\n"),
+            std::string::npos)
+      << warned.err;
+  doubted["warnings"] = {1, 2};
+  WriteJson("in/he.json", doubted);
+  EXPECT_TRUE(FailsWith(Run("err-sim", {"run", "in/chain.json", "-o", "out/report3.json"}), "err-sim", kBadInput, "he.json", {"warnings"}));
+  EXPECT_FALSE(fs::exists(Path("out/report3.json")));
 }
 
 }  // namespace

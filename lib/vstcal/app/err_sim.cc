@@ -95,6 +95,14 @@ void RequireDefinedPoints(const ChainModel& model, const SimulationResult& resul
   }
 }
 
+// The warnings of the chain's measurement files, after the budget's provenance: empty when none.
+std::string MeasurementWarnings(const ChainModel& model) {
+  if (model.measurement_warnings.empty()) return "";
+  std::string out = "  the measurement files warn (their σ's are used as written):\n";
+  for (const std::string& w : model.measurement_warnings) out += "    " + w + "\n";
+  return out;
+}
+
 }  // namespace
 
 std::string ErrSimDocument::Text() const { return compact ? DumpJsonCompact(json) : DumpJson(json); }
@@ -135,7 +143,7 @@ ErrSimDocument RunErrSim(const RunRequest& request, const Provenance& given, con
   if (request.shards > 1) return {ShardToJson(result, run, provenance), "", true};
   RequireDefinedPoints(model, result, request.chain.chain);
   const ChainEvaluator chain(model);
-  return {ReportToJson(chain, result, run, provenance), ReportText(chain, result, run)};
+  return {ReportToJson(chain, result, run, provenance), ReportText(chain, result, run) + MeasurementWarnings(model)};
 }
 
 ErrSimDocument MergeErrSim(const std::string& chain, const std::vector<std::string>& shard_files, const Provenance& given) {

@@ -135,6 +135,9 @@ struct ChainModel {
   std::vector<ChainParameter> parameters;  // size layout.size(), in θ order
   uint64_t samples = 0;
   uint64_t seed = 0;
+  // The warnings of the measurement files the chain takes distributions from, each "<file>: <warning>"
+  // (a handeye@1 file's `warnings`): a budget built on a σ its own file doubts says so.
+  std::vector<std::string> measurement_warnings;
 
   // Pose errors of the whole camera head (θ's kRigRotation, kRigTranslation: the mount, hmd frame)
   // and of the tracker's alignment (kTrackerAlignmentRotation, kTrackerAlignmentTranslation) as

@@ -355,6 +355,9 @@ ChainModel BuildChainModel(const ChainSpec& spec) {
   ChainModel model = ChainModel::WithZeroErrors(std::move(g), spec.fiducials, spec.RendererLenses());
   model.samples = spec.samples;
   model.seed = spec.seed;
+  if (spec.handeye) {
+    for (const std::string& w : spec.handeye->measured.warnings) model.measurement_warnings.push_back(spec.handeye->file + ": " + w);
+  }
   for (const TermSpec& t : spec.terms) {
     const TermDecl& d = Declaration(t.term);
     const double scale = 1.0 / FilePerInternal(d.unit);

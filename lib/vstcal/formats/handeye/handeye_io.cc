@@ -87,6 +87,10 @@ HandEyeMeasurement HandEyeFromJson(const JsonDocument& doc) {
       for (Eigen::Index b = 0; b < n; ++b) out.solution.covariance(a, b) = c.matrix(*c.Find(expected[a]), *c.Find(expected[b]));
     out.solution.names = expected;
   }
+  // What calib-handeye doubted about its own estimate (strings; err-sim repeats them).
+  if (const auto warnings = root.find("warnings")) {
+    for (size_t i = 0; i < warnings->ArraySize(); ++i) out.solution.warnings.push_back(warnings->at(i).String());
+  }
   if (const auto b = root.find("bootstrap")) {
     b->ExpectObject();
     out.bootstrap_time_offset_sigma = b->at("time_offset_sigma_s").NonNegativeNumber();
