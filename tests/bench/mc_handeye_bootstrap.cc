@@ -8,6 +8,7 @@
 //
 //   mc_handeye_bootstrap [recordings = 40] [replicates = 30] [first seed = 3000] [s = all: 0, 0.25, 0.5]
 //                        [views = 16] [centre = estimate] [view jitter = 0 ms] [tracker noise = 0.05 °] [= 0.2 mm]
+//                        [tracker rate = 100 Hz: 100 × 2ᵏ, so that the views at δ = 30 ms sit on a report]
 //
 // centre: where the bootstrap's world is put — `estimate` (what calib-handeye does), or with the
 // truth in place of one plug-in value to measure what that value's error costs: `true-noise` (the
@@ -51,22 +52,23 @@ int main(int argc, char** argv) {
   const std::string centre = argc > 6 ? argv[6] : "estimate";
   const double jitter_ms = argc > 7 ? std::atof(argv[7]) : 0;
   const double noise_deg = argc > 8 ? std::atof(argv[8]) : 0.05, noise_mm = argc > 9 ? std::atof(argv[9]) : 0.2;
+  const double rate_hz = argc > 10 ? std::atof(argv[10]) : 100;
   const bool envelope = centre == "envelope", curvature = centre == "curvature";
   const bool truth = centre == "truth";
   const bool true_noise = centre == "true-noise" || centre == "true-both" || truth;
   const bool true_delta = centre == "true-delta" || centre == "true-both" || truth;
   if (runs < 2 || replicates < 2 || views < 3 || fractions[0] < 0 || fractions[0] >= 1 ||
       !(centre == "estimate" || envelope || curvature || true_noise || true_delta) || !(jitter_ms >= 0 && jitter_ms <= 10) ||
-      !(noise_deg > 0 && noise_mm > 0)) {
+      !(noise_deg > 0 && noise_mm > 0) || !(rate_hz == 100 || rate_hz == 200 || rate_hz == 400)) {
     std::fprintf(stderr, "usage: mc_handeye_bootstrap [recordings ≥ 2] [replicates ≥ 2] [first seed] [s in [0, 1)] [views ≥ 3] "
-                         "[centre: estimate | true-noise | true-delta | true-both | truth | envelope | curvature] [jitter, 0 … 10 ms] [tracker noise > 0 °] [> 0 mm]\n");
+                         "[centre: estimate | true-noise | true-delta | true-both | truth | envelope | curvature] [jitter, 0 … 10 ms] [tracker noise > 0 °] [> 0 mm] [rate: 100, 200 or 400 Hz]\n");
     return 2;
   }
   const double noise_rad = noise_deg * M_PI / 180, noise_length = noise_mm, noise_px = 0.2;
   std::printf("s     spread_ms  sandwich_ms  spread/sandwich  boot_mean_ms  boot_rms_ms  spread/boot_rms (se)  rms_z_sandwich  rms_z_boot  "
               "boot_bias_ms  cpu_s\n");
   for (const double s_fraction : fractions) {
-    const double delta = 0.03 + 0.01 * s_fraction;  // the tracker reports every 10 ms, the views at s = 0 with δ = 30 ms
+    const double delta = 0.03 + s_fraction / rate_hz;  // the views at s = 0 with δ = 30 ms
     const std::clock_t start = std::clock();  // CPU, not wall: the machine is shared
     std::vector<double> error, sandwich, boot_var, bias;
     double rotation = 0, translation = 0, corners = 0;  // mean estimated σ over the truth's
@@ -78,6 +80,7 @@ int main(int argc, char** argv) {
       spec.tracker_noise = noise_length;
       spec.views = views;
       spec.view_jitter = jitter_ms * 1e-3;
+      spec.rate_hz = rate_hz;
       const testing::HandEyeRecording r = testing::RecordHandEye(spec);
       const HandEyeSolution s = SolveHandEye(r.camera, r.log, r.views);
       HandEyeSolution at = s;
@@ -155,8 +158,8 @@ int main(int argc, char** argv) {
     std::printf("%-5.3g %9.3f  %11.3f  %15.3f  %12.3f  %11.3f  %9.3f (%.3f)  %14.3f  %10.3f  %12.3f  %5.0f\n", s_fraction, spread * 1e3,
                 mean_sandwich * 1e3, spread / mean_sandwich, mean_boot * 1e3, boot_rms * 1e3, ratio, ratio * ratio_se, std::sqrt(z_sandwich),
                 std::sqrt(z_boot), mean_bias * 1e3, seconds);
-    std::printf("      centre %s, view jitter %g ms, tracker noise %g° and %g mm; mean estimated σ / truth's: rotation %.3f, translation %.3f, corners %.3f (over the %d of %d "
-                "recordings with a noise estimate); %d bootstrap variances ≤ 0\n", centre.c_str(), jitter_ms, noise_deg, noise_mm, rotation * runs / (runs - without_noise),
+    std::printf("      centre %s, view jitter %g ms, tracker noise %g° and %g mm at %g Hz; mean estimated σ / truth's: rotation %.3f, translation %.3f, corners %.3f (over the %d of %d "
+                "recordings with a noise estimate); %d bootstrap variances ≤ 0\n", centre.c_str(), jitter_ms, noise_deg, noise_mm, rate_hz, rotation * runs / (runs - without_noise),
                 translation * runs / (runs - without_noise), corners * runs / (runs - without_noise), runs - without_noise, runs, negative);
     std::printf("      mean slope excess N Ī⁻¹_δδ %.3f (over the views %.4f), mean report-phase concentration %.3f\n", slope_excess,
                 slope_excess / views, concentration);

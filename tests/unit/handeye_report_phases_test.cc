@@ -73,23 +73,27 @@ TEST(HandEyeReportPhases, SolveReportsLockedAndSpreadViews) {
   EXPECT_FALSE(s.report_phases.Locked()) << s.report_phases.concentration;
 }
 
-// The shortfall's formula: √(1 + 5q/n) for locked views near the middle, 1 elsewhere.
-TEST(HandEyeReportPhases, MidwayShortfallOnlyForLockedViewsNearTheMiddle) {
+// In doubt: locked, within 0.2 of the middle, the first-order σ spanning 0.1 … 0.4 of an interval.
+TEST(HandEyeReportPhases, InDoubtOnlyForLockedViewsNearTheMiddleAtTheMeasuredSpans) {
   ReportPhases p;
   p.concentration = 1;
   p.mean = 0.45;
   p.instants = 16;
-  EXPECT_DOUBLE_EQ(MidwaySigmaShortfall(p, 1.6), std::sqrt(1.5));
+  EXPECT_TRUE(OffsetSigmaInDoubt(p, 0.15));
+  EXPECT_TRUE(OffsetSigmaInDoubt(p, 0.29));
+  EXPECT_FALSE(OffsetSigmaInDoubt(p, 0.05));  // both σ's within 10 % there
+  EXPECT_FALSE(OffsetSigmaInDoubt(p, 0.48));
   p.mean = 0.25;  // outside the band (0.3, 0.7)
-  EXPECT_EQ(MidwaySigmaShortfall(p, 1.6), 1);
+  EXPECT_FALSE(OffsetSigmaInDoubt(p, 0.15));
   p.mean = 0.65;
   p.concentration = 0.3;  // not locked
-  EXPECT_EQ(MidwaySigmaShortfall(p, 1.6), 1);
+  EXPECT_FALSE(OffsetSigmaInDoubt(p, 0.15));
 }
 
 // The solve warns where the Monte Carlo of docs/math/handeye.md#report-phases found σ_δ 16 … 22 %
-// low — 16 views locked midway, 0.05° and 0.2 mm a report — and not where it found both σ's within
-// 5 %: the same with 0.02° and 0.1 mm, or with the views jittered over a report interval.
+// low — 16 views locked midway, 0.05° and 0.2 mm a report, σ_δ 0.15 of an interval — and not where
+// it found both σ's within 5 %: the same with 0.02° and 0.1 mm (0.05 of an interval), or with the
+// views jittered over a report interval.
 TEST(HandEyeReportPhases, SolveWarnsWhereTheOffsetsSigmaIsKnownLow) {
   const auto solve = [](double noise_deg, double noise_mm, double jitter) {
     HandEyeSpec spec = testing::HandEyeTestSpec(0.035, 0.2, 5001);
@@ -102,7 +106,7 @@ TEST(HandEyeReportPhases, SolveWarnsWhereTheOffsetsSigmaIsKnownLow) {
   };
   const auto warned = [](const HandEyeSolution& s) {
     for (const std::string& w : s.warnings) {
-      if (w.find("the time offset's σ is about") != std::string::npos) return true;
+      if (w.find("its σ came out up to 20 % too small") != std::string::npos) return true;
     }
     return false;
   };
@@ -110,6 +114,7 @@ TEST(HandEyeReportPhases, SolveWarnsWhereTheOffsetsSigmaIsKnownLow) {
   EXPECT_TRUE(noisy.report_phases.LockedMidway());
   EXPECT_GT(noisy.slope_excess, 0.8);  // ~1.5 over recordings (the Monte Carlo's mean)
   EXPECT_LT(noisy.slope_excess, 3);
+  EXPECT_NEAR(std::sqrt(noisy.covariance(12, 12)), 0.0015, 0.0005);  // 0.15 of the 10 ms interval
   EXPECT_TRUE(warned(noisy)) << ::testing::PrintToString(noisy.warnings);
   const HandEyeSolution quiet = solve(0.02, 0.1, 0);
   EXPECT_TRUE(quiet.report_phases.LockedMidway());

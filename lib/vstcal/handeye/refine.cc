@@ -701,16 +701,17 @@ HandEyeSolution SolveHandEye(const Camera& camera, std::span<const TrackedPose> 
   std::vector<double> times;
   for (const SolveView& v : active) times.push_back(v.view->time);
   out.report_phases = ViewReportPhases(log, times, out.time_offset);
-  // σ_δ more than 10 % too small: say so, with what would mend it (docs/math/handeye.md#report-phases).
-  if (const double shortfall = MidwaySigmaShortfall(out.report_phases, out.slope_excess); shortfall > kWarnedShortfall) {
+  // Where the Monte Carlo found σ_δ too small, say so (docs/math/handeye.md#report-phases).
+  const double interval = (log.back().time - log.front().time) / static_cast<double>(log.size() - 1);
+  const double span = std::sqrt(out.covariance(12, 12)) / interval;
+  if (OffsetSigmaInDoubt(out.report_phases, span)) {
     char text[640];
-    const double n = static_cast<double>(out.report_phases.instants);
     std::snprintf(text, sizeof text,
                   "the views all sit %.2f of the way between two of the tracker's reports (a camera locked to the tracker's clock), "
-                  "and the tracker's noise is large beside the motion (the slope's excess %.2f over %.0f view times): there the "
-                  "time offset's σ is about %.0f %% too small, the bootstrap's too (docs/math/handeye.md#report-phases). Record "
-                  "%.0f views or more, move faster, or let the camera's clock run free of the tracker's",
-                  out.report_phases.mean, out.slope_excess, n, 100 * (1 - 1 / shortfall), std::ceil(kMidwayExcess * out.slope_excess / (kWarnedShortfall * kWarnedShortfall - 1)));
+                  "and the time offset's σ spans %.2f of a report interval: in recordings like this one its σ came out up to 20 %% "
+                  "too small, the bootstrap's too (docs/math/handeye.md#report-phases). More views, or a camera clock that runs free "
+                  "of the tracker's, avoid it",
+                  out.report_phases.mean, span);
     out.warnings.push_back(text);
   }
   return out;

@@ -11,9 +11,8 @@ bool ReportPhases::Locked() const { return concentration >= kLockedReportPhase; 
 
 bool ReportPhases::LockedMidway() const { return Locked() && std::abs(mean - 0.5) < kMidwayBand; }
 
-double MidwaySigmaShortfall(const ReportPhases& phases, double slope_excess) {
-  if (!phases.LockedMidway() || phases.instants == 0) return 1;
-  return std::sqrt(1 + kMidwayExcess * slope_excess / static_cast<double>(phases.instants));
+bool OffsetSigmaInDoubt(const ReportPhases& phases, double sigma_over_interval) {
+  return phases.LockedMidway() && sigma_over_interval >= kDoubtfulSpan[0] && sigma_over_interval <= kDoubtfulSpan[1];
 }
 
 size_t ReportInterval(std::span<const TrackedPose> log, double tau) {
