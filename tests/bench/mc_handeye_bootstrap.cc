@@ -20,6 +20,8 @@
 // variance of the three. `curvature`: the same three, δ's variance 2v₀ − ½(v₊ + v₋) — the centre's
 // less half its second difference: the plug-in's average over δ̂'s scatter, V + ½σ²V'', undone to
 // second order (linear in the three, so unbiased at any B; it may be negative in one recording).
+// `larger`: the larger of the first-order and the bootstrap's δ variance (judge it at a realistic B:
+// a maximum is biased upward by B's noise).
 //
 // view jitter: each view's time moved later by a uniform draw in [0, jitter) ms (HandEyeSpec::view_jitter):
 // 10 ms (one report interval) puts the views at random phases, as a camera whose clock is not locked
@@ -53,15 +55,15 @@ int main(int argc, char** argv) {
   const double jitter_ms = argc > 7 ? std::atof(argv[7]) : 0;
   const double noise_deg = argc > 8 ? std::atof(argv[8]) : 0.05, noise_mm = argc > 9 ? std::atof(argv[9]) : 0.2;
   const double rate_hz = argc > 10 ? std::atof(argv[10]) : 100;
-  const bool envelope = centre == "envelope", curvature = centre == "curvature";
+  const bool envelope = centre == "envelope", curvature = centre == "curvature", larger = centre == "larger";
   const bool truth = centre == "truth";
   const bool true_noise = centre == "true-noise" || centre == "true-both" || truth;
   const bool true_delta = centre == "true-delta" || centre == "true-both" || truth;
   if (runs < 2 || replicates < 2 || views < 3 || fractions[0] < 0 || fractions[0] >= 1 ||
-      !(centre == "estimate" || envelope || curvature || true_noise || true_delta) || !(jitter_ms >= 0 && jitter_ms <= 10) ||
+      !(centre == "estimate" || envelope || curvature || larger || true_noise || true_delta) || !(jitter_ms >= 0 && jitter_ms <= 10) ||
       !(noise_deg > 0 && noise_mm > 0) || !(rate_hz == 100 || rate_hz == 200 || rate_hz == 400)) {
     std::fprintf(stderr, "usage: mc_handeye_bootstrap [recordings ≥ 2] [replicates ≥ 2] [first seed] [s in [0, 1)] [views ≥ 3] "
-                         "[centre: estimate | true-noise | true-delta | true-both | truth | envelope | curvature] [jitter, 0 … 10 ms] [tracker noise > 0 °] [> 0 mm] [rate: 100, 200 or 400 Hz]\n");
+                         "[centre: estimate | true-noise | true-delta | true-both | truth | envelope | curvature | larger] [jitter, 0 … 10 ms] [tracker noise > 0 °] [> 0 mm] [rate: 100, 200 or 400 Hz]\n");
     return 2;
   }
   const double noise_rad = noise_deg * M_PI / 180, noise_length = noise_mm, noise_px = 0.2;
@@ -120,6 +122,7 @@ int main(int argc, char** argv) {
       }
       slope_excess += s.slope_excess / runs;
       concentration += s.report_phases.concentration / runs;
+      if (larger) variance = std::max(variance, s.covariance(12, 12));
       error.push_back(s.time_offset - delta);
       sandwich.push_back(std::sqrt(s.covariance(12, 12)));
       boot_var.push_back(variance);
