@@ -709,8 +709,9 @@ HandEyeSolution SolveHandEye(const Camera& camera, std::span<const TrackedPose> 
     std::snprintf(text, sizeof text,
                   "the views all sit %.2f of the way between two of the tracker's reports (a camera locked to the tracker's clock), "
                   "and the time offset's σ spans %.2f of a report interval: in recordings like this one its σ came out up to 20 %% "
-                  "too small, the bootstrap's too (docs/math/handeye.md#report-phases). More views, or a camera clock that runs free "
-                  "of the tracker's, avoid it",
+                  "too small, the bootstrap's too. The middle of the offset's scatter matches σ, but its tails are heavier than a "
+                  "normal law's: ±2σ held the truth in 90 %% of such recordings, not 95 %% (docs/math/handeye.md#delta-shape). More "
+                  "views, or a camera clock that runs free of the tracker's, avoid it",
                   out.report_phases.mean, span);
     out.warnings.push_back(text);
   }

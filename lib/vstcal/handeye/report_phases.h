@@ -18,8 +18,9 @@ inline constexpr double kLockedReportPhase = 0.5;
 // Locked views this close to the middle of the interval, s in (0.3, 0.7), are where σ_δ was found
 // too small — but not everywhere there: with 16 locked views at s = ½ (docs/math/handeye.md#report-phases)
 // the first-order σ and the bootstrap's were within 10 % when the first-order σ spanned 0.05 or 0.48
-// of a report interval, and up to 22 % too small when it spanned 0.15 or 0.29. No model of that was
-// found; SolveHandEye warns inside that measured span, kDoubtfulSpan of an interval.
+// of a report interval, and up to 22 % too small when it spanned 0.15 or 0.29: the weight w(s(δ)),
+// smallest midway, flattens the cost within half an interval of δ̂ and δ̂'s tails grow
+// (docs/math/handeye.md#delta-shape). SolveHandEye warns inside that measured span, kDoubtfulSpan.
 inline constexpr double kMidwayBand = 0.2;
 inline constexpr double kDoubtfulSpan[2] = {0.1, 0.4};
 
