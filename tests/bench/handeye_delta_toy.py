@@ -9,10 +9,12 @@ w(s) = (1 − s)² + s², over a fine grid (the global minimum). Prints δ̂'s s
 and 1.4826 MAD, in report intervals) over the first-order sandwich σ of
 docs/math/handeye.md#delta-likelihood, δ̂'s kurtosis, and the σ from the cost's profile.
 
-  handeye_delta_toy.py views v c s0 [seed = 1] [mode = poly] [recordings = 4000]
+  handeye_delta_toy.py views v c s0 [seed = 1] [mode = poly] [recordings = 4000] [still directions = 0]
 
 mode: `poly` (calib-handeye's cost), `line` (each view's two reports' line extended past them: no
 kinks), `fixed` (w held at w(s0): the weight does not follow δ), `linefixed` (both).
+still directions: error directions of each view along which the headset does not move (the solver
+has six a view; the motion's is one), with the same report and view noise, weighed by the same w.
 Not a test; needs NumPy (Debian's python3-numpy, which scripts/setup installs).
 """
 import sys
@@ -25,6 +27,7 @@ def main():
     seed = int(sys.argv[5]) if len(sys.argv) > 5 else 1
     mode = sys.argv[6] if len(sys.argv) > 6 else "poly"
     runs = int(sys.argv[7]) if len(sys.argv) > 7 else 4000
+    still = int(sys.argv[8]) if len(sys.argv) > 8 else 0  # error directions along which the headset does not move
     if mode not in ("poly", "line", "fixed", "linefixed") or not (0 <= s0 < 1) or n < 2 or v <= 0 or c <= 0:
         sys.exit("usage: handeye_delta_toy.py views>1 v>0 c>0 s0∈[0,1) [seed] [poly|line|fixed|linefixed] [recordings]")
     rng = np.random.default_rng(seed)
@@ -35,7 +38,8 @@ def main():
     k0 = c + w0
     beta = (2 * s0 - 1) / w0
     info = n * v * v / k0
-    excess = n * (1 / (w0 * k0) + beta ** 2 * w0 * c / k0 ** 2)
+    # N sums over every error direction (the still ones' noisy slopes score too), Ī the motion's alone.
+    excess = n * (1 + still) * (1 / (w0 * k0) + beta ** 2 * w0 * c / k0 ** 2)
     sandwich = np.sqrt((1 + excess / info) / info)
     rise = 1 + excess / info  # the profile's threshold: ±sandwich on a quadratic cost
     reports = np.arange(-3, 5)  # each view's stretch of the log, around its interval [0, 1)
@@ -51,6 +55,10 @@ def main():
         interp = (1 - s) * y[:, k + 3] + s * y[:, k + 4]
         w = np.full_like(s, w0) if mode in ("fixed", "linefixed") else (1 - s) ** 2 + s ** 2
         cost = (((z[:, None] - interp) ** 2) / (c + w)).sum(0)
+        for _ in range(still):  # the same interpolation of the reports' errors, no motion
+            ye = rng.normal(0, 1, (n, len(reports)))
+            ze = rng.normal(0, np.sqrt(c), n)
+            cost += (((ze[:, None] - ((1 - s) * ye[:, k + 3] + s * ye[:, k + 4])) ** 2) / (c + w)).sum(0)
         m = int(np.argmin(cost))
         estimates.append(grid[m])
         above = np.nonzero(cost[m:] - cost[m] > rise)[0]
@@ -62,7 +70,7 @@ def main():
     kurtosis = ((e - e.mean()) ** 4).mean() / sd ** 4
     p = np.array(profile)
     rms_profile = np.sqrt(np.nanmean(p ** 2))
-    print(f"{mode:9s} views {n} v {v} c {c} s0 {s0}: first-order σ {sandwich:.4f}, spread {sd:.4f} ({sd / sandwich:.3f} of it), "
+    print(f"{mode:9s} views {n} (+{still} still) v {v} c {c} s0 {s0}: first-order σ {sandwich:.4f}, spread {sd:.4f} ({sd / sandwich:.3f} of it), "
           f"robust spread {mad:.4f} ({mad / sandwich:.3f}), kurtosis {kurtosis:.2f}, mean {e.mean():+.4f}; "
           f"profile σ {rms_profile:.4f} (spread / it {sd / rms_profile:.3f}, {int(np.isnan(p).sum())} open)")
 

@@ -9,6 +9,7 @@
 //   mc_handeye_bootstrap [recordings = 40] [replicates = 30] [first seed = 3000] [s = all: 0, 0.25, 0.5]
 //                        [views = 16] [centre = estimate] [view jitter = 0 ms] [tracker noise = 0.05 °] [= 0.2 mm]
 //                        [tracker rate = 100 Hz: 100 × 2ᵏ, so that the views at δ = 30 ms sit on a report]
+//                        [δ = instrumented (calib-handeye's), or cost: δ minimising the cost, w following it (up to stop 39)]
 //
 // centre: where the bootstrap's world is put — `estimate` (what calib-handeye does), or with the
 // truth in place of one plug-in value to measure what that value's error costs: `true-noise` (the
@@ -56,15 +57,16 @@ int main(int argc, char** argv) {
   const double jitter_ms = argc > 7 ? std::atof(argv[7]) : 0;
   const double noise_deg = argc > 8 ? std::atof(argv[8]) : 0.05, noise_mm = argc > 9 ? std::atof(argv[9]) : 0.2;
   const double rate_hz = argc > 10 ? std::atof(argv[10]) : 100;
+  const std::string estimator = argc > 11 ? argv[11] : "instrumented";
   const bool envelope = centre == "envelope", curvature = centre == "curvature", larger = centre == "larger";
   const bool truth = centre == "truth";
   const bool true_noise = centre == "true-noise" || centre == "true-both" || truth;
   const bool true_delta = centre == "true-delta" || centre == "true-both" || truth;
   if (runs < 2 || replicates < 2 || views < 3 || fractions[0] < 0 || fractions[0] >= 1 ||
       !(centre == "estimate" || envelope || curvature || larger || true_noise || true_delta) || !(jitter_ms >= 0 && jitter_ms <= 10) ||
-      !(noise_deg > 0 && noise_mm > 0) || !(rate_hz == 100 || rate_hz == 200 || rate_hz == 400)) {
+      !(noise_deg > 0 && noise_mm > 0) || !(rate_hz == 100 || rate_hz == 200 || rate_hz == 400) || !(estimator == "instrumented" || estimator == "cost")) {
     std::fprintf(stderr, "usage: mc_handeye_bootstrap [recordings ≥ 2] [replicates ≥ 2] [first seed] [s in [0, 1)] [views ≥ 3] "
-                         "[centre: estimate | true-noise | true-delta | true-both | truth | envelope | curvature | larger] [jitter, 0 … 10 ms] [tracker noise > 0 °] [> 0 mm] [rate: 100, 200 or 400 Hz]\n");
+                         "[centre: estimate | true-noise | true-delta | true-both | truth | envelope | curvature | larger] [jitter, 0 … 10 ms] [tracker noise > 0 °] [> 0 mm] [rate: 100, 200 or 400 Hz] [δ: instrumented | cost]\n");
     return 2;
   }
   const double noise_rad = noise_deg * M_PI / 180, noise_length = noise_mm, noise_px = 0.2;
@@ -85,7 +87,9 @@ int main(int argc, char** argv) {
       spec.view_jitter = jitter_ms * 1e-3;
       spec.rate_hz = rate_hz;
       const testing::HandEyeRecording r = testing::RecordHandEye(spec);
-      const HandEyeSolution s = SolveHandEye(r.camera, r.log, r.views);
+      HandEyeOptions options;
+      options.instrumented_offset = estimator == "instrumented";
+      const HandEyeSolution s = SolveHandEye(r.camera, r.log, r.views, options);
       HandEyeSolution at = s;
       if (s.tracker_noise) {
         rotation += s.tracker_noise->rotation.sigma / noise_rad / runs;
@@ -108,14 +112,14 @@ int main(int argc, char** argv) {
         exact.tracker_noise_deg = exact.tracker_noise = 0;
         motion = testing::RecordHandEye(exact).log;
       }
-      HandEyeBootstrap b = BootstrapHandEye(r.camera, motion, r.views, at, {}, {replicates, 77 + static_cast<uint64_t>(run), 1});
+      HandEyeBootstrap b = BootstrapHandEye(r.camera, motion, r.views, at, options, {replicates, 77 + static_cast<uint64_t>(run), 1});
       double variance = b.covariance(12, 12);
       if (envelope || curvature) {
         double sides = 0;
         for (const double side : {-1.0, 1.0}) {
           HandEyeSolution moved = at;
           moved.time_offset += side * std::sqrt(s.covariance(12, 12));
-          const HandEyeBootstrap other = BootstrapHandEye(r.camera, motion, r.views, moved, {}, {replicates, 77 + static_cast<uint64_t>(run), 1});
+          const HandEyeBootstrap other = BootstrapHandEye(r.camera, motion, r.views, moved, options, {replicates, 77 + static_cast<uint64_t>(run), 1});
           sides += other.covariance(12, 12);
           if (envelope && other.covariance(12, 12) > variance) variance = other.covariance(12, 12);
         }
@@ -162,8 +166,8 @@ int main(int argc, char** argv) {
     std::printf("%-5.3g %9.3f  %11.3f  %15.3f  %12.3f  %11.3f  %9.3f (%.3f)  %14.3f  %10.3f  %12.3f  %5.0f\n", s_fraction, spread * 1e3,
                 mean_sandwich * 1e3, spread / mean_sandwich, mean_boot * 1e3, boot_rms * 1e3, ratio, ratio * ratio_se, std::sqrt(z_sandwich),
                 std::sqrt(z_boot), mean_bias * 1e3, seconds);
-    std::printf("      centre %s, view jitter %g ms, tracker noise %g° and %g mm at %g Hz; mean estimated σ / truth's: rotation %.3f, translation %.3f, corners %.3f (over the %d of %d "
-                "recordings with a noise estimate); %d bootstrap variances ≤ 0\n", centre.c_str(), jitter_ms, noise_deg, noise_mm, rate_hz, rotation * runs / (runs - without_noise),
+    std::printf("      δ %s; centre %s, view jitter %g ms, tracker noise %g° and %g mm at %g Hz; mean estimated σ / truth's: rotation %.3f, translation %.3f, corners %.3f (over the %d of %d "
+                "recordings with a noise estimate); %d bootstrap variances ≤ 0\n", estimator.c_str(), centre.c_str(), jitter_ms, noise_deg, noise_mm, rate_hz, rotation * runs / (runs - without_noise),
                 translation * runs / (runs - without_noise), corners * runs / (runs - without_noise), runs - without_noise, runs, negative);
     std::printf("      mean slope excess N Ī⁻¹_δδ %.3f (over the views %.4f), mean report-phase concentration %.3f\n", slope_excess,
                 slope_excess / views, concentration);

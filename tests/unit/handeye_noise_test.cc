@@ -108,7 +108,12 @@ TEST(HandEyeTrackerNoise, DropsBadFramesOfANoisyTrackersRecording) {
   EXPECT_EQ(names, expected);
   ASSERT_TRUE(s.tracker_noise);
   EXPECT_NEAR(s.tracker_noise->rotation.sigma * 180 / M_PI, kNoiseDeg, 0.3 * kNoiseDeg);
-  EXPECT_NEAR(s.tracker_noise->translation.sigma, kNoiseMm, 0.3 * kNoiseMm);
+  // The translation's σ is the less determined of the two (its own standard error is ~45 % here: the
+  // board's corners see a rotation's error at the lever of their distance, a translation's only as
+  // itself), so it is checked against its own 95 % interval rather than a fixed 30 %.
+  EXPECT_LE(s.tracker_noise->translation.lower, kNoiseMm);
+  EXPECT_GE(s.tracker_noise->translation.upper, kNoiseMm);
+  EXPECT_LT(s.tracker_noise->translation.sigma_sigma, 0.5 * s.tracker_noise->translation.sigma);
   for (const Rejection& x : s.rejected) EXPECT_GT(x.rms_px, x.threshold_px) << x.view_name;
 }
 

@@ -40,26 +40,20 @@ void HandEyeFlags::Add(CLI::App& app) {
   solve_app->add_flag("--tracker-exact", solve.tracker_exact,
                       "take the tracker's poses as exact instead of estimating their noise jointly and weighing the views by it");
   const std::string bootstrap_help =
-      std::string("the parametric bootstrap's simulated recordings, each one more solve (0: none). By default ")
-          .append(std::to_string(app::kDefaultBootstrapReplicates))
-          .append(" when the solve keeps at most ")
-          .append(std::to_string(app::kDefaultBootstrapMaxViews))
-          .append(" views, else none: the time offset's σ is then the bootstrap's, nearer its spread than the first-order σ where that "
-                  "is low (few views midway between the tracker's reports; docs/math/handeye.md#delta-bootstrap)");
+      "also the parametric bootstrap's σ's from this many simulated recordings, each one more solve (default: none; the "
+      "first-order σ of the instrumented time offset is as near its spread; docs/tools/calib-handeye.md#bootstrap)";
   auto* bootstrap = solve_app->add_option("--bootstrap", bootstrap_replicates, bootstrap_help);
   auto* seed = solve_app->add_option("--seed", solve.seed, "the bootstrap's seed (the output depends on it only through the bootstrap)")
                    ->check(kSeed)
                    ->capture_default_str();
   auto* threads = solve_app->add_option("--threads", solve.threads, "the bootstrap's threads (0: all cores, at most 256; the output does not depend on it)")
                       ->capture_default_str();
-  // The flag's value goes into the request only when given: unset, the app applies the default rule.
-  // A seed or threads for a bootstrap turned off would be silently ignored: refused instead.
+  // A seed or threads without a bootstrap would be silently ignored: refused instead.
   solve_app->parse_complete_callback([this, camera, rig, bootstrap, seed, threads] {
     if (camera->count() == 0 && rig->count() == 0) throw CLI::RequiredError("--camera (or --rig with --right)");
-    if (bootstrap->count() == 0) return;
-    solve.bootstrap = bootstrap_replicates;
-    if (bootstrap_replicates == 0 && seed->count() + threads->count() > 0) {
-      throw CLI::ValidationError(seed->count() > 0 ? "--seed" : "--threads", "applies to the bootstrap, which --bootstrap 0 turns off");
+    if (bootstrap->count() > 0) solve.bootstrap = bootstrap_replicates;
+    if (solve.bootstrap.value_or(0) == 0 && seed->count() + threads->count() > 0) {
+      throw CLI::ValidationError(seed->count() > 0 ? "--seed" : "--threads", "applies to the bootstrap, which runs only with --bootstrap B (B ≥ 2)");
     }
   });
   solve_app->add_option("--opencv", solve.opencv, "also write X, Z and the offset as OpenCV YAML (calibrateHandEye's names)")->check(kNonEmpty);

@@ -31,19 +31,12 @@ struct HandEyeRequest {
   // (HandEyeOptions::estimate_tracker_noise).
   bool tracker_exact = false;
   // δ's σ (and the whole covariance) also by a parametric bootstrap of this many replicates
-  // (docs/math/handeye.md#delta-bootstrap; 0: none): each replicate one more solve. Unset, the
-  // default rule: kDefaultBootstrapReplicates when the solve kept at most
-  // kDefaultBootstrapMaxViews views (left and right), else none: above, the first-order σ_δ is
-  // within ~7 % even midway between reports, and B solves cost B times the solve (~28 s of one core
-  // at 1,000 views). Replicate b draws from (seed, b) alone, so the file does not depend on `threads`.
+  // (docs/math/handeye.md#delta-bootstrap; unset or 0: none): each replicate one more solve.
+  // Replicate b draws from (seed, b) alone, so the file does not depend on `threads`.
   std::optional<int> bootstrap;
   uint64_t seed = 1;
   unsigned threads = 0;  // 0: every core
 };
-
-// The default bootstrap (docs/tools/calib-handeye.md#bootstrap, where the figures behind both are).
-inline constexpr int kDefaultBootstrapReplicates = 40;
-inline constexpr size_t kDefaultBootstrapMaxViews = 100;
 
 // calib-handeye noise: the tracker's jitter from a static segment of its log.
 struct TrackerNoiseRequest {

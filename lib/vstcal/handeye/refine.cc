@@ -192,13 +192,30 @@ void Whiten(const Whitening& W, const T& w, T* r) {
   }
 }
 
+// δ instrumented (docs/math/handeye.md#delta-instrumented): the tracker's pose at t + δ taken as
+// the polyline's at t + δ₀ moved along the smoothed velocity ν̄ by δ − δ₀, and the weight held at
+// w(s(δ₀)). δ's score is then Σ_f ν̄_fᵀJₑᵀC_f⁻¹r_f: the slope in it is the smoothed one, not the two
+// reports', so neither the noisy slope's excess nor w's curvature enters; δ₀ follows δ̂ to a fixed point.
+struct Instrument {
+  double delta0 = 0, w0 = 1;
+  Eigen::Matrix<double, 6, 1> velocity = Eigen::Matrix<double, 6, 1>::Zero();
+};
+
 struct FrameCost {
   const Chain* chain;
   const Frame* frame;
   const Whitening* whitening;  // null: the tracker's poses exact, residuals in px
+  const Instrument* instrument = nullptr;  // with whitening: δ instrumented
 
   template <typename T>
   bool operator()(T const* const* blocks, T* r) const {
+    if (instrument) {
+      T e[6];
+      for (int i = 0; i < 6; ++i) e[i] = T(instrument->velocity[i]) * (blocks[2][0] - T(instrument->delta0));
+      if (!FrameResiduals<T>(*chain, *frame, blocks[0], blocks[1], T(instrument->delta0), e, r)) return false;
+      Whiten<T>(*whitening, T(instrument->w0), r);
+      return true;
+    }
     if (!FrameResiduals<T>(*chain, *frame, blocks[0], blocks[1], blocks[2][0], nullptr, r)) return false;
     if (!whitening) return true;
     Whiten<T>(*whitening, InterpolationWeight<T>(chain->log, T(frame->time) + blocks[2][0]), r);
@@ -284,7 +301,8 @@ Linearisation Linearise(const Chain& chain, const Frame& frame, double delta) {
 std::vector<std::vector<Eigen::Vector2d>> Refine(Chain* chain, const std::vector<Frame>& frames, const std::vector<Whitening>* whitening,
                                                  const Rigid3d& x_start, const Rigid3d& z_start, double delta_start,
                                                  const HandEyeOptions& options, HandEyeSolution* out,
-                                                 std::vector<Linearisation>* linearisation = nullptr) {
+                                                 std::vector<Linearisation>* linearisation = nullptr,
+                                                 const std::vector<Instrument>* instruments = nullptr) {
   // The whitened cost's Jacobian carries w(δ)'s derivative; the covariance needs w held (below).
   VSTCAL_CHECK(!whitening || linearisation, "a weighted solve takes its covariance from the frames' linearisation");
   // X, Z as left perturbations of their starts, δ absolute.
@@ -297,7 +315,7 @@ std::vector<std::vector<Eigen::Vector2d>> Refine(Chain* chain, const std::vector
   for (size_t f = 0; f < frames.size(); ++f) {
     const Frame& frame = frames[f];
     const Whitening* w = whitening ? &(*whitening)[f] : nullptr;
-    auto* functor = new FrameCost{chain, &frame, w};
+    auto* functor = new FrameCost{chain, &frame, w, instruments ? &(*instruments)[f] : nullptr};
     auto* cost = new ceres::DynamicAutoDiffCostFunction<FrameCost, 13>(functor);
     cost->AddParameterBlock(6);
     cost->AddParameterBlock(6);
@@ -416,10 +434,14 @@ std::vector<std::vector<Eigen::Vector2d>> Refine(Chain* chain, const std::vector
   // information with δ's column the true velocity's. D = 0: N = 0 and Ī = J̃ᵀJ̃.
   const Eigen::Matrix<double, 13, 13> inverse = information.inverse();
   const Eigen::Matrix<double, 13, 1> u = inverse.col(12);
-  out->covariance = inverse + score_excess * u * u.transpose();
+  // Instrumented, δ's score holds no noisy slope: its variance is Ī's, and the covariance Ī⁻¹.
+  out->covariance = instruments ? Eigen::Matrix<double, 13, 13>(inverse) : Eigen::Matrix<double, 13, 13>(inverse + score_excess * u * u.transpose());
   out->slope_excess = score_excess * inverse(12, 12);
   return per_view;
 }
+
+// The most fixed-point steps of the instrumented δ a weighted solve takes.
+constexpr int kMaxInstrumentSteps = 8;
 
 // A σ from its variance's estimate v and standard error: σ = √v, σ(σ) = se/(2√v) (first order),
 // the 95 % interval that of v (Wald) taken through the square root, clamped at 0.
@@ -473,7 +495,23 @@ void EstimateTrackerNoiseJointly(Chain* chain, const std::vector<Frame>& frames,
     // (Each frame's weight w follows δ inside the cost.)
     std::vector<Whitening> whitening;
     for (size_t f = 0; f < frames.size(); ++f) whitening.push_back(MakeWhitening(linearisation[f].J_e, theta));
-    Refine(chain, frames, &whitening, out->hmd_from_camera, out->tracker_from_board, out->time_offset, options, out, &linearisation);
+    if (!options.instrumented_offset) {
+      Refine(chain, frames, &whitening, out->hmd_from_camera, out->tracker_from_board, out->time_offset, options, out, &linearisation);
+      continue;
+    }
+    // δ₀ follows δ̂ until it moves by less than a hundredth of its σ (a contraction: each step's
+    // factor is the noisy slopes' relative error over the views, a few tenths).
+    for (int step = 0; step < kMaxInstrumentSteps; ++step) {
+      std::vector<Instrument> instruments;
+      for (const Frame& frame : frames) {
+        const double tau = frame.time + out->time_offset;
+        const double s = InterpolationFraction(chain->log, tau);
+        instruments.push_back({out->time_offset, (1 - s) * (1 - s) + s * s, SmoothedVelocity(chain->log, ReportInterval(chain->log, tau))});
+      }
+      const double before = out->time_offset;
+      Refine(chain, frames, &whitening, out->hmd_from_camera, out->tracker_from_board, out->time_offset, options, out, &linearisation, &instruments);
+      if (std::abs(out->time_offset - before) <= 0.01 * std::sqrt(out->covariance(12, 12))) break;
+    }
   }
   const Eigen::Vector3d se = components.covariance.diagonal().cwiseMax(0).cwiseSqrt();
   noise.corner_px = SigmaOf(theta[0], se[0]);
@@ -701,20 +739,6 @@ HandEyeSolution SolveHandEye(const Camera& camera, std::span<const TrackedPose> 
   std::vector<double> times;
   for (const SolveView& v : active) times.push_back(v.view->time);
   out.report_phases = ViewReportPhases(log, times, out.time_offset);
-  // Where the Monte Carlo found σ_δ too small, say so (docs/math/handeye.md#report-phases).
-  const double interval = (log.back().time - log.front().time) / static_cast<double>(log.size() - 1);
-  const double span = std::sqrt(out.covariance(12, 12)) / interval;
-  if (OffsetSigmaInDoubt(out.report_phases, span)) {
-    char text[640];
-    std::snprintf(text, sizeof text,
-                  "the views all sit %.2f of the way between two of the tracker's reports (a camera locked to the tracker's clock), "
-                  "and the time offset's σ spans %.2f of a report interval: in recordings like this one its σ came out up to 20 %% "
-                  "too small, the bootstrap's too. The middle of the offset's scatter matches σ, but its tails are heavier than a "
-                  "normal law's: ±2σ held the truth in 90 %% of such recordings, not 95 %% (docs/math/handeye.md#delta-shape). More "
-                  "views, or a camera clock that runs free of the tracker's, avoid it",
-                  out.report_phases.mean, span);
-    out.warnings.push_back(text);
-  }
   return out;
 }
 

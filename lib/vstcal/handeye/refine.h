@@ -107,6 +107,11 @@ struct HandEyeOptions {
   // maximum likelihood and every frame weighed by them, after the bad-frame test; false: the
   // tracker's poses are taken as exact (their noise then only inflates σ̂).
   bool estimate_tracker_noise = true;
+  // With the tracker's noise: δ's estimating equation with the smoothed velocity as its slope
+  // (docs/math/handeye.md#delta-instrumented) rather than the two reports' around each view. false:
+  // δ minimises the cost with the weight following it, as up to stop 39 (1.4 … 1.8 × δ's scatter;
+  // kept to reproduce the docs' tables).
+  bool instrumented_offset = true;
 };
 
 // A σ estimated from the data, with its standard error and 95 % interval (same unit).
@@ -133,7 +138,6 @@ struct ReportPhases {
   double mean = 0;           // the circular mean of s, in [0, 1): where they sit when concentrated
   size_t instants = 0;       // the views' distinct times (a rig's pair is one)
   bool Locked() const;       // concentration ≥ kLockedReportPhase
-  bool LockedMidway() const;  // locked, within kMidwayBand of the middle of the interval
 };
 
 struct HandEyeSolution {
@@ -155,10 +159,13 @@ struct HandEyeSolution {
   // camera's (those two counts are both cameras'). Rejections index the left views, then the right.
   std::optional<Rigid3d> right_from_left;
   size_t right_views = 0, right_corners = 0;
-  // With estimate_tracker_noise: the noise's σ's. X, Z and δ then minimise Σ_f r_fᵀ C_f(δ)⁻¹ r_f,
-  // C_f(δ) = c I + w(s_f(δ)) K_f (each frame's corners with the tracker's error at its instant
-  // profiled out, the interpolation's weight w following δ), and their covariance is that cost's
-  // sandwich Ī⁻¹ + N (Ī⁻¹e_δ)(Ī⁻¹e_δ)ᵀ (docs/math/handeye.md#delta-likelihood), not σ̂²(JᵀJ)⁻¹;
+  // With estimate_tracker_noise: the noise's σ's. X and Z then minimise Σ_f r_fᵀ C_f⁻¹ r_f,
+  // C_f = c I + w(s_f) K_f (each frame's corners with the tracker's error at its instant profiled
+  // out), and δ solves the instrumented equation Σ_f ν̄_fᵀJₑᵀC_f⁻¹r_f = 0 with ν̄ the smoothed
+  // velocity (docs/math/handeye.md#delta-instrumented); their covariance is Ī⁻¹, Ī the information
+  // with δ's column the smoothed velocity's, not σ̂²(JᵀJ)⁻¹. (HandEyeOptions::instrumented_offset
+  // false: δ minimises the cost with w following it, and the covariance is that cost's sandwich
+  // Ī⁻¹ + N (Ī⁻¹e_δ)(Ī⁻¹e_δ)ᵀ, docs/math/handeye.md#delta-likelihood.)
   // `covariance` and `names` then end with
   // tracker_noise.rotation (rad) and tracker_noise.translation (length unit), the σ's themselves,
   // uncorrelated with X, Z and δ to first order (a Gaussian's mean and variance parameters are
@@ -166,8 +173,9 @@ struct HandEyeSolution {
   // estimated beside the tracker's is tracker_noise->corner_px.
   std::optional<JointTrackerNoise> tracker_noise;
   // With the tracker's noise: N Ī⁻¹_δδ, what the noisy slope between two reports adds to δ's
-  // first-order variance over the true velocity's information alone (δ's variance is Ī⁻¹_δδ (1 +
-  // this)); about 6σ²/(wΔt²|ν|²), the slope's noise over the velocity squared. 0 without.
+  // first-order variance over the true velocity's information alone when δ minimises the cost (its
+  // variance is then Ī⁻¹_δδ (1 + this)); about 6σ²/(wΔt²|ν|²), the slope's noise over the velocity
+  // squared. The instrumented δ's variance is Ī⁻¹_δδ: this is what it saves. 0 without.
   double slope_excess = 0;
   ReportPhases report_phases;
 };

@@ -9,12 +9,6 @@ namespace vstcal {
 
 bool ReportPhases::Locked() const { return concentration >= kLockedReportPhase; }
 
-bool ReportPhases::LockedMidway() const { return Locked() && std::abs(mean - 0.5) < kMidwayBand; }
-
-bool OffsetSigmaInDoubt(const ReportPhases& phases, double sigma_over_interval) {
-  return phases.LockedMidway() && sigma_over_interval >= kDoubtfulSpan[0] && sigma_over_interval <= kDoubtfulSpan[1];
-}
-
 size_t ReportInterval(std::span<const TrackedPose> log, double tau) {
   const size_t k = static_cast<size_t>(std::upper_bound(log.begin(), log.end(), tau, [](double t, const TrackedPose& p) { return t < p.time; }) -
                                        log.begin());
