@@ -470,6 +470,7 @@ void EstimateTrackerNoiseJointly(Chain* chain, const std::vector<Frame>& frames,
   if (linearisation.empty()) {
     for (const Frame& frame : frames) linearisation.push_back(Linearise(*chain, frame, out->time_offset));
   }
+  bool instrument_settled = true;  // the last weighted solve's fixed point
   for (int round = 1; round <= 4; ++round) {
     std::vector<NoiseFrame> reduced;
     for (size_t f = 0; f < frames.size(); ++f) {
@@ -492,7 +493,8 @@ void EstimateTrackerNoiseJointly(Chain* chain, const std::vector<Frame>& frames,
     have_theta = true;
     noise.rounds = round;
     // The frames weighed by the noise, solved again from where they are.
-    // (Each frame's weight w follows δ inside the cost.)
+    // (With instrumented_offset false each frame's weight w follows δ inside the cost; instrumented,
+    // it is held at the last δ̂ and δ solves the instrumented equation.)
     std::vector<Whitening> whitening;
     for (size_t f = 0; f < frames.size(); ++f) whitening.push_back(MakeWhitening(linearisation[f].J_e, theta));
     if (!options.instrumented_offset) {
@@ -501,7 +503,8 @@ void EstimateTrackerNoiseJointly(Chain* chain, const std::vector<Frame>& frames,
     }
     // δ₀ follows δ̂ until it moves by less than a hundredth of its σ (a contraction: each step's
     // factor is the noisy slopes' relative error over the views, a few tenths).
-    for (int step = 0; step < kMaxInstrumentSteps; ++step) {
+    bool settled = false;
+    for (int step = 0; step < kMaxInstrumentSteps && !settled; ++step) {
       std::vector<Instrument> instruments;
       for (const Frame& frame : frames) {
         const double tau = frame.time + out->time_offset;
@@ -510,8 +513,14 @@ void EstimateTrackerNoiseJointly(Chain* chain, const std::vector<Frame>& frames,
       }
       const double before = out->time_offset;
       Refine(chain, frames, &whitening, out->hmd_from_camera, out->tracker_from_board, out->time_offset, options, out, &linearisation, &instruments);
-      if (std::abs(out->time_offset - before) <= 0.01 * std::sqrt(out->covariance(12, 12))) break;
+      settled = std::abs(out->time_offset - before) <= 0.01 * std::sqrt(out->covariance(12, 12));
     }
+    instrument_settled = settled;
+  }
+  if (!instrument_settled) {
+    out->warnings.push_back("the time offset's instrumented estimate had not settled after " + std::to_string(kMaxInstrumentSteps) +
+                            " steps (it still moved by more than 1 % of its σ a step): the motion may be too slow or too uneven for "
+                            "the tracker's noise; record a faster, smoother motion");
   }
   const Eigen::Vector3d se = components.covariance.diagonal().cwiseMax(0).cwiseSqrt();
   noise.corner_px = SigmaOf(theta[0], se[0]);
