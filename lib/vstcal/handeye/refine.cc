@@ -501,19 +501,31 @@ void EstimateTrackerNoiseJointly(Chain* chain, const std::vector<Frame>& frames,
       Refine(chain, frames, &whitening, out->hmd_from_camera, out->tracker_from_board, out->time_offset, options, out, &linearisation);
       continue;
     }
-    // δ₀ follows δ̂ until it moves by less than a hundredth of its σ (a contraction: each step's
-    // factor is the noisy slopes' relative error over the views, a few tenths).
+    // The fixed point δ̂(δ₀) = δ₀, to a hundredth of δ's σ. δ̂(δ₀) is close to linear in δ₀ with a
+    // slope b of a few tenths (the noisy slopes' relative error over the views), so δ₀ ← δ̂ would
+    // contract; but a noisy tracker and few views put b near or past ±1, where that stalls or
+    // swings. So after the first step δ₀ takes the secant's root of g(δ₀) = δ̂(δ₀) − δ₀, exact for a
+    // linear δ̂, with the plain step when the secant would jump more than 3σ.
     bool settled = false;
+    double d0 = out->time_offset, previous_d0 = 0, previous_g = 0;
     for (int step = 0; step < kMaxInstrumentSteps && !settled; ++step) {
       std::vector<Instrument> instruments;
       for (const Frame& frame : frames) {
-        const double tau = frame.time + out->time_offset;
+        const double tau = frame.time + d0;
         const double s = InterpolationFraction(chain->log, tau);
-        instruments.push_back({out->time_offset, (1 - s) * (1 - s) + s * s, SmoothedVelocity(chain->log, ReportInterval(chain->log, tau))});
+        instruments.push_back({d0, (1 - s) * (1 - s) + s * s, SmoothedVelocity(chain->log, ReportInterval(chain->log, tau))});
       }
-      const double before = out->time_offset;
-      Refine(chain, frames, &whitening, out->hmd_from_camera, out->tracker_from_board, out->time_offset, options, out, &linearisation, &instruments);
-      settled = std::abs(out->time_offset - before) <= 0.01 * std::sqrt(out->covariance(12, 12));
+      Refine(chain, frames, &whitening, out->hmd_from_camera, out->tracker_from_board, d0, options, out, &linearisation, &instruments);
+      const double sigma = std::sqrt(out->covariance(12, 12)), g = out->time_offset - d0;
+      settled = std::abs(g) <= 0.01 * sigma;
+      double next = out->time_offset;
+      if (step > 0 && g != previous_g) {
+        const double secant = d0 - g * (d0 - previous_d0) / (g - previous_g);
+        if (std::abs(secant - d0) <= 3 * sigma) next = secant;
+      }
+      previous_d0 = d0;
+      previous_g = g;
+      d0 = next;
     }
     instrument_settled = settled;
   }
