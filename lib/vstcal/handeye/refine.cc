@@ -106,14 +106,13 @@ bool FrameResiduals(const Chain& chain, const Frame& frame, const T* x, const T*
   return true;
 }
 
-// The weight w(s) = (1 − s)² + s² of the interpolated pose's error at tracker time τ (its variance
-// over one report's), s the fraction of τ in its interval: with T a Jet, δ's derivative flows
-// through s (docs/math/handeye.md#delta-likelihood).
+// InterpolationWeight at tracker time τ, s the fraction of τ in its interval: with T a Jet, δ's
+// derivative flows through s.
 template <typename T>
-T InterpolationWeight(std::span<const TrackedPose> log, const T& tau) {
+T InterpolationWeightAt(std::span<const TrackedPose> log, const T& tau) {
   const size_t k = ReportInterval(log, detail::ScalarPart(tau));
   const T s = (tau - T(log[k].time)) / T(log[k + 1].time - log[k].time);
-  return (T(1) - s) * (T(1) - s) + s * s;
+  return InterpolationWeight(s);
 }
 
 // The headset's true velocity over report interval k — (spatial angular, rad/s; linear, unit/s), the
@@ -218,7 +217,7 @@ struct FrameCost {
     }
     if (!FrameResiduals<T>(*chain, *frame, blocks[0], blocks[1], blocks[2][0], nullptr, r)) return false;
     if (!whitening) return true;
-    Whiten<T>(*whitening, InterpolationWeight<T>(chain->log, T(frame->time) + blocks[2][0]), r);
+    Whiten<T>(*whitening, InterpolationWeightAt<T>(chain->log, T(frame->time) + blocks[2][0]), r);
     return true;
   }
 };
@@ -380,7 +379,7 @@ std::vector<std::vector<Eigen::Vector2d>> Refine(Chain* chain, const std::vector
         const size_t k = ReportInterval(chain->log, tau);
         const double dt = chain->log[k + 1].time - chain->log[k].time;
         const double s = std::clamp((tau - chain->log[k].time) / dt, 0.0, 1.0);
-        const double w = (1 - s) * (1 - s) + s * s, beta = (2 * s - 1) / w;
+        const double w = InterpolationWeight(s), beta = (2 * s - 1) / w;
         // δ's column the true velocity's, j̄ = Jₑ ν̄ (the noisy slope's excess is not information);
         // with D = 0 the reports are exact and their slope is it.
         Eigen::MatrixXd J_bar = lin.J_g;
@@ -476,7 +475,7 @@ void EstimateTrackerNoiseJointly(Chain* chain, const std::vector<Frame>& frames,
     for (size_t f = 0; f < frames.size(); ++f) {
       const Linearisation& lin = linearisation[f];
       const double s = InterpolationFraction(chain->log, frames[f].time + out->time_offset);
-      reduced.push_back(ReduceNoiseFrame(lin.J_e, lin.J_g, lin.r, (1 - s) * (1 - s) + s * s));
+      reduced.push_back(ReduceNoiseFrame(lin.J_e, lin.J_g, lin.r, InterpolationWeight(s)));
     }
     if (!have_theta) theta = MomentStart(reduced);
     const Eigen::Vector3d previous = theta;
@@ -513,7 +512,7 @@ void EstimateTrackerNoiseJointly(Chain* chain, const std::vector<Frame>& frames,
       for (const Frame& frame : frames) {
         const double tau = frame.time + d0;
         const double s = InterpolationFraction(chain->log, tau);
-        instruments.push_back({d0, (1 - s) * (1 - s) + s * s, SmoothedVelocity(chain->log, ReportInterval(chain->log, tau))});
+        instruments.push_back({d0, InterpolationWeight(s), SmoothedVelocity(chain->log, ReportInterval(chain->log, tau))});
       }
       Refine(chain, frames, &whitening, out->hmd_from_camera, out->tracker_from_board, d0, options, out, &linearisation, &instruments);
       const double sigma = std::sqrt(out->covariance(12, 12)), g = out->time_offset - d0;
@@ -583,7 +582,7 @@ RejectionTest TestViewsAgainstNoise(const Chain& chain, double delta, const std:
     linearisation->push_back(Linearise(chain, frame, delta));
     const Linearisation& lin = linearisation->back();
     const double s = InterpolationFraction(chain.log, frame.time + delta);
-    reduced.push_back(ReduceNoiseFrame(lin.J_e, lin.J_g, lin.r, (1 - s) * (1 - s) + s * s));
+    reduced.push_back(ReduceNoiseFrame(lin.J_e, lin.J_g, lin.r, InterpolationWeight(s)));
   }
   if (views_alone.size() < kMinViewsToTest) return t;
   const FrameNoiseTest test = TestFramesAgainstNoise(reduced, options.rejection.view_false_alarm);

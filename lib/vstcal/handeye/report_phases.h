@@ -24,6 +24,14 @@ size_t ReportInterval(std::span<const TrackedPose> log, double tau);
 // the log): the place a view's tracker time has between two reports.
 double InterpolationFraction(std::span<const TrackedPose> log, double tau);
 
+// w(s) = (1 − s)² + s²: the variance of the pose interpolated at fraction s between two reports
+// over one report's (1 at a report, ½ midway; docs/math/handeye.md#delta-likelihood). T may be a
+// Jet, so that δ's derivative flows through s.
+template <typename T>
+T InterpolationWeight(const T& s) {
+  return (T(1) - s) * (T(1) - s) + s * s;
+}
+
 // s = (t + δ − t_k) / (t_{k+1} − t_k) for each time t, in the report interval [t_k, t_{k+1}) holding
 // t + δ; times within 1 µs of each other count once, times outside the log not at all. `log` is
 // strictly increasing in time (SolveHandEye's check).
